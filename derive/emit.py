@@ -1,0 +1,148 @@
+"""Stage 5: emit kernel specifications as straight-line, vectorized NumPy source.
+
+Each kernel becomes a function whose array arguments broadcast against each other; vector inputs
+carry their components on the trailing axis.  Leading axes (elements, and an optional batch of
+parameter sets) pass straight through: an output has shape  broadcast(inputs) + (6,) or (6, 6).
+Common subexpressions are eliminated with a fixed prefix in canonical order, so the same
+specification always gives byte-identical source.
+"""
+
+import hashlib
+
+import sympy as sp
+from sympy.printing.numpy import NumPyPrinter
+
+GENERATOR_VERSION = "1"
+CSE_PREFIX = "_c"
+
+
+class KernelSpecError(ValueError):
+    """A kernel specification is inconsistent (a free symbol that is not an input, ...)."""
+
+
+class _Printer(NumPyPrinter):
+    def __init__(self):
+        super().__init__({"fully_qualified_modules": True, "inline": True})
+
+
+def _validate(kernel):
+    declared = {}
+    for inp in kernel.inputs:
+        for sym in inp.symbols:
+            if sym in declared:
+                raise KernelSpecError(f"{kernel.name}: symbol {sym} declared twice")
+            declared[sym] = inp.name
+    for out in kernel.outputs:
+        missing = out.expr.free_symbols - set(declared)
+        if missing:
+            names = ", ".join(sorted(str(m) for m in missing))
+            raise KernelSpecError(f"{kernel.name}.{out.name}: free symbols not among the inputs: {names}")
+
+
+def spec_hash(kernels):
+    """sha256 of the specification: names, ordered inputs and output expressions."""
+    h = hashlib.sha256(GENERATOR_VERSION.encode())
+    for k in kernels:
+        h.update(k.name.encode())
+        for inp in k.inputs:
+            h.update(f"{inp.name}:{','.join(map(str, inp.symbols))};".encode())
+        for out in k.outputs:
+            h.update(f"{out.name}={sp.srepr(out.expr)};".encode())
+    return h.hexdigest()
+
+
+def _output_shape(expr):
+    rows, cols = expr.shape
+    if (rows, cols) == (1, 1):
+        return ()
+    if cols == 1:
+        return (rows,)
+    return (rows, cols)
+
+
+def _entries(expr):
+    """(index tuple, expression) of every entry, row-major."""
+    shape = _output_shape(expr)
+    rows, cols = expr.shape
+    for i in range(rows):
+        for j in range(cols):
+            idx = () if not shape else ((i,) if len(shape) == 1 else (i, j))
+            yield idx, expr[i, j]
+
+
+def emit_kernel(kernel):
+    """Python source of one kernel function."""
+    _validate(kernel)
+    printer = _Printer()
+    used = set()
+    for out in kernel.outputs:
+        used |= out.expr.free_symbols
+
+    flat = []
+    for out in kernel.outputs:
+        flat.extend(e for _, e in _entries(out.expr))
+    replacements, reduced = sp.cse(flat, symbols=sp.numbered_symbols(CSE_PREFIX), order="canonical")
+
+    arg_names = [inp.name for inp in kernel.inputs]
+    lines = [f"def {kernel.name}({', '.join(arg_names)}):"]
+    doc = [f'    """{kernel.doc}', ""]
+    doc.append("    Inputs (broadcast against each other; vector inputs on the trailing axis):")
+    for inp in kernel.inputs:
+        size = f" (..., {len(inp.symbols)})" if len(inp.symbols) > 1 or inp.name != inp.symbols[0].name else ""
+        doc.append(f"        {inp.name}{size}")
+    doc.append("    Returns:")
+    for out in kernel.outputs:
+        shape = ", ".join(str(n) for n in _output_shape(out.expr))
+        doc.append(f"        {out.name} (...{', ' + shape if shape else ''}): {out.doc}")
+    doc.append('    """')
+    lines += doc
+
+    shape_terms = []
+    for inp in kernel.inputs:
+        vector_input = len(inp.symbols) > 1 or inp.name != inp.symbols[0].name
+        if vector_input:
+            for k, sym in enumerate(inp.symbols):
+                if sym in used:
+                    lines.append(f"    {sym.name} = {inp.name}[..., {k}]")
+            shape_terms.append(f"numpy.shape({inp.name})[:-1]")
+        else:
+            shape_terms.append(f"numpy.shape({inp.name})")
+    lines.append(f"    shape = numpy.broadcast_shapes({', '.join(shape_terms)})")
+
+    for sym, expr in replacements:
+        lines.append(f"    {sym} = {printer.doprint(expr)}")
+
+    position = 0
+    names = []
+    for out in kernel.outputs:
+        oshape = _output_shape(out.expr)
+        lines.append(f"    {out.name} = numpy.zeros(shape + {oshape!r})")
+        for idx, _ in _entries(out.expr):
+            value = reduced[position]
+            position += 1
+            if value == 0:
+                continue
+            index = ", ".join(["..."] + [str(i) for i in idx])
+            lines.append(f"    {out.name}[{index}] = {printer.doprint(value)}")
+        names.append(out.name)
+    lines.append(f"    return {', '.join(names)}")
+    return "\n".join(lines) + "\n"
+
+
+def emit_module(title, kernels, derive_command):
+    """Source of a generated module: header, import, kernels."""
+    header = [
+        f'"""{title}',
+        "",
+        f"Autogenerated by `{derive_command}` from derive/ -- do not edit by hand.",
+        f"Generator version {GENERATOR_VERSION}, SymPy {sp.__version__}, "
+        f"specification sha256 {spec_hash(kernels)}.",
+        '"""',
+        "",
+        "import numpy",
+        "",
+        f"__all__ = {[k.name for k in kernels]!r}",
+        "",
+    ]
+    body = "\n\n".join(emit_kernel(k) for k in kernels)
+    return "\n".join(header) + "\n" + body

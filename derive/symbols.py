@@ -1,0 +1,44 @@
+"""Every SymPy symbol of the derivation, in one place.
+
+All quantities are dimensionless (section 5 of the paper): lengths in units of the rod length L,
+mass in units of rho*A*L, time in units of 1/omega_b.  The element data and the rigid-body
+kinematics are plain symbols so that they become kernel arguments.
+"""
+
+import sympy as sp
+
+# Position inside an element, zeta = x / l (Appendix A).
+zeta = sp.Symbol("zeta", real=True)
+
+# Element data: element length l and the x co-ordinate x0 of its first node.
+l = sp.Symbol("l", positive=True)
+x0 = sp.Symbol("x0", real=True)
+
+# Section and material constants (per unit length): rho*A, rho*I, E*A, E*I and the damping time mu.
+rhoA, rhoI, EA, EI = sp.symbols("rhoA rhoI EA EI", positive=True)
+mu = sp.Symbol("mu", nonnegative=True)
+
+# Slider mass and rod length (the slider sits at x = L).
+ms = sp.Symbol("ms", nonnegative=True)
+L = sp.Symbol("L", positive=True)
+
+# Rigid-body kinematics: crank length a, crank angle theta and rate thetad (constant speed, so
+# thetadd = 0 is built in), rod angle phi with its first and second time derivatives.
+a = sp.Symbol("a", positive=True)
+theta, thetad, phi, phid, phidd = sp.symbols("theta thetad phi phid phidd", real=True)
+
+# Element nodal vector {q}_i = {u_i, v_i, psi_i, u_i+1, v_i+1, psi_i+1} (eq. 14) and its rates.
+q = sp.Matrix(sp.symbols("q0:6", real=True))
+qd = sp.Matrix(sp.symbols("qd0:6", real=True))
+qdd = sp.Matrix(sp.symbols("qdd0:6", real=True))
+
+# Slider node displacements (u, v) of the rod's last node and their rates.
+qs = sp.Matrix(sp.symbols("qs0:2", real=True))
+qsd = sp.Matrix(sp.symbols("qsd0:2", real=True))
+qsdd = sp.Matrix(sp.symbols("qsdd0:2", real=True))
+
+KINEMATICS = (a, theta, thetad, phi, phid, phidd)
+
+# Time derivatives of the time-dependent symbols (constant crank speed: thetadd = 0).
+# phidd has no entry: no quantity differentiated in time by the derivation depends on it.
+TIME_DERIVATIVE = {theta: thetad, thetad: sp.Integer(0), phi: phid, phid: phidd}

@@ -1,0 +1,15 @@
+"""crankgen: dynamics of flexible slider-crank mechanisms (derived, generated, fast)."""
+
+from .errors import ConvergenceError, CrankgenError, ParameterError
+from .kernels import APPROACHES, DAMPING_MODELS, FORMULATIONS
+from .model import Model
+from .newmark import NewmarkSettings, integrate
+from .parameters import Mechanism, SIMechanism
+from .simulation import SimulationResult, simulate
+
+__all__ = [
+    "APPROACHES", "DAMPING_MODELS", "FORMULATIONS", "ConvergenceError", "CrankgenError", "Mechanism",
+    "Model", "NewmarkSettings", "ParameterError", "SIMechanism", "SimulationResult", "integrate",
+    "simulate",
+]
+__version__ = "0.1.0"

@@ -1,0 +1,17 @@
+"""Exceptions raised by crankgen."""
+
+
+class CrankgenError(Exception):
+    """Base class of every error crankgen raises on purpose."""
+
+
+class ParameterError(CrankgenError, ValueError):
+    """An input is outside its allowed range; the message names the parameter and the range."""
+
+
+class ConvergenceError(CrankgenError, RuntimeError):
+    """Newton's method did not converge (or the solution stopped being finite) in a time step."""
+
+    def __init__(self, message, step=None, time=None, residual=None):
+        super().__init__(message)
+        self.step, self.time, self.residual = step, time, residual

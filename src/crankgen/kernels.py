@@ -1,0 +1,49 @@
+"""Selection of the generated element kernels for a formulation, approach and damping model."""
+
+from dataclasses import dataclass
+from typing import Callable, Optional
+
+from ._generated import damping as _damping
+from ._generated import lagrange as _lagrange
+from ._generated import paper as _paper
+from .validation import choice
+
+FORMULATIONS = ("lagrange", "paper")
+APPROACHES = ("A", "B", "C")
+DAMPING_MODELS = ("paper", "kelvin-voigt")
+
+
+@dataclass(frozen=True)
+class ElementKernels:
+    """The generated functions that make up one model's element equations."""
+
+    formulation: str
+    approach: str
+    damping: str
+    rod_inertia: Callable          # (q, qd, qdd, l, x0, rhoA, rhoI, a, theta, ..., phidd) -> r, K, C, M
+    slider_inertia: Callable       # (qs, qsd, qsdd, ms, L, a, theta, ..., phidd) -> r, K, C, M
+    rod_elastic: Callable          # (q, l, EA, EI) -> r, K[, K_sec]
+    rod_damping: Callable          # kelvin-voigt: (q, qd, l, EA, EI, mu); paper: (..., rhoA, rhoI, phid, mu)
+    slider_damping: Optional[Callable]   # paper damping only: (qsd, ms, phid, mu) -> r, K, C
+
+    @property
+    def has_secant(self):
+        """True when the formulation prints a secant stiffness (K_lin + K_non) for eq. (37)."""
+        return self.formulation == "paper"
+
+
+def select_kernels(formulation, approach, damping):
+    choice("formulation", formulation, FORMULATIONS)
+    choice("approach", approach, APPROACHES)
+    choice("damping", damping, DAMPING_MODELS)
+    module = _lagrange if formulation == "lagrange" else _paper
+    if damping == "kelvin-voigt":
+        rod_damping, slider_damping = getattr(_damping, f"kelvin_voigt_{approach}"), None
+    else:
+        rod_damping, slider_damping = getattr(_damping, f"paper_{approach}"), _damping.paper_slider
+    return ElementKernels(
+        formulation, approach, damping,
+        rod_inertia=module.rod_inertia, slider_inertia=module.slider_inertia,
+        rod_elastic=getattr(module, f"rod_elastic_{approach}"),
+        rod_damping=rod_damping, slider_damping=slider_damping,
+    )
