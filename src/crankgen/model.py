@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ._generated import energy as _energy
 from .assembly import BandedAssembler
 from .constraints import S_SLOT, expand, project, slider_map
 from .kernels import ElementKernels, select_kernels
@@ -104,6 +105,18 @@ class Model:
         terms = self.element_terms(kin, d, v, a, secant=secant)
         S = terms.M + c_v * terms.C + c_d * terms.K
         return self.assembler.vector(terms.r), self.assembler.banded(S)
+
+    def energies(self, t, d, v):
+        """(kinetic T_c + T_s, strain U_c) of the approach at time t for reduced d, v."""
+        m, mesh = self.mechanism, self.mesh
+        kin = self.kinematics(t)
+        q, qd, _, _ = self.nodal_state(kin, d, v, np.zeros_like(d))
+        kin_args = (m.a, kin.theta, kin.thetad, kin.phi, kin.phid)
+        T_rod = _energy.rod_kinetic_energy(q, qd, mesh.length, mesh.x0, m.rhoA, m.rhoI, *kin_args)
+        T_slider = _energy.slider_kinetic_energy(q[-1, SLIDER], qd[-1, SLIDER], m.ms, 1.0, *kin_args)
+        strain = getattr(_energy, f"strain_energy_{self.kernels.approach}")
+        U = strain(q, mesh.length, m.EA, m.EI)
+        return float(np.sum(T_rod) + T_slider), float(np.sum(U))
 
     def full_nodal(self, d, phi):
         """Full nodal vectors (..., 3 (n+1)) [u_0, v_0, psi_0, ...] from reduced d (..., N)."""

@@ -1,0 +1,33 @@
+"""Small helpers shared by the runtime tests (not a reference implementation of the physics)."""
+
+import math
+
+import numpy as np
+
+from crankgen.mesh import PSI, V
+
+
+def bending_mode_state(mesh, amplitude):
+    """Reduced displacement vector of v = amplitude sin(pi x) (psi = v_x), axial DOFs zero."""
+    d = np.zeros(mesh.n_dofs)
+    for node in range(mesh.n_elements + 1):
+        x = node * mesh.length
+        for comp, value in ((V, amplitude * math.sin(math.pi * x)),
+                            (PSI, amplitude * math.pi * math.cos(math.pi * x))):
+            i = mesh.reduced_index(node, comp)
+            if i is not None:
+                d[i] = value
+    return d
+
+
+def zero_crossing_frequency(t, y):
+    """Angular frequency from the mean spacing of linearly interpolated zero crossings."""
+    idx = np.where(np.sign(y[:-1]) * np.sign(y[1:]) < 0)[0]
+    tz = t[idx] - y[idx] * (t[idx + 1] - t[idx]) / (y[idx + 1] - y[idx])
+    assert len(tz) >= 4, "too few zero crossings to measure a frequency"
+    return math.pi / np.mean(np.diff(tz))
+
+
+def observed_order(h, err):
+    """Slope of log(err) against log(h) (least squares)."""
+    return np.polyfit(np.log(h), np.log(err), 1)[0]

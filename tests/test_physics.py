@@ -1,0 +1,134 @@
+"""Physics of the runtime against independent truths: analytic frequency, energy balance,
+convergence order, exact constraint, long-run periodicity, low-speed agreement of A, B, C."""
+
+import math
+
+import numpy as np
+import pytest
+
+import crankgen
+from crankgen.model import Model
+from crankgen.newmark import NewmarkSettings, integrate
+from crankgen.outputs import element_history, mid_deflection
+
+from helpers import bending_mode_state, observed_order, zero_crossing_frequency
+
+
+def test_small_free_vibration_at_omega_b_converges_with_elements():
+    """Stationary crank, no damping: the pinned / sliding rod vibrates in its first bending mode at
+    omega_b (= 1 in crankgen's units; rotary inertia gives 1/sqrt(1 + pi^2 eps^2), Rayleigh beam).
+    Newmark's period elongation is removed exactly (w_fe = (2/dt) tan(w dt / 2))."""
+    mech = crankgen.Mechanism(eps=0.01, mu=0.0)
+    exact = 1.0 / math.sqrt(1.0 + (math.pi * mech.eps) ** 2)
+    steps_per_period, periods = 200, 4
+    dt = 2 * math.pi / steps_per_period
+    errors = []
+    for n in (2, 4, 8):
+        model = Model.build(mech, 0.0, n, "lagrange", "A", "kelvin-voigt")
+        d0 = bending_mode_state(model.mesh, 1e-7)
+        hist = integrate(model, d0, np.zeros_like(d0), 0.0, dt, steps_per_period * periods)
+        q = element_history(model, hist.d, np.zeros(len(hist.t)))
+        w = zero_crossing_frequency(hist.t, mid_deflection(model, q))
+        w_fe = 2 / dt * math.tan(w * dt / 2)
+        errors.append(abs(w_fe - exact) / exact)
+    assert errors[-1] < 2e-4
+    assert errors[0] > errors[1] > errors[2]
+    assert observed_order([2, 1], errors[:2]) > 3.5     # cubic Hermite bending: O(h^4) frequencies
+
+
+def _energy_history(model, hist):
+    return np.array([sum(model.energies(t, d, v)) for t, d, v in zip(hist.t, hist.d, hist.v)])
+
+
+@pytest.mark.parametrize("approach", ["A", "C"])
+def test_energy_conserved_without_crank_motion_or_damping(approach):
+    """Omega = 0, mu = 0: the Lagrangian is autonomous, so T + U is constant; the average
+    acceleration rule keeps the drift at O(dt^2) for the non-linear model."""
+    mech = crankgen.Mechanism(eps=0.05, ms=0.5, mu=0.0)
+    drifts = []
+    for steps in (40, 80, 160):
+        model = Model.build(mech, 0.0, 4, "lagrange", approach, "kelvin-voigt")
+        d0 = bending_mode_state(model.mesh, 0.05)   # large enough for the non-linear terms to act
+        hist = integrate(model, d0, np.zeros_like(d0), 0.0, 2 * math.pi / steps, 2 * steps)
+        E = _energy_history(model, hist)
+        drifts.append(np.max(np.abs(E - E[0])) / E[0])
+    assert drifts[-1] < 1e-3
+    if approach == "C":   # linear: the trapezoidal rule conserves the quadratic energy exactly
+        assert max(drifts) < 1e-10
+    else:
+        assert observed_order([4, 2, 1], drifts) > 1.8
+
+
+def test_second_order_convergence_in_time_step():
+    """v* after one revolution at Omega* = 0.8 converges at order 2 in dt (Newmark, beta=1/4)."""
+    mech = crankgen.Mechanism()
+    ref = crankgen.simulate(mech, omega=0.8, n_elements=4, steps_per_rev=1600, revolutions=1)
+    errs, hs = [], []
+    for spr in (50, 100, 200):
+        r = crankgen.simulate(mech, omega=0.8, n_elements=4, steps_per_rev=spr, revolutions=1)
+        errs.append(abs(r.v_mid[-1] - ref.v_mid[-1]))
+        hs.append(1 / spr)
+    assert 1.8 < observed_order(hs, errs) < 2.3
+
+
+@pytest.mark.parametrize("formulation", ["lagrange", "paper"])
+def test_slider_constraint_exact_at_every_step(formulation):
+    """The slider end stays on the X axis: Y = a sin(theta) - (L + u) sin(phi) + v cos(phi) = 0."""
+    mech = crankgen.Mechanism(a=0.3)
+    r = crankgen.simulate(mech, omega=0.8, n_elements=4, revolutions=2, formulation=formulation,
+                          store_nodes=True)
+    n = r.settings["n_elements"]
+    u, v = r.nodes[:, 3 * n], r.nodes[:, 3 * n + 1]
+    phi = np.arcsin(mech.a * np.sin(r.theta))
+    Y = mech.a * np.sin(r.theta) - (1 + u) * np.sin(phi) + v * np.cos(phi)
+    assert np.max(np.abs(Y)) < 1e-15 * 10
+    assert np.max(np.abs(r.nodes[:, 0:2])) == 0.0          # pin u_1 = v_1 = 0
+
+
+@pytest.mark.slow
+def test_response_stays_bounded_and_periodic_over_60_revolutions():
+    """No parasitic growth from the rheonomic constraint: with light damping (mu* = 0.05, so a
+    slowly growing mode would show), after 60 revolutions the response repeats with the crank
+    period and its amplitude is not drifting."""
+    spr, revs = 100, 60
+    r = crankgen.simulate(crankgen.Mechanism(mu=0.05), omega=0.8, n_elements=4, steps_per_rev=spr,
+                          revolutions=revs, integrator="newton")
+    per_rev = np.abs(r.v_mid[1:].reshape(revs, spr)).max(axis=1)
+    assert np.all(np.isfinite(r.v_mid))
+    assert abs(per_rev[-1] - per_rev[-21]) < 1e-8 * per_rev[-1]
+    last, previous = r.v_mid[-spr:], r.v_mid[-2 * spr:-spr]
+    assert np.max(np.abs(last - previous)) < 1e-8 * np.max(np.abs(last))
+
+
+@pytest.mark.parametrize("formulation", ["lagrange", "paper"])
+def test_approaches_agree_at_low_speed(formulation):
+    """At Omega* = 0.1 the rod deflects little and A, B, C give nearly the same response."""
+    mech = crankgen.Mechanism()
+    runs = {ap: crankgen.simulate(mech, omega=0.1, approach=ap, formulation=formulation,
+                                  n_elements=4, revolutions=1.5).v_mid for ap in "ABC"}
+    scale = np.max(np.abs(runs["A"]))
+    for ap in "BC":
+        assert np.max(np.abs(runs[ap] - runs["A"])) < 0.02 * scale
+
+
+def test_mass_matrix_symmetric_positive_definite():
+    """The reduced mass matrix T^T M T (rod, rotary inertia, slider) is SPD at any crank angle."""
+    mech = crankgen.Mechanism(a=0.4, ms=2.0)
+    for formulation in ("lagrange", "paper"):
+        model = Model.build(mech, 0.8, 5, formulation, "A", "paper")
+        rng = np.random.default_rng(1)
+        d, v = 1e-3 * rng.standard_normal((2, model.n_dofs))
+        for t in (0.0, 1.3, 4.0):
+            terms = model.element_terms(model.kinematics(t), d, v, np.zeros_like(d))
+            M = model.assembler.dense(terms.M)
+            assert np.allclose(M, M.T, rtol=0, atol=1e-14 * np.abs(M).max())
+            assert np.linalg.eigvalsh(M).min() > 0
+
+
+def test_one_pass_and_newton_agree_when_steps_are_small():
+    mech = crankgen.Mechanism()
+    a = crankgen.simulate(mech, omega=0.8, n_elements=4, steps_per_rev=400, revolutions=1,
+                          integrator="newton", formulation="paper")
+    b = crankgen.simulate(mech, omega=0.8, n_elements=4, steps_per_rev=400, revolutions=1,
+                          integrator="one-pass", formulation="paper")
+    assert np.max(np.abs(a.v_mid - b.v_mid)) < 1e-3 * np.max(np.abs(a.v_mid))
