@@ -5,11 +5,13 @@ from .kernels import APPROACHES, DAMPING_MODELS, FORMULATIONS
 from .model import Model
 from .newmark import NewmarkSettings, integrate
 from .parameters import Mechanism, SIMechanism
+from .cases import Case
 from .simulation import SimulationResult, simulate
+from .steady import SteadyState, steady_state, steady_states
 
 __all__ = [
-    "APPROACHES", "DAMPING_MODELS", "FORMULATIONS", "ConvergenceError", "CrankgenError", "Mechanism",
+    "APPROACHES", "Case", "DAMPING_MODELS", "FORMULATIONS", "ConvergenceError", "CrankgenError", "Mechanism",
     "Model", "NewmarkSettings", "ParameterError", "SIMechanism", "SimulationResult", "integrate",
-    "simulate",
+    "simulate", "SteadyState", "steady_state", "steady_states",
 ]
 __version__ = "0.1.0"
