@@ -1,18 +1,22 @@
-"""Stage 5: emit kernel specifications as straight-line, vectorized NumPy source.
+"""Stage 5: emit kernel specifications as straight-line Python source, in two variants.
 
-Each kernel becomes a function whose array arguments broadcast against each other; vector inputs
-carry their components on the trailing axis.  Leading axes (elements, and an optional batch of
-parameter sets) pass straight through: an output has shape  broadcast(inputs) + (6,) or (6, 6).
-Common subexpressions are eliminated with a fixed prefix in canonical order, so the same
-specification always gives byte-identical source.
+- `name(...)`: vectorized NumPy.  Array arguments broadcast against each other; vector inputs carry
+  their components on the trailing axis.  Leading axes (elements, and an optional batch of
+  parameter sets) pass straight through: an output has shape  broadcast(inputs) + (6,) or (6, 6).
+- `name_into(..., out1, out2, ...)`: one element, scalar arguments, results written into
+  preallocated arrays (every entry, zeros included).  Plain Python with `math`, written so that
+  the runtime can compile it with numba for the hot path.
+Both come from the same specification and the same common-subexpression elimination (fixed
+prefix, canonical order), so the same derivation always gives byte-identical source.
 """
 
 import hashlib
 
 import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
+from sympy.printing.pycode import PythonCodePrinter
 
-GENERATOR_VERSION = "1"
+GENERATOR_VERSION = "2"
 CSE_PREFIX = "_c"
 
 
@@ -21,6 +25,11 @@ class KernelSpecError(ValueError):
 
 
 class _Printer(NumPyPrinter):
+    def __init__(self):
+        super().__init__({"fully_qualified_modules": True, "inline": True})
+
+
+class _ScalarPrinter(PythonCodePrinter):
     def __init__(self):
         super().__init__({"fully_qualified_modules": True, "inline": True})
 
@@ -70,6 +79,47 @@ def _entries(expr):
             yield idx, expr[i, j]
 
 
+def _cse(kernel):
+    """Common subexpressions of all outputs of a kernel, canonical order, fixed prefix."""
+    flat = []
+    for out in kernel.outputs:
+        flat.extend(e for _, e in _entries(out.expr))
+    return sp.cse(flat, symbols=sp.numbered_symbols(CSE_PREFIX), order="canonical")
+
+
+def _is_vector(inp):
+    return len(inp.symbols) > 1
+
+
+def emit_scalar_kernel(kernel, cse=None):
+    """Python source of the one-element variant `<name>_into` (numba-compilable)."""
+    _validate(kernel)
+    printer = _ScalarPrinter()
+    replacements, reduced = cse if cse is not None else _cse(kernel)
+    used = set()
+    for out in kernel.outputs:
+        used |= out.expr.free_symbols
+    args = [inp.name for inp in kernel.inputs] + [out.name for out in kernel.outputs]
+    lines = [f"def {kernel.name}_into({', '.join(args)}):",
+             f'    """{kernel.name} for one element: scalars in, outputs written into '
+             f'{", ".join(out.name for out in kernel.outputs)}."""']
+    for inp in kernel.inputs:
+        if _is_vector(inp):
+            for k, sym in enumerate(inp.symbols):
+                if sym in used:
+                    lines.append(f"    {sym.name} = {inp.name}[{k}]")
+    for sym, expr in replacements:
+        lines.append(f"    {sym} = {printer.doprint(expr)}")
+    position = 0
+    for out in kernel.outputs:
+        for idx, _ in _entries(out.expr):
+            value = reduced[position]
+            position += 1
+            index = ", ".join(str(i) for i in idx) if idx else "0"
+            lines.append(f"    {out.name}[{index}] = {printer.doprint(sp.Float(value) if value.is_number else value)}")
+    return "\n".join(lines) + "\n"
+
+
 def emit_kernel(kernel):
     """Python source of one kernel function."""
     _validate(kernel)
@@ -78,17 +128,14 @@ def emit_kernel(kernel):
     for out in kernel.outputs:
         used |= out.expr.free_symbols
 
-    flat = []
-    for out in kernel.outputs:
-        flat.extend(e for _, e in _entries(out.expr))
-    replacements, reduced = sp.cse(flat, symbols=sp.numbered_symbols(CSE_PREFIX), order="canonical")
+    replacements, reduced = _cse(kernel)
 
     arg_names = [inp.name for inp in kernel.inputs]
     lines = [f"def {kernel.name}({', '.join(arg_names)}):"]
     doc = [f'    """{kernel.doc}', ""]
     doc.append("    Inputs (broadcast against each other; vector inputs on the trailing axis):")
     for inp in kernel.inputs:
-        size = f" (..., {len(inp.symbols)})" if len(inp.symbols) > 1 or inp.name != inp.symbols[0].name else ""
+        size = f" (..., {len(inp.symbols)})" if _is_vector(inp) else ""
         doc.append(f"        {inp.name}{size}")
     doc.append("    Returns:")
     for out in kernel.outputs:
@@ -99,8 +146,7 @@ def emit_kernel(kernel):
 
     shape_terms = []
     for inp in kernel.inputs:
-        vector_input = len(inp.symbols) > 1 or inp.name != inp.symbols[0].name
-        if vector_input:
+        if _is_vector(inp):
             for k, sym in enumerate(inp.symbols):
                 if sym in used:
                     lines.append(f"    {sym.name} = {inp.name}[..., {k}]")
@@ -139,10 +185,12 @@ def emit_module(title, kernels, derive_command):
         f"specification sha256 {spec_hash(kernels)}.",
         '"""',
         "",
+        "import math",
+        "",
         "import numpy",
         "",
-        f"__all__ = {[k.name for k in kernels]!r}",
+        f"__all__ = {[n for k in kernels for n in (k.name, k.name + '_into')]!r}",
         "",
     ]
-    body = "\n\n".join(emit_kernel(k) for k in kernels)
+    body = "\n\n".join(emit_kernel(k) + "\n\n" + emit_scalar_kernel(k) for k in kernels)
     return "\n".join(header) + "\n" + body

@@ -385,12 +385,24 @@ def paper_slider_inertia(qs, qsd, qsdd, ms, L, a, theta, thetad, phi, phid, phid
 
 
 def paper_damping(approach, q, qd, l, EA, EI, rhoA, rhoI, phid, mu):
-    """mu (K_lin + K_non) qd with K_lin = k_uu + k_psipsi (+ k_pvv) - m2 (eqs. 22-24); (r, C)."""
+    """mu (K_lin + K_non) qd with K_lin = k_uu + k_psipsi (+ k_pvv) - m2 (eqs. 22-24); (r, K, C)."""
     zero = np.zeros(np.shape(l))
     m = printed_matrices(q, l, zero, rhoA, rhoI, EA, EI, zero, zero, zero, zero, phid, zero)
     k_lin, k_non = printed_stiffness(approach, m)
-    c = np.asarray(mu, float)[..., None, None] * (k_lin - m["m2"] + k_non)
-    return matvec(c, qd), c
+    mu2 = np.asarray(mu, float)[..., None, None]
+    c = mu2 * (k_lin - m["m2"] + k_non)
+    # d r / d q by hand: k_pvv depends on q through P_i, k_vvv through the slope (B_v . q)^2
+    K = np.zeros_like(c)
+    if approach in ("A", "B"):
+        dP = np.zeros(np.shape(q))
+        dP[..., 0] = -np.asarray(EA, float) / np.asarray(l, float)
+        dP[..., 3] = np.asarray(EA, float) / np.asarray(l, float)
+        K = K + mu2 * outer(matvec(m["G"], qd), dP)
+    if approach == "A":
+        f = element_fields(q, qd, l)
+        w = (_q(EA) * f["v_x"] * f["vd_x"])[..., None, None]
+        K = K + mu2 * integrate(w * outer(f["B_v"], f["B_v"]), l, 2)
+    return matvec(c, qd), K, c
 
 
 def paper_slider_damping(qsd, ms, phid, mu):

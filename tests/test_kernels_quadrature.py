@@ -275,11 +275,13 @@ def test_paper_damping(approach, elems):
     q, qd, l, EA, EI, rhoA, rhoI, phid, mu = pick(
         elems, "q", "qd", "l", "EA", "EI", "rhoA", "rhoI", "phid", "mu")
     r, K, C = getattr(damping, f"paper_{approach}")(q, qd, l, EA, EI, rhoA, rhoI, phid, mu)
-    e_r, e_C = ref.paper_damping(approach, q, qd, l, EA, EI, rhoA, rhoI, phid, mu)
+    e_r, e_K, e_C = ref.paper_damping(approach, q, qd, l, EA, EI, rhoA, rhoI, phid, mu)
     assert_close(r, e_r, RTOL, 1, f"damping.paper_{approach}.r")
     assert_close(C, e_C, RTOL, 2, f"damping.paper_{approach}.C")
     if approach == "C":
         assert np.all(K == 0)
+    else:
+        assert_close(K, e_K, RTOL, 2, f"damping.paper_{approach}.K")
 
 
 def test_paper_damping_contains_minus_m2(elems):
