@@ -7,6 +7,7 @@ SymPy derivation.
 """
 
 import inspect
+import sys
 import zlib
 
 import numpy as np
@@ -311,7 +312,8 @@ def test_paper_slider_damping(elems):
 # --------------------------------------------------------------------------------------------
 
 ALL_KERNELS = [(mod.__name__.rsplit(".", 1)[-1], name, getattr(mod, name))
-               for mod in (shape, energy, lagrange, paper, damping) for name in mod.__all__]
+               for mod in (shape, energy, lagrange, paper, damping) for name in mod.__all__
+               if not name.endswith("_into")]
 
 VECTOR_SIZE = {"q": 6, "qd": 6, "qdd": 6, "qs": 2, "qsd": 2, "qsdd": 2}
 ELEMENT_SCALARS = {"l": (0.05, 0.5), "x0": (0.0, 0.9)}
@@ -390,3 +392,30 @@ def test_batch_axis_matches_loop(module, name, kernel, element_data):
                 assert si.shape == s.shape[1:]
                 np.testing.assert_allclose(si, s[i], rtol=1e-12,
                                            atol=1e-14 * np.max(np.abs(s)) + 1e-300)
+
+
+# --------------------------------------------------------------------------------------------
+# the one-element `_into` variants (compiled with numba at run time) equal the vectorized ones
+# --------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("module,name,kernel", ALL_KERNELS, ids=[f"{m}.{n}" for m, n, _ in ALL_KERNELS])
+def test_into_variant_matches_vectorized(module, name, kernel):
+    """`<name>_into(inputs..., outputs...)` fills every entry of preallocated outputs with the same
+    numbers as the vectorized kernel (pure Python here; the runtime compiles it with numba)."""
+    into = getattr(sys.modules[kernel.__module__], name + "_into")
+    rng = np.random.default_rng(zlib.crc32(f"into.{module}.{name}".encode()))
+    args = []
+    for arg in inspect.signature(kernel).parameters:
+        if arg in VECTOR_SIZE:
+            v = ref.random_nodal(rng, (1,))[0]
+            args.append(v[3:5] if VECTOR_SIZE[arg] == 2 else v)
+        else:
+            lo, hi = {**ELEMENT_SCALARS, **SCALAR_RANGE}[arg]
+            args.append(float(rng.uniform(lo, hi)))
+    expected = kernel(*args)
+    expected = expected if isinstance(expected, tuple) else (expected,)
+    outs = [np.full(np.shape(e) if np.ndim(e) else (1,), np.nan) for e in expected]
+    into(*args, *outs)
+    for e, o in zip(expected, outs):
+        np.testing.assert_allclose(o.reshape(np.shape(e)), e, rtol=1e-12,
+                                   atol=1e-14 * np.max(np.abs(e)) + 1e-300)
