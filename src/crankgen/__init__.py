@@ -8,10 +8,11 @@ from .parameters import Mechanism, SIMechanism
 from .cases import Case
 from .simulation import SimulationResult, simulate
 from .steady import SteadyState, steady_state, steady_states
+from .sweep import SweepTable, sweep
 
 __all__ = [
     "APPROACHES", "Case", "DAMPING_MODELS", "FORMULATIONS", "ConvergenceError", "CrankgenError", "Mechanism",
     "Model", "NewmarkSettings", "ParameterError", "SIMechanism", "SimulationResult", "integrate",
-    "simulate", "SteadyState", "steady_state", "steady_states",
+    "simulate", "SteadyState", "steady_state", "steady_states", "SweepTable", "sweep",
 ]
 __version__ = "0.1.0"

@@ -1,0 +1,330 @@
+"""Parameter sweeps: many cases -> periodic steady states -> one tidy table.
+
+`sweep` sends the cases to `steady_states` (the batched entry point) in chunks of `batch_size`,
+either in this process or through any `concurrent.futures.Executor` (a process pool, or a Dask
+cluster via `distributed.Client.get_executor()`).  Each finished chunk is appended to an optional
+JSON Lines checkpoint, so an interrupted sweep resumes without recomputing what it finished.
+
+Failure never sinks a sweep: a case that diverges or does not settle comes back from
+`steady_states` with its status and message; a chunk that raises is retried case by case in the
+worker; a chunk whose future raises (a worker died, the task could not be sent) has each of its
+cases recorded as "failed" with the exception text.
+
+Checkpoint format (one JSON document per line, Python's JSON, so missing numbers are NaN):
+
+    {"format": "crankgen-sweep-checkpoint", "version": 1}                      <- header
+    {"key": Case.key(), "settings": {"tol": ..., "max_revolutions": ...}, "row": {...}}
+
+Lines are only ever appended, a whole chunk in one write followed by flush and fsync, so a crash
+can tear at most the last line; on resume a torn last line is dropped (with a warning) and the
+file is truncated back to its last complete line before anything is appended.  The last record of
+a key wins.  Records made with other settings (tol, max_revolutions) are not reused.  One sweep
+at a time may write a given checkpoint.
+"""
+
+import concurrent.futures as cf
+import csv
+import json
+import math
+import os
+import uuid
+import warnings
+from collections import Counter
+from collections.abc import Mapping
+from pathlib import Path
+
+import numpy as np
+
+from .cases import Case
+from .errors import ParameterError
+from .steady import SteadyState, steady_states
+from .validation import in_range, integer
+
+__all__ = ["SweepTable", "sweep"]
+
+_HEADER = json.dumps({"format": "crankgen-sweep-checkpoint", "version": 1}) + "\n"
+# Fields that fix the shape of a case's equations; chunks group cases alike in these so that a
+# lock-step batch engine gets compatible cases together (the order of the table is unaffected).
+_STRUCTURE = ("formulation", "approach", "damping", "integrator", "n_elements", "steps_per_rev")
+
+
+def _failed_row(case, error):
+    """Row of a case whose computation raised instead of returning a SteadyState."""
+    message = error if isinstance(error, str) else f"{type(error).__name__}: {error}"
+    return SteadyState(case, "failed", math.nan, math.nan, 0, 0, math.nan, message, 0.0).row()
+
+
+def _plain(value):
+    """numpy scalars -> Python scalars (rows must be JSON and CSV friendly)."""
+    return value.item() if isinstance(value, np.generic) else value
+
+
+def _run_chunk(cases, tol=1e-8, max_revolutions=400):
+    """Rows of one chunk of cases (module level, so executors pickle it by reference).
+
+    The whole chunk goes to `steady_states` at once; if that raises, the cases are run one by one
+    so that only the case at fault is recorded as failed."""
+    try:
+        states = steady_states(cases, tol=tol, max_revolutions=max_revolutions)
+        if len(states) != len(cases):
+            raise RuntimeError(f"steady_states returned {len(states)} results for {len(cases)} cases")
+        return [{k: _plain(v) for k, v in s.row().items()} for s in states]
+    except Exception as exc:
+        if len(cases) == 1:
+            return [_failed_row(cases[0], exc)]
+    return [row for case in cases for row in _run_chunk([case], tol, max_revolutions)]
+
+
+def _as_cases(cases):
+    """List of Case from Case objects or mappings; every case is validated before any work."""
+    if isinstance(cases, (Case, Mapping)):
+        raise TypeError("cases must be an iterable of Case objects or mappings "
+                        "(wrap a single case in a list)")
+    out = []
+    for i, item in enumerate(cases):
+        if isinstance(item, Case):
+            out.append(item)
+        elif isinstance(item, Mapping):
+            try:
+                out.append(Case.from_dict(item))
+            except (ParameterError, TypeError, ValueError) as exc:
+                raise ParameterError(f"cases[{i}]: {exc}") from exc
+        else:
+            raise TypeError(f"cases[{i}] must be a crankgen.Case or a mapping of its parameters, "
+                            f"got {type(item).__name__}")
+    return out
+
+
+class _Checkpoint:
+    """Append-only JSON Lines record of finished cases (see the module docstring)."""
+
+    def __init__(self, path, settings):
+        self.path = Path(path)
+        self.settings = settings
+
+    def open(self):
+        """Create the file or repair its tail; return {key: row} of reusable records."""
+        try:
+            data = self.path.read_bytes()
+        except FileNotFoundError:
+            data = b""
+        header = _HEADER.encode()
+        if not data.startswith(header):
+            if not header.startswith(data):
+                raise ValueError(f"{self.path} exists and is not a crankgen sweep checkpoint")
+            if data:
+                warnings.warn(f"checkpoint {self.path}: torn header ignored, starting afresh",
+                              RuntimeWarning, stacklevel=3)
+            self._rewrite(header)
+            return {}
+        end = data.rfind(b"\n") + 1
+        if end < len(data):
+            warnings.warn(f"checkpoint {self.path}: ignoring a torn last line "
+                          f"({len(data) - end} bytes, an interrupted write); its case is recomputed",
+                          RuntimeWarning, stacklevel=3)
+            with open(self.path, "r+b") as fh:
+                fh.truncate(end)
+                fh.flush()
+                os.fsync(fh.fileno())
+        rows, bad, stale = {}, 0, 0
+        for line in data[len(header):end].splitlines():
+            try:
+                record = json.loads(line)
+                key, settings, row = record["key"], record["settings"], record["row"]
+                if not isinstance(key, str) or not isinstance(row, dict):
+                    raise TypeError
+            except (ValueError, KeyError, TypeError):
+                bad += 1
+                continue
+            if settings != self.settings:
+                stale += 1
+                continue
+            rows[key] = row
+        if bad:
+            warnings.warn(f"checkpoint {self.path}: {bad} unreadable line(s) ignored; "
+                          "their cases are recomputed", RuntimeWarning, stacklevel=3)
+        if stale:
+            warnings.warn(f"checkpoint {self.path}: {stale} record(s) made with other settings "
+                          f"than {self.settings} are not reused", RuntimeWarning, stacklevel=3)
+        return rows
+
+    def _rewrite(self, content):
+        with open(self.path, "wb") as fh:
+            fh.write(content)
+            fh.flush()
+            os.fsync(fh.fileno())
+        _fsync_dir(self.path.parent)
+
+    def append(self, pairs):
+        """Append (key, row) records in one write, then flush and fsync."""
+        payload = "".join(json.dumps({"key": key, "settings": self.settings, "row": row}) + "\n"
+                          for key, row in pairs)
+        with open(self.path, "ab") as fh:
+            fh.write(payload.encode())
+            fh.flush()
+            os.fsync(fh.fileno())
+
+
+def _fsync_dir(folder):
+    """Make a new directory entry durable (best effort; not every platform can open folders)."""
+    try:
+        fd = os.open(folder, os.O_RDONLY)
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)
+
+
+def sweep(cases, executor=None, checkpoint=None, batch_size=64, tol=1e-8, progress=None, *,
+          max_revolutions=400, retry_failed=False):
+    """Periodic steady states of many cases, as a SweepTable (one row per case, input order).
+
+    cases: iterable of `Case` or mappings (`Case.from_dict`); all are validated before any work
+        (a bad one raises ParameterError naming its index).  Duplicates are computed once.
+    executor: None runs in this process; otherwise any `concurrent.futures.Executor`, e.g.
+        `ProcessPoolExecutor()` or `distributed.Client(...).get_executor()`.  The executor is
+        the caller's: it is used, not shut down.
+    checkpoint: path of a JSON Lines file; finished cases are appended after every chunk and, on
+        a later call, cases already in it (same `Case.key()`, tol and max_revolutions) are taken
+        from it instead of being recomputed.  Failed cases are recorded too and are not retried
+        unless retry_failed=True.
+    batch_size: cases per call of `steady_states` (per task with an executor).
+    tol, max_revolutions: passed to `steady_states`.
+    progress: progress(done, total) after each finished chunk, counting cases in the input
+        (cases taken from the checkpoint count as done from the start).
+    """
+    cases = _as_cases(cases)
+    batch_size = integer("batch_size", batch_size, 1)
+    tol = in_range("tol", tol, 0, None, low_open=True)
+    max_revolutions = integer("max_revolutions", max_revolutions, 1)
+
+    keys = [case.key() for case in cases]
+    multiplicity = Counter(keys)
+    total = len(cases)
+    results = {}
+    store = None
+    if checkpoint is not None:
+        store = _Checkpoint(checkpoint, {"tol": tol, "max_revolutions": max_revolutions})
+        results = {key: row for key, row in store.open().items()
+                   if key in multiplicity and not (retry_failed and row.get("status") == "failed")}
+
+    todo, seen = [], set(results)
+    for key, case in zip(keys, cases):
+        if key not in seen:
+            seen.add(key)
+            todo.append(case)
+    todo.sort(key=lambda c: tuple(getattr(c, name) for name in _STRUCTURE))   # stable
+    chunks = [todo[i:i + batch_size] for i in range(0, len(todo), batch_size)]
+
+    done = sum(multiplicity[key] for key in results)
+    if progress is not None and done:
+        progress(done, total)
+
+    def finish(chunk, rows):
+        nonlocal done
+        pairs = [(case.key(), row) for case, row in zip(chunk, rows)]
+        if store is not None:
+            store.append(pairs)
+        results.update(pairs)
+        done += sum(multiplicity[key] for key, _ in pairs)
+        if progress is not None:
+            progress(done, total)
+
+    if executor is None:
+        for chunk in chunks:
+            finish(chunk, _run_chunk(chunk, tol, max_revolutions))
+    else:
+        futures = {executor.submit(_run_chunk, chunk, tol, max_revolutions): chunk
+                   for chunk in chunks}
+        try:
+            for future in cf.as_completed(futures):
+                chunk = futures[future]
+                try:
+                    rows = future.result()
+                except Exception as exc:          # the task itself failed: worker died, etc.
+                    rows = [_failed_row(case, exc) for case in chunk]
+                finish(chunk, rows)
+        finally:
+            for future in futures:
+                future.cancel()
+    return SweepTable([results[key] for key in keys])
+
+
+def _standard_columns():
+    return list(_failed_row(Case(), "").keys())
+
+
+class SweepTable:
+    """Rows of a sweep (dicts: the case's parameters, then status, amplitude, half_peak_to_peak,
+    periods, iterations, residual, wall_time, message), in the order of the input cases."""
+
+    def __init__(self, rows):
+        self.rows = [dict(row) for row in rows]
+
+    @property
+    def columns(self):
+        """Column names: those of the rows in order of first appearance."""
+        if not self.rows:
+            return _standard_columns()
+        names = {}
+        for row in self.rows:
+            names.update(dict.fromkeys(row))
+        return list(names)
+
+    def column(self, name):
+        """One column as a NumPy array (float for numbers, str for text)."""
+        if name not in self.columns:
+            raise KeyError(f"no column {name!r}; columns are {', '.join(self.columns)}")
+        return np.array([row.get(name) for row in self.rows])
+
+    @property
+    def failed(self):
+        """Rows whose status is not "periodic" (failed, not periodic or unstable)."""
+        return [row for row in self.rows if row.get("status") != "periodic"]
+
+    @property
+    def cases(self):
+        """The rows' cases, as Case objects."""
+        return [Case.from_dict(row) for row in self.rows]
+
+    def __len__(self):
+        return len(self.rows)
+
+    def __iter__(self):
+        return iter(self.rows)
+
+    def __getitem__(self, index):
+        return self.rows[index]
+
+    def __repr__(self):
+        return f"SweepTable({len(self)} rows, {len(self.failed)} not periodic)"
+
+    def to_csv(self, path):
+        """Write the table as CSV (floats in full precision), atomically: a temporary file in the
+        same folder is written, flushed, fsynced and then moved onto path with os.replace, so path
+        holds either the old or the complete new table, never a partial one."""
+        path = Path(path)
+        tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
+        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+        try:
+            with os.fdopen(fd, "w", newline="") as fh:
+                writer = csv.DictWriter(fh, fieldnames=self.columns)
+                writer.writeheader()
+                writer.writerows(self.rows)
+                fh.flush()
+                os.fsync(fh.fileno())
+            os.replace(tmp, path)
+        except BaseException:
+            tmp.unlink(missing_ok=True)
+            raise
+        _fsync_dir(path.parent)
+        return path
+
+    def to_pandas(self):
+        """The table as a pandas DataFrame (needs pandas, which crankgen does not require)."""
+        import pandas as pd
+        return pd.DataFrame(self.rows, columns=self.columns)
