@@ -1,9 +1,23 @@
-"""Periodic steady state over one crank revolution.
+"""Periodic steady state over one crank revolution, computed directly by shooting.
 
-Status values: "periodic" (converged to a response with the crank period), "not-periodic" (no
-periodic state with the crank period was reached: sub-harmonic, quasi-periodic or still drifting),
-"unstable" (a periodic orbit exists but its monodromy has a multiplier outside the unit circle, so
-the physical response does not settle on it), "failed" (the integration failed: see message).
+The unknown is the state x = (d, v) at theta = 0; the revolution map P (steps_per_rev Newton-
+Newmark steps) and its exact linearization J = dP/dx (engine.revolution) give Newton's method on
+P(x) - x = 0:  (J - I) dx = -(P(x) - x).  A few marched revolutions from the paper's zero initial
+conditions give the starting point.  Convergence measure: the scaled change
+    |P(x) - x|_s = max_i |P(x)_i - x_i| / s_i  /  (1 + max_i |P(x)_i| / s_i)
+with s the natural size of each DOF (eps^2 for axial, eps for transverse; velocities likewise).
+
+Status of a result:
+- "periodic": the state repeats with the crank period to `tol` and the periodic orbit is stable
+  (every Floquet multiplier, eigenvalue of J, inside the unit circle);
+- "unstable": a periodic orbit with the crank period exists but has a multiplier outside the unit
+  circle, so the physical response does not settle on it (amplitude of the orbit still reported);
+- "not-periodic": shooting did not converge and marching up to max_revolutions did not reach a
+  state periodic with the crank period (the message says whether it repeats every 2 revolutions,
+  i.e. a sub-harmonic response);
+- "failed": the integration itself failed (Newton divergence, non-finite state); message says why.
+`method="march"` skips shooting and marches revolution by revolution (the paper's way).
+With integrator="one-pass" the step map is not the converged Newton map, so marching is used.
 """
 
 import math
@@ -12,13 +26,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import engine
 from .cases import Case
-from .errors import CrankgenError
-from .model import Model
-from .newmark import NewmarkSettings, integrate
-from .outputs import element_history, end_axial, extension, mid_deflection
+from .validation import choice, in_range, integer
 
 STATUSES = ("periodic", "not-periodic", "unstable", "failed")
+METHODS = ("shooting", "march")
 
 
 @dataclass(frozen=True)
@@ -29,11 +42,12 @@ class SteadyState:
     status: str
     amplitude: float             # max |v*(1/2)| over the revolution
     half_peak_to_peak: float     # (max v* - min v*) / 2
-    periods: int                 # revolutions marched
-    iterations: int              # shooting Newton iterations (0 if marching alone converged)
-    residual: float              # scaled |x(2 pi) - x(0)| of the returned state
+    periods: int                 # revolutions marched (warm-up and any marching fallback)
+    iterations: int              # shooting Newton iterations
+    residual: float              # scaled |P(x) - x| of the returned state
     message: str = ""
-    wall_time: float = 0.0
+    wall_time: float = 0.0       # seconds; for a batch, its wall time shared equally by its cases
+    multiplier: float = math.nan # largest |Floquet multiplier| (shooting only)
     theta: np.ndarray = field(default=None, repr=False)
     t: np.ndarray = field(default=None, repr=False)
     v_mid: np.ndarray = field(default=None, repr=False)
@@ -49,65 +63,203 @@ class SteadyState:
         out = self.case.as_dict()
         out.update(status=self.status, amplitude=self.amplitude,
                    half_peak_to_peak=self.half_peak_to_peak, periods=self.periods,
-                   iterations=self.iterations, residual=self.residual, wall_time=self.wall_time,
-                   message=self.message)
+                   iterations=self.iterations, residual=self.residual,
+                   multiplier=self.multiplier, wall_time=self.wall_time, message=self.message)
         return out
 
 
-def _scaled_change(x0, x1, scales):
-    return float(np.max(np.abs(x1 - x0) / scales) / (1.0 + np.max(np.abs(x1) / scales)))
+def _scaled_change(X0, X1, S):
+    """Row-wise scaled change between states (B, 2N) with scales S (B, 2N)."""
+    num = np.max(np.abs(X1 - X0) / S, axis=1)
+    return num / (1.0 + np.max(np.abs(X1) / S, axis=1))
+
+
+def _failure_text(res, b, dt):
+    code = int(res.status[b])
+    step = int(res.fail_step[b])
+    return (f"{engine.STATUS_TEXT[code]} in step {step} (t* = {step * dt:.6g}), "
+            f"residual norm {res.fail_residual[b]:.3e}")
+
+
+class _BatchSolver:
+    """Steady states of one engine.Batch (cases sharing mesh and steps per revolution)."""
+
+    def __init__(self, cases, tol, max_revolutions, warmup, max_shooting, method):
+        self.batch = engine.Batch(cases)
+        self.cases = list(cases)
+        self.tol, self.max_revolutions = tol, max_revolutions
+        self.warmup, self.max_shooting, self.method = warmup, max_shooting, method
+        B, N = len(self.cases), self.batch.N
+        self.S = np.concatenate([self.batch.scales, self.batch.scales], axis=1)   # d and v alike
+        self.status = np.array(["pending"] * B, dtype=object)
+        self.message = [""] * B
+        self.periods = np.zeros(B, dtype=int)
+        self.iterations = np.zeros(B, dtype=int)
+        self.residual = np.full(B, math.nan)
+        self.multiplier = np.full(B, math.nan)
+        self.X = np.zeros((B, 2 * N))
+
+    def _march(self, revs, active):
+        """March the active cases revs revolutions from their current X (theta = 0)."""
+        b, spr, N = self.batch, self.batch.steps_per_rev, self.batch.N
+        pre = np.where(active, engine.OK, engine.NOT_CONVERGED)
+        res = engine.march(b, revs * spr, D0=self.X[:, :N], V0=self.X[:, N:], status=pre)
+        X1 = np.concatenate([res.D, res.V], axis=1)
+        for i in np.flatnonzero(active & (res.status != engine.OK)):
+            self.status[i] = "failed"
+            self.message[i] = _failure_text(res, i, b.par[i, 5])
+        return X1, res
+
+    def run(self):
+        B = len(self.cases)
+        active = np.ones(B, dtype=bool)
+        # warm-up from the paper's zero initial conditions
+        X1, _ = self._march(self.warmup, active)
+        self.periods[:] = self.warmup
+        active &= self.status == "pending"
+        self.X[active] = X1[active]
+        shoot = active & np.array([c.integrator == "newton" for c in self.cases]) & (self.method == "shooting")
+        if shoot.any():
+            self._shoot(shoot)
+        rest = self.status == "pending"
+        if rest.any():
+            self._march_until_periodic(rest)
+        return self._results()
+
+    def _shoot(self, active):
+        best = np.full(len(self.cases), math.inf)
+        start = self.X.copy()
+        for it in range(1, self.max_shooting + 1):
+            X1, J, st = engine.revolution(self.batch, self.X, active=active)
+            change = _scaled_change(self.X, X1, self.S)
+            for i in np.flatnonzero(active):
+                if st[i] != engine.OK or not np.isfinite(change[i]) or change[i] > 1e3 * min(best[i], 1.0):
+                    active[i] = False           # shooting diverged: fall back to marching
+                    self.X[i] = start[i]
+                    self.message[i] = "shooting did not converge; marched instead"
+                    continue
+                best[i] = min(best[i], change[i])
+                self.iterations[i] = it
+                if change[i] < self.tol:
+                    self.X[i] = X1[i]
+                    self.residual[i] = change[i]
+                    rho = float(np.max(np.abs(np.linalg.eigvals(J[i]))))
+                    self.multiplier[i] = rho
+                    if rho < 1.0:
+                        self.status[i] = "periodic"
+                    else:
+                        self.status[i] = "unstable"
+                        self.message[i] = (f"periodic orbit with the crank period is unstable "
+                                           f"(largest Floquet multiplier {rho:.4f})")
+                    active[i] = False
+            if not active.any():
+                return
+            idx = np.flatnonzero(active)
+            A = J[idx] - np.eye(J.shape[1])[None]
+            rhs = -(X1[idx] - self.X[idx])
+            try:
+                delta = np.linalg.solve(A, rhs[..., None])[..., 0]
+            except np.linalg.LinAlgError:
+                delta = np.stack([np.linalg.lstsq(a, r, rcond=None)[0] for a, r in zip(A, rhs)])
+            self.X[idx] = self.X[idx] + delta
+        for i in np.flatnonzero(active):
+            self.X[i] = start[i]
+            self.message[i] = f"shooting did not converge in {self.max_shooting} iterations; marched instead"
+
+    def _march_until_periodic(self, active):
+        prev2 = np.full_like(self.X, np.nan)
+        prev = self.X.copy()
+        while active.any():
+            X1, _ = self._march(1, active)
+            for i in np.flatnonzero(active):
+                if self.status[i] == "failed":
+                    active[i] = False
+                    continue
+                self.periods[i] += 1
+                change = _scaled_change(prev[i:i + 1], X1[i:i + 1], self.S[i:i + 1])[0]
+                self.residual[i] = change
+                self.X[i] = X1[i]
+                if change < self.tol:
+                    self.status[i] = "periodic"
+                    active[i] = False
+                elif self.periods[i] >= self.max_revolutions:
+                    two = _scaled_change(prev2[i:i + 1], X1[i:i + 1], self.S[i:i + 1])[0]
+                    kind = ("repeats every 2 revolutions (sub-harmonic response)" if two < self.tol
+                            else "no periodic state with the crank period")
+                    self.status[i] = "not-periodic"
+                    self.message[i] = (f"{kind}: state still changing by {change:.2e} per revolution "
+                                       f"after {self.periods[i]} revolutions")
+                    active[i] = False
+            prev2, prev = prev, X1
+
+    def _results(self):
+        b, spr, N = self.batch, self.batch.steps_per_rev, self.batch.N
+        show = np.array([s in ("periodic", "unstable") for s in self.status])
+        pre = np.where(show, engine.OK, engine.NOT_CONVERGED)
+        res = engine.march(b, spr, D0=self.X[:, :N], V0=self.X[:, N:], status=pre)
+        theta = 2 * math.pi * np.arange(spr + 1) / spr
+        out = []
+        for i, case in enumerate(self.cases):
+            if show[i] and res.status[i] == engine.OK:
+                y = res.y[i]
+                v = y[:, 0]
+                out.append(SteadyState(
+                    case, self.status[i], float(np.max(np.abs(v))), float((v.max() - v.min()) / 2),
+                    int(self.periods[i]), int(self.iterations[i]), float(self.residual[i]),
+                    self.message[i], multiplier=float(self.multiplier[i]), theta=theta,
+                    t=theta / case.omega, v_mid=v, u_end=y[:, 1], extension=y[:, 2]))
+            else:
+                status = self.status[i] if self.status[i] != "pending" else "failed"
+                out.append(SteadyState(case, status, math.nan, math.nan, int(self.periods[i]),
+                                       int(self.iterations[i]), float(self.residual[i]),
+                                       self.message[i] or "no result", multiplier=float(self.multiplier[i])))
+        return out
+
+
+def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="shooting",
+                  warmup=3, max_shooting=12):
+    """Steady states of many cases (list in, list out, same order), batched: cases that share
+    n_elements and steps_per_rev run together in the compiled engine.  A failing case comes back
+    with status "failed" and its message; it does not stop the others.
+    progress(done, total) is called after each batch."""
+    cases = [c if isinstance(c, Case) else Case.from_dict(c) for c in cases]
+    tol = in_range("tol", tol, 0, None, True)
+    max_revolutions = integer("max_revolutions", max_revolutions, 1)
+    warmup = integer("warmup", warmup, 1)
+    choice("method", method, METHODS)
+    groups = {}
+    for i, c in enumerate(cases):
+        groups.setdefault((c.n_elements, c.steps_per_rev), []).append(i)
+    results = [None] * len(cases)
+    done = 0
+    for key in sorted(groups):
+        idx = groups[key]
+        start = time.perf_counter()
+        solver = _BatchSolver([cases[i] for i in idx], tol, max_revolutions,
+                              min(warmup, max_revolutions), max_shooting, method)
+        group_results = solver.run()
+        share = (time.perf_counter() - start) / len(idx)
+        for i, r in zip(idx, group_results):
+            results[i] = _with_wall_time(r, share)
+        done += len(idx)
+        if progress is not None:
+            progress(done, len(cases))
+    return results
+
+
+def _with_wall_time(result, seconds):
+    from dataclasses import replace
+    return replace(result, wall_time=seconds)
 
 
 def steady_state(mech=None, omega=0.8, approach="A", formulation="lagrange", damping="paper",
                  n_elements=16, steps_per_rev=100, integrator="newton", tol=1e-8,
-                 max_revolutions=400, case=None):
-    """Periodic response of a case by marching revolution by revolution from zero initial
-    conditions until the state at theta = 0 repeats to tol (scaled units)."""
+                 max_revolutions=400, method="shooting", case=None):
+    """Periodic response over one crank revolution of one case (see module docstring)."""
     if case is None:
         from .parameters import Mechanism
         mech = mech if mech is not None else Mechanism()
         case = Case(a=mech.a, eps=mech.eps, ms=mech.ms, mu=mech.mu, omega=omega, approach=approach,
                     formulation=formulation, damping=damping, n_elements=n_elements,
                     steps_per_rev=steps_per_rev, integrator=integrator)
-    start = time.perf_counter()
-    model = Model.build(case.mechanism, case.omega, case.n_elements, case.formulation,
-                        case.approach, case.damping)
-    settings = NewmarkSettings(scheme=case.integrator)
-    dt = 2 * math.pi / case.omega / case.steps_per_rev
-    scales = np.concatenate([model.mesh.dof_scales(case.eps)] * 2)
-    d, v = np.zeros(model.n_dofs), np.zeros(model.n_dofs)
-    change = math.inf
-    hist = None
-    try:
-        for rev in range(1, max_revolutions + 1):
-            hist = integrate(model, d, v, (rev - 1) * case.steps_per_rev * dt, dt,
-                             case.steps_per_rev, settings)
-            x0, x1 = np.concatenate([d, v]), np.concatenate([hist.d[-1], hist.v[-1]])
-            change = _scaled_change(x0, x1, scales)
-            d, v = hist.d[-1], hist.v[-1]
-            if change < tol:
-                break
-    except CrankgenError as exc:
-        return SteadyState(case, "failed", math.nan, math.nan, rev, 0, math.nan, str(exc),
-                           time.perf_counter() - start)
-    status = "periodic" if change < tol else "not-periodic"
-    kin = model.kinematics(hist.t)
-    q = element_history(model, hist.d, kin.phi)
-    v_mid = mid_deflection(model, q)
-    return SteadyState(
-        case, status, float(np.max(np.abs(v_mid))), float((v_mid.max() - v_mid.min()) / 2), rev, 0,
-        change, "" if status == "periodic" else f"state still changing by {change:.2e} after {rev} revolutions",
-        time.perf_counter() - start, theta=kin.theta - kin.theta[0], t=hist.t,
-        v_mid=v_mid, u_end=end_axial(model, q), extension=extension(model, q))
-
-
-def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None):
-    """Steady states of many cases (list in, list out, same order); a failing case is returned with
-    status "failed" and its message, it does not stop the others.  progress(done, total) per case."""
-    cases = list(cases)
-    out = []
-    for i, case in enumerate(cases):
-        out.append(steady_state(case=case, tol=tol, max_revolutions=max_revolutions))
-        if progress is not None:
-            progress(i + 1, len(cases))
-    return out
+    return steady_states([case], tol=tol, max_revolutions=max_revolutions, method=method)[0]

@@ -1,0 +1,725 @@
+"""Compiled engine: the same model as model.py / newmark.py, compiled with numba for speed.
+
+The generated one-element kernels (`*_into`, emitted by derive/ beside the vectorized ones) are
+compiled here; the element loop, the exact slider-constraint elimination, the banded assembly, a
+banded LU with partial pivoting and the Newmark/Newton iteration are compiled around them.  A batch
+of cases with the same mesh and steps per revolution advances in lock step on the crank angle
+(theta_m = 2 pi m / steps_per_rev for every case); each case keeps its own Newton iteration and
+status, so a failing case stops alone.  The NumPy implementation in model.py stays the reference:
+tests check that both give the same numbers.
+
+Case parameters travel as a float array P[b] = (a, eps, ms, mu, omega, dt) and integer codes
+C[b] = (formulation, approach, damping, one_pass).
+"""
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+from ._generated import damping as _dmp
+from ._generated import lagrange as _lag
+from ._generated import paper as _pap
+from ._generated import shape as _shape
+
+FORMULATION_CODE = {"lagrange": 0, "paper": 1}
+APPROACH_CODE = {"A": 0, "B": 1, "C": 2}
+DAMPING_CODE = {"paper": 0, "kelvin-voigt": 1}
+
+# status codes of a case
+OK, NOT_CONVERGED, SINGULAR, NOT_FINITE = 0, 1, 2, 3
+STATUS_TEXT = {OK: "ok", NOT_CONVERGED: "Newton did not converge", SINGULAR: "singular iteration matrix",
+               NOT_FINITE: "non-finite state"}
+
+PI4 = math.pi ** 4
+
+
+def _jit(f):
+    return njit(cache=True)(f)
+
+
+lag_inertia = _jit(_lag.rod_inertia_into)
+lag_slider = _jit(_lag.slider_inertia_into)
+lag_elastic_A = _jit(_lag.rod_elastic_A_into)
+lag_elastic_B = _jit(_lag.rod_elastic_B_into)
+lag_elastic_C = _jit(_lag.rod_elastic_C_into)
+pap_inertia = _jit(_pap.rod_inertia_into)
+pap_slider = _jit(_pap.slider_inertia_into)
+pap_elastic_A = _jit(_pap.rod_elastic_A_into)
+pap_elastic_B = _jit(_pap.rod_elastic_B_into)
+pap_elastic_C = _jit(_pap.rod_elastic_C_into)
+kv_A = _jit(_dmp.kelvin_voigt_A_into)
+kv_B = _jit(_dmp.kelvin_voigt_B_into)
+kv_C = _jit(_dmp.kelvin_voigt_C_into)
+pd_A = _jit(_dmp.paper_A_into)
+pd_B = _jit(_dmp.paper_B_into)
+pd_C = _jit(_dmp.paper_C_into)
+pd_slider = _jit(_dmp.paper_slider_into)
+
+
+# ----------------------------------------------------------------------------------------------
+# kinematics and element terms
+# ----------------------------------------------------------------------------------------------
+
+@njit(cache=True)
+def crank_kinematics(a, omega, t, out):
+    """theta, thetad, phi, phid, phidd at time t (see kinematics.py)."""
+    theta = omega * t
+    sp = a * math.sin(theta)
+    cp = math.sqrt(1.0 - sp * sp)
+    phid = a * omega * math.cos(theta) / cp
+    out[0] = theta
+    out[1] = omega
+    out[2] = math.asin(sp)
+    out[3] = phid
+    out[4] = -a * omega * omega * math.sin(theta) / cp + phid * phid * sp / cp
+
+
+@njit(cache=True)
+def _rod_terms(form, app, damp, secant, q, qd, qdd, l, x0, rhoA, rhoI, EA, EI, mu, a, kin,
+               r, K, C, M, w6, w66a, w66b, w66c, w66d):
+    """Residual and tangents of one rod element: inertia + elastic + damping."""
+    th, thd, ph, phd, phdd = kin[0], kin[1], kin[2], kin[3], kin[4]
+    if form == 0:
+        lag_inertia(q, qd, qdd, l, x0, rhoA, rhoI, a, th, thd, ph, phd, phdd, r, K, C, M)
+        if app == 0:
+            lag_elastic_A(q, l, EA, EI, w6, w66a)
+        elif app == 1:
+            lag_elastic_B(q, l, EA, EI, w6, w66a)
+        else:
+            lag_elastic_C(q, l, EA, EI, w6, w66a)
+    else:
+        pap_inertia(q, qd, qdd, l, x0, rhoA, rhoI, a, th, thd, ph, phd, phdd, r, K, C, M)
+        if app == 0:
+            pap_elastic_A(q, l, EA, EI, w6, w66d, w66a)
+        elif app == 1:
+            pap_elastic_B(q, l, EA, EI, w6, w66d, w66a)
+        else:
+            pap_elastic_C(q, l, EA, EI, w6, w66d, w66a)
+        if not secant:
+            for i in range(6):
+                for j in range(6):
+                    w66a[i, j] = w66d[i, j]
+    for i in range(6):
+        r[i] += w6[i]
+        for j in range(6):
+            K[i, j] += w66a[i, j]
+    # damping: w6 = r_d, w66b = K_d, w66c = C_d
+    if damp == 1:
+        if app == 0:
+            kv_A(q, qd, l, EA, EI, mu, w6, w66b, w66c)
+        elif app == 1:
+            kv_B(q, qd, l, EA, EI, mu, w6, w66b, w66c)
+        else:
+            kv_C(q, qd, l, EA, EI, mu, w6, w66b, w66c)
+    else:
+        if app == 0:
+            pd_A(q, qd, l, EA, EI, rhoA, rhoI, phd, mu, w6, w66b, w66c)
+        elif app == 1:
+            pd_B(q, qd, l, EA, EI, rhoA, rhoI, phd, mu, w6, w66b, w66c)
+        else:
+            pd_C(q, qd, l, EA, EI, rhoA, rhoI, phd, mu, w6, w66b, w66c)
+    for i in range(6):
+        r[i] += w6[i]
+        for j in range(6):
+            C[i, j] += w66c[i, j]
+            if not secant:
+                K[i, j] += w66b[i, j]
+
+
+@njit(cache=True)
+def _slider_terms(form, damp, us, usd, usdd, ms, a, kin, r, K, C, M, w2, w22a, w22b, w22c, w22d):
+    """Slider residual and tangents on (u, v) of the last node, added into the last element."""
+    th, thd, ph, phd, phdd = kin[0], kin[1], kin[2], kin[3], kin[4]
+    if form == 0:
+        lag_slider(us, usd, usdd, ms, 1.0, a, th, thd, ph, phd, phdd, w2, w22a, w22b, w22c)
+    else:
+        pap_slider(us, usd, usdd, ms, 1.0, a, th, thd, ph, phd, phdd, w2, w22a, w22b, w22c)
+    for i in range(2):
+        r[3 + i] += w2[i]
+        for j in range(2):
+            K[3 + i, 3 + j] += w22a[i, j]
+            C[3 + i, 3 + j] += w22b[i, j]
+            M[3 + i, 3 + j] += w22c[i, j]
+
+
+@njit(cache=True)
+def _slider_damping(usd, ms, phd, mu, r, C, w2, w22a, w22b):
+    pd_slider(usd, ms, phd, mu, w2, w22a, w22b)
+    for i in range(2):
+        r[3 + i] += w2[i]
+        for j in range(2):
+            C[3 + i, 3 + j] += w22b[i, j]
+
+
+@njit(cache=True)
+def _matmul6(A, B, out):
+    for i in range(6):
+        for j in range(6):
+            s = 0.0
+            for k in range(6):
+                s += A[i, k] * B[k, j]
+            out[i, j] = s
+
+
+@njit(cache=True)
+def _project_last(kin, r, K, C, M, T, Td, Tdd, t1, t2, t3):
+    """r <- T^T r, M <- T^T M T, C <- T^T (C T + 2 M Td), K <- T^T (K T + C Td + M Tdd)."""
+    ph, phd, phdd = kin[2], kin[3], kin[4]
+    c, s = math.cos(ph), math.sin(ph)
+    for i in range(6):
+        for j in range(6):
+            T[i, j] = 1.0 if i == j else 0.0
+            Td[i, j] = 0.0
+            Tdd[i, j] = 0.0
+    T[3, 3] = c
+    T[4, 3] = s
+    T[4, 4] = 0.0
+    Td[3, 3] = -s * phd
+    Td[4, 3] = c * phd
+    Tdd[3, 3] = -c * phd * phd - s * phdd
+    Tdd[4, 3] = -s * phd * phd + c * phdd
+    # residual
+    r3, r4 = r[3], r[4]
+    r[3] = c * r3 + s * r4
+    r[4] = 0.0
+    # K' = T^T (K T + C Td + M Tdd)
+    _matmul6(K, T, t1)
+    _matmul6(C, Td, t2)
+    _matmul6(M, Tdd, t3)
+    for i in range(6):
+        for j in range(6):
+            t1[i, j] += t2[i, j] + t3[i, j]
+    _tt_times(T, t1, K)
+    # C' = T^T (C T + 2 M Td)
+    _matmul6(C, T, t1)
+    _matmul6(M, Td, t2)
+    for i in range(6):
+        for j in range(6):
+            t1[i, j] += 2.0 * t2[i, j]
+    _tt_times(T, t1, C)
+    # M' = T^T M T
+    _matmul6(M, T, t1)
+    _tt_times(T, t1, M)
+
+
+@njit(cache=True)
+def _tt_times(T, A, out):
+    for i in range(6):
+        for j in range(6):
+            s = 0.0
+            for k in range(6):
+                s += T[k, i] * A[k, j]
+            out[i, j] = s
+
+
+@njit(cache=True)
+def element_terms(codes, par, secant, dofs, l, d, v, acc, kin, rE, KE, CE, ME, ws):
+    """All element residuals/tangents of one case (constraint applied), written into rE, KE, CE, ME.
+
+    ws is a workspace tuple of small arrays."""
+    (q, qd, qdd, w6, w66a, w66b, w66c, w66d, w2, w22a, w22b, w22c, w22d, T, Td, Tdd, t1, t2, t3) = ws
+    form, app, damp = codes[0], codes[1], codes[2]
+    a, eps, ms, mu = par[0], par[1], par[2], par[3]
+    rhoA, rhoI, EA, EI = 1.0, eps * eps, 1.0 / (PI4 * eps * eps), 1.0 / PI4
+    n = dofs.shape[0]
+    N = d.shape[0]
+    ph, phd, phdd = kin[2], kin[3], kin[4]
+    c, s = math.cos(ph), math.sin(ph)
+    for e in range(n):
+        for k in range(6):
+            idx = dofs[e, k]
+            if idx < N:
+                q[k] = d[idx]
+                qd[k] = v[idx]
+                qdd[k] = acc[idx]
+            else:
+                q[k] = 0.0
+                qd[k] = 0.0
+                qdd[k] = 0.0
+        last = e == n - 1
+        if last:
+            p, pd, pdd = q[3], qd[3], qdd[3]
+            q[3] = c * p
+            q[4] = s * p
+            qd[3] = c * pd - s * phd * p
+            qd[4] = s * pd + c * phd * p
+            qdd[3] = c * pdd - 2.0 * s * phd * pd - (c * phd * phd + s * phdd) * p
+            qdd[4] = s * pdd + 2.0 * c * phd * pd + (-s * phd * phd + c * phdd) * p
+        _rod_terms(form, app, damp, secant, q, qd, qdd, l, e * l, rhoA, rhoI, EA, EI, mu, a, kin,
+                   rE[e], KE[e], CE[e], ME[e], w6, w66a, w66b, w66c, w66d)
+        if last:
+            _slider_terms(form, damp, q[3:5], qd[3:5], qdd[3:5], ms, a, kin, rE[e], KE[e], CE[e],
+                          ME[e], w2, w22a, w22b, w22c, w22d)
+            if damp == 0:
+                _slider_damping(qd[3:5], ms, phd, mu, rE[e], CE[e], w2, w22a, w22b)
+            _project_last(kin, rE[e], KE[e], CE[e], ME[e], T, Td, Tdd, t1, t2, t3)
+
+
+# ----------------------------------------------------------------------------------------------
+# assembly and banded solver
+# ----------------------------------------------------------------------------------------------
+
+@njit(cache=True)
+def assemble_vector(dofs, rE, out):
+    out[:] = 0.0
+    N = out.shape[0]
+    for e in range(dofs.shape[0]):
+        for i in range(6):
+            gi = dofs[e, i]
+            if gi < N:
+                out[gi] += rE[e, i]
+
+
+@njit(cache=True)
+def assemble_band(dofs, kb, ME, CE, KE, cm, cv, cd, W):
+    """W[i, j - i + kb] += cm M + cv C + cd K (row band storage, width 3 kb + 1 for pivoting fill)."""
+    W[:, :] = 0.0
+    N = W.shape[0]
+    for e in range(dofs.shape[0]):
+        for i in range(6):
+            gi = dofs[e, i]
+            if gi >= N:
+                continue
+            for j in range(6):
+                gj = dofs[e, j]
+                if gj >= N:
+                    continue
+                W[gi, gj - gi + kb] += cm * ME[e, i, j] + cv * CE[e, i, j] + cd * KE[e, i, j]
+
+
+@njit(cache=True)
+def band_solve(W, kb, B):
+    """Solve A X = B in place (B: (N, m)); A in row band storage W (N, 3 kb + 1), overwritten by its
+    LU factors (partial pivoting, upper bandwidth 2 kb).  Returns False if a pivot is zero."""
+    N = W.shape[0]
+    m = B.shape[1]
+    for k in range(N):
+        imax = min(N - 1, k + kb)
+        p = k
+        best = abs(W[k, kb])
+        for i in range(k + 1, imax + 1):
+            val = abs(W[i, k - i + kb])
+            if val > best:
+                best = val
+                p = i
+        if best == 0.0 or not np.isfinite(best):
+            return False
+        jmax = min(N - 1, k + 2 * kb)
+        if p != k:
+            for j in range(k, jmax + 1):
+                tmp = W[k, j - k + kb]
+                W[k, j - k + kb] = W[p, j - p + kb]
+                W[p, j - p + kb] = tmp
+            for c in range(m):
+                tmp = B[k, c]
+                B[k, c] = B[p, c]
+                B[p, c] = tmp
+        piv = W[k, kb]
+        for i in range(k + 1, imax + 1):
+            f = W[i, k - i + kb] / piv
+            if f == 0.0:
+                continue
+            W[i, k - i + kb] = 0.0
+            for j in range(k + 1, jmax + 1):
+                W[i, j - i + kb] -= f * W[k, j - k + kb]
+            for c in range(m):
+                B[i, c] -= f * B[k, c]
+    for i in range(N - 1, -1, -1):
+        jmax = min(N - 1, i + 2 * kb)
+        for c in range(m):
+            s = B[i, c]
+            for j in range(i + 1, jmax + 1):
+                s -= W[i, j - i + kb] * B[j, c]
+            B[i, c] = s / W[i, kb]
+    return True
+
+
+@njit(cache=True)
+def band_matmul(dofs, kb, XE, X, out):
+    """out = A X for A assembled from element matrices XE (no band storage needed), X: (N, m)."""
+    out[:, :] = 0.0
+    N = X.shape[0]
+    m = X.shape[1]
+    for e in range(dofs.shape[0]):
+        for i in range(6):
+            gi = dofs[e, i]
+            if gi >= N:
+                continue
+            for j in range(6):
+                gj = dofs[e, j]
+                if gj >= N:
+                    continue
+                aij = XE[e, i, j]
+                if aij != 0.0:
+                    for c in range(m):
+                        out[gi, c] += aij * X[gj, c]
+
+
+# ----------------------------------------------------------------------------------------------
+# Newmark
+# ----------------------------------------------------------------------------------------------
+
+@njit(cache=True)
+def _make_ws():
+    return (np.zeros(6), np.zeros(6), np.zeros(6), np.zeros(6), np.zeros((6, 6)), np.zeros((6, 6)),
+            np.zeros((6, 6)), np.zeros((6, 6)), np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2)),
+            np.zeros((2, 2)), np.zeros((2, 2)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)),
+            np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)))
+
+
+@njit(cache=True)
+def initial_acceleration(codes, par, dofs, kb, l, t0, d, v, out):
+    """Solve R(t0, d, v, a) = 0 for a (eq. 34; R is linear in a).  Returns False if singular."""
+    n = dofs.shape[0]
+    N = d.shape[0]
+    ws = _make_ws()
+    rE, KE, CE, ME = np.zeros((n, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6))
+    kin = np.zeros(5)
+    crank_kinematics(par[0], par[4], t0, kin)
+    zero = np.zeros(N)
+    element_terms(codes, par, False, dofs, l, d, v, zero, kin, rE, KE, CE, ME, ws)
+    R = np.zeros(N)
+    assemble_vector(dofs, rE, R)
+    W = np.zeros((N, 3 * kb + 1))
+    assemble_band(dofs, kb, ME, CE, KE, 1.0, 0.0, 0.0, W)
+    rhs = np.zeros((N, 1))
+    for i in range(N):
+        rhs[i, 0] = -R[i]
+    ok = band_solve(W, kb, rhs)
+    for i in range(N):
+        out[i] = rhs[i, 0]
+    return ok
+
+
+@njit(cache=True)
+def newmark_step(codes, par, dofs, kb, l, scales, beta, gamma, tol, max_iter, t_new,
+                 d, v, acc, d_new, v_new, a_new, rE, KE, CE, ME, R, W, rhs, kin, ws):
+    """One Newmark step from (d, v, acc) to (d_new, v_new, a_new) at t_new.
+    Returns (status, iterations, residual norm)."""
+    N = d.shape[0]
+    dt = par[5]
+    one_pass = codes[3] == 1
+    secant = one_pass and codes[0] == 1
+    cd = beta * dt * dt
+    cv = gamma * dt
+    crank_kinematics(par[0], par[4], t_new, kin)
+    for i in range(N):
+        a_new[i] = 0.0 if one_pass else acc[i]
+    rnorm = 0.0
+    for it in range(1, max_iter + 1):
+        for i in range(N):
+            dp = d[i] + dt * v[i] + 0.5 * dt * dt * (1.0 - 2.0 * beta) * acc[i]
+            vp = v[i] + dt * (1.0 - gamma) * acc[i]
+            d_new[i] = dp + cd * a_new[i]
+            v_new[i] = vp + cv * a_new[i]
+        element_terms(codes, par, secant, dofs, l, d_new, v_new, a_new, kin, rE, KE, CE, ME, ws)
+        assemble_vector(dofs, rE, R)
+        rnorm = 0.0
+        for i in range(N):
+            rnorm += R[i] * R[i]
+            rhs[i, 0] = -R[i]
+        rnorm = math.sqrt(rnorm)
+        if not np.isfinite(rnorm):
+            return NOT_FINITE, it, rnorm
+        assemble_band(dofs, kb, ME, CE, KE, 1.0, cv, cd, W)
+        if not band_solve(W, kb, rhs):
+            return SINGULAR, it, rnorm
+        inc = 0.0
+        size = 0.0
+        for i in range(N):
+            a_new[i] += rhs[i, 0]
+            x = abs(cd * rhs[i, 0]) / scales[i]
+            if x > inc:
+                inc = x
+        for i in range(N):
+            d_new[i] = d[i] + dt * v[i] + 0.5 * dt * dt * (1.0 - 2.0 * beta) * acc[i] + cd * a_new[i]
+            v_new[i] = v[i] + dt * (1.0 - gamma) * acc[i] + cv * a_new[i]
+            x = abs(d_new[i]) / scales[i]
+            if x > size:
+                size = x
+        if not np.isfinite(inc):
+            return NOT_FINITE, it, rnorm
+        if one_pass or inc <= tol * (1.0 + size):
+            return OK, it, rnorm
+    return NOT_CONVERGED, max_iter, rnorm
+
+
+@njit(cache=True)
+def _outputs(dofs, mid_e, Nv_mid, G, eps, phi, d, out):
+    """v* at x* = 1/2, u*(1), delta* (eq. 40) of the state d."""
+    n = dofs.shape[0]
+    N = d.shape[0]
+    c, s = math.cos(phi), math.sin(phi)
+    vmid = 0.0
+    slope = 0.0
+    q = np.zeros(6)
+    u_end = 0.0
+    for e in range(n):
+        for k in range(6):
+            idx = dofs[e, k]
+            q[k] = d[idx] if idx < N else 0.0
+        if e == n - 1:
+            p = q[3]
+            q[3] = c * p
+            q[4] = s * p
+            u_end = q[3]
+        if e == mid_e:
+            for k in range(6):
+                vmid += Nv_mid[k] * q[k]
+        for i in range(6):
+            for j in range(6):
+                slope += q[i] * G[i, j] * q[j]
+    out[0] = vmid / eps
+    out[1] = u_end / (eps * eps)
+    out[2] = u_end + 0.5 * slope
+
+
+def _march_impl(codes, par, dofs, kb, l, scales, mid_e, Nv_mid, G, beta, gamma, tol, max_iter,
+                step0, n_steps, steps_per_rev, D0, V0, A0, keep_history,
+                out_y, out_iter, status, fail_step, fail_res, Dh, Vh, D1, V1, A1):
+    """Advance every case of the batch n_steps in lock step (see march)."""
+    B = D0.shape[0]
+    n = dofs.shape[0]
+    N = D0.shape[1]
+    for b in prange(B):
+        ws = _make_ws()
+        rE, KE, CE, ME = np.zeros((n, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6))
+        R, W, rhs = np.zeros(N), np.zeros((N, 3 * kb + 1)), np.zeros((N, 1))
+        kin = np.zeros(5)
+        d, v, acc = D0[b].copy(), V0[b].copy(), A0[b].copy()
+        dn, vn, an = np.zeros(N), np.zeros(N), np.zeros(N)
+        y = np.zeros(3)
+        dt = par[b, 5]
+        crank_kinematics(par[b, 0], par[b, 4], step0 * dt, kin)
+        _outputs(dofs, mid_e, Nv_mid, G, par[b, 1], kin[2], d, y)
+        out_y[b, 0, :] = y
+        if keep_history:
+            Dh[b, 0, :] = d
+            Vh[b, 0, :] = v
+        for m in range(n_steps):
+            if status[b] != OK:
+                break
+            t_new = (step0 + m + 1) * dt
+            st, it, rn = newmark_step(codes[b], par[b], dofs, kb, l, scales[b], beta, gamma, tol,
+                                      max_iter, t_new, d, v, acc, dn, vn, an, rE, KE, CE, ME, R, W,
+                                      rhs, kin, ws)
+            out_iter[b, m] = it
+            if st == OK:
+                for i in range(N):
+                    if not (np.isfinite(dn[i]) and np.isfinite(vn[i])):
+                        st = NOT_FINITE
+                        break
+            if st != OK:
+                status[b] = st
+                fail_step[b] = step0 + m + 1
+                fail_res[b] = rn
+                break
+            d[:] = dn
+            v[:] = vn
+            acc[:] = an
+            _outputs(dofs, mid_e, Nv_mid, G, par[b, 1], kin[2], d, y)
+            out_y[b, m + 1, :] = y
+            if keep_history:
+                Dh[b, m + 1, :] = d
+                Vh[b, m + 1, :] = v
+        D1[b, :] = d
+        V1[b, :] = v
+        A1[b, :] = acc
+
+
+_march_serial = njit(cache=True)(_march_impl)
+_march_parallel = njit(cache=True, parallel=True)(_march_impl)
+
+
+@njit(cache=True)
+def _initial_accelerations(codes, par, dofs, kb, l, step0, D0, V0, A0, status):
+    for b in range(D0.shape[0]):
+        if not initial_acceleration(codes[b], par[b], dofs, kb, l, step0 * par[b, 5], D0[b], V0[b], A0[b]):
+            status[b] = SINGULAR
+
+
+# ----------------------------------------------------------------------------------------------
+# Python-level API
+# ----------------------------------------------------------------------------------------------
+
+class Batch:
+    """Cases that share a mesh and steps per revolution, packed for the compiled engine."""
+
+    def __init__(self, cases):
+        from .assembly import BandedAssembler
+        from .mesh import Mesh
+
+        cases = list(cases)
+        if not cases:
+            raise ValueError("a batch needs at least one case")
+        n, spr = cases[0].n_elements, cases[0].steps_per_rev
+        if any(c.n_elements != n or c.steps_per_rev != spr for c in cases):
+            raise ValueError("all cases of a batch must share n_elements and steps_per_rev")
+        self.cases, self.n_elements, self.steps_per_rev = cases, n, spr
+        self.mesh = Mesh(n)
+        self.N = self.mesh.n_dofs
+        self.dofs = np.ascontiguousarray(self.mesh.element_dofs, dtype=np.int64)
+        self.kb = BandedAssembler(self.mesh).bandwidth
+        self.l = self.mesh.length
+        self.mid_element, zeta = self.mesh.locate(0.5)
+        self.Nv_mid = np.ascontiguousarray(_shape.shape_functions(zeta, self.l)[1], dtype=float)
+        self.G = np.ascontiguousarray(_shape.slope_gram(self.l), dtype=float)
+        self.codes = np.array([[FORMULATION_CODE[c.formulation], APPROACH_CODE[c.approach],
+                                DAMPING_CODE[c.damping], int(c.integrator == "one-pass")]
+                               for c in cases], dtype=np.int64)
+        self.par = np.array([[c.a, c.eps, c.ms, c.mu, c.omega, 2 * math.pi / c.omega / spr]
+                             for c in cases], dtype=float)
+        self.scales = np.array([self.mesh.dof_scales(c.eps) for c in cases])
+
+    def __len__(self):
+        return len(self.cases)
+
+
+class MarchResult:
+    """Outputs of march: y[b, m] = (v*, u*(1), delta*) at step m, final states, statuses."""
+
+    def __init__(self, **kw):
+        self.__dict__.update(kw)
+
+
+def march(batch, n_steps, D0=None, V0=None, step0=0, keep_history=False, parallel=None,
+          beta=0.25, gamma=0.5, tol=1e-10, max_iter=30, status=None):
+    """Advance all cases of the batch from step index step0 (t = step0 dt) by n_steps Newmark steps.
+
+    D0, V0: (B, N) initial reduced states (zero by default); the initial accelerations solve
+    eq. (34).  Cases whose status is not OK on entry are not advanced."""
+    B, N = len(batch), batch.N
+    D0 = np.zeros((B, N)) if D0 is None else np.ascontiguousarray(D0, dtype=float)
+    V0 = np.zeros((B, N)) if V0 is None else np.ascontiguousarray(V0, dtype=float)
+    status = np.zeros(B, dtype=np.int64) if status is None else status.copy()
+    A0 = np.zeros((B, N))
+    _initial_accelerations(batch.codes, batch.par, batch.dofs, batch.kb, batch.l, step0, D0, V0, A0, status)
+    out_y = np.full((B, n_steps + 1, 3), np.nan)
+    out_iter = np.zeros((B, n_steps), dtype=np.int64)
+    fail_step = np.zeros(B, dtype=np.int64)
+    fail_res = np.zeros(B)
+    hist_shape = (B, n_steps + 1, N) if keep_history else (1, 1, 1)
+    Dh, Vh = np.zeros(hist_shape), np.zeros(hist_shape)
+    D1, V1, A1 = np.zeros((B, N)), np.zeros((B, N)), np.zeros((B, N))
+    if parallel is None:
+        parallel = B > 1
+    fn = _march_parallel if parallel else _march_serial
+    fn(batch.codes, batch.par, batch.dofs, batch.kb, batch.l, batch.scales, batch.mid_element,
+       batch.Nv_mid, batch.G, beta, gamma, tol, max_iter, step0, n_steps, batch.steps_per_rev,
+       D0, V0, A0, keep_history, out_y, out_iter, status, fail_step, fail_res, Dh, Vh, D1, V1, A1)
+    return MarchResult(y=out_y, iterations=out_iter, status=status, fail_step=fail_step,
+                       fail_residual=fail_res, D=D1, V=V1, A=A1,
+                       D_history=Dh if keep_history else None, V_history=Vh if keep_history else None)
+
+
+# ----------------------------------------------------------------------------------------------
+# one revolution with its exact linearization (shooting)
+# ----------------------------------------------------------------------------------------------
+
+def _revolution_impl(codes, par, dofs, kb, l, scales, beta, gamma, tol, max_iter, step0, n_steps,
+                     X0, active, X1, J, status):
+    """For every active case: state x = (d, v) at step step0 -> state after n_steps Newton steps,
+    and J = dx1/dx0, the exact linearization of the converged Newmark steps:
+        S da' = -(K dd~ + C dv~),  dd' = dd~ + beta dt^2 da',  dv' = dv~ + gamma dt da'
+    with S, K, C the exact tangents at the converged state of each step (a0 from eq. 34)."""
+    B = X0.shape[0]
+    n = dofs.shape[0]
+    N = X0.shape[1] // 2
+    for b in prange(B):
+        if not active[b]:
+            continue
+        ws = _make_ws()
+        rE, KE, CE, ME = np.zeros((n, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6))
+        R, W, rhs = np.zeros(N), np.zeros((N, 3 * kb + 1)), np.zeros((N, 1))
+        kin = np.zeros(5)
+        cb, pb = codes[b], par[b]
+        dt = pb[5]
+        cd, cv = beta * dt * dt, gamma * dt
+        d, v = X0[b, :N].copy(), X0[b, N:].copy()
+        acc = np.zeros(N)
+        dn, vn, an = np.zeros(N), np.zeros(N), np.zeros(N)
+        if not initial_acceleration(cb, pb, dofs, kb, l, step0 * dt, d, v, acc):
+            status[b] = SINGULAR
+            continue
+        # sensitivities (N, 2N)
+        Dd = np.zeros((N, 2 * N))
+        Dv = np.zeros((N, 2 * N))
+        for i in range(N):
+            Dd[i, i] = 1.0
+            Dv[i, N + i] = 1.0
+        Da = np.zeros((N, 2 * N))
+        tmp = np.zeros((N, 2 * N))
+        # da0 = -M^-1 (K dd0 + C dv0) at t0
+        crank_kinematics(pb[0], pb[4], step0 * dt, kin)
+        element_terms(cb, pb, False, dofs, l, d, v, acc, kin, rE, KE, CE, ME, ws)
+        band_matmul(dofs, kb, KE, Dd, Da)
+        band_matmul(dofs, kb, CE, Dv, tmp)
+        for i in range(N):
+            for c in range(2 * N):
+                Da[i, c] = -(Da[i, c] + tmp[i, c])
+        assemble_band(dofs, kb, ME, CE, KE, 1.0, 0.0, 0.0, W)
+        if not band_solve(W, kb, Da):
+            status[b] = SINGULAR
+            continue
+        ok = True
+        for m in range(n_steps):
+            t_new = (step0 + m + 1) * dt
+            st, it, rn = newmark_step(cb, pb, dofs, kb, l, scales[b], beta, gamma, tol, max_iter,
+                                      t_new, d, v, acc, dn, vn, an, rE, KE, CE, ME, R, W, rhs, kin, ws)
+            if st != OK:
+                status[b] = st
+                ok = False
+                break
+            # predictor sensitivities (in place): Dd <- dd~, Dv <- dv~
+            for i in range(N):
+                for c in range(2 * N):
+                    Dd[i, c] = Dd[i, c] + dt * Dv[i, c] + 0.5 * dt * dt * (1.0 - 2.0 * beta) * Da[i, c]
+                    Dv[i, c] = Dv[i, c] + dt * (1.0 - gamma) * Da[i, c]
+            # exact tangents at the converged state
+            element_terms(cb, pb, False, dofs, l, dn, vn, an, kin, rE, KE, CE, ME, ws)
+            band_matmul(dofs, kb, KE, Dd, Da)
+            band_matmul(dofs, kb, CE, Dv, tmp)
+            for i in range(N):
+                for c in range(2 * N):
+                    Da[i, c] = -(Da[i, c] + tmp[i, c])
+            assemble_band(dofs, kb, ME, CE, KE, 1.0, cv, cd, W)
+            if not band_solve(W, kb, Da):
+                status[b] = SINGULAR
+                ok = False
+                break
+            for i in range(N):
+                for c in range(2 * N):
+                    Dd[i, c] += cd * Da[i, c]
+                    Dv[i, c] += cv * Da[i, c]
+            d[:] = dn
+            v[:] = vn
+            acc[:] = an
+        if not ok:
+            continue
+        X1[b, :N] = d
+        X1[b, N:] = v
+        J[b, :N, :] = Dd
+        J[b, N:, :] = Dv
+
+
+_revolution_serial = njit(cache=True)(_revolution_impl)
+_revolution_parallel = njit(cache=True, parallel=True)(_revolution_impl)
+
+
+def revolution(batch, X0, step0=0, active=None, parallel=None, beta=0.25, gamma=0.5, tol=1e-10,
+               max_iter=30):
+    """(X1, J, status): the one-revolution map of the Newton-Newmark scheme and its Jacobian, for
+    states X0 (B, 2N) = (d, v) at step index step0."""
+    B, N = len(batch), batch.N
+    X0 = np.ascontiguousarray(X0, dtype=float)
+    active = np.ones(B, dtype=np.bool_) if active is None else np.asarray(active, dtype=np.bool_)
+    X1 = np.full((B, 2 * N), np.nan)
+    J = np.full((B, 2 * N, 2 * N), np.nan)
+    status = np.zeros(B, dtype=np.int64)
+    if parallel is None:
+        parallel = int(active.sum()) > 1
+    fn = _revolution_parallel if parallel else _revolution_serial
+    fn(batch.codes, batch.par, batch.dofs, batch.kb, batch.l, batch.scales, beta, gamma, tol,
+       max_iter, step0, batch.steps_per_rev, X0, active, X1, J, status)
+    return X1, J, status
