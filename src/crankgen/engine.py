@@ -583,18 +583,22 @@ class MarchResult:
         self.__dict__.update(kw)
 
 
-def march(batch, n_steps, D0=None, V0=None, step0=0, keep_history=False, parallel=None,
+def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False, parallel=None,
           beta=0.25, gamma=0.5, tol=1e-10, max_iter=30, status=None):
     """Advance all cases of the batch from step index step0 (t = step0 dt) by n_steps Newmark steps.
 
-    D0, V0: (B, N) initial reduced states (zero by default); the initial accelerations solve
-    eq. (34).  Cases whose status is not OK on entry are not advanced."""
+    D0, V0: (B, N) initial reduced states (zero by default); A0 the accelerations, by default
+    solved from eq. (34).  Cases whose status is not OK on entry are not advanced."""
     B, N = len(batch), batch.N
     D0 = np.zeros((B, N)) if D0 is None else np.ascontiguousarray(D0, dtype=float)
     V0 = np.zeros((B, N)) if V0 is None else np.ascontiguousarray(V0, dtype=float)
-    status = np.zeros(B, dtype=np.int64) if status is None else status.copy()
-    A0 = np.zeros((B, N))
-    _initial_accelerations(batch.codes, batch.par, batch.dofs, batch.kb, batch.l, step0, D0, V0, A0, status)
+    status = np.zeros(B, dtype=np.int64) if status is None else np.array(status, dtype=np.int64)
+    if A0 is None:
+        A0 = np.zeros((B, N))
+        _initial_accelerations(batch.codes, batch.par, batch.dofs, batch.kb, batch.l, step0, D0, V0,
+                               A0, status)
+    else:
+        A0 = np.ascontiguousarray(A0, dtype=float)
     out_y = np.full((B, n_steps + 1, 3), np.nan)
     out_iter = np.zeros((B, n_steps), dtype=np.int64)
     fail_step = np.zeros(B, dtype=np.int64)

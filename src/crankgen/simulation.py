@@ -7,12 +7,16 @@ from typing import Optional
 
 import numpy as np
 
-from .errors import ParameterError
+from . import engine as _engine
+from .cases import Case
+from .errors import ConvergenceError, ParameterError
 from .model import Model
 from .newmark import NewmarkSettings, integrate
 from .outputs import element_history, end_axial, extension, mid_deflection
 from .parameters import Mechanism
-from .validation import in_range, integer
+from .validation import choice, in_range, integer
+
+ENGINES = ("compiled", "numpy")
 
 
 @dataclass(frozen=True)
@@ -39,18 +43,20 @@ class SimulationResult:
 
 def simulate(mech, omega=0.8, approach="A", formulation="lagrange", n_elements=16,
              steps_per_rev=100, revolutions=10, integrator="newton", damping="paper",
-             store_nodes=False, tol=1e-10, progress=None, initial=None):
+             store_nodes=False, tol=1e-10, progress=None, initial=None, engine="compiled"):
     """Integrate the mechanism from theta = 0 with a constant crank speed omega (= Omega*).
 
     initial: optional (d0, v0) reduced displacement and velocity vectors (default: zero, the
     paper's initial conditions: rod undeformed and at rest in the moving frame).
-    progress(step, n_steps) is called after each step.
+    progress(step, n_steps) is called as the run advances.
+    engine: "compiled" (numba, engine.py) or "numpy" (model.py + newmark.py, the reference).
     """
     if not isinstance(mech, Mechanism):
         raise ParameterError(f"mech must be a crankgen.Mechanism, got {type(mech).__name__}")
     omega = in_range("omega (crank speed Omega*)", omega, 0, None, True)
     steps_per_rev = integer("steps_per_rev", steps_per_rev, 4)
     revolutions = in_range("revolutions", revolutions, 0, None, True)
+    choice("engine", engine, ENGINES)
     settings = NewmarkSettings(scheme=integrator, tol=tol)
     model = Model.build(mech, omega, n_elements, formulation, approach, damping)
 
@@ -64,16 +70,57 @@ def simulate(mech, omega=0.8, approach="A", formulation="lagrange", n_elements=1
         d0, v0 = (np.asarray(x, dtype=float) for x in initial)
         if d0.shape != (N,) or v0.shape != (N,) or not (np.all(np.isfinite(d0)) and np.all(np.isfinite(v0))):
             raise ParameterError(f"initial must be two finite vectors of length {N} (3 n_elements)")
+    info = dict(a=mech.a, eps=mech.eps, ms=mech.ms, mu=mech.mu, omega=omega, approach=approach,
+                formulation=formulation, n_elements=model.mesh.n_elements,
+                steps_per_rev=steps_per_rev, revolutions=revolutions, integrator=integrator,
+                damping=damping, tol=tol, engine=engine)
+    if engine == "numpy":
+        hist = integrate(model, d0, v0, 0.0, dt, n_steps, settings, progress=progress)
+        kin = model.kinematics(hist.t)
+        q = element_history(model, hist.d, kin.phi)
+        return SimulationResult(
+            t=hist.t, theta=kin.theta, v_mid=mid_deflection(model, q), u_end=end_axial(model, q),
+            extension=extension(model, q), iterations=hist.iterations, settings=info,
+            nodes=model.full_nodal(hist.d, kin.phi) if store_nodes else None)
 
-    hist = integrate(model, d0, v0, 0.0, dt, n_steps, settings, progress=progress)
-    kin = model.kinematics(hist.t)
-    q = element_history(model, hist.d, kin.phi)
-    return SimulationResult(
-        t=hist.t, theta=kin.theta, v_mid=mid_deflection(model, q), u_end=end_axial(model, q),
-        extension=extension(model, q), iterations=hist.iterations,
-        settings=dict(a=mech.a, eps=mech.eps, ms=mech.ms, mu=mech.mu, omega=omega,
-                      approach=approach, formulation=formulation, n_elements=model.mesh.n_elements,
-                      steps_per_rev=steps_per_rev, revolutions=revolutions, integrator=integrator,
-                      damping=damping, tol=tol),
-        nodes=model.full_nodal(hist.d, kin.phi) if store_nodes else None,
-    )
+    case = Case(a=mech.a, eps=mech.eps, ms=mech.ms, mu=mech.mu, omega=omega, approach=approach,
+                formulation=formulation, damping=damping, n_elements=model.mesh.n_elements,
+                steps_per_rev=steps_per_rev, integrator=integrator)
+    y, iterations, D = _march_in_chunks(_engine.Batch([case]), d0, v0, n_steps, tol, store_nodes,
+                                        progress, dt)
+    t = dt * np.arange(n_steps + 1)
+    theta = omega * t
+    nodes = None
+    if store_nodes:
+        nodes = model.full_nodal(D, np.arcsin(mech.a * np.sin(theta)))
+    return SimulationResult(t=t, theta=theta, v_mid=y[:, 0], u_end=y[:, 1], extension=y[:, 2],
+                            iterations=iterations, settings=info, nodes=nodes)
+
+
+def _march_in_chunks(batch, d0, v0, n_steps, tol, keep_history, progress, dt, chunks=20):
+    """Run the compiled engine in a few chunks (so progress can be shown); raise on failure."""
+    N = batch.N
+    D, V, A = d0[None].copy(), v0[None].copy(), None
+    ys, its, hist = [], [], []
+    done = 0
+    size = max(1, -(-n_steps // chunks)) if progress is not None else n_steps
+    while done < n_steps:
+        k = min(size, n_steps - done)
+        res = _engine.march(batch, k, D0=D, V0=V, A0=A, step0=done, keep_history=keep_history,
+                            tol=tol)
+        if res.status[0] != _engine.OK:
+            step = int(res.fail_step[0])
+            what = _engine.STATUS_TEXT[int(res.status[0])]
+            raise ConvergenceError(
+                f"{what} in step {step} (t* = {step * dt:.6g}): residual norm {res.fail_residual[0]:.3e}",
+                step=step, time=step * dt, residual=float(res.fail_residual[0]))
+        ys.append(res.y[0] if done == 0 else res.y[0, 1:])
+        its.append(res.iterations[0])
+        if keep_history:
+            hist.append(res.D_history[0] if done == 0 else res.D_history[0, 1:])
+        D, V, A = res.D, res.V, res.A
+        done += k
+        if progress is not None:
+            progress(done, n_steps)
+    return (np.concatenate(ys), np.concatenate(its).astype(np.int32),
+            np.concatenate(hist) if keep_history else None)

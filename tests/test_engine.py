@@ -1,0 +1,119 @@
+"""The compiled engine against the NumPy reference implementation, and its own pieces."""
+
+import math
+
+import numpy as np
+import pytest
+import scipy.linalg
+
+import crankgen
+from crankgen import engine
+from crankgen.cases import Case
+from crankgen.steady import steady_state, steady_states
+
+COMBOS = [(f, ap, dmp, integ) for f in ("lagrange", "paper") for ap in "ABC"
+          for dmp in ("paper", "kelvin-voigt") for integ in ("newton", "one-pass")]
+
+
+@pytest.mark.parametrize("formulation, approach, damping, integrator", COMBOS)
+def test_compiled_engine_equals_numpy_reference(formulation, approach, damping, integrator):
+    mech = crankgen.Mechanism(a=0.2, eps=0.02, ms=0.7, mu=0.3)
+    omega = 0.6 if approach != "B" else 0.3     # consistent B diverges at higher speeds
+    kw = dict(omega=omega, approach=approach, formulation=formulation, damping=damping,
+              integrator=integrator, n_elements=3, steps_per_rev=40, revolutions=1.5)
+    ref = crankgen.simulate(mech, engine="numpy", **kw)
+    fast = crankgen.simulate(mech, engine="compiled", **kw)
+    scale = np.max(np.abs(ref.v_mid))
+    assert scale > 0
+    np.testing.assert_allclose(fast.v_mid, ref.v_mid, rtol=0, atol=1e-11 * scale)
+    np.testing.assert_allclose(fast.u_end, ref.u_end, rtol=0, atol=1e-11 * np.max(np.abs(ref.u_end)))
+    np.testing.assert_allclose(fast.extension, ref.extension, rtol=0,
+                               atol=1e-11 * np.max(np.abs(ref.extension)))
+    assert np.array_equal(fast.iterations, ref.iterations)
+
+
+def test_progress_chunks_do_not_change_the_trajectory():
+    mech = crankgen.Mechanism()
+    calls = []
+    a = crankgen.simulate(mech, n_elements=4, revolutions=2, integrator="one-pass")
+    b = crankgen.simulate(mech, n_elements=4, revolutions=2, integrator="one-pass",
+                          progress=lambda done, total: calls.append(done))
+    assert np.array_equal(a.v_mid, b.v_mid)
+    assert calls[-1] == 200 and len(calls) > 5
+
+
+def test_band_solver_with_pivoting_matches_dense_solve():
+    rng = np.random.default_rng(3)
+    N, kb = 17, 3
+    A = np.zeros((N, N))
+    for i in range(N):
+        for j in range(max(0, i - kb), min(N, i + kb + 1)):
+            A[i, j] = rng.standard_normal()
+    A[np.arange(N), np.arange(N)] *= 1e-3          # small diagonal: pivoting is needed
+    W = np.zeros((N, 3 * kb + 1))
+    for i in range(N):
+        for j in range(max(0, i - kb), min(N, i + kb + 1)):
+            W[i, j - i + kb] = A[i, j]
+    B = rng.standard_normal((N, 4))
+    X = B.copy()
+    assert engine.band_solve(W, kb, X)
+    np.testing.assert_allclose(X, scipy.linalg.solve(A, B), rtol=1e-9, atol=1e-12)
+
+
+def test_lock_step_batch_equals_single_runs_and_isolates_failures():
+    cases = [Case(omega=0.5, n_elements=4, steps_per_rev=50),
+             Case(omega=0.8, approach="B", formulation="lagrange", n_elements=4, steps_per_rev=50),
+             Case(omega=1.1, approach="C", formulation="paper", damping="kelvin-voigt",
+                  n_elements=4, steps_per_rev=50)]
+    batch = engine.march(engine.Batch(cases), 150)
+    assert list(batch.status) == [engine.OK, engine.NOT_CONVERGED, engine.OK]
+    for i in (0, 2):
+        single = engine.march(engine.Batch([cases[i]]), 150)
+        assert np.array_equal(single.y[0], batch.y[i])
+
+
+def test_revolution_jacobian_matches_finite_differences():
+    case = Case(omega=0.8, n_elements=3, steps_per_rev=30, mu=0.2)
+    b = engine.Batch([case])
+    N = b.N
+    warm = engine.march(b, 60)
+    X0 = np.concatenate([warm.D, warm.V], axis=1)
+    X1, J, st = engine.revolution(b, X0)
+    assert st[0] == engine.OK
+    S = np.concatenate([b.scales[0], b.scales[0]])
+    for k in (0, 4, N + 1, 2 * N - 1):
+        h = 1e-6 * S[k]
+        cols = []
+        for sign in (1, -1):
+            X = X0.copy()
+            X[0, k] += sign * h
+            Y, _, _ = engine.revolution(b, X, tol=1e-14)
+            cols.append(Y[0])
+        fd = (cols[0] - cols[1]) / (2 * h)
+        assert np.max(np.abs(fd - J[0, :, k]) * S[k] / S) < 1e-6 * max(1.0, np.max(np.abs(J[0, :, k]) * S[k] / S))
+
+
+def test_shooting_and_marching_find_the_same_periodic_state():
+    s = steady_state(omega=0.8, n_elements=4, method="shooting", tol=1e-10)
+    m = steady_state(omega=0.8, n_elements=4, method="march", tol=1e-10)
+    assert s.status == m.status == "periodic"
+    assert s.iterations >= 1 and m.iterations == 0 and m.periods > s.periods
+    assert s.amplitude == pytest.approx(m.amplitude, rel=1e-8)
+    np.testing.assert_allclose(s.v_mid, m.v_mid, atol=1e-8 * s.amplitude)
+    assert 0 < s.multiplier < 1
+
+
+def test_steady_state_is_a_fixed_point_of_the_simulation():
+    """Simulate from rest for many revolutions: the last revolution equals the steady state."""
+    s = steady_state(omega=0.6, n_elements=4, steps_per_rev=60)
+    r = crankgen.simulate(crankgen.Mechanism(), omega=0.6, n_elements=4, steps_per_rev=60,
+                          revolutions=40)
+    np.testing.assert_allclose(r.v_mid[-61:], s.v_mid, atol=1e-7 * s.amplitude)
+
+
+def test_failed_and_unstable_cases_are_reported_not_hidden():
+    res = steady_states([Case(omega=0.8, approach="B", formulation="lagrange", n_elements=4),
+                         Case(omega=0.8, n_elements=4)])
+    assert res[0].status in ("failed", "not-periodic", "unstable")
+    assert res[0].message and not res[0].ok
+    assert res[1].status == "periodic" and math.isfinite(res[1].amplitude)
