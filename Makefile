@@ -1,6 +1,6 @@
 PYTHON ?= python3
 
-.PHONY: derive check-generated test
+.PHONY: derive check-generated test bench
 
 derive:            ## regenerate generated/ from the SymPy derivation in derive/
 	$(PYTHON) -m derive
@@ -10,3 +10,6 @@ check-generated:   ## fail if generated/ differs from what derive/ produces (cha
 
 test:
 	$(PYTHON) -m pytest -q
+
+bench:             ## benchmark: writes bench/results.json and prints a table
+	$(PYTHON) bench/run.py

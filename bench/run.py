@@ -1,0 +1,246 @@
+"""crankgen benchmark: writes bench/results.json and prints a table (`make bench`).
+
+Every ratio is measured in one run, on this machine, now.  Timings are best-of-k wall times on a
+shared machine: read them as estimates, not guarantees.  Targets (2-core machine):
+  one Newmark step, Newton, approach A, 16 elements, one case           < 100 us
+  batch of 100+ cases, per case and step                                 < 10 us
+  `crankgen reproduce` (both models, all figures)                        < 60 s;  --quick < 10 s
+"""
+
+import argparse
+import json
+import math
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "tests"))     # reference.py: the independent Gauss-quadrature forms
+
+import crankgen  # noqa: E402
+from crankgen import engine  # noqa: E402
+from crankgen.cases import Case  # noqa: E402
+from crankgen.steady import steady_state, steady_states  # noqa: E402
+
+
+def best_of(fn, repeats=3):
+    times = []
+    for _ in range(repeats):
+        t = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t)
+    return min(times)
+
+
+def step_times(steps=1000):
+    rows = []
+    for n in (4, 16):
+        for approach in "ABC":
+            for formulation in ("lagrange", "paper"):
+                omega = 0.8 if not (approach == "B" and formulation == "lagrange") else 0.3
+                case = Case(omega=omega, approach=approach, formulation=formulation, n_elements=n)
+                batch = engine.Batch([case])
+                engine.march(batch, 5)                       # load compiled code
+                res = {}
+
+                def run():
+                    res["r"] = engine.march(batch, steps, parallel=False)
+                seconds = best_of(run)
+                r = res["r"]
+                rows.append(dict(n_elements=n, approach=approach, formulation=formulation, omega=omega,
+                                 us_per_step=1e6 * seconds / steps,
+                                 newton_iterations_per_step=float(r.iterations.mean()),
+                                 status=engine.STATUS_TEXT[int(r.status[0])]))
+    return rows
+
+
+def kernel_vs_quadrature(n=16, repeats=200):
+    """The lagrange element terms of approach A with Kelvin-Voigt damping (inertia r, K, C, M;
+    elastic r, K; damping r, K, C) for n elements: generated kernels vs Gauss quadrature."""
+    import reference as ref
+    from crankgen._generated import damping as gd
+    from crankgen._generated import lagrange as gl
+
+    rng = np.random.default_rng(0)
+    mech = crankgen.Mechanism()
+    l, x0 = 1.0 / n, np.arange(n) / n
+    q, qd, qdd = (1e-3 * rng.standard_normal((n, 6)) for _ in range(3))
+    kin = (mech.a, 0.3, 0.8, 0.03, 0.07, -0.02)
+    args = (mech.rhoA, mech.rhoI)
+
+    def generated():
+        gl.rod_inertia(q, qd, qdd, l, x0, *args, *kin)
+        gl.rod_elastic_A(q, l, mech.EA, mech.EI)
+        gd.kelvin_voigt_A(q, qd, l, mech.EA, mech.EI, mech.mu)
+
+    def quadrature():
+        ref.rod_inertia(q, qd, qdd, l, x0, *args, *kin)
+        ref.rod_elastic("A", q, l, mech.EA, mech.EI)
+        ref.kelvin_voigt("A", q, qd, l, mech.EA, mech.EI, mech.mu)
+
+    # same numbers first
+    a = gl.rod_elastic_A(q, l, mech.EA, mech.EI)[1]
+    b = ref.rod_elastic("A", q, l, mech.EA, mech.EI)[1]
+    assert np.allclose(a, b, rtol=1e-9, atol=1e-12 * np.abs(b).max())
+    t_gen = best_of(lambda: [generated() for _ in range(repeats)]) / repeats
+    t_quad = best_of(lambda: [quadrature() for _ in range(repeats)]) / repeats
+    # compiled kernels: the engine's whole element loop (same terms + constraint and slider)
+    import numba
+    case = Case(n_elements=n, damping="kelvin-voigt")
+    batch = engine.Batch([case])
+    ws = engine._make_ws()
+    rE, KE, CE, ME = np.zeros((n, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6))
+    kin_arr = np.array(kin[1:])
+    d = 1e-3 * rng.standard_normal(batch.N)
+
+    @numba.njit
+    def loop(reps, codes, par, dofs, l, d, kin_arr, rE, KE, CE, ME, ws):
+        for _ in range(reps):
+            engine.element_terms(codes, par, False, dofs, l, d, d, d, kin_arr, rE, KE, CE, ME, ws)
+
+    loop(1, batch.codes[0], batch.par[0], batch.dofs, l, d, kin_arr, rE, KE, CE, ME, ws)
+    reps = 20000
+    t_jit = best_of(lambda: loop(reps, batch.codes[0], batch.par[0], batch.dofs, l, d, kin_arr,
+                                 rE, KE, CE, ME, ws)) / reps
+    return dict(n_elements=n, generated_numpy_us=1e6 * t_gen, quadrature_numpy_us=1e6 * t_quad,
+                compiled_element_loop_us=1e6 * t_jit,
+                ratio_quadrature_over_generated=t_quad / t_gen,
+                ratio_quadrature_over_compiled=t_quad / t_jit)
+
+
+def sweep_cases(count, n=16):
+    omegas = np.linspace(0.1, 1.6, count)
+    return [Case(omega=float(w), n_elements=n, formulation="lagrange", damping="kelvin-voigt")
+            for w in omegas]
+
+
+def batch_vs_single(count=128, steps=200):
+    cases = sweep_cases(count)
+    batch = engine.Batch(cases)
+    engine.march(batch, 2)
+    t_batch = best_of(lambda: engine.march(batch, steps), 2)
+    one = engine.Batch(cases[:1])
+    t_one = best_of(lambda: [engine.march(engine.Batch([c]), steps, parallel=False) for c in cases[:16]], 2) / 16
+    steady_states(cases[:2])
+    t_ss_batch = best_of(lambda: steady_states(cases, tol=1e-6), 1)
+    t_ss_single = best_of(lambda: [steady_state(case=c, tol=1e-6) for c in cases[:32]], 1) * count / 32
+    del one
+    return dict(cases=count, n_elements=16, steps=steps,
+                batch_us_per_case_step=1e6 * t_batch / (count * steps),
+                single_us_per_case_step=1e6 * t_one / steps,
+                steady_batched_s=t_ss_batch, steady_one_at_a_time_s=t_ss_single,
+                ratio_one_at_a_time_over_batched=t_ss_single / t_ss_batch)
+
+
+def shooting_vs_marching(count=32, tol=1e-6):
+    cases = sweep_cases(count)
+    steady_states(cases[:2], method="march")
+    t_shoot = best_of(lambda: steady_states(cases, tol=tol, method="shooting"), 1)
+    t_march = best_of(lambda: steady_states(cases, tol=tol, method="march"), 1)
+    a = steady_states(cases, tol=tol, method="shooting")
+    b = steady_states(cases, tol=tol, method="march")
+    agree = max(abs(x.amplitude - y.amplitude) / y.amplitude for x, y in zip(a, b) if x.ok and y.ok)
+    return dict(cases=count, tol=tol, shooting_s=t_shoot, marching_s=t_march,
+                ratio_marching_over_shooting=t_march / t_shoot,
+                mean_revolutions_marching=float(np.mean([r.periods for r in b])),
+                mean_shooting_iterations=float(np.mean([r.iterations for r in a])),
+                max_relative_amplitude_difference=agree)
+
+
+def reproduce_times():
+    exe = Path(sys.executable).with_name("crankgen")
+    cmd = [str(exe)] if exe.exists() else [sys.executable, "-m", "crankgen.cli"]
+    out = {}
+    for label, extra in (("quick", ["--quick"]), ("full", [])):
+        with tempfile.TemporaryDirectory() as tmp:
+            t = time.perf_counter()
+            proc = subprocess.run(cmd + ["reproduce", "--out", tmp, "--force"] + extra,
+                                  capture_output=True, text=True)
+            out[f"reproduce_{label}_s"] = time.perf_counter() - t
+            out[f"reproduce_{label}_exit"] = proc.returncode
+            if proc.returncode != 0:
+                out[f"reproduce_{label}_error"] = proc.stderr.strip().splitlines()[-1:] or ["?"]
+    return out
+
+
+def cold_compile_time():
+    """Seconds to compile the engine from an empty numba cache (first use on a new machine)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        code = ("from crankgen.steady import steady_states; from crankgen.cases import Case; "
+                "steady_states([Case(n_elements=2)])")
+        t = time.perf_counter()
+        subprocess.run([sys.executable, "-c", code], env={**os.environ, "NUMBA_CACHE_DIR": tmp},
+                       check=True)
+        return time.perf_counter() - t
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--out", type=Path, default=ROOT / "bench" / "results.json")
+    p.add_argument("--skip-reproduce", action="store_true")
+    p.add_argument("--cold", action="store_true", help="also time compilation from an empty cache")
+    args = p.parse_args(argv)
+
+    results = dict(machine=dict(python=platform.python_version(), cpus=os.cpu_count(),
+                                platform=platform.platform(), numpy=np.__version__),
+                   date=time.strftime("%Y-%m-%d %H:%M:%S"))
+    print("timing Newmark steps ...", flush=True)
+    results["steps"] = step_times()
+    print("timing kernels against quadrature ...", flush=True)
+    results["kernels"] = kernel_vs_quadrature()
+    print("timing batches ...", flush=True)
+    results["batch"] = batch_vs_single()
+    print("timing shooting against marching ...", flush=True)
+    results["shooting"] = shooting_vs_marching()
+    if not args.skip_reproduce:
+        print("timing crankgen reproduce ...", flush=True)
+        results["reproduce"] = reproduce_times()
+    if args.cold:
+        results["cold_compile_s"] = cold_compile_time()
+
+    single_A16 = next(r for r in results["steps"] if r["n_elements"] == 16 and r["approach"] == "A"
+                      and r["formulation"] == "lagrange")["us_per_step"]
+    targets = dict(single_step_A16_lt_100us=single_A16 < 100,
+                   batch_case_step_lt_10us=results["batch"]["batch_us_per_case_step"] < 10)
+    if "reproduce" in results:
+        targets["reproduce_full_lt_60s"] = results["reproduce"]["reproduce_full_s"] < 60
+        targets["reproduce_quick_lt_10s"] = results["reproduce"]["reproduce_quick_s"] < 10
+    results["targets_met"] = targets
+    args.out.parent.mkdir(parents=True, exist_ok=True)
+    args.out.write_text(json.dumps(results, indent=2) + "\n")
+
+    print(f"\n{'n':>3} {'app':>3} {'formulation':>11} {'Omega*':>6} {'us/step':>9} {'iter/step':>9}")
+    for r in results["steps"]:
+        print(f"{r['n_elements']:>3} {r['approach']:>3} {r['formulation']:>11} {r['omega']:>6.2f} "
+              f"{r['us_per_step']:>9.1f} {r['newton_iterations_per_step']:>9.2f}")
+    k = results["kernels"]
+    print(f"\nelement terms, {k['n_elements']} elements (lagrange A, Kelvin-Voigt): generated NumPy "
+          f"{k['generated_numpy_us']:.0f} us, Gauss quadrature {k['quadrature_numpy_us']:.0f} us "
+          f"(ratio {k['ratio_quadrature_over_generated']:.1f}), compiled loop "
+          f"{k['compiled_element_loop_us']:.1f} us (ratio {k['ratio_quadrature_over_compiled']:.0f})")
+    b = results["batch"]
+    print(f"batch of {b['cases']}: {b['batch_us_per_case_step']:.1f} us per case-step "
+          f"(one case at a time {b['single_us_per_case_step']:.1f}); steady states batched "
+          f"{b['steady_batched_s']:.2f} s vs one at a time {b['steady_one_at_a_time_s']:.2f} s "
+          f"(ratio {b['ratio_one_at_a_time_over_batched']:.2f})")
+    s = results["shooting"]
+    print(f"steady state to {s['tol']:g}, {s['cases']} cases: shooting {s['shooting_s']:.2f} s, "
+          f"marching {s['marching_s']:.2f} s (ratio {s['ratio_marching_over_shooting']:.2f}; "
+          f"{s['mean_revolutions_marching']:.1f} revolutions marched on average)")
+    if "reproduce" in results:
+        r = results["reproduce"]
+        print(f"crankgen reproduce: full {r['reproduce_full_s']:.1f} s, --quick {r['reproduce_quick_s']:.1f} s")
+    if "cold_compile_s" in results:
+        print(f"compilation from an empty cache: {results['cold_compile_s']:.1f} s")
+    print("targets:", ", ".join(f"{k}={'met' if v else 'MISSED'}" for k, v in targets.items()))
+    print(f"wrote {args.out}")
+
+
+if __name__ == "__main__":
+    main()
