@@ -106,3 +106,42 @@ def kelvin_voigt_dissipation_density(approach, q=s.q, qd=s.qd):
 def kelvin_voigt_dissipation(approach, q=s.q, qd=s.qd):
     """Element Rayleigh dissipation function of the strain-rate (Kelvin-Voigt) damping model."""
     return integrate_element(kelvin_voigt_dissipation_density(approach, q, qd))
+
+
+# ----------------------------------------------------------------------------------------------
+# Element option: membrane strain averaged over the element (assumed strain, no membrane locking)
+# ----------------------------------------------------------------------------------------------
+#
+# With linear u and cubic v, u_x is constant in an element while v_x^2 / 2 is a quartic in x, so
+# the membrane strain u_x + v_x^2/2 cannot vanish for an inextensional bending shape: the element
+# stores spurious membrane energy (and, with strain-rate damping, dissipates spuriously) when it
+# bends, and converges slowly (membrane locking).  The cure used here replaces v_x^2 in the
+# membrane strain by its element mean <v_x^2> = (1/l) int v_x^2 dx, which the linear u can match;
+# bending (EI v_xx^2) is unchanged, and so is approach C (linear strain).
+
+MEMBRANE_OPTIONS = ("pointwise", "averaged")
+
+
+def mean_over_element(expr):
+    """(1/l) int_0^l expr dx."""
+    return sp.expand(integrate_element(expr) / s.l)
+
+
+def strain_energy_averaged(approach, q=s.q):
+    """Element strain energy with the element-mean membrane strain e = u_x + <v_x^2>/2."""
+    f = fields(q, q)
+    u_x = f["u_x"]                               # constant in the element
+    m = mean_over_element(f["v_x"] ** 2)
+    membrane = {
+        "A": (u_x + m / 2) ** 2,
+        "B": u_x**2 + u_x * m,
+        "C": u_x**2,
+    }[approach]
+    return sp.expand(s.l * s.EA * membrane / 2 + integrate_element(s.EI * f["v_xx"] ** 2 / 2))
+
+
+def kelvin_voigt_dissipation_averaged(approach, q=s.q, qd=s.qd):
+    """Kelvin-Voigt dissipation with the element-mean membrane strain rate u_x' + <v_x v_x'>."""
+    f = fields(q, qd)
+    rate = f["ud_x"] if approach == "C" else f["ud_x"] + mean_over_element(f["v_x"] * f["vd_x"])
+    return sp.expand(s.mu * (s.l * s.EA * rate**2 + integrate_element(s.EI * f["vd_xx"] ** 2)) / 2)

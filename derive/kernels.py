@@ -11,7 +11,8 @@ import sympy as sp
 
 from . import symbols as s
 from .energies import (
-    APPROACHES, kelvin_voigt_dissipation, rod_kinetic_energy, slider_kinetic_energy, strain_energy,
+    APPROACHES, kelvin_voigt_dissipation, kelvin_voigt_dissipation_averaged, rod_kinetic_energy,
+    slider_kinetic_energy, strain_energy, strain_energy_averaged,
 )
 from .euler_lagrange import gradient, jacobian, kinetic_residual
 from . import printed
@@ -53,6 +54,7 @@ ELEMENT = (scalar(s.l), scalar(s.x0))
 KINEMATICS = tuple(scalar(sym) for sym in s.KINEMATICS)
 INERTIA = (scalar(s.rhoA), scalar(s.rhoI))
 STIFFNESS = (scalar(s.EA), scalar(s.EI))
+AVERAGED_APPROACHES = ("A", "B")     # C has no membrane coupling: its averaged element is the plain one
 
 
 def _residual_outputs(r, coords, rates=None, accels=None, what="residual"):
@@ -94,6 +96,15 @@ def energy_kernels():
             f"dissipation_{ap}", f"Kelvin-Voigt Rayleigh dissipation function D of approach {ap}.",
             (Q, QD, scalar(s.l)) + STIFFNESS + (scalar(s.mu),),
             (Output("D", sp.Matrix([kelvin_voigt_dissipation(ap)]), "dissipation function"),)))
+    for ap in AVERAGED_APPROACHES:
+        kernels.append(Kernel(
+            f"strain_energy_{ap}_averaged", f"Element strain energy of approach {ap}, element-mean membrane strain.",
+            (Q, scalar(s.l)) + STIFFNESS,
+            (Output("U", sp.Matrix([strain_energy_averaged(ap)]), "strain energy"),)))
+        kernels.append(Kernel(
+            f"dissipation_{ap}_averaged", f"Kelvin-Voigt dissipation function of approach {ap}, element-mean membrane strain rate.",
+            (Q, QD, scalar(s.l)) + STIFFNESS + (scalar(s.mu),),
+            (Output("D", sp.Matrix([kelvin_voigt_dissipation_averaged(ap)]), "dissipation function"),)))
     return tuple(kernels)
 
 
@@ -112,6 +123,12 @@ def lagrange_kernels():
             f"rod_elastic_{ap}", f"Internal force dU/dq of approach {ap}, exact gradient, and its tangent.",
             (Q, scalar(s.l)) + STIFFNESS,
             _residual_outputs(gradient(strain_energy(ap), s.q), s.q)))
+    for ap in AVERAGED_APPROACHES:
+        kernels.append(Kernel(
+            f"rod_elastic_{ap}_averaged",
+            f"Internal force dU/dq of approach {ap} with the element-mean membrane strain, and its tangent.",
+            (Q, scalar(s.l)) + STIFFNESS,
+            _residual_outputs(gradient(strain_energy_averaged(ap), s.q), s.q)))
     return tuple(kernels)
 
 
@@ -144,6 +161,12 @@ def damping_kernels():
             f"kelvin_voigt_{ap}", f"Strain-rate damping force dD/dqd of approach {ap} and its tangents.",
             (Q, QD, scalar(s.l)) + STIFFNESS + (scalar(s.mu),),
             _residual_outputs(gradient(kelvin_voigt_dissipation(ap), s.qd), s.q, s.qd)))
+    for ap in AVERAGED_APPROACHES:
+        kernels.append(Kernel(
+            f"kelvin_voigt_{ap}_averaged",
+            f"Strain-rate damping force of approach {ap} with the element-mean membrane strain rate.",
+            (Q, QD, scalar(s.l)) + STIFFNESS + (scalar(s.mu),),
+            _residual_outputs(gradient(kelvin_voigt_dissipation_averaged(ap), s.qd), s.q, s.qd)))
     for ap in APPROACHES:
         kernels.append(Kernel(
             f"paper_{ap}", f"Printed damping force mu (K_lin + K_non) qd of approach {ap} (eq. 24).",

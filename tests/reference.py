@@ -182,6 +182,26 @@ def dissipation(approach, q, qd, l, EA, EI, mu):
     return integrate(dens, l)
 
 
+def strain_energy_averaged(approach, q, l, EA, EI):
+    """Element strain energy with the membrane strain u_x + <v_x^2>/2, <.> the element mean."""
+    f = element_fields(q, np.zeros_like(np.asarray(q, float)), l)
+    l_, EA_ = np.asarray(l, float), np.asarray(EA, float)
+    u_x = f["u_x"][..., 0]                       # linear u: u_x is the same at every point
+    mean_sq = integrate(f["v_x"] ** 2, l) / l_
+    membrane = {"A": (u_x + mean_sq / 2) ** 2, "B": u_x**2 + u_x * mean_sq, "C": u_x**2}[approach]
+    return l_ * EA_ * membrane / 2 + integrate(_q(EI) / 2 * f["v_xx"] ** 2, l)
+
+
+def dissipation_averaged(approach, q, qd, l, EA, EI, mu):
+    """Kelvin-Voigt dissipation with the membrane strain rate u_x' + <v_x v_x'>."""
+    f = element_fields(q, qd, l)
+    l_, EA_, mu_ = (np.asarray(x, float) for x in (l, EA, mu))
+    rate = f["ud_x"][..., 0]
+    if approach != "C":
+        rate = rate + integrate(f["v_x"] * f["vd_x"], l) / l_
+    return mu_ / 2 * (l_ * EA_ * rate**2 + integrate(_q(EI) * f["vd_xx"] ** 2, l))
+
+
 # --------------------------------------------------------------------------------------------
 # exact (Lagrange) element forces
 # --------------------------------------------------------------------------------------------

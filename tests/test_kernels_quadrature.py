@@ -332,6 +332,9 @@ def test_every_kernel_is_covered():
         expected |= {f"energy.strain_energy_{ap}", f"energy.dissipation_{ap}",
                      f"lagrange.rod_elastic_{ap}", f"paper.rod_elastic_{ap}",
                      f"damping.kelvin_voigt_{ap}", f"damping.paper_{ap}"}
+    for ap in ("A", "B"):
+        expected |= {f"energy.strain_energy_{ap}_averaged", f"energy.dissipation_{ap}_averaged",
+                     f"lagrange.rod_elastic_{ap}_averaged", f"damping.kelvin_voigt_{ap}_averaged"}
     assert names == expected
 
 

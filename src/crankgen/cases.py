@@ -21,11 +21,12 @@ class Case:
     n_elements: int = 16
     steps_per_rev: int = 100
     integrator: str = "newton"
+    membrane: str = "pointwise"
 
     def __post_init__(self):
         Mechanism(self.a, self.eps, self.ms, self.mu)           # validates
         object.__setattr__(self, "omega", in_range("omega (crank speed Omega*)", self.omega, 0, None, True))
-        select_kernels(self.formulation, self.approach, self.damping)
+        select_kernels(self.formulation, self.approach, self.damping, self.membrane)
         object.__setattr__(self, "n_elements", integer("n_elements", self.n_elements, 1))
         object.__setattr__(self, "steps_per_rev", integer("steps_per_rev", self.steps_per_rev, 4))
         NewmarkSettings(scheme=self.integrator)

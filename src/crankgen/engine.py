@@ -9,7 +9,7 @@ status, so a failing case stops alone.  The NumPy implementation in model.py sta
 tests check that both give the same numbers.
 
 Case parameters travel as a float array P[b] = (a, eps, ms, mu, omega, dt) and integer codes
-C[b] = (formulation, approach, damping, one_pass).
+C[b] = (formulation, approach, damping, one_pass, membrane).
 """
 
 import math
@@ -25,6 +25,7 @@ from ._generated import shape as _shape
 FORMULATION_CODE = {"lagrange": 0, "paper": 1}
 APPROACH_CODE = {"A": 0, "B": 1, "C": 2}
 DAMPING_CODE = {"paper": 0, "kelvin-voigt": 1}
+MEMBRANE_CODE = {"pointwise": 0, "averaged": 1}
 
 # status codes of a case
 OK, NOT_CONVERGED, SINGULAR, NOT_FINITE = 0, 1, 2, 3
@@ -55,6 +56,10 @@ pd_A = _jit(_dmp.paper_A_into)
 pd_B = _jit(_dmp.paper_B_into)
 pd_C = _jit(_dmp.paper_C_into)
 pd_slider = _jit(_dmp.paper_slider_into)
+lag_elastic_A_avg = _jit(_lag.rod_elastic_A_averaged_into)
+lag_elastic_B_avg = _jit(_lag.rod_elastic_B_averaged_into)
+kv_A_avg = _jit(_dmp.kelvin_voigt_A_averaged_into)
+kv_B_avg = _jit(_dmp.kelvin_voigt_B_averaged_into)
 
 
 # ----------------------------------------------------------------------------------------------
@@ -76,13 +81,17 @@ def crank_kinematics(a, omega, t, out):
 
 
 @njit(cache=True)
-def _rod_terms(form, app, damp, secant, q, qd, qdd, l, x0, rhoA, rhoI, EA, EI, mu, a, kin,
+def _rod_terms(form, app, damp, secant, avg, q, qd, qdd, l, x0, rhoA, rhoI, EA, EI, mu, a, kin,
                r, K, C, M, w6, w66a, w66b, w66c, w66d):
     """Residual and tangents of one rod element: inertia + elastic + damping."""
     th, thd, ph, phd, phdd = kin[0], kin[1], kin[2], kin[3], kin[4]
     if form == 0:
         lag_inertia(q, qd, qdd, l, x0, rhoA, rhoI, a, th, thd, ph, phd, phdd, r, K, C, M)
-        if app == 0:
+        if app == 0 and avg:
+            lag_elastic_A_avg(q, l, EA, EI, w6, w66a)
+        elif app == 1 and avg:
+            lag_elastic_B_avg(q, l, EA, EI, w6, w66a)
+        elif app == 0:
             lag_elastic_A(q, l, EA, EI, w6, w66a)
         elif app == 1:
             lag_elastic_B(q, l, EA, EI, w6, w66a)
@@ -106,7 +115,11 @@ def _rod_terms(form, app, damp, secant, q, qd, qdd, l, x0, rhoA, rhoI, EA, EI, m
             K[i, j] += w66a[i, j]
     # damping: w6 = r_d, w66b = K_d, w66c = C_d
     if damp == 1:
-        if app == 0:
+        if app == 0 and avg:
+            kv_A_avg(q, qd, l, EA, EI, mu, w6, w66b, w66c)
+        elif app == 1 and avg:
+            kv_B_avg(q, qd, l, EA, EI, mu, w6, w66b, w66c)
+        elif app == 0:
             kv_A(q, qd, l, EA, EI, mu, w6, w66b, w66c)
         elif app == 1:
             kv_B(q, qd, l, EA, EI, mu, w6, w66b, w66c)
@@ -246,7 +259,7 @@ def element_terms(codes, par, secant, dofs, l, d, v, acc, kin, rE, KE, CE, ME, w
             qd[4] = s * pd + c * phd * p
             qdd[3] = c * pdd - 2.0 * s * phd * pd - (c * phd * phd + s * phdd) * p
             qdd[4] = s * pdd + 2.0 * c * phd * pd + (-s * phd * phd + c * phdd) * p
-        _rod_terms(form, app, damp, secant, q, qd, qdd, l, e * l, rhoA, rhoI, EA, EI, mu, a, kin,
+        _rod_terms(form, app, damp, secant, codes[4] == 1, q, qd, qdd, l, e * l, rhoA, rhoI, EA, EI, mu, a, kin,
                    rE[e], KE[e], CE[e], ME[e], w6, w66a, w66b, w66c, w66d)
         if last:
             _slider_terms(form, damp, q[3:5], qd[3:5], qdd[3:5], ms, a, kin, rE[e], KE[e], CE[e],
@@ -566,7 +579,8 @@ class Batch:
         self.Nv_mid = np.ascontiguousarray(_shape.shape_functions(zeta, self.l)[1], dtype=float)
         self.G = np.ascontiguousarray(_shape.slope_gram(self.l), dtype=float)
         self.codes = np.array([[FORMULATION_CODE[c.formulation], APPROACH_CODE[c.approach],
-                                DAMPING_CODE[c.damping], int(c.integrator == "one-pass")]
+                                DAMPING_CODE[c.damping], int(c.integrator == "one-pass"),
+                                MEMBRANE_CODE[c.membrane]]
                                for c in cases], dtype=np.int64)
         self.par = np.array([[c.a, c.eps, c.ms, c.mu, c.omega, 2 * math.pi / c.omega / spr]
                              for c in cases], dtype=float)

@@ -42,9 +42,9 @@ class Model:
         object.__setattr__(self, "assembler", BandedAssembler(self.mesh))
 
     @classmethod
-    def build(cls, mechanism, omega, n_elements, formulation, approach, damping):
+    def build(cls, mechanism, omega, n_elements, formulation, approach, damping, membrane="pointwise"):
         return cls(mechanism, float(omega), Mesh(n_elements),
-                   select_kernels(formulation, approach, damping))
+                   select_kernels(formulation, approach, damping, membrane))
 
     @property
     def n_dofs(self):
@@ -114,7 +114,9 @@ class Model:
         kin_args = (m.a, kin.theta, kin.thetad, kin.phi, kin.phid)
         T_rod = _energy.rod_kinetic_energy(q, qd, mesh.length, mesh.x0, m.rhoA, m.rhoI, *kin_args)
         T_slider = _energy.slider_kinetic_energy(q[-1, SLIDER], qd[-1, SLIDER], m.ms, 1.0, *kin_args)
-        strain = getattr(_energy, f"strain_energy_{self.kernels.approach}")
+        k = self.kernels
+        averaged = k.membrane == "averaged" and k.approach != "C" and k.formulation == "lagrange"
+        strain = getattr(_energy, f"strain_energy_{k.approach}" + ("_averaged" if averaged else ""))
         U = strain(q, mesh.length, m.EA, m.EI)
         return float(np.sum(T_rod) + T_slider), float(np.sum(U))
 

@@ -21,3 +21,48 @@ def plot_deflection(result, path):
     ax.grid(alpha=0.3)
     fig.savefig(path, dpi=120)
     plt.close(fig)
+
+
+# --- helpers for multi-panel figures (crankgen reproduce) -------------------------------------
+
+APPROACH_COLORS = {"A": "C0", "B": "C1", "C": "C3"}
+
+
+def pyplot():
+    """matplotlib.pyplot with the Agg backend."""
+    return _pyplot()
+
+
+def panels(rows, cols, width=6.0, height=3.4, **kwargs):
+    """Figure with a rows x cols grid of axes (always a 2-D array), constrained layout."""
+    plt = _pyplot()
+    fig, axes = plt.subplots(rows, cols, figsize=(width * cols, height * rows), squeeze=False,
+                             constrained_layout=True, **kwargs)
+    return fig, axes
+
+
+def mark_at_axis(ax, x, color, marker="x", label=None, size=50):
+    """Markers on the horizontal axis (y at the bottom of the axes, whatever the y scale) at
+    abscissae x: for points of a curve that have no value (failed or diverged cases)."""
+    import numpy as np
+    x = np.atleast_1d(np.asarray(x, dtype=float))
+    if x.size == 0:
+        return None
+    return ax.scatter(x, np.zeros_like(x), transform=ax.get_xaxis_transform(), clip_on=False,
+                      marker=marker, color=color, s=size, label=label, zorder=5)
+
+
+def status_legend_handles(kinds=("failed", "unstable", "envelope")):
+    """Grey proxy artists explaining the status markers of steady-state sweep plots."""
+    from matplotlib.lines import Line2D
+    text = {
+        "failed": ("x", "x on the axis: no steady state (failed / diverged)"),
+        "unstable": ("o", "hollow o: unstable periodic orbit"),
+        "envelope": ("^", "hollow ^: non-periodic response, max |v*| (transient)"),
+    }
+    out = []
+    for k in kinds:
+        m, label = text[k]
+        face = "none" if k != "failed" else "grey"
+        out.append(Line2D([], [], ls="none", marker=m, color="grey", markerfacecolor=face, label=label))
+    return out

@@ -43,13 +43,16 @@ class SimulationResult:
 
 def simulate(mech, omega=0.8, approach="A", formulation="lagrange", n_elements=16,
              steps_per_rev=100, revolutions=10, integrator="newton", damping="paper",
-             store_nodes=False, tol=1e-10, progress=None, initial=None, engine="compiled"):
+             store_nodes=False, tol=1e-10, progress=None, initial=None, engine="compiled",
+             membrane="pointwise"):
     """Integrate the mechanism from theta = 0 with a constant crank speed omega (= Omega*).
 
     initial: optional (d0, v0) reduced displacement and velocity vectors (default: zero, the
     paper's initial conditions: rod undeformed and at rest in the moving frame).
     progress(step, n_steps) is called as the run advances.
     engine: "compiled" (numba, engine.py) or "numpy" (model.py + newmark.py, the reference).
+    membrane: "pointwise" (the element as derived from eq. 2) or "averaged" (element-mean membrane
+    strain, which removes membrane locking; see derive/energies.py).
     """
     if not isinstance(mech, Mechanism):
         raise ParameterError(f"mech must be a crankgen.Mechanism, got {type(mech).__name__}")
@@ -58,7 +61,7 @@ def simulate(mech, omega=0.8, approach="A", formulation="lagrange", n_elements=1
     revolutions = in_range("revolutions", revolutions, 0, None, True)
     choice("engine", engine, ENGINES)
     settings = NewmarkSettings(scheme=integrator, tol=tol)
-    model = Model.build(mech, omega, n_elements, formulation, approach, damping)
+    model = Model.build(mech, omega, n_elements, formulation, approach, damping, membrane)
 
     period = 2 * math.pi / omega
     dt = period / steps_per_rev
@@ -73,7 +76,7 @@ def simulate(mech, omega=0.8, approach="A", formulation="lagrange", n_elements=1
     info = dict(a=mech.a, eps=mech.eps, ms=mech.ms, mu=mech.mu, omega=omega, approach=approach,
                 formulation=formulation, n_elements=model.mesh.n_elements,
                 steps_per_rev=steps_per_rev, revolutions=revolutions, integrator=integrator,
-                damping=damping, tol=tol, engine=engine)
+                damping=damping, tol=tol, engine=engine, membrane=membrane)
     if engine == "numpy":
         hist = integrate(model, d0, v0, 0.0, dt, n_steps, settings, progress=progress)
         kin = model.kinematics(hist.t)
@@ -85,7 +88,7 @@ def simulate(mech, omega=0.8, approach="A", formulation="lagrange", n_elements=1
 
     case = Case(a=mech.a, eps=mech.eps, ms=mech.ms, mu=mech.mu, omega=omega, approach=approach,
                 formulation=formulation, damping=damping, n_elements=model.mesh.n_elements,
-                steps_per_rev=steps_per_rev, integrator=integrator)
+                steps_per_rev=steps_per_rev, integrator=integrator, membrane=membrane)
     y, iterations, D = _march_in_chunks(_engine.Batch([case]), d0, v0, n_steps, tol, store_nodes,
                                         progress, dt)
     t = dt * np.arange(n_steps + 1)

@@ -254,12 +254,12 @@ def _with_wall_time(result, seconds):
 
 def steady_state(mech=None, omega=0.8, approach="A", formulation="lagrange", damping="paper",
                  n_elements=16, steps_per_rev=100, integrator="newton", tol=1e-8,
-                 max_revolutions=400, method="shooting", case=None):
+                 max_revolutions=400, method="shooting", membrane="pointwise", case=None):
     """Periodic response over one crank revolution of one case (see module docstring)."""
     if case is None:
         from .parameters import Mechanism
         mech = mech if mech is not None else Mechanism()
         case = Case(a=mech.a, eps=mech.eps, ms=mech.ms, mu=mech.mu, omega=omega, approach=approach,
                     formulation=formulation, damping=damping, n_elements=n_elements,
-                    steps_per_rev=steps_per_rev, integrator=integrator)
+                    steps_per_rev=steps_per_rev, integrator=integrator, membrane=membrane)
     return steady_states([case], tol=tol, max_revolutions=max_revolutions, method=method)[0]

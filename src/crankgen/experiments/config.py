@@ -1,0 +1,128 @@
+"""What `crankgen reproduce` computes: the two models and the sweep settings (full, quick, tiny)."""
+
+from dataclasses import asdict, dataclass, field, replace
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class ModelSpec:
+    """One of the two models every figure is computed for."""
+
+    key: str            # short name used in CSV files and findings.md
+    formulation: str
+    damping: str
+    label: str          # for plot titles
+
+
+PAPER = ModelSpec("paper", "paper", "paper", "paper model (paper formulation, eq. 24 damping)")
+CONSISTENT = ModelSpec("consistent", "lagrange", "kelvin-voigt",
+                       "consistent model (Lagrange equations, Kelvin-Voigt damping)")
+MODELS = (PAPER, CONSISTENT)
+APPROACHES = ("A", "B", "C")
+FIGURES = (2, 3, 4, 5, 6, 7, 8)
+
+
+def _speeds(start, stop, step):
+    n = int(round((stop - start) / step))
+    return tuple(float(x) for x in np.round(start + step * np.arange(n + 1), 10))
+
+
+@dataclass(frozen=True)
+class ReproduceConfig:
+    """Every setting of a reproduction run.  `full()` is the default, `quick()` a coarse pass,
+    `tiny()` a seconds-long smoke configuration (tests)."""
+
+    preset: str = "full"
+    # mechanism (experiments.md: common to all figures unless a figure varies it)
+    a: float = 0.1
+    eps: float = 0.01
+    ms: float = 0.5
+    mu: float = 0.5
+    steps_per_rev: int = 100
+    # the paper's element counts (Figures 4-8); a model never uses fewer than these
+    paper_elements: dict = field(default_factory=lambda: {"A": 16, "B": 4, "C": 4})
+    # element-count convergence check: ladder of counts, speeds, relative tolerance
+    conv_ladder: tuple = (2, 4, 8, 16, 32, 64, 128, 256)
+    conv_omegas: tuple = (0.1, 0.8)
+    conv_tol: float = 0.01
+    # a-posteriori refinement check: the Figure 6 cases at these speeds, with 2 n elements
+    refine_omegas: tuple = (0.4, 1.2, 1.6)
+    # Figure 2: transient at low speed, element counts compared
+    fig2_omega: float = 0.1
+    fig2_elements: tuple = (2, 4)
+    fig2_revolutions: float = 3
+    # Figure 3: convergence of A (transient), and time step halved at the finest count
+    fig3_omega: float = 0.8
+    fig3_elements: tuple = (2, 4, 8, 16)
+    fig3_steps: tuple = (100, 200)
+    fig3_revolutions: float = 8
+    # Figure 4: transient at high speed, and slider masses for B and C
+    fig4_omega: float = 0.8
+    fig4_revolutions: float = 8
+    fig4_ms: tuple = (0.0, 0.5, 1.0, 2.0)
+    # Figure 5: steady amplitude against eps at two speeds
+    fig5_omegas: tuple = (0.1, 0.8)
+    fig5_eps: tuple = (0.005, 0.0075, 0.01, 0.015, 0.02, 0.03, 0.04, 0.05, 0.07, 0.1)
+    # Figure 6: steady amplitude against Omega* at two slendernesses
+    fig6_omegas: tuple = _speeds(0.05, 1.6, 0.05)
+    fig6_eps: tuple = (0.01, 0.1)
+    fig6_inset_ylim: float = 1.4
+    # Figures 7 and 8: extension over one steady revolution for several slider masses
+    fig7_omega: float = 0.8
+    fig8_omega: float = 0.1
+    ext_ms: tuple = (0.0, 0.5, 1.0, 2.0)
+    # cases without a stable periodic state (Figures 5, 6): transient from zero initial conditions,
+    # max |v*| over the last `envelope_window` of `envelope_revolutions` revolutions (0: skip)
+    envelope_revolutions: int = 80
+    envelope_window: int = 10
+    # thresholds of the findings
+    differ_threshold: float = 0.10       # "B or C differs from A by more than 10 %"
+    crossing_rel_tol: float = 0.05       # extension spread at a common crossing / largest spread
+    agree_tol: float = 0.01              # models "agree" when relative differences are below this
+    # extra keyword arguments for crankgen.steady.steady_states (e.g. max_revolutions)
+    steady_options: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        if self.eps not in self.fig5_eps:
+            raise ValueError("fig5_eps must contain the base eps (the ratio table reads it)")
+        if len(self.conv_ladder) < 2 or list(self.conv_ladder) != sorted(set(self.conv_ladder)):
+            raise ValueError("conv_ladder must hold at least two increasing element counts")
+
+    @classmethod
+    def full(cls):
+        return cls()
+
+    @classmethod
+    def quick(cls):
+        """Coarse pass: fewer speeds, eps values and revolutions; ladder up to 64 elements."""
+        return cls(
+            preset="quick", conv_ladder=(2, 4, 8, 16, 32, 64), refine_omegas=(),
+            fig2_revolutions=2, fig3_revolutions=4, fig3_elements=(2, 4, 8, 16),
+            fig4_revolutions=4, fig4_ms=(0.0, 0.5, 2.0),
+            fig5_eps=(0.005, 0.01, 0.03, 0.1),
+            fig6_omegas=_speeds(0.1, 1.6, 0.1),
+            ext_ms=(0.0, 0.5, 2.0), envelope_revolutions=30, envelope_window=5,
+            steady_options={"max_revolutions": 100})
+
+    @classmethod
+    def tiny(cls):
+        """Seconds-long smoke configuration through the same code path (tests)."""
+        return cls(
+            preset="tiny", paper_elements={"A": 2, "B": 1, "C": 1}, conv_ladder=(1, 2),
+            conv_omegas=(0.8,), refine_omegas=(1.2,), fig2_elements=(1,), fig2_revolutions=0.5,
+            fig3_elements=(1, 2), fig3_steps=(100, 200), fig3_revolutions=0.5,
+            fig4_revolutions=0.5, fig4_ms=(0.0, 1.0), fig5_omegas=(0.1, 0.8),
+            fig5_eps=(0.01, 0.05), fig6_omegas=(0.4, 0.8, 1.2), fig6_eps=(0.01,),
+            ext_ms=(0.0, 1.0), envelope_revolutions=4, envelope_window=1,
+            steady_options={"max_revolutions": 20})
+
+    @classmethod
+    def preset_named(cls, name):
+        return {"full": cls.full, "quick": cls.quick, "tiny": cls.tiny}[name]()
+
+    def with_(self, **changes):
+        return replace(self, **changes)
+
+    def as_dict(self):
+        return asdict(self)

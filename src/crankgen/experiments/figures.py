@@ -1,0 +1,423 @@
+"""The data of Figures 2-8 (one function per figure) and of the element-count convergence check.
+
+Every function takes a run context `ctx` (config, `ctx.steady(cases, label)` -> SteadyStates,
+`ctx.transients(specs, label)` -> TransientCurves, `ctx.log`) and returns a dict of rows and
+arrays; plotting (plots.py) and CSV tables (`csv_table`) are separate.  Each function sends all the
+steady-state cases of its figure to the engine in one call.
+"""
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..cases import Case
+from . import findings as fd
+from .config import APPROACHES, MODELS
+
+STABLE = "periodic"
+
+
+# ----------------------------------------------------------------------------- basic records
+
+@dataclass(frozen=True)
+class TransientSpec:
+    model: str
+    approach: str
+    n_elements: int
+    omega: float
+    revolutions: float
+    steps_per_rev: int = 100
+    eps: float = 0.01
+    ms: float = 0.5
+
+
+@dataclass
+class TransientCurve:
+    """One run from zero initial conditions; status "ok" or "failed" (message, fail_time)."""
+
+    spec: TransientSpec
+    status: str = "ok"
+    message: str = ""
+    fail_time: float = math.nan
+    t: np.ndarray = field(default=None, repr=False)
+    v_mid: np.ndarray = field(default=None, repr=False)
+
+    @property
+    def ok(self):
+        return self.status == "ok"
+
+    @property
+    def max_abs(self):
+        return float(np.max(np.abs(self.v_mid))) if self.ok else math.nan
+
+    def label(self):
+        return f"{self.spec.approach}, n = {self.spec.n_elements}"
+
+
+def model_spec(key):
+    return next(m for m in MODELS if m.key == key)
+
+
+def make_case(cfg, model_key, approach, n, omega, eps=None, ms=None, steps=None):
+    m = model_spec(model_key)
+    return Case(a=cfg.a, eps=cfg.eps if eps is None else eps, ms=cfg.ms if ms is None else ms,
+                mu=cfg.mu, omega=omega, approach=approach, formulation=m.formulation,
+                damping=m.damping, n_elements=n,
+                steps_per_rev=cfg.steps_per_rev if steps is None else steps, integrator="newton")
+
+
+def steady_row(model_key, s, **extra):
+    """Flat record of a SteadyState (numbers as floats; NaN where there is no periodic state)."""
+    c = s.case
+    row = dict(model=model_key, formulation=c.formulation, damping=c.damping, approach=c.approach,
+               n_elements=c.n_elements, steps_per_rev=c.steps_per_rev, omega=c.omega, eps=c.eps,
+               ms=c.ms, status=s.status,
+               amplitude=s.amplitude if s.status == STABLE else math.nan,
+               orbit_amplitude=s.amplitude, half_peak_to_peak=s.half_peak_to_peak,
+               iterations=s.iterations, periods=s.periods, residual=s.residual,
+               multiplier=getattr(s, "multiplier", math.nan), message=s.message,
+               envelope=math.nan, envelope_note="")
+    row.update(extra)
+    return row
+
+
+# ----------------------------------------------------------------------------- convergence
+
+def _series_summary(ns, rows, tol):
+    """Converged count of one ladder series and a one-line reason."""
+    amps = [r["amplitude"] for r in rows]
+    n = fd.converged_count(ns, amps, tol)
+    if n is not None:
+        return dict(kind="converged", n=n, note=f"converged to {100 * tol:g} % at n = {n}")
+    finite = [r for r in rows if math.isfinite(r["amplitude"])]
+    if not finite:
+        bad = rows[0]
+        return dict(kind="no-result", n=None,
+                    note=f"no periodic state at any n ({bad['status']}: {bad['message']})")
+    ch = fd.successive_changes(amps)
+    last = ch[np.isfinite(ch)]
+    text = f"last change {100 * last[-1]:.2g} %" if last.size else "no two periodic counts"
+    return dict(kind="not-converged", n=int(ns[-1]),
+                note=f"not converged to {100 * tol:g} % up to n = {ns[-1]} ({text})")
+
+
+def convergence_study(ctx):
+    """Steady amplitude of every model and approach at conv_omegas (base eps) on the element ladder;
+    a series stops once two successive counts agree to conv_tol, or after two counts without a
+    periodic state.  One engine call per ladder level.  Returns rows, series summaries and the
+    element count used for each (model, approach)."""
+    cfg = ctx.config
+    keys = [(m.key, ap, om) for m in MODELS for ap in APPROACHES for om in cfg.conv_omegas]
+    ladder = list(cfg.conv_ladder)
+    results = {k: {} for k in keys}
+    active = set(keys)
+    for level, n in enumerate(ladder):
+        todo = []
+        for k in keys:
+            if k not in active:
+                continue
+            done = [m for m in ladder[:level] if m in results[k]]
+            rows = [results[k][m] for m in done]
+            if len(rows) >= 2:
+                if fd.converged_count(done, [r["amplitude"] for r in rows], cfg.conv_tol) is not None:
+                    active.discard(k)
+                    continue
+                if not any(math.isfinite(r["amplitude"]) for r in rows[-2:]):
+                    active.discard(k)
+                    continue
+            todo.append(k)
+        if not todo:
+            break
+        cases = [make_case(cfg, mk, ap, n, om) for mk, ap, om in todo]
+        states = ctx.steady(cases, f"convergence n = {n}")
+        for k, s in zip(todo, states):
+            results[k][n] = steady_row(k[0], s)
+    rows, series = [], {}
+    for k in keys:
+        ns = sorted(results[k])
+        srows = [results[k][n] for n in ns]
+        ch = list(fd.successive_changes([r["amplitude"] for r in srows])) + [math.nan]
+        for r, c in zip(srows, ch):
+            r["change_to_next"] = c
+            rows.append(r)
+        series[k] = dict(ns=ns, amplitudes=[r["amplitude"] for r in srows],
+                         **_series_summary(ns, srows, cfg.conv_tol))
+    counts, count_notes = {}, {}
+    for m in MODELS:
+        for ap in APPROACHES:
+            ss = [series[(m.key, ap, om)] for om in cfg.conv_omegas]
+            floor = cfg.paper_elements[ap]
+            checked = [s["n"] for s in ss if s["kind"] in ("converged", "not-converged")]
+            if checked:
+                n = max(max(checked), floor)
+            else:
+                n = floor
+            counts[(m.key, ap)] = n
+            parts = [f"Omega* = {om:g}: {s['note']}" for om, s in zip(cfg.conv_omegas, ss)]
+            if not checked:
+                parts.append(f"could not be checked; the paper's count {floor} is used")
+            elif n == floor and max(checked) < floor:
+                parts.append(f"the paper's count {floor} (larger) is used")
+            count_notes[(m.key, ap)] = "; ".join(parts)
+    return dict(rows=rows, series=series, counts=counts, notes=count_notes)
+
+
+def refinement_check(ctx, counts, fig6=None):
+    """The Figure 6 cases at refine_omegas with n and 2 n elements (n the count used): how much the
+    amplitude still changes over the speed range.  Reuses Figure 6 results for n when available."""
+    cfg = ctx.config
+    have = {}
+    if fig6 is not None:
+        for r in fig6["rows"]:
+            have[(r["model"], r["approach"], r["eps"], r["omega"], r["n_elements"])] = r
+    specs, cases = [], []
+    for m in MODELS:
+        for ap in APPROACHES:
+            n = counts[(m.key, ap)]
+            for eps in cfg.fig6_eps:
+                for om in cfg.refine_omegas:
+                    for nn in (n, 2 * n):
+                        if (m.key, ap, eps, om, nn) in have:
+                            continue
+                        specs.append((m.key, ap, eps, om, nn))
+                        cases.append(make_case(cfg, m.key, ap, nn, om, eps=eps))
+    if cases:
+        for spec, s in zip(specs, ctx.steady(cases, "refinement check (2 n elements)")):
+            have[spec] = steady_row(spec[0], s)
+    rows = []
+    for m in MODELS:
+        for ap in APPROACHES:
+            n = counts[(m.key, ap)]
+            for eps in cfg.fig6_eps:
+                for om in cfg.refine_omegas:
+                    r1, r2 = have[(m.key, ap, eps, om, n)], have[(m.key, ap, eps, om, 2 * n)]
+                    rows.append(dict(model=m.key, approach=ap, eps=eps, omega=om, n_elements=n,
+                                     amplitude=r1["amplitude"], status=r1["status"],
+                                     n_refined=2 * n, amplitude_refined=r2["amplitude"],
+                                     status_refined=r2["status"],
+                                     change=float(fd.relative_difference(r1["amplitude"], r2["amplitude"])),
+                                     message=r1["message"] or r2["message"]))
+    return dict(rows=rows)
+
+
+# ----------------------------------------------------------------------------- transients
+
+def figure2(ctx, counts):
+    """v* against t* at the low speed: approaches A, B, C, element counts compared."""
+    cfg = ctx.config
+    specs = []
+    for m in MODELS:
+        for ap in APPROACHES:
+            for n in sorted(set(cfg.fig2_elements) | {counts[(m.key, ap)]}):
+                specs.append(TransientSpec(m.key, ap, n, cfg.fig2_omega, cfg.fig2_revolutions,
+                                           cfg.steps_per_rev, cfg.eps, cfg.ms))
+    return dict(figure=2, curves=ctx.transients(specs, "figure 2 (transients)"))
+
+
+def figure3(ctx, counts):
+    """Convergence of approach A (transient v* at the high speed) with the element count; the
+    finest count also with the time step halved."""
+    cfg = ctx.config
+    specs = []
+    for m in MODELS:
+        ns = sorted(set(cfg.fig3_elements) | {counts[(m.key, "A")]})
+        for n in ns:
+            specs.append(TransientSpec(m.key, "A", n, cfg.fig3_omega, cfg.fig3_revolutions,
+                                       cfg.fig3_steps[0], cfg.eps, cfg.ms))
+        for steps in cfg.fig3_steps[1:]:
+            specs.append(TransientSpec(m.key, "A", ns[-1], cfg.fig3_omega, cfg.fig3_revolutions,
+                                       steps, cfg.eps, cfg.ms))
+    return dict(figure=3, curves=ctx.transients(specs, "figure 3 (transients)"))
+
+
+def figure4(ctx, counts):
+    """Transient v* at the high speed: A, B, C; and B and C for several slider masses."""
+    cfg = ctx.config
+    specs = []
+    for m in MODELS:
+        for ap in APPROACHES:
+            masses = sorted(set(cfg.fig4_ms) | {cfg.ms}) if ap != "A" else [cfg.ms]
+            for ms in masses:
+                specs.append(TransientSpec(m.key, ap, counts[(m.key, ap)], cfg.fig4_omega,
+                                           cfg.fig4_revolutions, cfg.steps_per_rev, cfg.eps, ms))
+    return dict(figure=4, curves=ctx.transients(specs, "figure 4 (transients)"))
+
+
+def transient_summary(curves):
+    """Rows: per curve its status, max |v*| and failure time."""
+    return [dict(model=c.spec.model, approach=c.spec.approach, n_elements=c.spec.n_elements,
+                 steps_per_rev=c.spec.steps_per_rev, omega=c.spec.omega, eps=c.spec.eps,
+                 ms=c.spec.ms, status=c.status, max_abs=c.max_abs, fail_time=c.fail_time,
+                 message=c.message) for c in curves]
+
+
+def transient_difference(a, b):
+    """max |v_a - v_b| / max |v_b| over the common time points of two transient curves (the finer
+    time step subsampled); None if either failed or their time grids do not nest."""
+    if not (a.ok and b.ok):
+        return None
+    ka, kb = a.spec.steps_per_rev, b.spec.steps_per_rev
+    if kb % ka == 0:
+        va, vb = a.v_mid, b.v_mid[:: kb // ka]
+    elif ka % kb == 0:
+        va, vb = a.v_mid[:: ka // kb], b.v_mid
+    else:
+        return None
+    k = min(len(va), len(vb))
+    scale = np.max(np.abs(vb[:k]))
+    return float(np.max(np.abs(va[:k] - vb[:k])) / scale) if scale > 0 else None
+
+
+# ----------------------------------------------------------------------------- sweeps
+
+def _add_ratios(rows):
+    """ratio_to_A on each row: amplitude over approach A's amplitude at the same model and point."""
+    ref = {(r["model"], r["omega"], r["eps"], r["ms"]): r["amplitude"]
+           for r in rows if r["approach"] == "A"}
+    for r in rows:
+        base = ref.get((r["model"], r["omega"], r["eps"], r["ms"]), math.nan)
+        r["ratio_to_A"] = float(fd.ratio(r["amplitude"], base))
+
+
+def _envelopes(ctx, rows, label):
+    """For cases without a stable periodic state whose integration did not fail: max |v*| over the
+    last envelope_window revolutions of a transient from zero initial conditions."""
+    cfg = ctx.config
+    if cfg.envelope_revolutions <= 0:
+        return
+    todo = [r for r in rows if r["status"] in ("unstable", "not-periodic")]
+    if not todo:
+        return
+    specs = [TransientSpec(r["model"], r["approach"], r["n_elements"], r["omega"],
+                           cfg.envelope_revolutions, r["steps_per_rev"], r["eps"], r["ms"])
+             for r in todo]
+    curves = ctx.transients(specs, f"{label}: response of cases without a stable periodic state")
+    for r, c in zip(todo, curves):
+        if c.ok:
+            tail = c.v_mid[-(cfg.envelope_window * c.spec.steps_per_rev + 1):]
+            r["envelope"] = float(np.max(np.abs(tail)))
+            r["envelope_note"] = (f"max |v*| over revolutions {cfg.envelope_revolutions - cfg.envelope_window}"
+                                  f"-{cfg.envelope_revolutions} from zero initial conditions")
+        else:
+            r["envelope_note"] = f"transient failed at t* = {c.fail_time:.4g}: {c.message}"
+
+
+def _sweep(ctx, counts, points, label):
+    cfg = ctx.config
+    keys, cases = [], []
+    for m in MODELS:
+        for ap in APPROACHES:
+            for om, eps in points:
+                keys.append(m.key)
+                cases.append(make_case(cfg, m.key, ap, counts[(m.key, ap)], om, eps=eps))
+    rows = [steady_row(k, s) for k, s in zip(keys, ctx.steady(cases, label))]
+    _add_ratios(rows)
+    _envelopes(ctx, rows, label)
+    return rows
+
+
+def figure5(ctx, counts):
+    """Steady amplitude of v* against eps at fig5_omegas, approaches A, B, C."""
+    cfg = ctx.config
+    pts = [(om, eps) for om in cfg.fig5_omegas for eps in cfg.fig5_eps]
+    return dict(figure=5, rows=_sweep(ctx, counts, pts, "figure 5 (steady states)"))
+
+
+def figure6(ctx, counts):
+    """Steady amplitude of v* against Omega* at fig6_eps, approaches A, B, C."""
+    cfg = ctx.config
+    pts = [(om, eps) for eps in cfg.fig6_eps for om in cfg.fig6_omegas]
+    return dict(figure=6, rows=_sweep(ctx, counts, pts, "figure 6 (steady states)"))
+
+
+def _extension(ctx, counts, figure, omega):
+    cfg = ctx.config
+    keys, cases = [], []
+    for m in MODELS:
+        for ms in cfg.ext_ms:
+            keys.append(m.key)
+            cases.append(make_case(cfg, m.key, "A", counts[(m.key, "A")], omega, ms=ms))
+    curves = []
+    for k, s in zip(keys, ctx.steady(cases, f"figure {figure} (steady states)")):
+        row = steady_row(k, s)
+        if s.status in ("periodic", "unstable") and s.extension is not None:
+            row["theta_deg"] = np.degrees(np.asarray(s.theta, dtype=float))
+            row["extension"] = np.asarray(s.extension, dtype=float)
+        else:
+            row["theta_deg"], row["extension"] = None, None
+        curves.append(row)
+    return dict(figure=figure, omega=omega, curves=curves)
+
+
+def figure7(ctx, counts):
+    """Extension delta* over one steady revolution, approach A, slider masses ext_ms, fig7_omega."""
+    return _extension(ctx, counts, 7, ctx.config.fig7_omega)
+
+
+def figure8(ctx, counts):
+    """As figure 7 at fig8_omega."""
+    return _extension(ctx, counts, 8, ctx.config.fig8_omega)
+
+
+def extension_crossings_of(data, model_key, rel_tol):
+    """Common crossing angles of the stable extension curves of one model (None if < 2 curves)."""
+    cs = [c for c in data["curves"] if c["model"] == model_key and c["status"] == STABLE]
+    if len(cs) < 2:
+        return None
+    return fd.extension_crossings(cs[0]["theta_deg"], np.stack([c["extension"] for c in cs]), rel_tol)
+
+
+# ----------------------------------------------------------------------------- CSV tables
+
+STEADY_COLUMNS = ["model", "formulation", "damping", "approach", "n_elements", "steps_per_rev",
+                  "omega", "eps", "ms", "status", "amplitude", "ratio_to_A", "orbit_amplitude",
+                  "half_peak_to_peak", "envelope", "envelope_note", "iterations", "periods",
+                  "residual", "multiplier", "message"]
+TRANSIENT_COLUMNS = ["model", "formulation", "damping", "approach", "n_elements", "steps_per_rev",
+                     "omega", "eps", "ms", "status", "message", "t", "theta_deg", "v_mid"]
+EXTENSION_COLUMNS = ["model", "formulation", "damping", "approach", "n_elements", "steps_per_rev",
+                     "omega", "eps", "ms", "status", "message", "theta_deg", "extension"]
+CONVERGENCE_COLUMNS = ["check", "model", "approach", "omega", "eps", "n_elements", "status",
+                       "amplitude", "change_to_next", "n_refined", "amplitude_refined",
+                       "status_refined", "change", "message"]
+
+
+def csv_table(data):
+    """(columns, rows) of the plotted data of a figure."""
+    fig = data["figure"]
+    if fig in (2, 3, 4):
+        rows = []
+        for c in data["curves"]:
+            s, m = c.spec, model_spec(c.spec.model)
+            base = dict(model=s.model, formulation=m.formulation, damping=m.damping,
+                        approach=s.approach, n_elements=s.n_elements, steps_per_rev=s.steps_per_rev,
+                        omega=s.omega, eps=s.eps, ms=s.ms, status=c.status, message=c.message)
+            if c.ok:
+                theta = np.degrees(s.omega * c.t)
+                rows.extend(dict(base, t=t, theta_deg=th, v_mid=v)
+                            for t, th, v in zip(c.t, theta, c.v_mid))
+            else:    # one row: where the run failed (no v*)
+                rows.append(dict(base, t=c.fail_time, theta_deg=math.degrees(s.omega * c.fail_time)
+                                 if math.isfinite(c.fail_time) else math.nan))
+        return TRANSIENT_COLUMNS, rows
+    if fig in (5, 6):
+        return STEADY_COLUMNS, data["rows"]
+    if fig in (7, 8):
+        rows = []
+        for c in data["curves"]:
+            base = {k: c[k] for k in EXTENSION_COLUMNS if k in c and k not in ("theta_deg", "extension")}
+            if c["theta_deg"] is not None:
+                rows.extend(dict(base, theta_deg=th, extension=e)
+                            for th, e in zip(c["theta_deg"], c["extension"]))
+            else:
+                rows.append(base)
+        return EXTENSION_COLUMNS, rows
+    raise ValueError(f"no table for figure {fig}")
+
+
+def convergence_table(conv, refine=None):
+    rows = [dict(r, check="ladder") for r in conv["rows"]]
+    if refine is not None:
+        rows += [dict(r, check="refinement") for r in refine["rows"]]
+    return CONVERGENCE_COLUMNS, rows
