@@ -35,7 +35,8 @@ def test_compiled_engine_equals_numpy_reference(formulation, approach, damping, 
 @pytest.mark.parametrize("approach", ["A", "B"])
 def test_compiled_engine_equals_numpy_reference_with_averaged_membrane(approach):
     mech = crankgen.Mechanism(a=0.2, eps=0.02, ms=0.7, mu=0.3)
-    kw = dict(omega=0.5, approach=approach, formulation="lagrange", damping="kelvin-voigt",
+    kw = dict(omega=0.5 if approach == "A" else 0.2, approach=approach, formulation="lagrange",
+              damping="kelvin-voigt",
               n_elements=3, steps_per_rev=40, revolutions=1.5, membrane="averaged")
     ref = crankgen.simulate(mech, engine="numpy", **kw)
     fast = crankgen.simulate(mech, engine="compiled", **kw)
