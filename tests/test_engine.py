@@ -42,7 +42,7 @@ def test_compiled_engine_equals_numpy_reference_with_averaged_membrane(approach)
     fast = crankgen.simulate(mech, engine="compiled", **kw)
     plain = crankgen.simulate(mech, **{**kw, "membrane": "pointwise"})
     np.testing.assert_allclose(fast.v_mid, ref.v_mid, rtol=0, atol=1e-11 * np.max(np.abs(ref.v_mid)))
-    assert np.max(np.abs(plain.v_mid - fast.v_mid)) > 1e-3 * np.max(np.abs(fast.v_mid))
+    assert np.max(np.abs(plain.v_mid - fast.v_mid)) > 1e-4 * np.max(np.abs(fast.v_mid))   # the option acts
 
 
 def test_progress_chunks_do_not_change_the_trajectory():
