@@ -179,6 +179,41 @@ def damping_kernels():
     return tuple(kernels)
 
 
+def group_kernels():
+    """The consistent model's element forces split by kind (derive/audit.py classification) for
+    approach A: the rod and slider inertia terms of the lagrange formulation, the elastic force and
+    the Kelvin-Voigt damping force (pointwise and averaged membrane).  Used by the audit to weigh
+    each group along real trajectories and to switch groups off one at a time."""
+    from . import audit
+
+    sources = [
+        ("rod_inertia", (Q, QD, QDD) + ELEMENT + INERTIA + KINEMATICS,
+         kinetic_residual(rod_kinetic_energy(), s.q, s.qd, s.qdd), audit.ELEMENT_VARS,
+         audit.ROD_AXIAL_ROWS, (s.q, s.qd, s.qdd)),
+        ("slider_inertia", (QS, QSD, QSDD, scalar(s.ms), scalar(s.L)) + KINEMATICS,
+         kinetic_residual(slider_kinetic_energy(), s.qs, s.qsd, s.qsdd), audit.SLIDER_VARS,
+         audit.SLIDER_AXIAL_ROWS, (s.qs, s.qsd, s.qsdd)),
+        ("rod_elastic_A", (Q, scalar(s.l)) + STIFFNESS, gradient(strain_energy("A"), s.q),
+         audit.ELEMENT_VARS, audit.ROD_AXIAL_ROWS, (s.q, None, None)),
+        ("rod_elastic_A_averaged", (Q, scalar(s.l)) + STIFFNESS,
+         gradient(strain_energy_averaged("A"), s.q), audit.ELEMENT_VARS, audit.ROD_AXIAL_ROWS,
+         (s.q, None, None)),
+        ("kelvin_voigt_A", (Q, QD, scalar(s.l)) + STIFFNESS + (scalar(s.mu),),
+         gradient(kelvin_voigt_dissipation("A"), s.qd), audit.ELEMENT_VARS, audit.ROD_AXIAL_ROWS,
+         (s.q, s.qd, None)),
+        ("kelvin_voigt_A_averaged", (Q, QD, scalar(s.l)) + STIFFNESS + (scalar(s.mu),),
+         gradient(kelvin_voigt_dissipation_averaged("A"), s.qd), audit.ELEMENT_VARS,
+         audit.ROD_AXIAL_ROWS, (s.q, s.qd, None)),
+    ]
+    kernels = []
+    for name, inputs, residual, variables, axial_rows, (coords, rates, accels) in sources:
+        for group, part in audit.group_vector(sp.Matrix(residual), variables, axial_rows).items():
+            kernels.append(Kernel(
+                f"{name}__{group}", f"The '{group}' part of {name} (consistent model, approach A).",
+                inputs, _residual_outputs(sp.Matrix(part), coords, rates, accels)))
+    return tuple(kernels)
+
+
 MODULES = {
     "shape": ("Shape functions of Appendix A.", shape_kernels),
     "energy": ("Element energies T_i, T_s, U_i and the Kelvin-Voigt dissipation function.", energy_kernels),
@@ -186,4 +221,5 @@ MODULES = {
     "paper": ("The printed matrix form, eqs. (17)-(29) and Appendix B with errata (the `paper` formulation).",
               paper_kernels),
     "damping": ("Damping forces: Kelvin-Voigt strain-rate damping and the printed eq. (24).", damping_kernels),
+    "groups": ("Element forces of the consistent model split by kind (symbolic audit).", group_kernels),
 }

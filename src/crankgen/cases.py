@@ -5,6 +5,7 @@ from dataclasses import asdict, dataclass, fields
 from .kernels import select_kernels
 from .newmark import NewmarkSettings
 from .parameters import Mechanism
+from .errors import ParameterError
 from .validation import in_range, integer
 
 
@@ -22,6 +23,7 @@ class Case:
     steps_per_rev: int = 100
     integrator: str = "newton"
     membrane: str = "pointwise"
+    groups_off: str = ""          # audit only: comma-separated term groups removed (engine.SWITCHABLE_GROUPS)
 
     def __post_init__(self):
         Mechanism(self.a, self.eps, self.ms, self.mu)           # validates
@@ -30,6 +32,14 @@ class Case:
         object.__setattr__(self, "n_elements", integer("n_elements", self.n_elements, 1))
         object.__setattr__(self, "steps_per_rev", integer("steps_per_rev", self.steps_per_rev, 4))
         NewmarkSettings(scheme=self.integrator)
+        if self.groups_off:
+            from .engine import SWITCHABLE_GROUPS
+            names = [g.strip() for g in self.groups_off.split(",") if g.strip()]
+            for g in names:
+                if g not in SWITCHABLE_GROUPS:
+                    raise ParameterError(f"groups_off must name groups among {', '.join(SWITCHABLE_GROUPS)}, got {g!r}")
+            if self.formulation != "lagrange" or self.approach != "A":
+                raise ParameterError("groups_off applies to the lagrange formulation with approach A only")
 
     @property
     def mechanism(self):

@@ -9,7 +9,7 @@ status, so a failing case stops alone.  The NumPy implementation in model.py sta
 tests check that both give the same numbers.
 
 Case parameters travel as a float array P[b] = (a, eps, ms, mu, omega, dt) and integer codes
-C[b] = (formulation, approach, damping, one_pass, membrane).
+C[b] = (formulation, approach, damping, one_pass, membrane, groups_off bit mask).
 """
 
 import math
@@ -18,6 +18,7 @@ import numpy as np
 from numba import njit, prange
 
 from ._generated import damping as _dmp
+from ._generated import groups as _grp
 from ._generated import lagrange as _lag
 from ._generated import paper as _pap
 from ._generated import shape as _shape
@@ -60,6 +61,21 @@ lag_elastic_A_avg = _jit(_lag.rod_elastic_A_averaged_into)
 lag_elastic_B_avg = _jit(_lag.rod_elastic_B_averaged_into)
 kv_A_avg = _jit(_dmp.kelvin_voigt_A_averaged_into)
 kv_B_avg = _jit(_dmp.kelvin_voigt_B_averaged_into)
+
+# Term groups that the audit can switch off (consistent model, approach A): bit i of codes[5].
+SWITCHABLE_GROUPS = ("gyroscopic", "phidd", "centrifugal", "cubic_axial", "cubic_transverse", "quartic")
+g_rod_gyro = _jit(_grp.rod_inertia__gyroscopic_into)
+g_rod_phidd = _jit(_grp.rod_inertia__phidd_into)
+g_rod_cent = _jit(_grp.rod_inertia__centrifugal_into)
+g_sl_gyro = _jit(_grp.slider_inertia__gyroscopic_into)
+g_sl_phidd = _jit(_grp.slider_inertia__phidd_into)
+g_sl_cent = _jit(_grp.slider_inertia__centrifugal_into)
+g_el_cax = _jit(_grp.rod_elastic_A__cubic_axial_into)
+g_el_ctr = _jit(_grp.rod_elastic_A__cubic_transverse_into)
+g_el_qua = _jit(_grp.rod_elastic_A__quartic_into)
+g_ela_cax = _jit(_grp.rod_elastic_A_averaged__cubic_axial_into)
+g_ela_ctr = _jit(_grp.rod_elastic_A_averaged__cubic_transverse_into)
+g_ela_qua = _jit(_grp.rod_elastic_A_averaged__quartic_into)
 
 
 # ----------------------------------------------------------------------------------------------
@@ -154,6 +170,66 @@ def _slider_terms(form, damp, us, usd, usdd, ms, a, kin, r, K, C, M, w2, w22a, w
             K[3 + i, 3 + j] += w22a[i, j]
             C[3 + i, 3 + j] += w22b[i, j]
             M[3 + i, 3 + j] += w22c[i, j]
+
+
+@njit(cache=True)
+def _subtract(r, K, C, M, w6, wK, wC, wM, with_rates, with_accels, offset, size):
+    for i in range(size):
+        r[offset + i] -= w6[i]
+        for j in range(size):
+            K[offset + i, offset + j] -= wK[i, j]
+            if with_rates:
+                C[offset + i, offset + j] -= wC[i, j]
+            if with_accels:
+                M[offset + i, offset + j] -= wM[i, j]
+
+
+@njit(cache=True)
+def _rod_groups_off(mask, avg, q, qd, qdd, l, x0, rhoA, rhoI, EA, EI, a, kin, r, K, C, M,
+                    w6, wK, wC, wM):
+    """Remove the switched-off groups (bit mask, SWITCHABLE_GROUPS order) from a rod element."""
+    th, thd, ph, phd, phdd = kin[0], kin[1], kin[2], kin[3], kin[4]
+    if mask & 1:
+        g_rod_gyro(q, qd, qdd, l, x0, rhoA, rhoI, a, th, thd, ph, phd, phdd, w6, wK, wC, wM)
+        _subtract(r, K, C, M, w6, wK, wC, wM, True, True, 0, 6)
+    if mask & 2:
+        g_rod_phidd(q, qd, qdd, l, x0, rhoA, rhoI, a, th, thd, ph, phd, phdd, w6, wK, wC, wM)
+        _subtract(r, K, C, M, w6, wK, wC, wM, True, True, 0, 6)
+    if mask & 4:
+        g_rod_cent(q, qd, qdd, l, x0, rhoA, rhoI, a, th, thd, ph, phd, phdd, w6, wK, wC, wM)
+        _subtract(r, K, C, M, w6, wK, wC, wM, True, True, 0, 6)
+    if mask & 8:
+        if avg:
+            g_ela_cax(q, l, EA, EI, w6, wK)
+        else:
+            g_el_cax(q, l, EA, EI, w6, wK)
+        _subtract(r, K, C, M, w6, wK, wC, wM, False, False, 0, 6)
+    if mask & 16:
+        if avg:
+            g_ela_ctr(q, l, EA, EI, w6, wK)
+        else:
+            g_el_ctr(q, l, EA, EI, w6, wK)
+        _subtract(r, K, C, M, w6, wK, wC, wM, False, False, 0, 6)
+    if mask & 32:
+        if avg:
+            g_ela_qua(q, l, EA, EI, w6, wK)
+        else:
+            g_el_qua(q, l, EA, EI, w6, wK)
+        _subtract(r, K, C, M, w6, wK, wC, wM, False, False, 0, 6)
+
+
+@njit(cache=True)
+def _slider_groups_off(mask, us, usd, usdd, ms, a, kin, r, K, C, M, w2, wK, wC, wM):
+    th, thd, ph, phd, phdd = kin[0], kin[1], kin[2], kin[3], kin[4]
+    if mask & 1:
+        g_sl_gyro(us, usd, usdd, ms, 1.0, a, th, thd, ph, phd, phdd, w2, wK, wC, wM)
+        _subtract(r, K, C, M, w2, wK, wC, wM, True, True, 3, 2)
+    if mask & 2:
+        g_sl_phidd(us, usd, usdd, ms, 1.0, a, th, thd, ph, phd, phdd, w2, wK, wC, wM)
+        _subtract(r, K, C, M, w2, wK, wC, wM, True, True, 3, 2)
+    if mask & 4:
+        g_sl_cent(us, usd, usdd, ms, 1.0, a, th, thd, ph, phd, phdd, w2, wK, wC, wM)
+        _subtract(r, K, C, M, w2, wK, wC, wM, True, True, 3, 2)
 
 
 @njit(cache=True)
@@ -261,9 +337,15 @@ def element_terms(codes, par, secant, dofs, l, d, v, acc, kin, rE, KE, CE, ME, w
             qdd[4] = s * pdd + 2.0 * c * phd * pd + (-s * phd * phd + c * phdd) * p
         _rod_terms(form, app, damp, secant, codes[4] == 1, q, qd, qdd, l, e * l, rhoA, rhoI, EA, EI, mu, a, kin,
                    rE[e], KE[e], CE[e], ME[e], w6, w66a, w66b, w66c, w66d)
+        if codes[5] != 0:
+            _rod_groups_off(codes[5], codes[4] == 1, q, qd, qdd, l, e * l, rhoA, rhoI, EA, EI, a, kin,
+                            rE[e], KE[e], CE[e], ME[e], w6, w66a, w66b, w66c)
         if last:
             _slider_terms(form, damp, q[3:5], qd[3:5], qdd[3:5], ms, a, kin, rE[e], KE[e], CE[e],
                           ME[e], w2, w22a, w22b, w22c, w22d)
+            if codes[5] != 0:
+                _slider_groups_off(codes[5], q[3:5], qd[3:5], qdd[3:5], ms, a, kin, rE[e], KE[e],
+                                   CE[e], ME[e], w2, w22a, w22b, w22c)
             if damp == 0:
                 _slider_damping(qd[3:5], ms, phd, mu, rE[e], CE[e], w2, w22a, w22b)
             _project_last(kin, rE[e], KE[e], CE[e], ME[e], T, Td, Tdd, t1, t2, t3)
@@ -490,7 +572,7 @@ def _outputs(dofs, mid_e, Nv_mid, G, eps, phi, d, out):
 
 def _march_impl(codes, par, dofs, kb, l, scales, mid_e, Nv_mid, G, beta, gamma, tol, max_iter,
                 step0, n_steps, steps_per_rev, D0, V0, A0, keep_history,
-                out_y, out_iter, status, fail_step, fail_res, Dh, Vh, D1, V1, A1):
+                out_y, out_iter, status, fail_step, fail_res, Dh, Vh, Ah, D1, V1, A1):
     """Advance every case of the batch n_steps in lock step (see march)."""
     B = D0.shape[0]
     n = dofs.shape[0]
@@ -510,6 +592,7 @@ def _march_impl(codes, par, dofs, kb, l, scales, mid_e, Nv_mid, G, beta, gamma, 
         if keep_history:
             Dh[b, 0, :] = d
             Vh[b, 0, :] = v
+            Ah[b, 0, :] = acc
         for m in range(n_steps):
             if status[b] != OK:
                 break
@@ -536,6 +619,7 @@ def _march_impl(codes, par, dofs, kb, l, scales, mid_e, Nv_mid, G, beta, gamma, 
             if keep_history:
                 Dh[b, m + 1, :] = d
                 Vh[b, m + 1, :] = v
+                Ah[b, m + 1, :] = acc
         D1[b, :] = d
         V1[b, :] = v
         A1[b, :] = acc
@@ -556,10 +640,19 @@ def _initial_accelerations(codes, par, dofs, kb, l, step0, D0, V0, A0, status):
 # Python-level API
 # ----------------------------------------------------------------------------------------------
 
+def groups_mask(groups_off):
+    """Bit mask of the comma-separated group names (SWITCHABLE_GROUPS)."""
+    mask = 0
+    for name in filter(None, (g.strip() for g in groups_off.split(","))):
+        mask |= 1 << SWITCHABLE_GROUPS.index(name)
+    return mask
+
+
 class Batch:
     """Cases that share a mesh and steps per revolution, packed for the compiled engine."""
 
-    def __init__(self, cases):
+    def __init__(self, cases, dt=None):
+        """dt overrides the time step 2 pi / (omega steps_per_rev) (free vibration, omega ~ 0)."""
         from .assembly import BandedAssembler
         from .mesh import Mesh
 
@@ -580,9 +673,10 @@ class Batch:
         self.G = np.ascontiguousarray(_shape.slope_gram(self.l), dtype=float)
         self.codes = np.array([[FORMULATION_CODE[c.formulation], APPROACH_CODE[c.approach],
                                 DAMPING_CODE[c.damping], int(c.integrator == "one-pass"),
-                                MEMBRANE_CODE[c.membrane]]
+                                MEMBRANE_CODE[c.membrane], groups_mask(c.groups_off)]
                                for c in cases], dtype=np.int64)
-        self.par = np.array([[c.a, c.eps, c.ms, c.mu, c.omega, 2 * math.pi / c.omega / spr]
+        self.par = np.array([[c.a, c.eps, c.ms, c.mu, c.omega,
+                              dt if dt is not None else 2 * math.pi / c.omega / spr]
                              for c in cases], dtype=float)
         self.scales = np.array([self.mesh.dof_scales(c.eps) for c in cases])
 
@@ -618,17 +712,18 @@ def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False
     fail_step = np.zeros(B, dtype=np.int64)
     fail_res = np.zeros(B)
     hist_shape = (B, n_steps + 1, N) if keep_history else (1, 1, 1)
-    Dh, Vh = np.zeros(hist_shape), np.zeros(hist_shape)
+    Dh, Vh, Ah = np.zeros(hist_shape), np.zeros(hist_shape), np.zeros(hist_shape)
     D1, V1, A1 = np.zeros((B, N)), np.zeros((B, N)), np.zeros((B, N))
     if parallel is None:
         parallel = B > 1
     fn = _march_parallel if parallel else _march_serial
     fn(batch.codes, batch.par, batch.dofs, batch.kb, batch.l, batch.scales, batch.mid_element,
        batch.Nv_mid, batch.G, beta, gamma, tol, max_iter, step0, n_steps, batch.steps_per_rev,
-       D0, V0, A0, keep_history, out_y, out_iter, status, fail_step, fail_res, Dh, Vh, D1, V1, A1)
+       D0, V0, A0, keep_history, out_y, out_iter, status, fail_step, fail_res, Dh, Vh, Ah, D1, V1, A1)
     return MarchResult(y=out_y, iterations=out_iter, status=status, fail_step=fail_step,
                        fail_residual=fail_res, D=D1, V=V1, A=A1,
-                       D_history=Dh if keep_history else None, V_history=Vh if keep_history else None)
+                       D_history=Dh if keep_history else None, V_history=Vh if keep_history else None,
+                       A_history=Ah if keep_history else None)
 
 
 # ----------------------------------------------------------------------------------------------

@@ -53,6 +53,7 @@ class SteadyState:
     v_mid: np.ndarray = field(default=None, repr=False)
     u_end: np.ndarray = field(default=None, repr=False)
     extension: np.ndarray = field(default=None, repr=False)
+    state: np.ndarray = field(default=None, repr=False)   # reduced (d, v) at theta = 0, (2 N,)
 
     @property
     def ok(self):
@@ -207,7 +208,8 @@ class _BatchSolver:
                     case, self.status[i], float(np.max(np.abs(v))), float((v.max() - v.min()) / 2),
                     int(self.periods[i]), int(self.iterations[i]), float(self.residual[i]),
                     self.message[i], multiplier=float(self.multiplier[i]), theta=theta,
-                    t=theta / case.omega, v_mid=v, u_end=y[:, 1], extension=y[:, 2]))
+                    t=theta / case.omega, v_mid=v, u_end=y[:, 1], extension=y[:, 2],
+                    state=self.X[i].copy()))
             else:
                 status = self.status[i] if self.status[i] != "pending" else "failed"
                 out.append(SteadyState(case, status, math.nan, math.nan, int(self.periods[i]),
