@@ -344,15 +344,17 @@ def test_write_report_has_every_section_and_is_deterministic(tmp_path):
     assert path.name == "report.md"
     for k, title in report.TITLES.items():
         assert f"## {k}. {title}" in text
-    assert text.count("Not yet computed") == 2
+    assert "Not yet computed" not in text
     assert "$$" in text and "nan" not in text.lower().replace("nanc", "")
     assert "CHECK FAILED" not in text
-    again = report.write_report(tmp_path / "two").read_text(encoding="utf-8")
-    assert again == text
+    # the symbolic sections are reproduced exactly (the numeric ones are checked in test_term_groups)
+    again = report.write_report(tmp_path / "two", sections=[1, 2, 3]).read_text(encoding="utf-8")
+    body = text[text.index("## 1."):text.index("## 4.")]
+    assert again[again.index("## 1."):].rstrip() == body.rstrip()
 
 
 def test_write_report_sections_subset_and_validation(tmp_path):
     text = report.write_report(tmp_path, sections=[1]).read_text(encoding="utf-8")
     assert "## 1." in text and "## 2." not in text
     with pytest.raises(ParameterError):
-        report.write_report(tmp_path, sections=[7])
+        report.write_report(tmp_path, sections=[8])

@@ -3,20 +3,23 @@
 SymPy and the derivation (crankgen._derive) are loaded inside `write_report` only, so importing
 crankgen never imports SymPy.  The computations live in crankgen._derive.audit; this module only
 lays them out: numbered sections (1 energies by order, 2 Euler-Lagrange terms by kind, 3 printed
-form against the derivation and ERRATA.md, 4 and 5 placeholders for numerical weights).
+form against the derivation and ERRATA.md); sections 4-6 are computed from runs of the compiled
+engine by audit_numbers.py (4 weights of the groups along steady trajectories, 5 the quartic term,
+6 element convergence and membrane locking).
 """
 
 from pathlib import Path
 
 from .errors import ParameterError
 
-SECTIONS = (1, 2, 3, 4, 5)
+SECTIONS = (1, 2, 3, 4, 5, 6)
 TITLES = {
     1: "Energies and dissipation functions by order",
     2: "Element Euler-Lagrange equations by kind",
     3: "The printed matrix form against the derivation",
     4: "Weights of the groups along steady trajectories",
     5: "Effect of the quartic term",
+    6: "Element convergence and membrane locking",
 }
 
 GROUP_TITLES = {
@@ -183,7 +186,8 @@ class _Report:
     # ---- document -------------------------------------------------------------------------
     def document(self, sections):
         parts = [self.preamble(sections)]
-        builders = {1: self.section1, 2: self.section2, 3: self.section3, 4: self.section4, 5: self.section5}
+        builders = {1: self.section1, 2: self.section2, 3: self.section3, 4: self.section4,
+                    5: self.section5, 6: self.section6}
         for k in sections:
             parts.append(f"## {k}. {TITLES[k]}\n\n" + builders[k]())
         return "\n".join(parts)
@@ -482,14 +486,15 @@ class _Report:
             "$\\mu EA\\,v_{,x}\\dot v_{,x}$ to the axial equation (section 2.4).\n")
         return "".join(out)
 
-    # ---- sections 4 and 5 (placeholders) ---------------------------------------------------
+    # ---- sections 4-6: numbers from runs --------------------------------------------------
     def section4(self):
-        return ("> **Not yet computed.** This section will give the size of each group of section 2 "
-                "(in particular the terms missing from the printed form, section 3.3) along steady "
-                "periodic trajectories of the mechanism. It needs the steady-state solver, which is "
-                "not part of crankgen yet. No numbers are reported here.\n")
+        from . import audit_numbers
+        return audit_numbers.section4(GROUP_TITLES)
 
     def section5(self):
-        return ("> **Not yet computed.** This section will compare approaches A and B (the quartic "
-                "term $\\frac{EA}{8}v_{,x}^4$ of eq. 2) on computed responses. It depends on the "
-                "steady-state results of section 4. No numbers are reported here.\n")
+        from . import audit_numbers
+        return audit_numbers.section5(GROUP_TITLES)
+
+    def section6(self):
+        from . import audit_numbers
+        return audit_numbers.section6()
