@@ -1,6 +1,6 @@
 PYTHON ?= python3
 
-.PHONY: derive check-generated test bench
+.PHONY: derive check-generated test bench audit validate
 
 derive:            ## regenerate generated/ from the SymPy derivation in derive/
 	$(PYTHON) -m derive
@@ -13,3 +13,9 @@ test:
 
 bench:             ## benchmark: writes bench/results.json and prints a table
 	$(PYTHON) bench/run.py
+
+audit:             ## symbolic audit report: audit/report.md
+	$(PYTHON) -m crankgen.cli audit --out audit
+
+validate:          ## optional: compare with Exudyn's ANCF cable model (installs exudyn)
+	$(PYTHON) -m pip install exudyn && $(PYTHON) validate/compare.py
