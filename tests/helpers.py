@@ -4,20 +4,7 @@ import math
 
 import numpy as np
 
-from crankgen.mesh import PSI, V
-
-
-def bending_mode_state(mesh, amplitude):
-    """Reduced displacement vector of v = amplitude sin(pi x) (psi = v_x), axial DOFs zero."""
-    d = np.zeros(mesh.n_dofs)
-    for node in range(mesh.n_elements + 1):
-        x = node * mesh.length
-        for comp, value in ((V, amplitude * math.sin(math.pi * x)),
-                            (PSI, amplitude * math.pi * math.cos(math.pi * x))):
-            i = mesh.reduced_index(node, comp)
-            if i is not None:
-                d[i] = value
-    return d
+from crankgen.backbone import mode_state as bending_mode_state   # noqa: F401  (v = A sin(pi x))
 
 
 def zero_crossing_frequency(t, y):
