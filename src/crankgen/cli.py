@@ -1,4 +1,4 @@
-"""Command-line interface: `crankgen simulate ...`."""
+"""Command-line interface: `crankgen simulate ...`, `crankgen reproduce ...`."""
 
 import argparse
 import sys
@@ -62,6 +62,27 @@ def _cmd_simulate(args):
     return 0
 
 
+def _figure_list(text):
+    try:
+        figs = sorted({int(x) for x in text.replace(" ", "").split(",") if x})
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a comma-separated list of figure numbers, got {text!r}")
+    if not figs or any(f < 2 or f > 8 for f in figs):
+        raise argparse.ArgumentTypeError(f"figure numbers must be between 2 and 8, got {text!r}")
+    return figs
+
+
+def _cmd_reproduce(args):
+    from .experiments import ReproduceConfig, reproduce
+
+    config = ReproduceConfig.quick() if args.quick else ReproduceConfig.full()
+    res = reproduce(args.out, config=config, force=args.force, quiet=args.quiet,
+                    figures=args.figures)
+    print(f"wrote {len(res['files'])} files to {res['out']} ({res['out'] / 'findings.md'}) "
+          f"in {res['wall_time']:.1f} s")
+    return 0
+
+
 def build_parser():
     parser = argparse.ArgumentParser(
         prog="crankgen",
@@ -78,6 +99,26 @@ def build_parser():
     p.add_argument("--nodes", action="store_true", help="also write the nodal history nodes.csv")
     p.add_argument("--quiet", action="store_true", help="no progress output")
     p.set_defaults(func=_cmd_simulate)
+
+    p = sub.add_parser("reproduce", help="recompute the paper's Figures 2-8 and findings.md (paper and consistent models)",
+                       description="Recompute Figures 2-8 of the source paper for the paper model (paper "
+                                   "formulation, paper damping) and the consistent model (lagrange "
+                                   "formulation, kelvin-voigt damping): one PNG and one CSV per figure, "
+                                   "convergence.png/.csv (element-count check) and findings.md, whose "
+                                   "numbers are all computed from the runs.")
+    p.add_argument("--out", default="results",
+                   help="output folder (created if missing; default ./results); files already there are "
+                        "kept unless --force")
+    p.add_argument("--quick", action="store_true",
+                   help="coarse pass: fewer speeds, eps values, slider masses and revolutions, element "
+                        "ladder up to 64")
+    p.add_argument("--force", action="store_true",
+                   help="overwrite output files left by an earlier run in --out")
+    p.add_argument("--figures", type=_figure_list, default=[2, 3, 4, 5, 6, 7, 8], metavar="LIST",
+                   help="comma-separated figures to compute, e.g. 5,6 (default: all, 2-8); the "
+                        "element-count check always runs")
+    p.add_argument("--quiet", action="store_true", help="no progress output")
+    p.set_defaults(func=_cmd_reproduce)
     return parser
 
 

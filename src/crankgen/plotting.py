@@ -56,9 +56,9 @@ def status_legend_handles(kinds=("failed", "unstable", "envelope")):
     """Grey proxy artists explaining the status markers of steady-state sweep plots."""
     from matplotlib.lines import Line2D
     text = {
-        "failed": ("x", "x on the axis: no steady state (failed / diverged)"),
+        "failed": ("x", "x on the axis: no steady response (run failed / diverged)"),
         "unstable": ("o", "hollow o: unstable periodic orbit"),
-        "envelope": ("^", "hollow ^: non-periodic response, max |v*| (transient)"),
+        "envelope": ("^", "hollow ^: non-periodic response, max |v*| of a transient (on the top edge: off scale, see CSV)"),
     }
     out = []
     for k in kinds:

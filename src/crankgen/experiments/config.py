@@ -48,6 +48,7 @@ class ReproduceConfig:
     conv_tol: float = 0.01
     # a-posteriori refinement check: the Figure 6 cases at these speeds, with 2 n elements
     refine_omegas: tuple = (0.4, 1.2, 1.6)
+    refine_fig5: bool = True             # also the Figure 5 speeds at its smallest eps
     # Figure 2: transient at low speed, element counts compared
     fig2_omega: float = 0.1
     fig2_elements: tuple = (2, 4)
@@ -97,7 +98,7 @@ class ReproduceConfig:
     def quick(cls):
         """Coarse pass: fewer speeds, eps values and revolutions; ladder up to 64 elements."""
         return cls(
-            preset="quick", conv_ladder=(2, 4, 8, 16, 32, 64), refine_omegas=(),
+            preset="quick", conv_ladder=(2, 4, 8, 16, 32, 64), refine_omegas=(), refine_fig5=False,
             fig2_revolutions=2, fig3_revolutions=4, fig3_elements=(2, 4, 8, 16),
             fig4_revolutions=4, fig4_ms=(0.0, 0.5, 2.0),
             fig5_eps=(0.005, 0.01, 0.03, 0.1),

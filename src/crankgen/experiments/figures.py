@@ -163,25 +163,35 @@ def convergence_study(ctx):
     return dict(rows=rows, series=series, counts=counts, notes=count_notes)
 
 
-def refinement_check(ctx, counts, fig6=None):
-    """The Figure 6 cases at refine_omegas with n and 2 n elements (n the count used): how much the
-    amplitude still changes over the speed range.  Reuses Figure 6 results for n when available."""
+def refinement_points(cfg):
+    """(Omega*, eps) of the refinement check: the Figure 6 slendernesses at refine_omegas, and (if
+    refine_fig5) the Figure 5 speeds at its smallest eps."""
+    pts = [(om, eps) for eps in cfg.fig6_eps for om in cfg.refine_omegas]
+    if cfg.refine_fig5:
+        pts += [(om, min(cfg.fig5_eps)) for om in cfg.fig5_omegas]
+    return list(dict.fromkeys(pts))
+
+
+def refinement_check(ctx, counts, fig6=None, fig5=None):
+    """Cases of Figures 5 and 6 (refinement_points) with n and 2 n elements (n the count used): how
+    much the amplitude still changes away from the speeds and eps of the convergence check.
+    Reuses the figures' results for n when available."""
     cfg = ctx.config
     have = {}
-    if fig6 is not None:
-        for r in fig6["rows"]:
+    for fig in (fig5, fig6):
+        for r in (fig or {}).get("rows", []):
             have[(r["model"], r["approach"], r["eps"], r["omega"], r["n_elements"])] = r
+    points = refinement_points(cfg)
     specs, cases = [], []
     for m in MODELS:
         for ap in APPROACHES:
             n = counts[(m.key, ap)]
-            for eps in cfg.fig6_eps:
-                for om in cfg.refine_omegas:
-                    for nn in (n, 2 * n):
-                        if (m.key, ap, eps, om, nn) in have:
-                            continue
-                        specs.append((m.key, ap, eps, om, nn))
-                        cases.append(make_case(cfg, m.key, ap, nn, om, eps=eps))
+            for om, eps in points:
+                for nn in (n, 2 * n):
+                    if (m.key, ap, eps, om, nn) in have:
+                        continue
+                    specs.append((m.key, ap, eps, om, nn))
+                    cases.append(make_case(cfg, m.key, ap, nn, om, eps=eps))
     if cases:
         for spec, s in zip(specs, ctx.steady(cases, "refinement check (2 n elements)")):
             have[spec] = steady_row(spec[0], s)
@@ -189,15 +199,14 @@ def refinement_check(ctx, counts, fig6=None):
     for m in MODELS:
         for ap in APPROACHES:
             n = counts[(m.key, ap)]
-            for eps in cfg.fig6_eps:
-                for om in cfg.refine_omegas:
-                    r1, r2 = have[(m.key, ap, eps, om, n)], have[(m.key, ap, eps, om, 2 * n)]
-                    rows.append(dict(model=m.key, approach=ap, eps=eps, omega=om, n_elements=n,
-                                     amplitude=r1["amplitude"], status=r1["status"],
-                                     n_refined=2 * n, amplitude_refined=r2["amplitude"],
-                                     status_refined=r2["status"],
-                                     change=float(fd.relative_difference(r1["amplitude"], r2["amplitude"])),
-                                     message=r1["message"] or r2["message"]))
+            for om, eps in points:
+                r1, r2 = have[(m.key, ap, eps, om, n)], have[(m.key, ap, eps, om, 2 * n)]
+                rows.append(dict(model=m.key, approach=ap, eps=eps, omega=om, n_elements=n,
+                                 amplitude=r1["amplitude"], status=r1["status"],
+                                 n_refined=2 * n, amplitude_refined=r2["amplitude"],
+                                 status_refined=r2["status"],
+                                 change=float(fd.relative_difference(r1["amplitude"], r2["amplitude"])),
+                                 message=r1["message"] or r2["message"]))
     return dict(rows=rows)
 
 

@@ -30,6 +30,13 @@ def _transient(ax, curve, color, ls="-", label=None, lw=1.0):
                      label=f"{label}: failed at t* = {when}")
 
 
+_LINESTYLES = ["-", "--", "-.", ":", (0, (5, 1, 1, 1))]
+
+
+def _ls(k):
+    return _LINESTYLES[k % len(_LINESTYLES)]
+
+
 def _colors(n):
     import matplotlib
     cmap = matplotlib.colormaps["viridis"]
@@ -42,8 +49,8 @@ def plot_figure2(data, cfg, counts):
         for i, ap in enumerate(APPROACHES):
             ax = axes[i, j]
             cs = [c for c in data["curves"] if c.spec.model == m.key and c.spec.approach == ap]
-            for c, col in zip(cs, _colors(len(cs))):
-                _transient(ax, c, col, label=f"n = {c.spec.n_elements}")
+            for k, (c, col) in enumerate(zip(cs, _colors(len(cs)))):
+                _transient(ax, c, col, ls=_ls(k), label=f"n = {c.spec.n_elements}")
             _title(ax, m, f"\napproach {ap}, Omega* = {cfg.fig2_omega:g}")
             ax.set_ylabel("v* at x* = 1/2")
             ax.legend(fontsize=7, loc="best")
@@ -60,11 +67,11 @@ def plot_figure3(data, cfg, counts):
         ax = axes[0, j]
         cs = [c for c in data["curves"] if c.spec.model == m.key]
         base = [c for c in cs if c.spec.steps_per_rev == cfg.fig3_steps[0]]
-        for c, col in zip(base, _colors(len(base))):
-            _transient(ax, c, col, label=f"n = {c.spec.n_elements}, {c.spec.steps_per_rev} steps/rev")
+        for k, (c, col) in enumerate(zip(base, _colors(len(base)))):
+            _transient(ax, c, col, ls=_ls(k), label=f"n = {c.spec.n_elements}, {c.spec.steps_per_rev} steps/rev")
         for c in cs:
             if c.spec.steps_per_rev != cfg.fig3_steps[0]:
-                _transient(ax, c, "k", ls="--", lw=0.8,
+                _transient(ax, c, "k", ls=(0, (1, 2)), lw=0.9,
                            label=f"n = {c.spec.n_elements}, {c.spec.steps_per_rev} steps/rev")
         _title(ax, m, f"\napproach A, Omega* = {cfg.fig3_omega:g}")
         ax.set_xlabel("t*")
@@ -103,7 +110,7 @@ def plot_figure4(data, cfg, counts):
     return fig
 
 
-def _sweep_series(ax, rows, xkey, color, ls, marker, label):
+def _sweep_series(ax, rows, xkey, color, ls, marker, label, mark_missing=True):
     """Line through the periodic points; markers for the other statuses (see module docstring)."""
     rows = sorted(rows, key=lambda r: r[xkey])
     x = np.array([r[xkey] for r in rows], dtype=float)
@@ -117,14 +124,32 @@ def _sweep_series(ax, rows, xkey, color, ls, marker, label):
     if env:
         ax.scatter([r[xkey] for r in env], [r["envelope"] for r in env], marker="^",
                    facecolors="none", edgecolors=color, s=26, zorder=4)
-    missing = [r[xkey] for r in rows if r["status"] != "periodic"
-               and not math.isfinite(r["envelope"]) and r["status"] != "unstable"]
-    mark_at_axis(ax, missing, color)
+    if mark_missing:
+        missing = [r[xkey] for r in rows if r["status"] != "periodic" and not math.isfinite(r["envelope"])]
+        mark_at_axis(ax, missing, color)
+
+
+def _limit_to_steady(ax, rows, margin=1.25):
+    """Linear y axis scaled to the steady amplitudes (periodic and unstable orbits); non-periodic
+    responses beyond it are drawn on the top edge with their value, so they never squash the curves."""
+    vals = [r["amplitude"] for r in rows if math.isfinite(r["amplitude"])]
+    vals += [r["orbit_amplitude"] for r in rows if r["status"] == "unstable"
+             and math.isfinite(r["orbit_amplitude"])]
+    if not vals:
+        return
+    top = margin * max(vals)
+    ax.set_ylim(0.0, top)
+    xkey = "omega" if ax.get_xlabel() == "Omega*" else "eps"
+    off = [r[xkey] for r in rows
+           if r["status"] != "periodic" and math.isfinite(r["envelope"]) and r["envelope"] > top]
+    if off:
+        ax.scatter(off, np.ones(len(off)), transform=ax.get_xaxis_transform(), marker="^",
+                   clip_on=False, facecolors="none", edgecolors="k", s=26, zorder=5)
 
 
 def _status_kinds(rows):
     kinds = []
-    if any(r["status"] not in ("periodic", "unstable") and not math.isfinite(r["envelope"]) for r in rows):
+    if any(r["status"] != "periodic" and not math.isfinite(r["envelope"]) for r in rows):
         kinds.append("failed")
     if any(r["status"] == "unstable" for r in rows):
         kinds.append("unstable")
@@ -133,14 +158,15 @@ def _status_kinds(rows):
     return kinds
 
 
-def _legend_with_status(ax, rows, fontsize=7):
+def _legend_with_status(ax, rows, fontsize=7, below=False, ncol=1):
     handles, labels = ax.get_legend_handles_labels()
     extra = status_legend_handles(_status_kinds(rows))
-    ax.legend(handles + extra, labels + [h.get_label() for h in extra], fontsize=fontsize)
+    kwargs = dict(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=ncol) if below else {}
+    ax.legend(handles + extra, labels + [h.get_label() for h in extra], fontsize=fontsize, **kwargs)
 
 
 def plot_figure5(data, cfg, counts):
-    fig, axes = panels(2, 2, width=6.2, height=3.6)
+    fig, axes = panels(2, 2, width=6.2, height=4.0)
     for j, m in enumerate(MODELS):
         rows = [r for r in data["rows"] if r["model"] == m.key]
         for i, log in enumerate((False, True)):
@@ -159,15 +185,18 @@ def plot_figure5(data, cfg, counts):
             else:
                 ax.set_ylabel("steady amplitude max |v*|")
             ax.set_xlabel("eps")
+            if not log:
+                _limit_to_steady(ax, rows)
             _title(ax, m, " (log-log)" if log else "")
-            _legend_with_status(ax, rows, fontsize=6)
+            if log:
+                _legend_with_status(ax, rows, fontsize=6, below=True, ncol=2)
             _grid(ax)
     fig.suptitle("Figure 5: steady-state amplitude of v* against slenderness eps", fontsize=10)
     return fig
 
 
 def plot_figure6(data, cfg, counts):
-    fig, axes = panels(len(cfg.fig6_eps), 2, width=6.4, height=4.0)
+    fig, axes = panels(len(cfg.fig6_eps), 2, width=6.4, height=4.8)
     for j, m in enumerate(MODELS):
         for i, eps in enumerate(cfg.fig6_eps):
             ax = axes[i, j]
@@ -178,7 +207,7 @@ def plot_figure6(data, cfg, counts):
                 n = sel[0]["n_elements"] if sel else "?"
                 for a in (ax, inset):
                     _sweep_series(a, sel, "omega", APPROACH_COLORS[ap], "-", "o",
-                                  f"{ap} (n = {n})" if a is ax else None)
+                                  f"{ap} (n = {n})" if a is ax else None, mark_missing=a is ax)
             inset.set_ylim(0, cfg.fig6_inset_ylim)
             lo = [r["omega"] for r in rows if r["status"] == "periodic"
                   and r["amplitude"] <= cfg.fig6_inset_ylim]
@@ -188,12 +217,10 @@ def plot_figure6(data, cfg, counts):
             inset.set_title(f"v* from 0 to {cfg.fig6_inset_ylim:g}", fontsize=6)
             inset.grid(alpha=0.3)
             ax.set_xlabel("Omega*")
+            _limit_to_steady(ax, rows)
             ax.set_ylabel("steady amplitude max |v*|")
             _title(ax, m, f", eps = {eps:g}")
-            handles, labels = ax.get_legend_handles_labels()
-            extra = status_legend_handles(_status_kinds(rows))
-            ax.legend(handles + extra, labels + [h.get_label() for h in extra], fontsize=6,
-                      loc="upper right")
+            _legend_with_status(ax, rows, fontsize=6, below=True, ncol=2)
             _grid(ax)
     fig.suptitle("Figure 6: steady-state amplitude of v* against crank speed Omega*", fontsize=10)
     return fig
@@ -240,28 +267,36 @@ def plot_figure(data, cfg, counts):
 
 
 def plot_convergence(conv, cfg):
-    fig, axes = panels(1, 2, width=6.2, height=3.8)
+    """Top: steady amplitude against n; bottom: relative change to the next count and the tolerance."""
+    fig, axes = panels(2, 2, width=6.2, height=3.3)
     for j, m in enumerate(MODELS):
-        ax = axes[0, j]
+        top, bot = axes[0, j], axes[1, j]
         for k, om in enumerate(cfg.conv_omegas):
             ls, mk = _SPEED_STYLES[k % len(_SPEED_STYLES)]
             for ap in APPROACHES:
                 rows = sorted([r for r in conv["rows"] if r["model"] == m.key and r["approach"] == ap
                                and r["omega"] == om], key=lambda r: r["n_elements"])
                 x = [r["n_elements"] for r in rows]
-                y = [r["amplitude"] for r in rows]
-                ax.plot(x, y, ls=ls, marker=mk, ms=3, color=APPROACH_COLORS[ap],
-                        label=f"{ap}, Omega* = {om:g}")
-                mark_at_axis(ax, [r["n_elements"] for r in rows if r["status"] != "periodic"],
-                             APPROACH_COLORS[ap])
+                col = APPROACH_COLORS[ap]
+                top.plot(x, [r["amplitude"] for r in rows], ls=ls, marker=mk, ms=3, color=col,
+                         label=f"{ap}, Omega* = {om:g}")
+                mark_at_axis(top, [r["n_elements"] for r in rows if r["status"] != "periodic"], col)
+                ch = [(r["n_elements"], r["change_to_next"]) for r in rows
+                      if math.isfinite(r.get("change_to_next", math.nan)) and r["change_to_next"] > 0]
+                if ch:
+                    bot.plot(*zip(*ch), ls=ls, marker=mk, ms=3, color=col, label=f"{ap}, Omega* = {om:g}")
         for ap in APPROACHES:
-            ax.axvline(conv["counts"][(m.key, ap)], color=APPROACH_COLORS[ap], ls=":", lw=0.8)
-        ax.set_xscale("log", base=2)
-        ax.set_yscale("log")
-        ax.set_xlabel("number of elements n")
-        ax.set_ylabel("steady amplitude max |v*|")
-        _title(ax, m, "\n(dotted: count used; x on the axis: no periodic state)")
-        ax.legend(fontsize=6)
-        _grid(ax)
-    fig.suptitle(f"Element-count convergence (eps = {cfg.eps:g})", fontsize=10)
+            for a in (top, bot):
+                a.axvline(conv["counts"][(m.key, ap)], color=APPROACH_COLORS[ap], ls=":", lw=0.8)
+        bot.axhline(cfg.conv_tol, color="k", lw=0.8, ls="--", label=f"tolerance {100 * cfg.conv_tol:g} %")
+        for a in (top, bot):
+            a.set_xscale("log", base=2)
+            a.set_yscale("log")
+            _grid(a)
+            a.legend(fontsize=6)
+        top.set_ylabel("steady amplitude max |v*|")
+        bot.set_ylabel("|a(n) - a(next n)| / a(next n)")
+        bot.set_xlabel("number of elements n")
+        _title(top, m, "\n(dotted: count used; x on the axis: no periodic state)")
+    fig.suptitle(f"Element-count convergence of the steady amplitude (eps = {cfg.eps:g})", fontsize=10)
     return fig

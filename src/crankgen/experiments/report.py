@@ -34,10 +34,14 @@ def pct(x, digits=3):
     return f"{100 * float(x):.{digits}g} %"
 
 
+def _cell(c):
+    return " ".join(str(c).split()).replace("|", "\\|")
+
+
 def table(headers, rows):
-    out = ["| " + " | ".join(headers) + " |", "|" + "---|" * len(headers)]
+    out = ["| " + " | ".join(_cell(h) for h in headers) + " |", "|" + "---|" * len(headers)]
     for r in rows:
-        out.append("| " + " | ".join(str(c).replace("|", "/") for c in r) + " |")
+        out.append("| " + " | ".join(_cell(c) for c in r) + " |")
     return "\n".join(out)
 
 
@@ -71,7 +75,7 @@ def _settings(cfg, total, files):
                  ["time integration", f"Newmark beta = 1/4, gamma = 1/2, Newton iterations, {cfg.steps_per_rev} steps per crank revolution"],
                  ["paper's element counts", ", ".join(f"{a} {n}" for a, n in cfg.paper_elements.items())],
                  ["element ladder (convergence check)", ", ".join(map(str, cfg.conv_ladder)) + f" at Omega* = {', '.join(f'{o:g}' for o in cfg.conv_omegas)}, tolerance {pct(cfg.conv_tol)}"],
-                 ["refinement check (2 n elements)", ", ".join(f"{o:g}" for o in cfg.refine_omegas) or "not run"],
+                 ["refinement check (2 n elements)", ", ".join(f"Omega* {o:g} eps {e:g}" for o, e in F.refinement_points(cfg)) or "not run"],
                  ["Figure 2", f"Omega* = {cfg.fig2_omega:g}, n = {', '.join(map(str, cfg.fig2_elements))} and the count used, {cfg.fig2_revolutions:g} revolutions"],
                  ["Figure 3", f"Omega* = {cfg.fig3_omega:g}, n = {', '.join(map(str, cfg.fig3_elements))} and the count used, steps/rev {', '.join(map(str, cfg.fig3_steps))}, {cfg.fig3_revolutions:g} revolutions"],
                  ["Figure 4", f"Omega* = {cfg.fig4_omega:g}, ms* = {', '.join(f'{m:g}' for m in cfg.fig4_ms)} (B, C), {cfg.fig4_revolutions:g} revolutions"],
@@ -113,16 +117,15 @@ def _convergence(cfg, conv, refine):
                      for m in MODELS for ap in APPROACHES]), ""]
     # statements
     om_ref = cfg.fig3_omega if cfg.fig3_omega in cfg.conv_omegas else cfg.conv_omegas[-1]
-    parts = []
     for m in MODELS:
         s = series[(m.key, "A", om_ref)]
         if s["kind"] == "converged":
-            parts.append(f"n = {s['n']} in the {m.key} model")
+            txt = f"converges to {pct(cfg.conv_tol)} at n = {s['n']} elements"
         elif s["kind"] == "not-converged":
-            parts.append(f"not within the ladder in the {m.key} model ({s['note']})")
+            txt = f"is {s['note']}"
         else:
-            parts.append(f"not determinable in the {m.key} model ({_short(s['note'], 80)})")
-    lines.append(f"- Approach A at Omega* = {om_ref:g} converges to {pct(cfg.conv_tol)} at " + "; ".join(parts) + ".")
+            txt = f"could not be checked ({_short(s['note'], 90)})"
+        lines.append(f"- Approach A at Omega* = {om_ref:g}, {m.key} model: {txt}.")
     for m in MODELS:
         enough, short = [], []
         for ap in APPROACHES:
@@ -142,8 +145,8 @@ def _convergence(cfg, conv, refine):
     lines.append("")
     if refine is not None and refine["rows"]:
         rr = refine["rows"]
-        lines += ["Refinement check: the Figure 6 cases at a few speeds recomputed with twice the "
-                  "count used.", "",
+        lines += ["Refinement check: cases of Figures 5 and 6 away from the checked speed and eps, "
+                  "recomputed with twice the count used.", "",
                   table(["model", "approach", "eps", "Omega*", "n", "max |v*|", "2 n", "max |v*| (2 n)", "change"],
                         [[r["model"], r["approach"], f"{r['eps']:g}", f"{r['omega']:g}", r["n_elements"],
                           num(r["amplitude"], 6) if math.isfinite(r["amplitude"]) else r["status"],
@@ -344,10 +347,12 @@ def _extensions(cfg, data):
         for m in MODELS:
             xs = F.extension_crossings_of(data[f], m.key, cfg.crossing_rel_tol)
             crossings[(f, m.key)] = xs
+            used = [f"{c['ms']:g}" for c in data[f]["curves"] if c["model"] == m.key and c["status"] == STABLE]
             if xs is None:
-                rows.append([f, m.key, f"{data[f]['omega']:g}", "fewer than two stable curves", ""])
+                rows.append([f, m.key, f"{data[f]['omega']:g}", ", ".join(used) or "none",
+                             "fewer than two stable curves", ""])
             else:
-                rows.append([f, m.key, f"{data[f]['omega']:g}",
+                rows.append([f, m.key, f"{data[f]['omega']:g}", ", ".join(used),
                              ", ".join(f"{x['angle']:.1f}" for x in xs) or "none",
                              ", ".join(pct(x["relative_spread"], 2) for x in xs)])
     lines += ["## Crank angles where the extension does not depend on the slider mass (Figures 7, 8)", "",
@@ -355,8 +360,20 @@ def _extensions(cfg, data):
               f"has a local minimum below {pct(cfg.crossing_rel_tol)} of its largest value over the "
               "revolution (curves interpolated linearly, 0.01 degree resolution). For reference, the "
               f"rigid mechanism's slider acceleration vanishes at {', '.join(f'{z:.1f}' for z in zeros)} degrees.", "",
-              table(["figure", "model", "Omega*", "crossing angles (degrees)", "spread there / largest spread"], rows), ""]
+              table(["figure", "model", "Omega*", "ms* of the stable curves", "crossing angles (degrees)",
+                     "spread there / largest spread"], rows), ""]
     for (f, mk), xs in crossings.items():
+        if xs is not None and not xs:
+            cs = [c for c in data[f]["curves"] if c["model"] == mk and c["status"] == STABLE]
+            minima = fd.extension_crossings(cs[0]["theta_deg"], np.stack([c["extension"] for c in cs]),
+                                            rel_tol=1.0)
+            if minima:
+                best = min(minima, key=lambda x: x["relative_spread"])
+                lines.append(f"- Figure {f}, {mk} model (Omega* = {data[f]['omega']:g}): the stable curves "
+                             f"have no common crossing; their spread comes closest to zero at "
+                             f"{best['angle']:.1f} deg, where it is still {pct(best['relative_spread'], 2)} "
+                             "of its largest value.")
+            continue
         if not xs:
             continue
         near = []
@@ -458,12 +475,12 @@ def _failures(cfg, conv, data):
         if r["status"] == STABLE:
             return
         key = (fig, r["model"], r["approach"], r["eps"] if xkey != "eps" else None, r["ms"], r["status"])
-        g = groups.setdefault(key, dict(x=[], message=r["message"], env=[]))
+        g = groups.setdefault(key, dict(x=[], message=r["message"], env=[], diverged=[]))
         g["x"].append(r[xkey])
         if math.isfinite(r.get("envelope", math.nan)):
             g["env"].append(r["envelope"])
-        elif r.get("envelope_note"):
-            g["envnote"] = r["envelope_note"]
+        elif r.get("envelope_note", "").startswith("transient failed"):
+            g["diverged"].append(r[xkey])
 
     for r in conv["rows"]:
         add("convergence", dict(r), "n_elements")
@@ -480,21 +497,103 @@ def _failures(cfg, conv, data):
     rows = []
     for (fig, model, ap, eps, ms, status), g in groups.items():
         xname = {"convergence": "n", "5": "eps", "6": "Omega*"}.get(fig, "Omega*")
-        env = (f"{num(min(g['env']))}-{num(max(g['env']))}" if g["env"]
-               else _short(g.get("envnote", ""), 60))
+        env = []
+        if g["env"]:
+            lo, hi = min(g["env"]), max(g["env"])
+            env.append(f"max |v*| {num(lo)}" + (f" to {num(hi)}" if hi != lo else ""))
+        if g["diverged"]:
+            env.append(f"transient diverges at {xname} = {fd.ranges_text(g['diverged'])}")
+        env = "; ".join(env)
         rows.append([fig, model, ap, "" if eps is None else f"{eps:g}", f"{ms:g}", status,
                      f"{xname} = {fd.ranges_text(g['x'])}", _short(g["message"], 100), env])
     lines = ["## Cases without a stable periodic steady state", "",
              "Every such case is kept in the CSV tables (status, message) and marked in the figures "
              "('x' on the axis, hollow markers for unstable orbits and non-periodic responses). "
              "Grouped by figure, model, approach and status; the reason is that of the first case "
-             "of the group; 'response' is max |v*| of the transient from zero initial conditions.", ""]
+             "of the group; 'response' is max |v*| over the last revolutions of a transient from zero "
+             "initial conditions (cases whose integration itself failed have none).", ""]
     if rows:
         lines += [table(["figure", "model", "approach", "eps", "ms*", "status", "cases", "reason (first case)", "response"],
                         rows), ""]
     else:
         lines += ["None: every steady-state case reached a stable periodic state.", ""]
     return lines
+
+
+def _summary(cfg, conv, data):
+    """Headline numbers, recomputed with the same functions as the sections below."""
+    out = ["## Summary", ""]
+    counts, series = conv["counts"], conv["series"]
+    om_ref = cfg.fig3_omega if cfg.fig3_omega in cfg.conv_omegas else cfg.conv_omegas[-1]
+    conv_a = []
+    for m in MODELS:
+        s = series[(m.key, "A", om_ref)]
+        if s["kind"] == "converged":
+            conv_a.append(f"n = {s['n']} ({m.key})")
+        elif s["kind"] == "not-converged":
+            conv_a.append(f"not reached up to n = {s['n']} ({m.key})")
+        else:
+            conv_a.append(f"not determinable ({m.key})")
+    out.append("- Element counts used: " + "; ".join(
+        f"{m.key} " + ", ".join(f"{ap} {counts[(m.key, ap)]}" for ap in APPROACHES) for m in MODELS)
+        + f". Approach A at Omega* = {om_ref:g}, {pct(cfg.conv_tol)} convergence: " + "; ".join(conv_a) + ".")
+    if 5 in data:
+        parts = []
+        for m in MODELS:
+            for om in cfg.fig5_omegas:
+                a = {ap: _rows(data[5], model=m.key, omega=om, eps=cfg.eps, approach=ap) for ap in APPROACHES}
+                amp = {ap: (a[ap][0]["amplitude"] if a[ap] else math.nan) for ap in APPROACHES}
+                parts.append(f"{m.key}, Omega* = {om:g}: B/A {num(fd.ratio(amp['B'], amp['A']), 4)}, "
+                             f"C/A {num(fd.ratio(amp['C'], amp['A']), 4)}")
+        out.append(f"- Amplitude ratios at eps = {cfg.eps:g} (n/a: no stable periodic state): " + "; ".join(parts) + ".")
+    if 6 in data:
+        parts = []
+        for m in MODELS:
+            for eps in cfg.fig6_eps:
+                first = []
+                for ap in ("B", "C"):
+                    x, d, rr = _series(_rows(data[6], model=m.key, eps=eps, approach=ap), "omega", "ratio_to_A")
+                    c = fd.first_exceedance(x, np.abs(d - 1.0), cfg.differ_threshold)
+                    a_ok = {r["omega"]: r["status"] == STABLE for r in _rows(data[6], model=m.key, eps=eps, approach="A")}
+                    lost = fd.first_where(x, [r["status"] != STABLE and a_ok.get(r["omega"], False) for r in rr])
+                    first += [v for v in (c, lost) if v is not None]
+                parts.append(f"{m.key}, eps = {eps:g}: " + (f"Omega* = {num(min(first))}" if first else "never"))
+        out.append(f"- Lowest speed at which B or C differs from A by more than {pct(cfg.differ_threshold)} "
+                   "(or loses its stable periodic state): " + "; ".join(parts) + ".")
+    if 5 in data:
+        parts = []
+        for m in MODELS:
+            for om in cfg.fig5_omegas:
+                x, y, _ = _series(_rows(data[5], model=m.key, approach="A", omega=om), "eps")
+                f = fd.loglog_slope(x, y)
+                parts.append(f"{m.key}, Omega* = {om:g}: {num(f['slope'], 3) if f else 'n/a'}")
+        out.append("- Slope of log v* against log eps, approach A: " + "; ".join(parts) + ".")
+    parts = []
+    for f in (7, 8):
+        if f in data:
+            for m in MODELS:
+                xs = F.extension_crossings_of(data[f], m.key, cfg.crossing_rel_tol)
+                txt = "n/a" if xs is None else (", ".join(f"{x['angle']:.1f}" for x in xs) or "none")
+                parts.append(f"Figure {f} {m.key}: {txt}")
+    if parts:
+        out.append("- Crank angles (degrees) where the extension does not depend on ms*: " + "; ".join(parts) + ".")
+    if 6 in data:
+        worst, mism = None, 0
+        p, c = MODELS[0].key, MODELS[1].key
+        for ap in APPROACHES:
+            for eps in cfg.fig6_eps:
+                x, a, _ = _series(_rows(data[6], model=p, approach=ap, eps=eps), "omega")
+                _, b, _ = _series(_rows(data[6], model=c, approach=ap, eps=eps), "omega")
+                d = fd.max_relative_difference(x, b, a)
+                if d and (worst is None or d["value"] > worst[0]["value"]):
+                    worst = (d, ap, eps)
+                mism += int(np.sum(np.isfinite(a) != np.isfinite(b)))
+        if worst:
+            d, ap, eps = worst
+            out.append(f"- Paper model against consistent model (Figure 6): largest amplitude difference "
+                       f"{pct(d['value'])} (approach {ap}, eps = {eps:g}, Omega* = {d['at']:g}); "
+                       f"{mism} of the sweep's cases have a stable periodic state in one model only.")
+    return out + [""]
 
 
 def findings_markdown(cfg, conv, refine, data, timings, total, files=()):
@@ -504,6 +603,7 @@ def findings_markdown(cfg, conv, refine, data, timings, total, files=()):
              f"{now}; wall time {total:.1f} s. Every number below is computed from the runs written "
              "beside this file (one CSV per figure, convergence.csv); the statements are generated "
              "from those numbers.", ""]
+    lines += _summary(cfg, conv, data)
     lines += _settings(cfg, total, files)
     lines += _convergence(cfg, conv, refine)
     lines += _ratios(cfg, data)

@@ -77,8 +77,8 @@ class Context:
                     t_fail = getattr(exc, "time", None)
                     out.append(F.TransientCurve(s, status="failed", message=str(exc),
                                                 fail_time=math.nan if t_fail is None else float(t_fail)))
+                    bar(offset + n)
                 offset += n
-                bar(offset)
         return out
 
 
@@ -132,9 +132,9 @@ def reproduce(out="results", config=None, force=False, quiet=False, figures=FIGU
         write(f"fig{f}.csv", "csv", F.csv_table(data[f]))
         write(f"fig{f}.png", "png", plots.plot_figure(data[f], config, counts))
         timings[f"figure {f}"] = time.perf_counter() - t0
-    if config.refine_omegas:
+    if config.refine_omegas or config.refine_fig5:
         t0 = time.perf_counter()
-        refine = F.refinement_check(ctx, counts, data.get(6))
+        refine = F.refinement_check(ctx, counts, data.get(6), data.get(5))
         timings["refinement check"] = time.perf_counter() - t0
     write("convergence.csv", "csv", F.convergence_table(conv, refine))
     write("convergence.png", "png", plots.plot_convergence(conv, config))

@@ -1,0 +1,263 @@
+"""`crankgen reproduce`: the findings functions on synthetic data with known answers, atomic output,
+the overwrite policy, and a seconds-long 'tiny' configuration through the command line."""
+
+import csv
+import io
+import math
+import os
+
+import numpy as np
+import pytest
+
+from crankgen.cli import main as cli_main
+from crankgen.experiments import ReproduceConfig, output_names, reproduce
+from crankgen.experiments import findings as fd
+from crankgen.experiments.io import OutputExistsError, atomic_write, write_csv
+
+
+# ----------------------------------------------------------------------------- findings functions
+
+def test_ratio_and_relative_difference_treat_missing_values_as_missing():
+    r = fd.ratio([2.0, 1.0, math.nan, 3.0], [1.0, 0.0, 1.0, 2.0])
+    assert r[0] == 2.0 and math.isnan(r[1]) and math.isnan(r[2]) and r[3] == 1.5
+    d = fd.relative_difference([1.1, 0.8], [1.0, 1.0])
+    assert d == pytest.approx([0.1, 0.2])
+
+
+def test_first_exceedance_interpolates_linearly_between_sweep_points():
+    x = [0.1, 0.2, 0.3, 0.4]
+    assert fd.first_exceedance(x, [0.0, 0.05, 0.15, 0.3], 0.1) == pytest.approx(0.25)
+    # NaN points (no periodic state) are skipped: interpolation between 0.1 and 0.3
+    assert fd.first_exceedance([0.1, 0.2, 0.3], [0.0, math.nan, 0.2], 0.1) == pytest.approx(0.2)
+    assert fd.first_exceedance(x, [0.0, 0.01, 0.02, 0.05], 0.1) is None
+    assert fd.first_exceedance(x, [0.5, 0.6, 0.7, 0.8], 0.1) == pytest.approx(0.1)
+    # only the first crossing counts even if the curve comes back below
+    assert fd.first_exceedance(x, [0.0, 0.2, 0.0, 0.2], 0.1) == pytest.approx(0.15)
+
+
+def test_first_where():
+    assert fd.first_where([0.3, 0.1, 0.2], [True, False, True]) == 0.2
+    assert fd.first_where([0.1, 0.2], [False, False]) is None
+
+
+def test_loglog_slope_recovers_a_power_law_and_skips_missing_points():
+    eps = np.array([0.005, 0.01, 0.02, 0.05, 0.1])
+    y = 3.0 * eps ** -1.5
+    f = fd.loglog_slope(eps, y)
+    assert f["slope"] == pytest.approx(-1.5, abs=1e-12)
+    assert math.exp(f["intercept"]) == pytest.approx(3.0)
+    assert f["max_residual"] < 1e-12 and f["points"] == 5
+    y2 = y.copy()
+    y2[1], y2[3] = math.nan, -1.0
+    f2 = fd.loglog_slope(eps, y2)
+    assert f2["points"] == 3 and f2["slope"] == pytest.approx(-1.5)
+    assert fd.loglog_slope([0.01], [1.0]) is None
+    noisy = y * np.array([1.0, 1.1, 1.0, 0.9, 1.0])
+    assert fd.loglog_slope(eps, noisy)["max_residual"] > 0.05
+
+
+def test_converged_count_is_the_first_count_within_tolerance_of_the_next():
+    ns = [2, 4, 8, 16, 32]
+    amps = [1.0, 1.5, 1.6, 1.605, 1.606]         # changes 33 %, 6.3 %, 0.31 %, 0.06 %
+    assert fd.converged_count(ns, amps, 0.01) == 8
+    assert fd.converged_count(ns, amps, 0.1) == 4
+    assert fd.converged_count(ns, amps, 1e-5) is None
+    assert fd.converged_count(ns, [math.nan, math.nan, 1.0, 1.001, 1.0], 0.01) == 8
+    assert list(fd.successive_changes([1.0, 2.0])) == [0.5]
+
+
+def _periodic_curves(ms_values, zero_deg=(130.0, 310.0), points=101):
+    theta = np.linspace(0.0, 360.0, points)
+    base = 1e-3 * np.sin(np.radians(theta)) + 2e-4
+    g = np.cos(np.radians(theta - (zero_deg[0] - 90.0)))      # zeros at zero_deg
+    return theta, np.stack([base + m * 1e-3 * g for m in ms_values])
+
+
+def test_extension_crossings_finds_where_all_curves_meet():
+    theta, curves = _periodic_curves([0.0, 0.5, 1.0, 2.0])
+    xs = fd.extension_crossings(theta, curves, rel_tol=0.05)
+    assert [round(x["angle"], 1) for x in xs] == [130.0, 310.0]
+    assert all(x["relative_spread"] < 1e-3 for x in xs)
+
+
+def test_extension_crossings_off_grid_and_across_360():
+    theta, curves = _periodic_curves([0.0, 1.0, 2.0], zero_deg=(1.7, 181.7), points=73)
+    xs = fd.extension_crossings(theta, curves)
+    assert len(xs) == 2
+    assert xs[0]["angle"] == pytest.approx(1.7, abs=0.02)
+    assert xs[1]["angle"] == pytest.approx(181.7, abs=0.02)
+
+
+def test_extension_crossings_none_when_curves_never_meet():
+    theta = np.linspace(0.0, 360.0, 101)
+    curves = np.stack([np.sin(np.radians(theta)) + c for c in (0.0, 0.3, 0.6)])
+    assert fd.extension_crossings(theta, curves) == []
+    # a near-miss (spread 20 % of its maximum) is not a crossing at 5 %
+    s = np.cos(np.radians(theta))
+    near = np.stack([np.zeros_like(theta), np.abs(s) * 0.8 + 0.2])
+    assert fd.extension_crossings(theta, near, rel_tol=0.05) == []
+    assert len(fd.extension_crossings(theta, near, rel_tol=0.25)) == 2
+
+
+def test_slider_acceleration_zeros_match_finite_differences():
+    for a in (1e-6, 0.1, 0.3):
+        zs = fd.slider_acceleration_zeros(a)
+        assert len(zs) == 2
+        th = np.radians(np.array(zs))
+        h = 1e-4
+        x = lambda t: a * np.cos(t) + np.sqrt(1 - (a * np.sin(t)) ** 2)
+        acc = (x(th + h) - 2 * x(th) + x(th - h)) / h ** 2
+        assert np.all(np.abs(acc) < 1e-5)
+    assert fd.slider_acceleration_zeros(1e-6) == pytest.approx([90.0, 270.0], abs=1e-3)
+
+
+def test_max_relative_difference_and_ranges_text():
+    d = fd.max_relative_difference([1, 2, 3], [1.0, 2.4, math.nan], [1.0, 2.0, 3.0])
+    assert d["value"] == pytest.approx(0.2) and d["at"] == 2 and d["points"] == 2
+    assert fd.max_relative_difference([1], [math.nan], [1.0]) is None
+    assert fd.ranges_text([0.3, 0.1, 0.2]) == "0.1, 0.2, 0.3"
+    assert fd.ranges_text([0.1, 0.2, 0.3, 0.4]) == "0.1-0.4 (4 values)"
+
+
+# ----------------------------------------------------------------------------- atomic output
+
+def test_atomic_write_leaves_the_old_file_intact_when_interrupted(tmp_path):
+    target = tmp_path / "fig5.csv"
+    target.write_text("old complete table\n")
+
+    def half_then_interrupt(fh):
+        fh.write("omega,amplitude\n0.1,")
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        atomic_write(target, half_then_interrupt)
+    assert target.read_text() == "old complete table\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["fig5.csv"]      # no temporary left
+
+
+def test_atomic_write_of_a_new_file_leaves_nothing_on_failure(tmp_path):
+    with pytest.raises(RuntimeError):
+        atomic_write(tmp_path / "x.csv", lambda fh: (fh.write("a"), (_ for _ in ()).throw(RuntimeError("boom"))))
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_write_csv_full_precision_and_empty_cells_for_missing(tmp_path):
+    p = write_csv(tmp_path / "t.csv", ["a", "b", "c"], [dict(a=0.1 + 0.2, b=math.nan, c="failed")])
+    rows = list(csv.reader(open(p)))
+    assert rows == [["a", "b", "c"], [repr(0.1 + 0.2), "", "failed"]]
+    with pytest.raises(OutputExistsError):
+        write_csv(p, ["a"], [], overwrite=False)
+
+
+# ----------------------------------------------------------------------------- command line
+
+def test_refuses_to_overwrite_without_force(tmp_path, capsys):
+    out = tmp_path / "res"
+    out.mkdir()
+    (out / "fig6.csv").write_text("earlier run\n")
+    rc = cli_main(["reproduce", "--out", str(out), "--quiet"])
+    err = capsys.readouterr().err
+    assert rc != 0
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and "--force" in lines[0] and "fig6.csv" in lines[0]
+    assert "Traceback" not in err
+    assert (out / "fig6.csv").read_text() == "earlier run\n"
+    assert sorted(p.name for p in out.iterdir()) == ["fig6.csv"]      # nothing computed or written
+
+
+def test_bad_figure_list_is_a_usage_error(capsys):
+    with pytest.raises(SystemExit) as exc:
+        cli_main(["reproduce", "--figures", "1,9"])
+    assert exc.value.code != 0
+    assert "between 2 and 8" in capsys.readouterr().err
+
+
+@pytest.fixture(scope="module")
+def tiny_run(tmp_path_factory):
+    """`crankgen reproduce --quick` with the quick preset replaced by the tiny one (same code path)."""
+    out = tmp_path_factory.mktemp("tiny") / "results"
+    out.mkdir()
+    (out / "notes.txt").write_text("keep me\n")
+    mp = pytest.MonkeyPatch()
+    mp.setattr(ReproduceConfig, "quick", classmethod(lambda cls: ReproduceConfig.tiny()))
+    try:
+        rc = cli_main(["reproduce", "--quick", "--out", str(out), "--quiet"])
+    finally:
+        mp.undo()
+    return rc, out
+
+
+def test_tiny_run_writes_every_file(tiny_run):
+    rc, out = tiny_run
+    assert rc == 0
+    names = set(p.name for p in out.iterdir())
+    assert set(output_names()) <= names
+    assert "notes.txt" in names and (out / "notes.txt").read_text() == "keep me\n"
+    assert not [n for n in names if n.endswith(".tmp")]
+    for f in range(2, 9):
+        assert (out / f"fig{f}.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+        rows = list(csv.DictReader(open(out / f"fig{f}.csv")))
+        assert rows and "status" in rows[0] and "model" in rows[0]
+        assert {r["model"] for r in rows} == {"paper", "consistent"}
+
+
+def test_tiny_run_reports_failed_cases_in_table_and_findings(tiny_run):
+    _, out = tiny_run
+    rows = list(csv.DictReader(open(out / "fig6.csv")))
+    failed = [r for r in rows if r["status"] == "failed"]
+    # the consistent model with approach B has no quartic term and diverges at high speed
+    assert failed and all(r["model"] == "consistent" and r["approach"] == "B" for r in failed)
+    assert all(r["message"] and r["amplitude"] == "" for r in failed)
+    text = (out / "findings.md").read_text()
+    assert "## Cases without a stable periodic steady state" in text
+    assert "| 6 | consistent | B |" in text and "Newton did not converge" in text
+
+
+def test_tiny_findings_numbers_come_from_the_runs(tiny_run):
+    _, out = tiny_run
+    text = (out / "findings.md").read_text()
+    for heading in ("## Element counts", "## Ratios of the B and C amplitudes to A",
+                    "## Lowest speed at which B or C differs from A", "## Slope of log v* against log eps",
+                    "## Crank angles where the extension does not depend on the slider mass",
+                    "## Where the paper model and the consistent model disagree"):
+        assert heading in text
+    assert "nan" not in text.lower().replace("nano", "")
+    # the ratio table agrees with fig5.csv
+    rows = list(csv.DictReader(open(out / "fig5.csv")))
+    amp = {(r["model"], r["approach"], float(r["omega"])): r["amplitude"] for r in rows
+           if float(r["eps"]) == 0.01}
+    ratio = float(amp[("paper", "C", 0.8)]) / float(amp[("paper", "A", 0.8)])
+    assert f"| paper | 0.8 |" in text and f"{ratio:.5g}" in text
+
+
+def test_rerun_refuses_then_force_overwrites(tiny_run, capsys):
+    _, out = tiny_run
+    before = (out / "fig8.csv").read_bytes()
+    rc = cli_main(["reproduce", "--out", str(out), "--quiet", "--figures", "8"])
+    assert rc != 0 and "--force" in capsys.readouterr().err
+    assert (out / "fig8.csv").read_bytes() == before
+    res = reproduce(out, config=ReproduceConfig.tiny(), force=True, quiet=True, figures=[8])
+    assert (out / "fig8.csv").exists() and "fig8.csv" in res["files"]
+    assert (out / "notes.txt").read_text() == "keep me\n"
+
+
+def test_plain_progress_logs_when_not_a_terminal(tmp_path):
+    stream = io.StringIO()
+    reproduce(tmp_path / "r", config=ReproduceConfig.tiny(), figures=[7], stream=stream)
+    text = stream.getvalue()
+    assert "reproduce: convergence n = 1" in text and "(100 %)" in text
+    assert "\r" not in text                                   # no terminal bar codes
+
+
+def test_interrupt_keeps_finished_figures_and_leaves_no_partial_file(tmp_path, monkeypatch):
+    from crankgen.experiments import figures as F
+
+    def interrupted(ctx, counts):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(F, "figure8", interrupted)
+    out = tmp_path / "r"
+    with pytest.raises(KeyboardInterrupt):
+        reproduce(out, config=ReproduceConfig.tiny(), quiet=True, figures=[7, 8])
+    names = sorted(os.listdir(out))
+    assert names == ["fig7.csv", "fig7.png"]
