@@ -33,11 +33,21 @@ def pyplot():
     return _pyplot()
 
 
-def panels(rows, cols, width=6.0, height=3.4, **kwargs):
-    """Figure with a rows x cols grid of axes (always a 2-D array), constrained layout."""
+def panels(rows, cols, width=6.0, height=3.4, space_below=0.0, **kwargs):
+    """Figure with a rows x cols grid of axes (always a 2-D array), panels of width x height
+    inches plus space_below inches under each row (for a legend placed below the axes).  Fixed
+    margins instead of a layout engine: constrained layout cost about a third of the wall time of
+    `crankgen reproduce --quick`."""
     plt = _pyplot()
-    fig, axes = plt.subplots(rows, cols, figsize=(width * cols, height * rows), squeeze=False,
-                             constrained_layout=True, **kwargs)
+    h_row = height + space_below
+    fig, axes = plt.subplots(rows, cols, figsize=(width * cols, h_row * rows), squeeze=False,
+                             **kwargs)
+    w, h = width * cols, h_row * rows
+    top_margin, gap = 0.6, 0.75 + space_below        # inches: suptitle, axis labels + titles
+    axes_h = (h - top_margin - 0.6 - space_below - gap * (rows - 1)) / rows
+    fig.subplots_adjust(left=0.8 / w, right=1 - 0.25 / w, bottom=(0.6 + space_below) / h,
+                        top=1 - top_margin / h, wspace=0.9 / ((w - 1.05 - 0.9 * (cols - 1)) / cols),
+                        hspace=gap / axes_h)
     return fig, axes
 
 

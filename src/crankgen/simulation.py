@@ -127,3 +127,59 @@ def _march_in_chunks(batch, d0, v0, n_steps, tol, keep_history, progress, dt, ch
             progress(done, n_steps)
     return (np.concatenate(ys), np.concatenate(its).astype(np.int32),
             np.concatenate(hist) if keep_history else None)
+
+
+def simulate_many(cases, revolutions, progress=None, chunks=20):
+    """Transient runs of many cases from zero initial conditions, in lock-step compiled batches
+    (cases sharing n_elements and steps_per_rev run together).
+
+    Returns, in input order, a SimulationResult per case, or the ConvergenceError of a case whose
+    integration failed (the others are not affected).  progress(done, total) counts case-steps."""
+    cases = [c if isinstance(c, Case) else Case.from_dict(c) for c in cases]
+    revolutions = in_range("revolutions", revolutions, 0, None, True)
+    groups = {}
+    for i, c in enumerate(cases):
+        groups.setdefault((c.n_elements, c.steps_per_rev), []).append(i)
+    total = sum(max(1, int(round(revolutions * cases[i].steps_per_rev))) for i in range(len(cases)))
+    out = [None] * len(cases)
+    done_total = 0
+    for (n, spr), idx in sorted(groups.items()):
+        batch = _engine.Batch([cases[i] for i in idx])
+        n_steps = max(1, int(round(revolutions * spr)))
+        B, N = len(idx), batch.N
+        D, V, A = np.zeros((B, N)), np.zeros((B, N)), None
+        status = np.zeros(B, dtype=np.int64)
+        fail_step, fail_res = np.zeros(B, dtype=np.int64), np.zeros(B)
+        ys, its = [], []
+        size = max(1, -(-n_steps // chunks))
+        done = 0
+        while done < n_steps:
+            k = min(size, n_steps - done)
+            res = _engine.march(batch, k, D0=D, V0=V, A0=A, step0=done, status=status)
+            new_fail = (res.status != _engine.OK) & (status == _engine.OK)
+            fail_step[new_fail], fail_res[new_fail] = res.fail_step[new_fail], res.fail_residual[new_fail]
+            status = res.status
+            ys.append(res.y if done == 0 else res.y[:, 1:])
+            its.append(res.iterations)
+            D, V, A = res.D, res.V, res.A
+            done += k
+            if progress is not None:
+                progress(done_total + done * B, total)
+        done_total += n_steps * B
+        y, iterations = np.concatenate(ys, axis=1), np.concatenate(its, axis=1)
+        for j, i in enumerate(idx):
+            c = cases[i]
+            dt = batch.par[j, 5]
+            if status[j] != _engine.OK:
+                step = int(fail_step[j])
+                out[i] = ConvergenceError(
+                    f"{_engine.STATUS_TEXT[int(status[j])]} in step {step} (t* = {step * dt:.6g}): "
+                    f"residual norm {fail_res[j]:.3e}", step=step, time=step * dt,
+                    residual=float(fail_res[j]))
+                continue
+            t = dt * np.arange(n_steps + 1)
+            out[i] = SimulationResult(
+                t=t, theta=c.omega * t, v_mid=y[j, :, 0], u_end=y[j, :, 1], extension=y[j, :, 2],
+                iterations=iterations[j].astype(np.int32),
+                settings=dict(c.as_dict(), revolutions=revolutions, engine="compiled"))
+    return out

@@ -13,11 +13,15 @@ class ModelSpec:
     formulation: str
     damping: str
     label: str          # for plot titles
+    membrane: str = "pointwise"
 
 
-PAPER = ModelSpec("paper", "paper", "paper", "paper model (paper formulation, eq. 24 damping)")
+PAPER = ModelSpec("paper", "paper", "paper", "paper model (printed form, eq. 24 damping)")
+# The consistent model uses the element-mean membrane strain: the plain element locks (audit §6:
+# with Kelvin-Voigt damping it needs ~128 elements for 1 % at Omega* = 0.8, the averaged one 4).
 CONSISTENT = ModelSpec("consistent", "lagrange", "kelvin-voigt",
-                       "consistent model (Lagrange equations, Kelvin-Voigt damping)")
+                       "consistent model (Lagrange, Kelvin-Voigt, averaged membrane)",
+                       membrane="averaged")
 MODELS = (PAPER, CONSISTENT)
 APPROACHES = ("A", "B", "C")
 FIGURES = (2, 3, 4, 5, 6, 7, 8)
@@ -43,7 +47,7 @@ class ReproduceConfig:
     # the paper's element counts (Figures 4-8); a model never uses fewer than these
     paper_elements: dict = field(default_factory=lambda: {"A": 16, "B": 4, "C": 4})
     # element-count convergence check: ladder of counts, speeds, relative tolerance
-    conv_ladder: tuple = (2, 4, 8, 16, 32, 64, 128, 256)
+    conv_ladder: tuple = (2, 4, 8, 16, 32, 64)
     conv_omegas: tuple = (0.1, 0.8)
     conv_tol: float = 0.01
     # a-posteriori refinement check: the Figure 6 cases at these speeds, with 2 n elements

@@ -63,14 +63,15 @@ def make_case(cfg, model_key, approach, n, omega, eps=None, ms=None, steps=None)
     m = model_spec(model_key)
     return Case(a=cfg.a, eps=cfg.eps if eps is None else eps, ms=cfg.ms if ms is None else ms,
                 mu=cfg.mu, omega=omega, approach=approach, formulation=m.formulation,
-                damping=m.damping, n_elements=n,
+                damping=m.damping, membrane=m.membrane, n_elements=n,
                 steps_per_rev=cfg.steps_per_rev if steps is None else steps, integrator="newton")
 
 
 def steady_row(model_key, s, **extra):
     """Flat record of a SteadyState (numbers as floats; NaN where there is no periodic state)."""
     c = s.case
-    row = dict(model=model_key, formulation=c.formulation, damping=c.damping, approach=c.approach,
+    row = dict(model=model_key, formulation=c.formulation, damping=c.damping, membrane=c.membrane,
+               approach=c.approach,
                n_elements=c.n_elements, steps_per_rev=c.steps_per_rev, omega=c.omega, eps=c.eps,
                ms=c.ms, status=s.status,
                amplitude=s.amplitude if s.status == STABLE else math.nan,
@@ -399,7 +400,7 @@ def csv_table(data):
         rows = []
         for c in data["curves"]:
             s, m = c.spec, model_spec(c.spec.model)
-            base = dict(model=s.model, formulation=m.formulation, damping=m.damping,
+            base = dict(model=s.model, formulation=m.formulation, damping=m.damping, membrane=m.membrane,
                         approach=s.approach, n_elements=s.n_elements, steps_per_rev=s.steps_per_rev,
                         omega=s.omega, eps=s.eps, ms=s.ms, status=c.status, message=c.message)
             if c.ok:

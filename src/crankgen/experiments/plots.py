@@ -166,7 +166,7 @@ def _legend_with_status(ax, rows, fontsize=7, below=False, ncol=1):
 
 
 def plot_figure5(data, cfg, counts):
-    fig, axes = panels(2, 2, width=6.2, height=4.0)
+    fig, axes = panels(2, 2, width=6.2, height=4.0, space_below=0.9)
     for j, m in enumerate(MODELS):
         rows = [r for r in data["rows"] if r["model"] == m.key]
         for i, log in enumerate((False, True)):
@@ -196,7 +196,7 @@ def plot_figure5(data, cfg, counts):
 
 
 def plot_figure6(data, cfg, counts):
-    fig, axes = panels(len(cfg.fig6_eps), 2, width=6.4, height=4.8)
+    fig, axes = panels(len(cfg.fig6_eps), 2, width=6.4, height=4.8, space_below=0.9)
     for j, m in enumerate(MODELS):
         for i, eps in enumerate(cfg.fig6_eps):
             ax = axes[i, j]

@@ -87,8 +87,8 @@ def _settings(cfg, total, files):
                  ["steady_states options", ", ".join(f"{k} = {v}" for k, v in cfg.steady_options.items()) or "defaults"],
              ]), "",
              "Models (every figure is computed for both):", "",
-             table(["model", "formulation", "damping", "description"],
-                   [[m.key, m.formulation, m.damping, m.label] for m in MODELS]), ""]
+             table(["model", "formulation", "damping", "membrane", "description"],
+                   [[m.key, m.formulation, m.damping, m.membrane, m.label] for m in MODELS]), ""]
     return lines
 
 

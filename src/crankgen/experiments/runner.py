@@ -8,9 +8,9 @@ from pathlib import Path
 
 from .. import steady as _steady
 from ..errors import CrankgenError
-from ..parameters import Mechanism
+from ..cases import Case
 from ..progress import Progress
-from ..simulation import simulate
+from ..simulation import simulate_many
 from . import figures as F
 from . import plots, report
 from .config import FIGURES, ReproduceConfig
@@ -56,29 +56,34 @@ class Context:
         return states
 
     def transients(self, specs, label):
-        """Runs from zero initial conditions; a run that fails is returned with status "failed"."""
+        """Runs from zero initial conditions, batched in the compiled engine (simulate_many); a run
+        that fails is returned with status "failed" and where it failed."""
         specs = list(specs)
-        steps = [max(1, int(round(s.revolutions * s.steps_per_rev))) for s in specs]
-        self.log(f"{label}: {len(specs)} runs, {sum(steps)} time steps")
-        out = []
-        with Progress(label, sum(steps), stream=self.stream, enabled=not self.quiet) as bar:
+        cfg = self.config
+        groups = {}
+        for i, s in enumerate(specs):
+            groups.setdefault(s.revolutions, []).append(i)
+        total = sum(max(1, int(round(s.revolutions * s.steps_per_rev))) for s in specs)
+        self.log(f"{label}: {len(specs)} runs, {total} time steps")
+        out = [None] * len(specs)
+        with Progress(label, total, stream=self.stream, enabled=not self.quiet) as bar:
             offset = 0
-            for s, n in zip(specs, steps):
-                m = F.model_spec(s.model)
-                mech = Mechanism(a=self.config.a, eps=s.eps, ms=s.ms, mu=self.config.mu)
-                try:
-                    r = simulate(mech, omega=s.omega, approach=s.approach,
-                                 formulation=m.formulation, n_elements=s.n_elements,
-                                 steps_per_rev=s.steps_per_rev, revolutions=s.revolutions,
-                                 integrator="newton", damping=m.damping,
-                                 progress=lambda d, _n, o=offset: bar(o + d))
-                    out.append(F.TransientCurve(s, t=r.t, v_mid=r.v_mid))
-                except CrankgenError as exc:
-                    t_fail = getattr(exc, "time", None)
-                    out.append(F.TransientCurve(s, status="failed", message=str(exc),
-                                                fail_time=math.nan if t_fail is None else float(t_fail)))
-                    bar(offset + n)
-                offset += n
+            for revs, idx in groups.items():
+                cases = []
+                for i in idx:
+                    s, m = specs[i], F.model_spec(specs[i].model)
+                    cases.append(Case(a=cfg.a, eps=s.eps, ms=s.ms, mu=cfg.mu, omega=s.omega,
+                                      approach=s.approach, formulation=m.formulation,
+                                      damping=m.damping, membrane=m.membrane,
+                                      n_elements=s.n_elements, steps_per_rev=s.steps_per_rev))
+                results = simulate_many(cases, revs, progress=lambda d, _t, o=offset: bar(o + d))
+                for i, r in zip(idx, results):
+                    if isinstance(r, CrankgenError):
+                        out[i] = F.TransientCurve(specs[i], status="failed", message=str(r),
+                                                  fail_time=math.nan if r.time is None else float(r.time))
+                    else:
+                        out[i] = F.TransientCurve(specs[i], t=r.t, v_mid=r.v_mid)
+                offset += sum(max(1, int(round(revs * specs[i].steps_per_rev))) for i in idx)
         return out
 
 
