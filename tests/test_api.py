@@ -128,3 +128,11 @@ def test_generated_check_detects_drift(tmp_path):
     (tmp_path / "extra.py").write_text("x = 1\n")
     problems = check(tmp_path, files)
     assert len(problems) == 2
+
+
+def test_cli_audit_writes_the_report(tmp_path):
+    rc = cli_main(["audit", "--out", str(tmp_path), "--sections", "1", "--quiet"])
+    assert rc == 0
+    text = (tmp_path / "report.md").read_text(encoding="utf-8")
+    assert "## 1. Energies and dissipation functions by order" in text and "## 2." not in text
+    assert cli_main(["audit", "--out", str(tmp_path), "--sections", "9", "--quiet"]) == 2

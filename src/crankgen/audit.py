@@ -105,15 +105,16 @@ ERRATA_TEXT = {
 }
 
 
-def write_report(out_dir="audit", sections=None):
-    """Write out_dir/report.md with the chosen sections (default: all of SECTIONS); return its path."""
+def write_report(out_dir="audit", sections=None, progress=None):
+    """Write out_dir/report.md with the chosen sections (default: all of SECTIONS); return its path.
+    progress(section number) is called as each section starts."""
     chosen = SECTIONS if sections is None else tuple(sorted(set(sections)))
     unknown = [k for k in chosen if k not in SECTIONS]
     if unknown:
         raise ParameterError(f"sections must be among {SECTIONS}, got {unknown}")
     from ._derive import audit as derived     # lazy: SymPy is loaded here, not at import time
     report = _Report(derived)
-    text = report.document(chosen)
+    text = report.document(chosen, progress)
     path = Path(out_dir) / "report.md"
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(text, encoding="utf-8")
@@ -184,11 +185,13 @@ class _Report:
         return self.table([first] + [SLOT_TITLES[k] for k in slots], rows)
 
     # ---- document -------------------------------------------------------------------------
-    def document(self, sections):
+    def document(self, sections, progress=None):
         parts = [self.preamble(sections)]
         builders = {1: self.section1, 2: self.section2, 3: self.section3, 4: self.section4,
                     5: self.section5, 6: self.section6}
         for k in sections:
+            if progress is not None:
+                progress(k)
             parts.append(f"## {k}. {TITLES[k]}\n\n" + builders[k]())
         return "\n".join(parts)
 

@@ -168,6 +168,9 @@ class _BatchSolver:
             self.message[i] = f"shooting did not converge in {self.max_shooting} iterations; marched instead"
 
     def _march_until_periodic(self, active):
+        """March revolution by revolution until the state repeats every revolution (periodic),
+        every second revolution (a period-2, sub-harmonic response: reported, not averaged away),
+        or max_revolutions is reached."""
         prev2 = np.full_like(self.X, np.nan)
         prev = self.X.copy()
         while active.any():
@@ -178,13 +181,13 @@ class _BatchSolver:
                     continue
                 self.periods[i] += 1
                 change = _scaled_change(prev[i:i + 1], X1[i:i + 1], self.S[i:i + 1])[0]
+                two = _scaled_change(prev2[i:i + 1], X1[i:i + 1], self.S[i:i + 1])[0]
                 self.residual[i] = change
                 self.X[i] = X1[i]
                 if change < self.tol:
                     self.status[i] = "periodic"
                     active[i] = False
-                elif self.periods[i] >= self.max_revolutions:
-                    two = _scaled_change(prev2[i:i + 1], X1[i:i + 1], self.S[i:i + 1])[0]
+                elif two < self.tol or self.periods[i] >= self.max_revolutions:
                     kind = ("repeats every 2 revolutions (sub-harmonic response)" if two < self.tol
                             else "no periodic state with the crank period")
                     self.status[i] = "not-periodic"

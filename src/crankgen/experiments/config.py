@@ -108,7 +108,7 @@ class ReproduceConfig:
             fig5_eps=(0.005, 0.01, 0.03, 0.1),
             fig6_omegas=_speeds(0.1, 1.6, 0.1),
             ext_ms=(0.0, 0.5, 2.0), envelope_revolutions=30, envelope_window=5,
-            steady_options={"max_revolutions": 100})
+            steady_options={"max_revolutions": 100, "tol": 1e-6})
 
     @classmethod
     def tiny(cls):
