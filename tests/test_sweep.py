@@ -51,7 +51,7 @@ def reference():
 def _fake_states(calls, raise_for=()):
     """Stand-in for steady_states: instant synthetic results; raises for cases with omega in
     raise_for; records every case it is given."""
-    def fake(cases, tol=1e-8, max_revolutions=400, progress=None):
+    def fake(cases, tol=1e-8, max_revolutions=400, progress=None, parallel=None):
         cases = list(cases)
         calls.extend(cases)
         if any(c.omega in raise_for for c in cases):

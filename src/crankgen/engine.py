@@ -625,8 +625,18 @@ def _march_impl(codes, par, dofs, kb, l, scales, mid_e, Nv_mid, G, beta, gamma, 
         A1[b, :] = acc
 
 
-_march_serial = njit(cache=True)(_march_impl)
-_march_parallel = njit(cache=True, parallel=True)(_march_impl)
+def _variant(impl, name, parallel):
+    """A compiled copy of impl under its own name: numba's on-disk cache is keyed by the function's
+    qualified name, so the serial and the parallel compilation must not share one."""
+    import types
+    fn = types.FunctionType(impl.__code__, impl.__globals__, name, impl.__defaults__, impl.__closure__)
+    fn.__qualname__ = name
+    fn.__doc__ = impl.__doc__
+    return njit(cache=True, parallel=parallel)(fn)
+
+
+_march_serial = _variant(_march_impl, "_march_serial", False)
+_march_parallel = _variant(_march_impl, "_march_parallel", True)
 
 
 @njit(cache=True)
@@ -816,8 +826,8 @@ def _revolution_impl(codes, par, dofs, kb, l, scales, beta, gamma, tol, max_iter
         J[b, N:, :] = Dv
 
 
-_revolution_serial = njit(cache=True)(_revolution_impl)
-_revolution_parallel = njit(cache=True, parallel=True)(_revolution_impl)
+_revolution_serial = _variant(_revolution_impl, "_revolution_serial", False)
+_revolution_parallel = _variant(_revolution_impl, "_revolution_parallel", True)
 
 
 def revolution(batch, X0, step0=0, active=None, parallel=None, beta=0.25, gamma=0.5, tol=1e-10,

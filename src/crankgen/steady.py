@@ -85,8 +85,9 @@ def _failure_text(res, b, dt):
 class _BatchSolver:
     """Steady states of one engine.Batch (cases sharing mesh and steps per revolution)."""
 
-    def __init__(self, cases, tol, max_revolutions, warmup, max_shooting, method):
+    def __init__(self, cases, tol, max_revolutions, warmup, max_shooting, method, parallel=None):
         self.batch = engine.Batch(cases)
+        self.parallel = parallel
         self.cases = list(cases)
         self.tol, self.max_revolutions = tol, max_revolutions
         self.warmup, self.max_shooting, self.method = warmup, max_shooting, method
@@ -104,7 +105,8 @@ class _BatchSolver:
         """March the active cases revs revolutions from their current X (theta = 0)."""
         b, spr, N = self.batch, self.batch.steps_per_rev, self.batch.N
         pre = np.where(active, engine.OK, engine.NOT_CONVERGED)
-        res = engine.march(b, revs * spr, D0=self.X[:, :N], V0=self.X[:, N:], status=pre)
+        res = engine.march(b, revs * spr, D0=self.X[:, :N], V0=self.X[:, N:], status=pre,
+                           parallel=self.parallel)
         X1 = np.concatenate([res.D, res.V], axis=1)
         for i in np.flatnonzero(active & (res.status != engine.OK)):
             self.status[i] = "failed"
@@ -131,7 +133,7 @@ class _BatchSolver:
         best = np.full(len(self.cases), math.inf)
         start = self.X.copy()
         for it in range(1, self.max_shooting + 1):
-            X1, J, st = engine.revolution(self.batch, self.X, active=active)
+            X1, J, st = engine.revolution(self.batch, self.X, active=active, parallel=self.parallel)
             change = _scaled_change(self.X, X1, self.S)
             for i in np.flatnonzero(active):
                 if st[i] != engine.OK or not np.isfinite(change[i]) or change[i] > 1e3 * min(best[i], 1.0):
@@ -200,7 +202,8 @@ class _BatchSolver:
         b, spr, N = self.batch, self.batch.steps_per_rev, self.batch.N
         show = np.array([s in ("periodic", "unstable") for s in self.status])
         pre = np.where(show, engine.OK, engine.NOT_CONVERGED)
-        res = engine.march(b, spr, D0=self.X[:, :N], V0=self.X[:, N:], status=pre)
+        res = engine.march(b, spr, D0=self.X[:, :N], V0=self.X[:, N:], status=pre,
+                           parallel=self.parallel)
         theta = 2 * math.pi * np.arange(spr + 1) / spr
         out = []
         for i, case in enumerate(self.cases):
@@ -222,11 +225,12 @@ class _BatchSolver:
 
 
 def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="shooting",
-                  warmup=3, max_shooting=12):
+                  warmup=3, max_shooting=12, parallel=None):
     """Steady states of many cases (list in, list out, same order), batched: cases that share
     n_elements and steps_per_rev run together in the compiled engine.  A failing case comes back
     with status "failed" and its message; it does not stop the others.
-    progress(done, total) is called after each batch."""
+    progress(done, total) is called after each batch.  parallel: run a batch's cases on all cores
+    (default: when there is more than one case), or serially (False)."""
     cases = [c if isinstance(c, Case) else Case.from_dict(c) for c in cases]
     tol = in_range("tol", tol, 0, None, True)
     max_revolutions = integer("max_revolutions", max_revolutions, 1)
@@ -241,7 +245,7 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
         idx = groups[key]
         start = time.perf_counter()
         solver = _BatchSolver([cases[i] for i in idx], tol, max_revolutions,
-                              min(warmup, max_revolutions), max_shooting, method)
+                              min(warmup, max_revolutions), max_shooting, method, parallel)
         group_results = solver.run()
         share = (time.perf_counter() - start) / len(idx)
         for i, r in zip(idx, group_results):

@@ -59,20 +59,22 @@ def _plain(value):
     return value.item() if isinstance(value, np.generic) else value
 
 
-def _run_chunk(cases, tol=1e-8, max_revolutions=400):
+def _run_chunk(cases, tol=1e-8, max_revolutions=400, parallel=None):
     """Rows of one chunk of cases (module level, so executors pickle it by reference).
 
     The whole chunk goes to `steady_states` at once; if that raises, the cases are run one by one
-    so that only the case at fault is recorded as failed."""
+    so that only the case at fault is recorded as failed.  In an executor's worker the engine runs
+    serially (parallel=False): the executor is the parallelism, and a worker forked from a process
+    whose OpenMP threads are running must not start OpenMP threads of its own."""
     try:
-        states = steady_states(cases, tol=tol, max_revolutions=max_revolutions)
+        states = steady_states(cases, tol=tol, max_revolutions=max_revolutions, parallel=parallel)
         if len(states) != len(cases):
             raise RuntimeError(f"steady_states returned {len(states)} results for {len(cases)} cases")
         return [{k: _plain(v) for k, v in s.row().items()} for s in states]
     except Exception as exc:
         if len(cases) == 1:
             return [_failed_row(cases[0], exc)]
-    return [row for case in cases for row in _run_chunk([case], tol, max_revolutions)]
+    return [row for case in cases for row in _run_chunk([case], tol, max_revolutions, parallel)]
 
 
 def _as_cases(cases):
@@ -238,7 +240,7 @@ def sweep(cases, executor=None, checkpoint=None, batch_size=64, tol=1e-8, progre
         for chunk in chunks:
             finish(chunk, _run_chunk(chunk, tol, max_revolutions))
     else:
-        futures = {executor.submit(_run_chunk, chunk, tol, max_revolutions): chunk
+        futures = {executor.submit(_run_chunk, chunk, tol, max_revolutions, False): chunk
                    for chunk in chunks}
         try:
             for future in cf.as_completed(futures):
