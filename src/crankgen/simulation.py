@@ -89,8 +89,12 @@ def simulate(mech, omega=0.8, approach="A", formulation="lagrange", n_elements=1
     case = Case(a=mech.a, eps=mech.eps, ms=mech.ms, mu=mech.mu, omega=omega, approach=approach,
                 formulation=formulation, damping=damping, n_elements=model.mesh.n_elements,
                 steps_per_rev=steps_per_rev, integrator=integrator, membrane=membrane)
-    y, iterations, D = _march_in_chunks(_engine.Batch([case]), d0, v0, n_steps, tol, store_nodes,
-                                        progress, dt)
+    y, iterations, status, fail_step, fail_res, D = _march_in_chunks(
+        _engine.Batch([case]), d0[None], v0[None], n_steps, tol, store_nodes,
+        None if progress is None else (lambda done: progress(done, n_steps)))
+    if status[0] != _engine.OK:
+        raise _failure(status[0], fail_step[0], fail_res[0], dt)
+    y, iterations, D = y[0], iterations[0].astype(np.int32), None if D is None else D[0]
     t = dt * np.arange(n_steps + 1)
     theta = omega * t
     nodes = None
@@ -100,33 +104,42 @@ def simulate(mech, omega=0.8, approach="A", formulation="lagrange", n_elements=1
                             iterations=iterations, settings=info, nodes=nodes)
 
 
-def _march_in_chunks(batch, d0, v0, n_steps, tol, keep_history, progress, dt, chunks=20):
-    """Run the compiled engine in a few chunks (so progress can be shown); raise on failure."""
-    N = batch.N
-    D, V, A = d0[None].copy(), v0[None].copy(), None
+def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_history=False, progress=None,
+                     chunks=20):
+    """Run the compiled engine from (D0, V0) in a few chunks, so that progress(done_steps) can be
+    shown; a case that fails stops alone.  Returns (y, iterations, status, fail_step,
+    fail_residual, D_history or None) with y (B, n_steps + 1, 3)."""
+    B = len(batch)
+    D, V, A = np.array(D0, dtype=float), np.array(V0, dtype=float), None
+    status = np.zeros(B, dtype=np.int64)
+    fail_step, fail_res = np.zeros(B, dtype=np.int64), np.zeros(B)
     ys, its, hist = [], [], []
-    done = 0
     size = max(1, -(-n_steps // chunks)) if progress is not None else n_steps
+    done = 0
     while done < n_steps:
         k = min(size, n_steps - done)
         res = _engine.march(batch, k, D0=D, V0=V, A0=A, step0=done, keep_history=keep_history,
-                            tol=tol)
-        if res.status[0] != _engine.OK:
-            step = int(res.fail_step[0])
-            what = _engine.STATUS_TEXT[int(res.status[0])]
-            raise ConvergenceError(
-                f"{what} in step {step} (t* = {step * dt:.6g}): residual norm {res.fail_residual[0]:.3e}",
-                step=step, time=step * dt, residual=float(res.fail_residual[0]))
-        ys.append(res.y[0] if done == 0 else res.y[0, 1:])
-        its.append(res.iterations[0])
+                            tol=tol, status=status)
+        new_fail = (res.status != _engine.OK) & (status == _engine.OK)
+        fail_step[new_fail], fail_res[new_fail] = res.fail_step[new_fail], res.fail_residual[new_fail]
+        status = res.status
+        ys.append(res.y if done == 0 else res.y[:, 1:])
+        its.append(res.iterations)
         if keep_history:
-            hist.append(res.D_history[0] if done == 0 else res.D_history[0, 1:])
+            hist.append(res.D_history if done == 0 else res.D_history[:, 1:])
         D, V, A = res.D, res.V, res.A
         done += k
         if progress is not None:
-            progress(done, n_steps)
-    return (np.concatenate(ys), np.concatenate(its).astype(np.int32),
-            np.concatenate(hist) if keep_history else None)
+            progress(done)
+    return (np.concatenate(ys, axis=1), np.concatenate(its, axis=1), status, fail_step, fail_res,
+            np.concatenate(hist, axis=1) if keep_history else None)
+
+
+def _failure(status, step, residual, dt):
+    """The ConvergenceError of a case that stopped in the compiled engine."""
+    return ConvergenceError(
+        f"{_engine.STATUS_TEXT[int(status)]} in step {step} (t* = {step * dt:.6g}): residual norm "
+        f"{residual:.3e}", step=int(step), time=step * dt, residual=float(residual))
 
 
 def simulate_many(cases, revolutions, progress=None, chunks=20):
@@ -147,35 +160,14 @@ def simulate_many(cases, revolutions, progress=None, chunks=20):
         batch = _engine.Batch([cases[i] for i in idx])
         n_steps = max(1, int(round(revolutions * spr)))
         B, N = len(idx), batch.N
-        D, V, A = np.zeros((B, N)), np.zeros((B, N)), None
-        status = np.zeros(B, dtype=np.int64)
-        fail_step, fail_res = np.zeros(B, dtype=np.int64), np.zeros(B)
-        ys, its = [], []
-        size = max(1, -(-n_steps // chunks))
-        done = 0
-        while done < n_steps:
-            k = min(size, n_steps - done)
-            res = _engine.march(batch, k, D0=D, V0=V, A0=A, step0=done, status=status)
-            new_fail = (res.status != _engine.OK) & (status == _engine.OK)
-            fail_step[new_fail], fail_res[new_fail] = res.fail_step[new_fail], res.fail_residual[new_fail]
-            status = res.status
-            ys.append(res.y if done == 0 else res.y[:, 1:])
-            its.append(res.iterations)
-            D, V, A = res.D, res.V, res.A
-            done += k
-            if progress is not None:
-                progress(done_total + done * B, total)
+        report = None if progress is None else (lambda done, o=done_total, b=B: progress(o + done * b, total))
+        y, iterations, status, fail_step, fail_res, _ = _march_in_chunks(
+            batch, np.zeros((B, N)), np.zeros((B, N)), n_steps, progress=report, chunks=chunks)
         done_total += n_steps * B
-        y, iterations = np.concatenate(ys, axis=1), np.concatenate(its, axis=1)
         for j, i in enumerate(idx):
-            c = cases[i]
-            dt = batch.par[j, 5]
+            c, dt = cases[i], batch.par[j, 5]
             if status[j] != _engine.OK:
-                step = int(fail_step[j])
-                out[i] = ConvergenceError(
-                    f"{_engine.STATUS_TEXT[int(status[j])]} in step {step} (t* = {step * dt:.6g}): "
-                    f"residual norm {fail_res[j]:.3e}", step=step, time=step * dt,
-                    residual=float(fail_res[j]))
+                out[i] = _failure(status[j], fail_step[j], fail_res[j], dt)
                 continue
             t = dt * np.arange(n_steps + 1)
             out[i] = SimulationResult(
