@@ -106,8 +106,8 @@ class ReproduceConfig:
             fig2_revolutions=2, fig3_revolutions=4, fig3_elements=(2, 4, 8, 16),
             fig4_revolutions=4, fig4_ms=(0.0, 0.5, 2.0),
             fig5_eps=(0.005, 0.01, 0.03, 0.1),
-            fig6_omegas=_speeds(0.1, 1.6, 0.1),
-            ext_ms=(0.0, 0.5, 2.0), envelope_revolutions=30, envelope_window=5,
+            fig6_omegas=_speeds(0.2, 1.6, 0.2),
+            ext_ms=(0.0, 0.5, 2.0), envelope_revolutions=20, envelope_window=5,
             steady_options={"max_revolutions": 100, "tol": 1e-6})
 
     @classmethod
