@@ -135,4 +135,6 @@ def test_cli_audit_writes_the_report(tmp_path):
     assert rc == 0
     text = (tmp_path / "report.md").read_text(encoding="utf-8")
     assert "## 1. Energies and dissipation functions by order" in text and "## 2." not in text
-    assert cli_main(["audit", "--out", str(tmp_path), "--sections", "9", "--quiet"]) == 2
+    with pytest.raises(SystemExit) as exc:                  # argparse: usage and a one-line error
+        cli_main(["audit", "--out", str(tmp_path), "--sections", "9", "--quiet"])
+    assert exc.value.code == 2

@@ -4,6 +4,7 @@ import argparse
 import sys
 from pathlib import Path
 
+from .audit import SECTIONS as AUDIT_SECTIONS
 from .errors import CrankgenError
 from .kernels import APPROACHES, DAMPING_MODELS, FORMULATIONS
 from .newmark import SCHEMES
@@ -62,14 +63,20 @@ def _cmd_simulate(args):
     return 0
 
 
-def _figure_list(text):
-    try:
-        figs = sorted({int(x) for x in text.replace(" ", "").split(",") if x})
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a comma-separated list of figure numbers, got {text!r}")
-    if not figs or any(f < 2 or f > 8 for f in figs):
-        raise argparse.ArgumentTypeError(f"figure numbers must be between 2 and 8, got {text!r}")
-    return figs
+def _number_list(what, low, high):
+    """argparse type: a comma-separated list of integers between low and high (sorted, unique)."""
+    def parse(text):
+        try:
+            values = sorted({int(x) for x in text.replace(" ", "").split(",") if x})
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected a comma-separated list of {what} numbers, got {text!r}")
+        if not values or any(v < low or v > high for v in values):
+            raise argparse.ArgumentTypeError(f"{what} numbers must be between {low} and {high}, got {text!r}")
+        return values
+    return parse
+
+
+_figure_list = _number_list("figure", 2, 8)
 
 
 def _cmd_reproduce(args):
@@ -98,13 +105,6 @@ def _cmd_audit(args):
     path = write_report(args.out, sections=sections, progress=progress)
     print(f"wrote {path} in {time.perf_counter() - start:.1f} s")
     return 0
-
-
-def _section_list(text):
-    try:
-        return sorted({int(x) for x in text.replace(" ", "").split(",") if x})
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a comma-separated list of section numbers, got {text!r}")
 
 
 def build_parser():
@@ -151,7 +151,8 @@ def build_parser():
                                    "the term groups along steady trajectories, 5 the quartic term, 6 element "
                                    "convergence and membrane locking. Offline, under a minute.")
     p.add_argument("--out", default="audit", help="output folder (default ./audit); report.md is replaced")
-    p.add_argument("--sections", type=_section_list, default=None, metavar="LIST",
+    p.add_argument("--sections", type=_number_list("section", min(AUDIT_SECTIONS), max(AUDIT_SECTIONS)),
+                   default=None, metavar="LIST",
                    help="comma-separated sections to write (default: all, 1-6)")
     p.add_argument("--quiet", action="store_true", help="no progress output")
     p.set_defaults(func=_cmd_audit)
