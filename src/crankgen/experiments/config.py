@@ -44,6 +44,7 @@ class ReproduceConfig:
     ms: float = 0.5
     mu: float = 0.5
     steps_per_rev: int = 100
+    dpi: int = 120                       # resolution of the PNG figures
     # the paper's element counts (Figures 4-8); a model never uses fewer than these
     paper_elements: dict = field(default_factory=lambda: {"A": 16, "B": 4, "C": 4})
     # element-count convergence check: ladder of counts, speeds, relative tolerance
@@ -102,13 +103,13 @@ class ReproduceConfig:
     def quick(cls):
         """Coarse pass: fewer speeds, eps values and revolutions; ladder up to 64 elements."""
         return cls(
-            preset="quick", conv_ladder=(2, 4, 8, 16, 32, 64), refine_omegas=(), refine_fig5=False,
+            preset="quick", dpi=90, conv_ladder=(2, 4, 8, 16, 32, 64), refine_omegas=(), refine_fig5=False,
             fig2_revolutions=2, fig3_revolutions=4, fig3_elements=(2, 4, 8, 16),
             fig4_revolutions=4, fig4_ms=(0.0, 0.5, 2.0),
             fig5_eps=(0.005, 0.01, 0.03, 0.1),
             fig6_omegas=_speeds(0.2, 1.6, 0.2),
             ext_ms=(0.0, 0.5, 2.0), envelope_revolutions=20, envelope_window=5,
-            steady_options={"max_revolutions": 100, "tol": 1e-6})
+            steady_options={"max_revolutions": 50, "tol": 1e-6})
 
     @classmethod
     def tiny(cls):

@@ -116,7 +116,7 @@ def reproduce(out="results", config=None, force=False, quiet=False, figures=FIGU
         if kind == "csv":
             write_csv(out / name, *payload, overwrite=overwrite)
         elif kind == "png":
-            save_figure(payload, out / name, overwrite=overwrite)
+            save_figure(payload, out / name, overwrite=overwrite, dpi=config.dpi)
         else:
             atomic_write_text(out / name, payload, overwrite=overwrite)
         written.append(name)
