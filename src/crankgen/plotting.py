@@ -45,8 +45,10 @@ def panels(rows, cols, width=6.0, height=3.4, space_below=0.0, **kwargs):
     w, h = width * cols, h_row * rows
     top_margin, gap = 0.6, 0.75 + space_below        # inches: suptitle, axis labels + titles
     axes_h = (h - top_margin - 0.6 - space_below - gap * (rows - 1)) / rows
-    fig.subplots_adjust(left=0.8 / w, right=1 - 0.25 / w, bottom=(0.6 + space_below) / h,
-                        top=1 - top_margin / h, wspace=0.9 / ((w - 1.05 - 0.9 * (cols - 1)) / cols),
+    left, right, between = 0.9, 0.25, 1.15           # inches: y tick labels and axis label
+    fig.subplots_adjust(left=left / w, right=1 - right / w, bottom=(0.6 + space_below) / h,
+                        top=1 - top_margin / h,
+                        wspace=between / ((w - left - right - between * (cols - 1)) / cols),
                         hspace=gap / axes_h)
     return fig, axes
 
