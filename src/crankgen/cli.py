@@ -149,7 +149,7 @@ def build_parser():
                                    "functions by order, 2 element Euler-Lagrange equations by kind, 3 the "
                                    "printed matrix form against the derivation and ERRATA.md, 4 weights of "
                                    "the term groups along steady trajectories, 5 the quartic term, 6 element "
-                                   "convergence and membrane locking. Offline, under a minute.")
+                                   "convergence and membrane locking. Offline; about 20 s once the engine is compiled.")
     p.add_argument("--out", default="audit", help="output folder (default ./audit); report.md is replaced")
     p.add_argument("--sections", type=_number_list("section", min(AUDIT_SECTIONS), max(AUDIT_SECTIONS)),
                    default=None, metavar="LIST",
