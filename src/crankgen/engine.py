@@ -157,7 +157,7 @@ def _rod_terms(form, app, damp, secant, avg, q, qd, qdd, l, x0, rhoA, rhoI, EA, 
 
 
 @njit(cache=True)
-def _slider_terms(form, damp, us, usd, usdd, ms, a, kin, r, K, C, M, w2, w22a, w22b, w22c, w22d):
+def _slider_terms(form, us, usd, usdd, ms, a, kin, r, K, C, M, w2, w22a, w22b, w22c):
     """Slider residual and tangents on (u, v) of the last node, added into the last element."""
     th, thd, ph, phd, phdd = kin[0], kin[1], kin[2], kin[3], kin[4]
     if form == 0:
@@ -307,7 +307,7 @@ def element_terms(codes, par, secant, dofs, l, d, v, acc, kin, rE, KE, CE, ME, w
     """All element residuals/tangents of one case (constraint applied), written into rE, KE, CE, ME.
 
     ws is a workspace tuple of small arrays."""
-    (q, qd, qdd, w6, w66a, w66b, w66c, w66d, w2, w22a, w22b, w22c, w22d, T, Td, Tdd, t1, t2, t3) = ws
+    (q, qd, qdd, w6, w66a, w66b, w66c, w66d, w2, w22a, w22b, w22c, T, Td, Tdd, t1, t2, t3) = ws
     form, app, damp = codes[0], codes[1], codes[2]
     a, eps, ms, mu = par[0], par[1], par[2], par[3]
     rhoA, rhoI, EA, EI = 1.0, eps * eps, 1.0 / (PI4 * eps * eps), 1.0 / PI4
@@ -341,8 +341,8 @@ def element_terms(codes, par, secant, dofs, l, d, v, acc, kin, rE, KE, CE, ME, w
             _rod_groups_off(codes[5], codes[4] == 1, q, qd, qdd, l, e * l, rhoA, rhoI, EA, EI, a, kin,
                             rE[e], KE[e], CE[e], ME[e], w6, w66a, w66b, w66c)
         if last:
-            _slider_terms(form, damp, q[3:5], qd[3:5], qdd[3:5], ms, a, kin, rE[e], KE[e], CE[e],
-                          ME[e], w2, w22a, w22b, w22c, w22d)
+            _slider_terms(form, q[3:5], qd[3:5], qdd[3:5], ms, a, kin, rE[e], KE[e], CE[e],
+                          ME[e], w2, w22a, w22b, w22c)
             if codes[5] != 0:
                 _slider_groups_off(codes[5], q[3:5], qd[3:5], qdd[3:5], ms, a, kin, rE[e], KE[e],
                                    CE[e], ME[e], w2, w22a, w22b, w22c)
@@ -459,7 +459,7 @@ def band_matmul(dofs, kb, XE, X, out):
 def _make_ws():
     return (np.zeros(6), np.zeros(6), np.zeros(6), np.zeros(6), np.zeros((6, 6)), np.zeros((6, 6)),
             np.zeros((6, 6)), np.zeros((6, 6)), np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2)),
-            np.zeros((2, 2)), np.zeros((2, 2)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)),
+            np.zeros((2, 2)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)),
             np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)))
 
 

@@ -22,7 +22,7 @@ With integrator="one-pass" the step map is not the converged Newton map, so marc
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -249,16 +249,11 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
         group_results = solver.run()
         share = (time.perf_counter() - start) / len(idx)
         for i, r in zip(idx, group_results):
-            results[i] = _with_wall_time(r, share)
+            results[i] = replace(r, wall_time=share)
         done += len(idx)
         if progress is not None:
             progress(done, len(cases))
     return results
-
-
-def _with_wall_time(result, seconds):
-    from dataclasses import replace
-    return replace(result, wall_time=seconds)
 
 
 def steady_state(mech=None, omega=0.8, approach="A", formulation="lagrange", damping="paper",
