@@ -11,7 +11,7 @@ import sys
 from pathlib import Path
 
 from .emit import emit_module
-from .kernels import MODULES
+from .kernels import ACCUMULATING, MODULES
 
 COMMAND = "python -m derive"
 ROOT = Path(__file__).resolve().parent.parent
@@ -26,7 +26,7 @@ def render():
     """{file name: source} of every generated file, in a fixed order."""
     files = {"__init__.py": PACKAGE_DOC}
     for name, (title, build) in MODULES.items():
-        files[f"{name}.py"] = emit_module(title, build(), COMMAND)
+        files[f"{name}.py"] = emit_module(title, build(), COMMAND, accumulating=name in ACCUMULATING)
     return files
 
 

@@ -6,8 +6,13 @@
 - `name_into(..., out1, out2, ...)`: one element, scalar arguments, results written into
   preallocated arrays (every entry, zeros included).  Plain Python with `math`, written so that
   the runtime can compile it with numba for the hot path.
-Both come from the same specification and the same common-subexpression elimination (fixed
-prefix, canonical order), so the same derivation always gives byte-identical source.
+Residual kernels (outputs r and its tangents K = dr/dq, C = dr/dqd, M = dr/dqdd) also get two
+accumulating one-element variants for the Newton-Newmark iteration:
+- `name_residual_add(..., r)`: r += residual (no tangents, for iterations that reuse a factorization);
+- `name_newmark_add(..., cv, cd, r, S)`: r += residual and S += M + cv C + cd K, the element part of
+  the iteration matrix of eq. (37) (cv = gamma dt, cd = beta dt^2); structural zeros are skipped.
+Every variant comes from the same specification and a common-subexpression elimination with a fixed
+prefix and canonical order, so the same derivation always gives byte-identical source.
 """
 
 import hashlib
@@ -16,7 +21,9 @@ import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 from sympy.printing.pycode import PythonCodePrinter
 
-GENERATOR_VERSION = "2"
+GENERATOR_VERSION = "3"
+VARIANT_SUFFIXES = ("_into", "_residual_add", "_newmark_add")
+TANGENTS = ("K", "C", "M")   # d r / d q, d r / d qd, d r / d qdd
 CSE_PREFIX = "_c"
 
 
@@ -120,6 +127,58 @@ def emit_scalar_kernel(kernel, cse=None):
     return "\n".join(lines) + "\n"
 
 
+def is_residual_kernel(kernel):
+    """A kernel whose outputs are a residual r and (some of) its exact tangents K, C, M."""
+    names = [out.name for out in kernel.outputs]
+    return names[0] == "r" and "K" in names and all(n in TANGENTS or n in ("r", "K_sec") for n in names)
+
+
+def _accumulating(kernel, name, entries, extra_args, out_args, doc):
+    """Source of `name(inputs..., extra_args..., out_args...)` doing `out[idx] += expr` for every
+    (out name, idx, expr) of entries whose expression is not identically zero."""
+    printer = _ScalarPrinter()
+    entries = [(o, idx, e) for o, idx, e in entries if e != 0]
+    replacements, reduced = sp.cse([e for _, _, e in entries], symbols=sp.numbered_symbols(CSE_PREFIX),
+                                   order="canonical")
+    used = set().union(*(e.free_symbols for _, _, e in entries)) if entries else set()
+    args = [inp.name for inp in kernel.inputs] + list(extra_args) + list(out_args)
+    lines = [f"def {name}({', '.join(args)}):", f'    """{doc}"""']
+    for inp in kernel.inputs:
+        if _is_vector(inp):
+            for k, sym in enumerate(inp.symbols):
+                if sym in used:
+                    lines.append(f"    {sym.name} = {inp.name}[{k}]")
+    for sym, expr in replacements:
+        lines.append(f"    {sym} = {printer.doprint(expr)}")
+    for (out, idx, _), value in zip(entries, reduced):
+        index = ", ".join(str(i) for i in idx) if idx else "0"
+        lines.append(f"    {out}[{index}] += {printer.doprint(value)}")
+    return "\n".join(lines) + "\n"
+
+
+def emit_residual_add(kernel):
+    """`<name>_residual_add(inputs..., r)`: r += residual of one element."""
+    r = next(out for out in kernel.outputs if out.name == "r")
+    entries = [("r", idx, e) for idx, e in _entries(r.expr)]
+    return _accumulating(kernel, f"{kernel.name}_residual_add", entries, (), ("r",),
+                         f"{kernel.name} for one element, residual only: r += r_e.")
+
+
+def emit_newmark_add(kernel):
+    """`<name>_newmark_add(inputs..., cv, cd, r, S)`: r += r_e, S += M_e + cv C_e + cd K_e."""
+    cv, cd = sp.Symbol("cv"), sp.Symbol("cd")
+    weight = {"M": sp.Integer(1), "C": cv, "K": cd}
+    by_name = {out.name: out.expr for out in kernel.outputs}
+    r = by_name["r"]
+    S = sp.zeros(r.shape[0], r.shape[0])
+    for name, w in weight.items():
+        if name in by_name:
+            S += w * by_name[name]
+    entries = [("r", idx, e) for idx, e in _entries(r)] + [("S", idx, e) for idx, e in _entries(S)]
+    return _accumulating(kernel, f"{kernel.name}_newmark_add", entries, ("cv", "cd"), ("r", "S"),
+                         f"{kernel.name} for one element: r += r_e, S += M_e + cv C_e + cd K_e (eq. 37).")
+
+
 def emit_kernel(kernel):
     """Python source of one kernel function."""
     _validate(kernel)
@@ -175,8 +234,9 @@ def emit_kernel(kernel):
     return "\n".join(lines) + "\n"
 
 
-def emit_module(title, kernels, derive_command):
-    """Source of a generated module: header, import, kernels."""
+def emit_module(title, kernels, derive_command, accumulating=False):
+    """Source of a generated module: header, import, kernels (with the accumulating variants of
+    residual kernels if accumulating)."""
     header = [
         f'"""{title}',
         "",
@@ -189,8 +249,22 @@ def emit_module(title, kernels, derive_command):
         "",
         "import numpy",
         "",
-        f"__all__ = {[n for k in kernels for n in (k.name, k.name + '_into')]!r}",
+        f"__all__ = {[n for k in kernels for n in _names(k, accumulating)]!r}",
         "",
     ]
-    body = "\n\n".join(emit_kernel(k) + "\n\n" + emit_scalar_kernel(k) for k in kernels)
+    body = "\n\n".join(_sources(k, accumulating) for k in kernels)
     return "\n".join(header) + "\n" + body
+
+
+def _names(kernel, accumulating):
+    names = [kernel.name, kernel.name + "_into"]
+    if accumulating and is_residual_kernel(kernel):
+        names += [kernel.name + "_residual_add", kernel.name + "_newmark_add"]
+    return names
+
+
+def _sources(kernel, accumulating):
+    parts = [emit_kernel(kernel), emit_scalar_kernel(kernel)]
+    if accumulating and is_residual_kernel(kernel):
+        parts += [emit_residual_add(kernel), emit_newmark_add(kernel)]
+    return "\n\n".join(parts)

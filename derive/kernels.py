@@ -223,3 +223,5 @@ MODULES = {
     "damping": ("Damping forces: Kelvin-Voigt strain-rate damping and the printed eq. (24).", damping_kernels),
     "groups": ("Element forces of the consistent model split by kind (symbolic audit).", group_kernels),
 }
+# modules whose residual kernels also get the accumulating Newton-Newmark variants (emit.py)
+ACCUMULATING = ("lagrange", "paper", "damping")

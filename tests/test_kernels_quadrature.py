@@ -311,9 +311,10 @@ def test_paper_slider_damping(elems):
 # broadcasting: a leading batch axis behaves like a loop
 # --------------------------------------------------------------------------------------------
 
+VARIANTS = ("_into", "_residual_add", "_newmark_add")     # one-element variants of each kernel
 ALL_KERNELS = [(mod.__name__.rsplit(".", 1)[-1], name, getattr(mod, name))
                for mod in (shape, energy, lagrange, paper, damping) for name in mod.__all__
-               if not name.endswith("_into")]
+               if not name.endswith(VARIANTS)]
 
 VECTOR_SIZE = {"q": 6, "qd": 6, "qdd": 6, "qs": 2, "qsd": 2, "qsdd": 2}
 ELEMENT_SCALARS = {"l": (0.05, 0.5), "x0": (0.0, 0.9)}
@@ -401,12 +402,9 @@ def test_batch_axis_matches_loop(module, name, kernel, element_data):
 # the one-element `_into` variants (compiled with numba at run time) equal the vectorized ones
 # --------------------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("module,name,kernel", ALL_KERNELS, ids=[f"{m}.{n}" for m, n, _ in ALL_KERNELS])
-def test_into_variant_matches_vectorized(module, name, kernel):
-    """`<name>_into(inputs..., outputs...)` fills every entry of preallocated outputs with the same
-    numbers as the vectorized kernel (pure Python here; the runtime compiles it with numba)."""
-    into = getattr(sys.modules[kernel.__module__], name + "_into")
-    rng = np.random.default_rng(zlib.crc32(f"into.{module}.{name}".encode()))
+def _random_arguments(kernel, seed_text):
+    """One element's arguments of kernel, drawn in the physical ranges."""
+    rng = np.random.default_rng(zlib.crc32(seed_text.encode()))
     args = []
     for arg in inspect.signature(kernel).parameters:
         if arg in VECTOR_SIZE:
@@ -415,6 +413,15 @@ def test_into_variant_matches_vectorized(module, name, kernel):
         else:
             lo, hi = {**ELEMENT_SCALARS, **SCALAR_RANGE}[arg]
             args.append(float(rng.uniform(lo, hi)))
+    return args
+
+
+@pytest.mark.parametrize("module,name,kernel", ALL_KERNELS, ids=[f"{m}.{n}" for m, n, _ in ALL_KERNELS])
+def test_into_variant_matches_vectorized(module, name, kernel):
+    """`<name>_into(inputs..., outputs...)` fills every entry of preallocated outputs with the same
+    numbers as the vectorized kernel (pure Python here; the runtime compiles it with numba)."""
+    into = getattr(sys.modules[kernel.__module__], name + "_into")
+    args = _random_arguments(kernel, f"into.{module}.{name}")
     expected = kernel(*args)
     expected = expected if isinstance(expected, tuple) else (expected,)
     outs = [np.full(np.shape(e) if np.ndim(e) else (1,), np.nan) for e in expected]
@@ -422,3 +429,41 @@ def test_into_variant_matches_vectorized(module, name, kernel):
     for e, o in zip(expected, outs):
         np.testing.assert_allclose(o.reshape(np.shape(e)), e, rtol=1e-12,
                                    atol=1e-14 * np.max(np.abs(e)) + 1e-300)
+
+
+# --------------------------------------------------------------------------------------------
+# the accumulating variants of the Newton iteration: r += r_e and S += M_e + cv C_e + cd K_e
+# --------------------------------------------------------------------------------------------
+
+RESIDUAL_KERNELS = [(m, n, k) for m, n, k in ALL_KERNELS
+                    if hasattr(sys.modules[k.__module__], n + "_newmark_add")]
+
+
+def test_residual_kernels_have_accumulating_variants():
+    names = {f"{m}.{n}" for m, n, _ in RESIDUAL_KERNELS}
+    assert names == {f"{m}.{n}" for m, n, _ in ALL_KERNELS if m in ("lagrange", "paper", "damping")}
+
+
+@pytest.mark.parametrize("module,name,kernel", RESIDUAL_KERNELS,
+                         ids=[f"{m}.{n}" for m, n, _ in RESIDUAL_KERNELS])
+def test_accumulating_variants_match_vectorized(module, name, kernel):
+    """`<name>_residual_add` adds r; `<name>_newmark_add` adds r and M + cv C + cd K (the exact
+    tangents; a printed secant matrix plays no part), onto whatever the outputs already hold."""
+    mod = sys.modules[kernel.__module__]
+    args = _random_arguments(kernel, f"add.{module}.{name}")
+    n_in = len(inspect.signature(kernel).parameters)
+    names = list(inspect.signature(getattr(mod, name + "_into")).parameters)[n_in:]   # r, K, ...
+    outputs = dict(zip(names, kernel(*args)))
+    r = outputs["r"]
+    cv, cd = 0.037, 2.9e-4
+    S = sum((w * outputs[k] for k, w in (("M", 1.0), ("C", cv), ("K", cd)) if k in outputs),
+            np.zeros((r.size, r.size)))
+    rng = np.random.default_rng(zlib.crc32(name.encode()))
+    r0, S0 = rng.standard_normal(r.shape), rng.standard_normal(S.shape)
+    got_r = r0.copy()
+    getattr(mod, name + "_residual_add")(*args, got_r)
+    np.testing.assert_allclose(got_r - r0, r, rtol=1e-11, atol=1e-13 * (1 + np.max(np.abs(r))))
+    got_r, got_S = r0.copy(), S0.copy()
+    getattr(mod, name + "_newmark_add")(*args, cv, cd, got_r, got_S)
+    np.testing.assert_allclose(got_r - r0, r, rtol=1e-11, atol=1e-13 * (1 + np.max(np.abs(r))))
+    np.testing.assert_allclose(got_S - S0, S, rtol=1e-10, atol=1e-12 * (1 + np.max(np.abs(S))))
