@@ -12,7 +12,7 @@ from crankgen.cases import Case
 from crankgen.steady import steady_state, steady_states
 
 COMBOS = [(f, ap, dmp, integ) for f in ("lagrange", "paper") for ap in "ABC"
-          for dmp in ("paper", "kelvin-voigt") for integ in ("newton", "one-pass")]
+          for dmp in ("paper", "kelvin-voigt") for integ in ("newton", "one-pass", "full-newton")]
 
 
 @pytest.mark.parametrize("formulation, approach, damping, integrator", COMBOS)
@@ -71,6 +71,116 @@ def test_band_solver_with_pivoting_matches_dense_solve():
     X = B.copy()
     assert engine.band_solve(W, kb, X)
     np.testing.assert_allclose(X, scipy.linalg.solve(A, B), rtol=1e-9, atol=1e-12)
+
+
+def _band_matrix(rng, N, kb, diagonal):
+    A = np.zeros((N, N))
+    for i in range(N):
+        for j in range(max(0, i - kb), min(N, i + kb + 1)):
+            A[i, j] = rng.standard_normal()
+    A[np.arange(N), np.arange(N)] = diagonal
+    return A
+
+
+def test_fixed_bandwidth_solver_matches_dense_solve_and_refuses_small_pivots():
+    rng = np.random.default_rng(4)
+    N, kb = 23, engine.KB_FIXED
+    A = _band_matrix(rng, N, kb, 8.0 + rng.uniform(size=N))   # positive definite symmetric part
+    F, diag = np.zeros((N + kb, 2 * kb + 1)), np.zeros(N)
+    F[N:, kb] = 1.0
+    for i in range(N):
+        for j in range(max(0, i - kb), min(N, i + kb + 1)):
+            F[i, j - i + kb] = A[i, j]
+    assert engine.factor_fixed(F, N, diag)
+    b = np.concatenate([rng.standard_normal(N), np.full(kb, np.nan)])     # padding is reset
+    x = b.copy()
+    engine.solve_fixed(F, N, x)
+    np.testing.assert_allclose(x[:N], scipy.linalg.solve(A, b[:N]), rtol=1e-11, atol=1e-13)
+    # matrices that need row interchanges are refused, so that the step falls back to band_factor
+    for k, value in ((3, 0.0), (0, 1e-9)):      # zero diagonal; tiny first pivot (huge multipliers)
+        B = A.copy()
+        B[k, k] = value
+        F[:N] = 0.0
+        for i in range(N):
+            for j in range(max(0, i - kb), min(N, i + kb + 1)):
+                F[i, j - i + kb] = B[i, j]
+        assert not engine.factor_fixed(F, N, diag)
+
+
+def test_iteration_matrix_factorizations_agree_on_a_real_step():
+    """The iteration matrix of a 16-element case: fixed-bandwidth LU = pivoted band LU = dense."""
+    case = Case(omega=0.8, n_elements=16, damping="kelvin-voigt")
+    b = engine.Batch([case])
+    n, N = 16, b.N
+    rng = np.random.default_rng(5)
+    d, v, a = (1e-4 * rng.standard_normal(N) for _ in range(3))
+    kin = np.zeros(5)
+    engine.crank_kinematics(case.a, case.omega, 1.3, kin)
+    rE, SE, KE, CE, ME = (np.zeros((n, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6)),
+                          np.zeros((n, 6, 6)), np.zeros((n, 6, 6)))
+    engine.element_newmark(b.codes[0], b.par[0], False, b.dofs, b.l, d, v, a, kin, 0.04, 1.5e-3,
+                           rE, SE, KE, CE, ME, engine._make_ws())
+    # the combined element matrices equal M + cv C + cd K of the full terms
+    r2, K2, C2, M2 = (np.zeros((n, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6)))
+    engine.element_terms(b.codes[0], b.par[0], False, b.dofs, b.l, d, v, a, kin, r2, K2, C2, M2,
+                         engine._make_ws())
+    np.testing.assert_allclose(SE, M2 + 0.04 * C2 + 1.5e-3 * K2, rtol=1e-12, atol=1e-12 * np.abs(SE).max())
+    np.testing.assert_allclose(rE, r2, rtol=1e-12, atol=1e-12 * np.abs(r2).max())
+    res = np.zeros((n, 6))
+    engine.element_residual(b.codes[0], b.par[0], b.dofs, b.l, d, v, a, kin, res, KE, CE, ME,
+                            engine._make_ws())
+    np.testing.assert_allclose(res, r2, rtol=1e-12, atol=1e-12 * np.abs(r2).max())
+    A = np.zeros((N, N))
+    for e in range(n):
+        for i in range(6):
+            for j in range(6):
+                if b.dofs[e, i] < N and b.dofs[e, j] < N:
+                    A[b.dofs[e, i], b.dofs[e, j]] += SE[e, i, j]
+    rhs = rng.standard_normal(N)
+    F, diag = np.zeros((N + 5, 11)), np.zeros(N)
+    engine.assemble_fixed(b.dofs, SE, F, N)
+    assert engine.factor_fixed(F, N, diag)
+    x = np.concatenate([rhs, np.zeros(5)])
+    engine.solve_fixed(F, N, x)
+    W = np.zeros((N, 3 * b.kb + 1))
+    engine.assemble_band_newmark(b.dofs, b.kb, SE, W)
+    piv, ext = np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64)
+    assert engine.band_factor(W, b.kb, piv, ext)
+    y = rhs[:, None].copy()
+    engine.band_lu_solve(W, b.kb, piv, ext, y)
+    exact = scipy.linalg.solve(A, rhs)
+    np.testing.assert_allclose(x[:N], exact, rtol=1e-10, atol=1e-12 * np.abs(exact).max())
+    np.testing.assert_allclose(y[:, 0], exact, rtol=1e-10, atol=1e-12 * np.abs(exact).max())
+
+
+def test_newton_with_reused_factorization_agrees_with_full_newton():
+    """The default scheme (reused factorization, error-estimate stop, extrapolated start) converges
+    to the full Newton solution well within tol (its speed is measured by make bench, not here)."""
+    mech = crankgen.Mechanism()
+    kw = dict(omega=0.9, n_elements=16, damping="kelvin-voigt", revolutions=3)
+    fast = crankgen.simulate(mech, integrator="newton", **kw)
+    full = crankgen.simulate(mech, integrator="full-newton", **kw)
+    scale = np.max(np.abs(full.v_mid))
+    assert np.max(np.abs(fast.v_mid - full.v_mid)) < 1e-9 * scale
+    assert np.max(np.abs(fast.u_end - full.u_end)) < 1e-9 * np.max(np.abs(full.u_end))
+
+
+def test_newton_scheme_constants_are_shared_by_engine_and_reference():
+    from crankgen import newmark
+    assert engine.REFRESH_RATE == newmark.REFRESH_RATE
+    assert engine.ESTIMATE_FRACTION == newmark.ESTIMATE_FRACTION
+    assert engine.HISTORY == newmark.HISTORY
+    assert list(engine.INTEGRATOR_CODE) == list(newmark.SCHEMES)
+
+
+def test_chunked_marching_continues_the_starting_guess():
+    """march(..., previous=...) continues a run exactly: same states and iteration counts."""
+    b = engine.Batch([Case(omega=0.7, n_elements=6, damping="kelvin-voigt")])
+    whole = engine.march(b, 120)
+    first = engine.march(b, 50)
+    rest = engine.march(b, 70, D0=first.D, V0=first.V, A0=first.A, step0=50, previous=first.previous)
+    assert np.array_equal(np.concatenate([first.iterations, rest.iterations], axis=1), whole.iterations)
+    np.testing.assert_array_equal(rest.y[:, -1], whole.y[:, -1])
 
 
 def test_lock_step_batch_equals_single_runs_and_isolates_failures():

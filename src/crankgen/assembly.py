@@ -63,6 +63,24 @@ class BandedAssembler:
                 A[i, j] = ab[2 * kb + i - j, j]
         return A
 
+    def factorize(self, ab):
+        """LU factors (LAPACK gbtrf, partial pivoting) of the band matrix ab; None if singular."""
+        kb = self.bandwidth
+        lu, ipiv, info = lapack.dgbtrf(ab, kb, kb)
+        if info != 0:
+            return None
+        return lu, ipiv
+
+    def solve_factorized(self, factors, rhs):
+        """x with A x = rhs from the factors of factorize (LAPACK gbtrs)."""
+        kb = self.bandwidth
+        lu, ipiv = factors
+        rhs = np.asarray(rhs, dtype=float)
+        x, info = lapack.dgbtrs(lu, kb, kb, rhs.reshape(rhs.shape[0], -1), ipiv)
+        if info != 0:
+            raise ValueError(f"dgbtrs: illegal argument {-info}")
+        return x.reshape(rhs.shape)
+
     def solve(self, ab, rhs):
         """Solve A x = rhs with A in band storage (LU with partial pivoting); None if singular."""
         kb = self.bandwidth

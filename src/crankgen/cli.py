@@ -31,7 +31,8 @@ def _add_run_options(p):
     g.add_argument("--steps-per-rev", type=int, default=100, help="Newmark steps per crank revolution, >= 4 (default 100)")
     g.add_argument("--revolutions", type=float, default=10, help="number of crank revolutions to simulate, > 0 (default 10)")
     g.add_argument("--integrator", choices=SCHEMES, default="newton",
-                   help="newton: Newton iterations with the exact tangent; one-pass: the paper's eqs. (34)-(39) (default newton)")
+                   help="newton: Newton iterations on the exact tangent, its factorization reused while they converge fast; "
+                        "full-newton: the tangent refreshed at every iteration; one-pass: the paper's eqs. (34)-(39) (default newton)")
     g.add_argument("--tol", type=float, default=1e-10, help="Newton tolerance on the scaled displacement increment (default 1e-10)")
 
 

@@ -110,7 +110,7 @@ def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_history=False, prog
     shown; a case that fails stops alone.  Returns (y, iterations, status, fail_step,
     fail_residual, D_history or None) with y (B, n_steps + 1, 3)."""
     B = len(batch)
-    D, V, A = np.array(D0, dtype=float), np.array(V0, dtype=float), None
+    D, V, A, previous = np.array(D0, dtype=float), np.array(V0, dtype=float), None, None
     status = np.zeros(B, dtype=np.int64)
     fail_step, fail_res = np.zeros(B, dtype=np.int64), np.zeros(B)
     ys, its, hist = [], [], []
@@ -119,7 +119,7 @@ def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_history=False, prog
     while done < n_steps:
         k = min(size, n_steps - done)
         res = _engine.march(batch, k, D0=D, V0=V, A0=A, step0=done, keep_history=keep_history,
-                            tol=tol, status=status)
+                            tol=tol, status=status, previous=previous)
         new_fail = (res.status != _engine.OK) & (status == _engine.OK)
         fail_step[new_fail], fail_res[new_fail] = res.fail_step[new_fail], res.fail_residual[new_fail]
         status = res.status
@@ -127,7 +127,7 @@ def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_history=False, prog
         its.append(res.iterations)
         if keep_history:
             hist.append(res.D_history if done == 0 else res.D_history[:, 1:])
-        D, V, A = res.D, res.V, res.A
+        D, V, A, previous = res.D, res.V, res.A, res.previous
         done += k
         if progress is not None:
             progress(done)
