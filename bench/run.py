@@ -4,6 +4,9 @@ Every ratio is measured in one run, on this machine, now.  Timings are best-of-k
 shared machine: read them as estimates, not guarantees.  Targets (2-core machine):
   one Newmark step, Newton, approach A, 16 elements, one case           < 100 us
   batch of 100+ cases, per case and step                                 < 10 us
+Both are measured for the default "newton" scheme (factorization reused while the iteration
+converges fast, extrapolated start) and, for comparison, for "full-newton" (tangent refreshed and
+factorized at every iteration).
   `crankgen reproduce` (both models, all figures)                        < 60 s;  --quick < 10 s
 """
 
@@ -39,12 +42,15 @@ def best_of(fn, repeats=3):
 
 
 def step_times(steps=1000):
+    """One case at a time: the default "newton" scheme for A, B, C, and "full-newton" (tangent
+    refreshed at every iteration) for A, for comparison."""
     rows = []
     for n in (4, 16):
-        for approach in "ABC":
+        for approach, integrator in (("A", "newton"), ("B", "newton"), ("C", "newton"), ("A", "full-newton")):
             for formulation in ("lagrange", "paper"):
                 omega = 0.8 if not (approach == "B" and formulation == "lagrange") else 0.3
-                case = Case(omega=omega, approach=approach, formulation=formulation, n_elements=n)
+                case = Case(omega=omega, approach=approach, formulation=formulation, n_elements=n,
+                            integrator=integrator)
                 batch = engine.Batch([case])
                 engine.march(batch, 5)                       # load compiled code
                 res = {}
@@ -53,7 +59,8 @@ def step_times(steps=1000):
                     res["r"] = engine.march(batch, steps, parallel=False)
                 seconds = best_of(run)
                 r = res["r"]
-                rows.append(dict(n_elements=n, approach=approach, formulation=formulation, omega=omega,
+                rows.append(dict(n_elements=n, approach=approach, formulation=formulation,
+                                 integrator=integrator, omega=omega,
                                  us_per_step=1e6 * seconds / steps,
                                  newton_iterations_per_step=float(r.iterations.mean()),
                                  status=engine.STATUS_TEXT[int(r.status[0])]))
@@ -114,27 +121,36 @@ def kernel_vs_quadrature(n=16, repeats=200):
                 ratio_quadrature_over_compiled=t_quad / t_jit)
 
 
-def sweep_cases(count, n=16):
+def sweep_cases(count, n=16, integrator="newton"):
     omegas = np.linspace(0.1, 1.6, count)
-    return [Case(omega=float(w), n_elements=n, formulation="lagrange", damping="kelvin-voigt")
-            for w in omegas]
+    return [Case(omega=float(w), n_elements=n, formulation="lagrange", damping="kelvin-voigt",
+                 integrator=integrator) for w in omegas]
 
 
 def batch_vs_single(count=128, steps=200):
-    """Lock-step batch of `count` cases against the same cases one at a time (same run)."""
+    """Lock-step batch of `count` cases against the same cases one at a time (same run), with the
+    default "newton" scheme and, for comparison, "full-newton"."""
     out = dict(cases=count, steps=steps)
-    for n in (4, 16):
-        cases = sweep_cases(count, n)
-        batch = engine.Batch(cases)
-        engine.march(batch, 2)
-        t_batch = best_of(lambda: engine.march(batch, steps), 2)
-        singles = [engine.Batch([c]) for c in cases[:16]]
-        t_one = best_of(lambda: [engine.march(b, steps, parallel=False) for b in singles], 2) / 16
-        out[f"n{n}_batch_us_per_case_step"] = 1e6 * t_batch / (count * steps)
-        out[f"n{n}_single_us_per_case_step"] = 1e6 * t_one / steps
-        out[f"n{n}_ratio_single_over_batch"] = t_one * count / t_batch
+    for integrator, tag in (("newton", ""), ("full-newton", "_full_newton")):
+        for n in (4, 16):
+            cases = sweep_cases(count, n, integrator)
+            batch = engine.Batch(cases)
+            engine.march(batch, 2)
+            res = {}
+
+            def run_batch():
+                res["r"] = engine.march(batch, steps)
+            t_batch = best_of(run_batch, 2)
+            singles = [engine.Batch([c]) for c in cases[::count // 16][:16]]
+            engine.march(singles[0], 2, parallel=False)
+            t_one = best_of(lambda: [engine.march(b, steps, parallel=False) for b in singles], 2) / len(singles)
+            out[f"n{n}{tag}_batch_us_per_case_step"] = 1e6 * t_batch / (count * steps)
+            out[f"n{n}{tag}_single_us_per_case_step"] = 1e6 * t_one / steps
+            out[f"n{n}{tag}_ratio_single_over_batch"] = t_one * count / t_batch
+            out[f"n{n}{tag}_iterations_per_step"] = float(res["r"].iterations.mean())
     cases = sweep_cases(count, 16)
-    steady_states(cases[:2])
+    steady_states(cases[:2])                     # load the compiled code of both paths first
+    steady_state(case=cases[0], tol=1e-6)
     t_ss_batch = best_of(lambda: steady_states(cases, tol=1e-6), 1)
     sample = cases[::4]                  # every 4th case: the same spread of speeds as the batch
     t_ss_single = best_of(lambda: [steady_state(case=c, tol=1e-6) for c in sample], 1) * count / len(sample)
@@ -209,11 +225,14 @@ def main(argv=None):
     if args.cold:
         results["cold_compile_s"] = cold_compile_time()
 
-    single_A16 = next(r for r in results["steps"] if r["n_elements"] == 16 and r["approach"] == "A"
-                      and r["formulation"] == "lagrange")["us_per_step"]
-    targets = dict(single_step_A16_lt_100us=single_A16 < 100,
+    single_A16 = {r["integrator"]: r["us_per_step"] for r in results["steps"] if r["n_elements"] == 16
+                  and r["approach"] == "A" and r["formulation"] == "lagrange"}
+    targets = dict(single_step_A16_lt_100us=single_A16["newton"] < 100,
+                   single_step_A16_full_newton_lt_100us=single_A16["full-newton"] < 100,
                    batch_case_step_n4_lt_10us=results["batch"]["n4_batch_us_per_case_step"] < 10,
-                   batch_case_step_n16_lt_10us=results["batch"]["n16_batch_us_per_case_step"] < 10)
+                   batch_case_step_n16_lt_10us=results["batch"]["n16_batch_us_per_case_step"] < 10,
+                   batch_case_step_n16_full_newton_lt_10us=(
+                       results["batch"]["n16_full_newton_batch_us_per_case_step"] < 10))
     if "reproduce" in results:
         targets["reproduce_full_lt_60s"] = results["reproduce"]["reproduce_full_s"] < 60
         targets["reproduce_quick_lt_10s"] = results["reproduce"]["reproduce_quick_s"] < 10
@@ -221,20 +240,23 @@ def main(argv=None):
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(json.dumps(results, indent=2) + "\n")
 
-    print(f"\n{'n':>3} {'app':>3} {'formulation':>11} {'Omega*':>6} {'us/step':>9} {'iter/step':>9}")
+    print(f"\n{'n':>3} {'app':>3} {'formulation':>11} {'integrator':>11} {'Omega*':>6} {'us/step':>9} "
+          f"{'iter/step':>9}")
     for r in results["steps"]:
-        print(f"{r['n_elements']:>3} {r['approach']:>3} {r['formulation']:>11} {r['omega']:>6.2f} "
-              f"{r['us_per_step']:>9.1f} {r['newton_iterations_per_step']:>9.2f}")
+        print(f"{r['n_elements']:>3} {r['approach']:>3} {r['formulation']:>11} {r['integrator']:>11} "
+              f"{r['omega']:>6.2f} {r['us_per_step']:>9.1f} {r['newton_iterations_per_step']:>9.2f}")
     k = results["kernels"]
     print(f"\nelement terms, {k['n_elements']} elements (lagrange A, Kelvin-Voigt): generated NumPy "
           f"{k['generated_numpy_us']:.0f} us, Gauss quadrature {k['quadrature_numpy_us']:.0f} us "
           f"(ratio {k['ratio_quadrature_over_generated']:.1f}), compiled loop "
           f"{k['compiled_element_loop_us']:.1f} us (ratio {k['ratio_quadrature_over_compiled']:.0f})")
     b = results["batch"]
-    for n in (4, 16):
-        print(f"batch of {b['cases']} (n = {n}): {b[f'n{n}_batch_us_per_case_step']:.1f} us per case-step, "
-              f"one case at a time {b[f'n{n}_single_us_per_case_step']:.1f} "
-              f"(ratio {b[f'n{n}_ratio_single_over_batch']:.2f})")
+    for tag, label in (("", "newton"), ("_full_newton", "full-newton")):
+        for n in (4, 16):
+            print(f"batch of {b['cases']} (n = {n}, {label}): {b[f'n{n}{tag}_batch_us_per_case_step']:.1f} us "
+                  f"per case-step, one case at a time {b[f'n{n}{tag}_single_us_per_case_step']:.1f} "
+                  f"(ratio {b[f'n{n}{tag}_ratio_single_over_batch']:.2f}), "
+                  f"{b[f'n{n}{tag}_iterations_per_step']:.2f} iterations per step")
     print(f"steady states of {b['cases']} cases (n = 16): batched {b['steady_batched_s']:.2f} s, one at a "
           f"time {b['steady_one_at_a_time_s']:.2f} s (ratio {b['ratio_one_at_a_time_over_batched']:.2f})")
     s = results["shooting"]

@@ -37,7 +37,7 @@ MEMBRANE_CODE = {"pointwise": 0, "averaged": 1}
 # into its cached code, so they are written here and a test checks that they equal newmark's)
 REFRESH_RATE = 0.1
 ESTIMATE_FRACTION = 0.1
-HISTORY = 3                 # displacements kept for the starting guess (cubic extrapolation)
+HISTORY = 4                 # displacements kept for the starting guess (quartic extrapolation)
 INTEGRATOR_CODE = {name: code for code, name in enumerate(SCHEMES)}
 NEWTON, ONE_PASS, FULL_NEWTON = (INTEGRATOR_CODE[k] for k in ("newton", "one-pass", "full-newton"))
 
@@ -772,9 +772,9 @@ def newmark_step(codes, par, dofs, kb, l, scales, beta, gamma, tol, max_iter, t_
                  F, diag, rhs, kin, ws):
     """One Newmark step from (d, v, acc) to (d_new, v_new, a_new) at t_new (scheme codes[3], see
     newmark.py: 0 newton, 1 one-pass, 2 full-newton).  hist[k]: the displacements k + 1 steps
-    before d, of which the first n_prev (0 to HISTORY) are known, for the starting guess.  W, piv, ext / F, diag: storage of the pivoted
-    and the fixed-bandwidth factorizations; rhs: (N + 5, 1).  Returns (status, iterations, residual
-    norm)."""
+    before d, of which the first n_prev (0 to HISTORY) are known, for the starting guess.
+    W, piv, ext / F, diag: storage of the pivoted and of the fixed-bandwidth factorization;
+    rhs: (N + 5, 1).  Returns (status, iterations, residual norm)."""
     N = d.shape[0]
     dt = par[5]
     scheme = codes[3]
@@ -794,8 +794,10 @@ def newmark_step(codes, par, dofs, kb, l, scales, beta, gamma, tol, max_iter, t_
                 dx = -hist[0, i] + 2.0 * d[i]
             elif n_prev == 2:
                 dx = hist[1, i] - 3.0 * hist[0, i] + 3.0 * d[i]
-            else:
+            elif n_prev == 3:
                 dx = -hist[2, i] + 4.0 * hist[1, i] - 6.0 * hist[0, i] + 4.0 * d[i]
+            else:
+                dx = hist[3, i] - 5.0 * hist[2, i] + 10.0 * hist[1, i] - 10.0 * hist[0, i] + 5.0 * d[i]
             a_new[i] = (dx - dp) / cd
     rnorm = 0.0
     refresh = True
