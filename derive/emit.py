@@ -98,6 +98,20 @@ def _is_vector(inp):
     return len(inp.symbols) > 1
 
 
+def _scalar_prologue(kernel, used, replacements, printer):
+    """Body lines of a one-element variant: the used components of vector inputs, then the common
+    subexpressions."""
+    lines = []
+    for inp in kernel.inputs:
+        if _is_vector(inp):
+            for k, sym in enumerate(inp.symbols):
+                if sym in used:
+                    lines.append(f"    {sym.name} = {inp.name}[{k}]")
+    for sym, expr in replacements:
+        lines.append(f"    {sym} = {printer.doprint(expr)}")
+    return lines
+
+
 def emit_scalar_kernel(kernel, cse=None):
     """Python source of the one-element variant `<name>_into` (numba-compilable)."""
     _validate(kernel)
@@ -110,13 +124,7 @@ def emit_scalar_kernel(kernel, cse=None):
     lines = [f"def {kernel.name}_into({', '.join(args)}):",
              f'    """{kernel.name} for one element: scalars in, outputs written into '
              f'{", ".join(out.name for out in kernel.outputs)}."""']
-    for inp in kernel.inputs:
-        if _is_vector(inp):
-            for k, sym in enumerate(inp.symbols):
-                if sym in used:
-                    lines.append(f"    {sym.name} = {inp.name}[{k}]")
-    for sym, expr in replacements:
-        lines.append(f"    {sym} = {printer.doprint(expr)}")
+    lines += _scalar_prologue(kernel, used, replacements, printer)
     position = 0
     for out in kernel.outputs:
         for idx, _ in _entries(out.expr):
@@ -143,13 +151,7 @@ def _accumulating(kernel, name, entries, extra_args, out_args, doc):
     used = set().union(*(e.free_symbols for _, _, e in entries)) if entries else set()
     args = [inp.name for inp in kernel.inputs] + list(extra_args) + list(out_args)
     lines = [f"def {name}({', '.join(args)}):", f'    """{doc}"""']
-    for inp in kernel.inputs:
-        if _is_vector(inp):
-            for k, sym in enumerate(inp.symbols):
-                if sym in used:
-                    lines.append(f"    {sym.name} = {inp.name}[{k}]")
-    for sym, expr in replacements:
-        lines.append(f"    {sym} = {printer.doprint(expr)}")
+    lines += _scalar_prologue(kernel, used, replacements, printer)
     for (out, idx, _), value in zip(entries, reduced):
         index = ", ".join(str(i) for i in idx) if idx else "0"
         lines.append(f"    {out}[{index}] += {printer.doprint(value)}")
