@@ -317,9 +317,9 @@ def _slider_residual(form, damp, us, usd, usdd, ms, mu, a, kin, r, w2):
         pap_slider_res(us, usd, usdd, ms, 1.0, a, th, thd, ph, phd, phdd, w2)
     if damp == 0:
         pd_slider_res(usd, ms, phd, mu, w2)
-    r3, r4 = r[3] + w2[0], r[4] + w2[1]
-    r[3] = math.cos(ph) * r3 + math.sin(ph) * r4
-    r[4] = 0.0
+    r[3] += w2[0]
+    r[4] += w2[1]
+    _project_residual(math.cos(ph), math.sin(ph), r)
 
 
 @njit(cache=True)
@@ -416,6 +416,12 @@ def _project_last(kin, r, K, C, M):
         K[4, j] = 0.0
         C[4, j] = 0.0
         M[4, j] = 0.0
+    _project_residual(c, s, r)
+
+
+@njit(cache=True)
+def _project_residual(c, s, r):
+    """r <- T^T r of the slider map (c, s = cos phi, sin phi): see _project_last."""
     r[3] = c * r[3] + s * r[4]
     r[4] = 0.0
 
@@ -805,12 +811,12 @@ def newmark_step(codes, par, dofs, kb, l, scales, beta, gamma, tol, max_iter, t_
     fixed = False
     previous = 0.0
     reused_before = False
+    for i in range(N):                  # eqs. (38)-(39) at the starting guess; each iteration
+        dp = d[i] + dt * v[i] + 0.5 * dt * dt * (1.0 - 2.0 * beta) * acc[i]    # updates them below
+        vp = v[i] + dt * (1.0 - gamma) * acc[i]
+        d_new[i] = dp + cd * a_new[i]
+        v_new[i] = vp + cv * a_new[i]
     for it in range(1, max_iter + 1):
-        for i in range(N):
-            dp = d[i] + dt * v[i] + 0.5 * dt * dt * (1.0 - 2.0 * beta) * acc[i]
-            vp = v[i] + dt * (1.0 - gamma) * acc[i]
-            d_new[i] = dp + cd * a_new[i]
-            v_new[i] = vp + cv * a_new[i]
         if refresh:
             element_newmark(codes, par, secant, dofs, l, d_new, v_new, a_new, kin, cv, cd, rE, SE,
                             KE, CE, ME, ws)
@@ -1160,10 +1166,11 @@ def _revolution_impl(codes, par, dofs, kb, l, scales, beta, gamma, tol, max_iter
                 for c in range(2 * N):
                     Da[i, c] = -(Da[i, c] + tmp[i, c])
             assemble_band(dofs, kb, ME, CE, KE, 1.0, cv, cd, W)
-            if not band_solve(W, kb, Da):
+            if not band_factor(W, kb, piv, ext):
                 status[b] = SINGULAR
                 ok = False
                 break
+            band_lu_solve(W, kb, piv, ext, Da)
             for i in range(N):
                 for c in range(2 * N):
                     Dd[i, c] += cd * Da[i, c]

@@ -121,8 +121,8 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
         else:                                     # starting guess: extrapolated displacements
             a_new = (extrapolate(D[max(0, m - HISTORY):m + 1]) - d_pred) / c_d
         refresh, previous, reused_before = True, 0.0, False
+        d_new, v_new = d_pred + c_d * a_new, v_pred + c_v * a_new          # eqs. (38)-(39)
         for it in range(1, settings.max_iterations + 1):
-            d_new, v_new = d_pred + c_d * a_new, v_pred + c_v * a_new      # eqs. (38)-(39)
             if refresh:
                 R, S = model.linearize(kin, d_new, v_new, a_new, c_v, c_d, secant=secant)
             else:
@@ -139,10 +139,11 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
             if not np.all(np.isfinite(delta)):
                 raise _singular(m + 1, t[m + 1], R)
             a_new += delta
+            d_new, v_new = d_pred + c_d * a_new, v_pred + c_v * a_new
             if one_pass:
                 break
             increment = np.max(np.abs(c_d * delta) / scales)
-            size = np.max(np.abs(d_pred + c_d * a_new) / scales)
+            size = np.max(np.abs(d_new) / scales)
             limit = settings.tol * (1.0 + size)
             if increment <= limit:
                 break
@@ -163,8 +164,8 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
                 f"{np.linalg.norm(R):.3e}, last scaled increment {increment:.3e} after "
                 f"{settings.max_iterations} iterations",
                 step=m + 1, time=t[m + 1], residual=float(np.linalg.norm(R)))
-        D[m + 1] = d_pred + c_d * a_new
-        V[m + 1] = v_pred + c_v * a_new
+        D[m + 1] = d_new
+        V[m + 1] = v_new
         A[m + 1] = a_new
         iterations[m] = it
         if not (np.all(np.isfinite(D[m + 1])) and np.all(np.isfinite(V[m + 1]))):
