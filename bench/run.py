@@ -140,10 +140,10 @@ def batch_vs_single(count=128, steps=200):
 
             def run_batch():
                 res["r"] = engine.march(batch, steps)
-            t_batch = best_of(run_batch, 2)
+            t_batch = best_of(run_batch, 5)
             singles = [engine.Batch([c]) for c in cases[::count // 16][:16]]
             engine.march(singles[0], 2, parallel=False)
-            t_one = best_of(lambda: [engine.march(b, steps, parallel=False) for b in singles], 2) / len(singles)
+            t_one = best_of(lambda: [engine.march(b, steps, parallel=False) for b in singles], 3) / len(singles)
             out[f"n{n}{tag}_batch_us_per_case_step"] = 1e6 * t_batch / (count * steps)
             out[f"n{n}{tag}_single_us_per_case_step"] = 1e6 * t_one / steps
             out[f"n{n}{tag}_ratio_single_over_batch"] = t_one * count / t_batch
