@@ -6,13 +6,13 @@ from .model import Model
 from .newmark import NewmarkSettings, integrate
 from .parameters import Mechanism, SIMechanism
 from .cases import Case
-from .simulation import SimulationResult, simulate
+from .simulation import SimulationResult, simulate, simulate_many
 from .steady import SteadyState, steady_state, steady_states
 from .sweep import SweepTable, sweep
 
 __all__ = [
     "APPROACHES", "Case", "DAMPING_MODELS", "FORMULATIONS", "ConvergenceError", "CrankgenError", "Mechanism",
     "Model", "NewmarkSettings", "ParameterError", "SIMechanism", "SimulationResult", "integrate",
-    "simulate", "SteadyState", "steady_state", "steady_states", "SweepTable", "sweep",
+    "simulate", "simulate_many", "SteadyState", "steady_state", "steady_states", "SweepTable", "sweep",
 ]
-__version__ = "0.1.0"
+from .provenance import VERSION as __version__

@@ -12,6 +12,8 @@ class ParameterError(CrankgenError, ValueError):
 class ConvergenceError(CrankgenError, RuntimeError):
     """Newton's method did not converge (or the solution stopped being finite) in a time step."""
 
-    def __init__(self, message, step=None, time=None, residual=None):
+    def __init__(self, message, step=None, time=None, residual=None, partial=None):
         super().__init__(message)
         self.step, self.time, self.residual = step, time, residual
+        # what was computed before the failure (a SimulationResult up to the last good step), if any
+        self.partial = partial

@@ -92,16 +92,17 @@ def simulate(mech, omega=0.8, approach="A", formulation="lagrange", n_elements=1
     y, iterations, status, fail_step, fail_res, D = _march_in_chunks(
         _engine.Batch([case]), d0[None], v0[None], n_steps, tol, store_nodes,
         None if progress is None else (lambda done: progress(done, n_steps)))
-    if status[0] != _engine.OK:
-        raise _failure(status[0], fail_step[0], fail_res[0], dt)
     y, iterations, D = y[0], iterations[0].astype(np.int32), None if D is None else D[0]
     t = dt * np.arange(n_steps + 1)
     theta = omega * t
     nodes = None
     if store_nodes:
         nodes = model.full_nodal(D, np.arcsin(mech.a * np.sin(theta)))
-    return SimulationResult(t=t, theta=theta, v_mid=y[:, 0], u_end=y[:, 1], extension=y[:, 2],
-                            iterations=iterations, settings=info, nodes=nodes)
+    result = SimulationResult(t=t, theta=theta, v_mid=y[:, 0], u_end=y[:, 1], extension=y[:, 2],
+                              iterations=iterations, settings=info, nodes=nodes)
+    if status[0] != _engine.OK:
+        raise _failure(status[0], fail_step[0], fail_res[0], dt, result)
+    return result
 
 
 def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_history=False, progress=None,
@@ -135,11 +136,23 @@ def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_history=False, prog
             np.concatenate(hist, axis=1) if keep_history else None)
 
 
-def _failure(status, step, residual, dt):
-    """The ConvergenceError of a case that stopped in the compiled engine."""
+def _failure(status, step, residual, dt, result=None):
+    """The ConvergenceError of a case that stopped in the compiled engine; its `partial` holds
+    result cut to the steps before the failed one (the states computed before the failure)."""
+    partial = None
+    if result is not None:
+        partial = _truncated(result, int(step))
     return ConvergenceError(
         f"{_engine.STATUS_TEXT[int(status)]} in step {step} (t* = {step * dt:.6g}): residual norm "
-        f"{residual:.3e}", step=int(step), time=step * dt, residual=float(residual))
+        f"{residual:.3e}", step=int(step), time=step * dt, residual=float(residual), partial=partial)
+
+
+def _truncated(result, n_points):
+    """result with its per-step arrays cut to the first n_points points (steps 0 .. n_points-1)."""
+    cut = {name: getattr(result, name)[:n_points] for name in ("t", "theta", "v_mid", "u_end", "extension")}
+    cut["iterations"] = result.iterations[:max(0, n_points - 1)]
+    nodes = None if result.nodes is None else result.nodes[:n_points]
+    return SimulationResult(settings=dict(result.settings, failed_at_step=n_points), nodes=nodes, **cut)
 
 
 def simulate_many(cases, revolutions, progress=None, chunks=20):
@@ -166,12 +179,12 @@ def simulate_many(cases, revolutions, progress=None, chunks=20):
         done_total += n_steps * B
         for j, i in enumerate(idx):
             c, dt = cases[i], batch.par[j, 5]
-            if status[j] != _engine.OK:
-                out[i] = _failure(status[j], fail_step[j], fail_res[j], dt)
-                continue
             t = dt * np.arange(n_steps + 1)
-            out[i] = SimulationResult(
+            result = SimulationResult(
                 t=t, theta=c.omega * t, v_mid=y[j, :, 0], u_end=y[j, :, 1], extension=y[j, :, 2],
                 iterations=iterations[j].astype(np.int32),
                 settings=dict(c.as_dict(), revolutions=revolutions, engine="compiled"))
+            if status[j] != _engine.OK:
+                result = _failure(status[j], fail_step[j], fail_res[j], dt, result)
+            out[i] = result
     return out
