@@ -18,16 +18,31 @@ Status of a result:
 - "failed": the integration itself failed (Newton divergence, non-finite state); message says why.
 `method="march"` skips shooting and marches revolution by revolution (the paper's way).
 With integrator="one-pass" the step map is not the converged Newton map, so marching is used.
+
+No result holds NaN or inf: a number that does not exist (the amplitude of a failed case, the
+multiplier of a one-pass run) is None, and the status and message say why.  The multiplier of a
+state found by marching comes from one linearized revolution at that state (newton, full-newton).
+
+Speeds whose time step 2 pi / (Omega* steps_per_rev) exceeds the period of the rod's first
+bending mode (2 pi in crankgen's time unit), i.e. Omega* * steps_per_rev < 1, are refused
+(ParameterError).  With such steps Newmark's average-acceleration rule neither follows nor damps
+the rod's vibration: every mode's step factor tends to -1, the one-revolution map tends to +-I and
+all its Floquet multipliers crowd at modulus 1, off it by amounts set by the time step (at
+Omega* = 1e-6, 4 elements: 1.008, 1.0018, 1.0004, 1.0001 for 50, 100, 200, 400 steps), while the
+rod's own vibration decays within a tiny fraction of the revolution.  The verdict would then be a
+property of the discretization, not of the mechanism.
 """
 
 import math
 import time
 from dataclasses import dataclass, field, replace
+from typing import Optional
 
 import numpy as np
 
 from . import engine
 from .cases import Case
+from .errors import ParameterError
 from .validation import choice, in_range, integer
 
 STATUSES = ("periodic", "not-periodic", "unstable", "failed")
@@ -36,18 +51,21 @@ METHODS = ("shooting", "march")
 
 @dataclass(frozen=True)
 class SteadyState:
-    """One steady revolution of a case (arrays over steps_per_rev + 1 points, theta from 0 to 2 pi)."""
+    """One steady revolution of a case (arrays over steps_per_rev + 1 points, theta from 0 to 2 pi).
+
+    Numbers that do not exist for a result are None (never NaN); status and message say why.
+    """
 
     case: Case
     status: str
-    amplitude: float             # max |v*(1/2)| over the revolution
-    half_peak_to_peak: float     # (max v* - min v*) / 2
-    periods: int                 # revolutions marched (warm-up and any marching fallback)
-    iterations: int              # shooting Newton iterations
-    residual: float              # scaled |P(x) - x| of the returned state
+    amplitude: Optional[float]          # max |v*(1/2)| over the revolution (None: no orbit)
+    half_peak_to_peak: Optional[float]  # (max v* - min v*) / 2 (None: no orbit)
+    periods: int                        # revolutions marched (warm-up and any marching fallback)
+    iterations: int                     # shooting Newton iterations
+    residual: Optional[float]           # scaled |P(x) - x| of the returned state (None: none)
     message: str = ""
     wall_time: float = 0.0       # seconds; for a batch, its wall time shared equally by its cases
-    multiplier: float = math.nan # largest |Floquet multiplier| (shooting only)
+    multiplier: Optional[float] = None  # largest |Floquet multiplier| (None: not computed, see message)
     theta: np.ndarray = field(default=None, repr=False)
     t: np.ndarray = field(default=None, repr=False)
     v_mid: np.ndarray = field(default=None, repr=False)
@@ -97,8 +115,8 @@ class _BatchSolver:
         self.message = [""] * B
         self.periods = np.zeros(B, dtype=int)
         self.iterations = np.zeros(B, dtype=int)
-        self.residual = np.full(B, math.nan)
-        self.multiplier = np.full(B, math.nan)
+        self.residual = [None] * B
+        self.multiplier = [None] * B
         self.X = np.zeros((B, 2 * N))
 
     def _march(self, revs, active):
@@ -127,7 +145,33 @@ class _BatchSolver:
         rest = self.status == "pending"
         if rest.any():
             self._march_until_periodic(rest)
+            self._marched_multipliers(rest & (self.status == "periodic"))
         return self._results()
+
+    def _marched_multipliers(self, found):
+        """Largest Floquet multiplier of states found by marching: one linearized revolution at
+        the state (its Jacobian is exact only for converged Newton steps, so not for one-pass)."""
+        newton = np.array([c.integrator in ("newton", "full-newton") for c in self.cases])
+        for i in np.flatnonzero(found & ~newton):
+            self._note(i, "multiplier not computed: the one-pass step is not a converged Newton "
+                          "step, so the revolution map has no exact linearization")
+        found = found & newton
+        if not found.any():
+            return
+        _, J, st = engine.revolution(self.batch, self.X, active=found, parallel=self.parallel)
+        for i in np.flatnonzero(found):
+            if st[i] != engine.OK or not np.all(np.isfinite(J[i])):
+                self._note(i, f"multiplier not computed: the linearized revolution failed "
+                              f"({engine.STATUS_TEXT.get(int(st[i]), 'non-finite Jacobian')})")
+                continue
+            rho = float(np.max(np.abs(np.linalg.eigvals(J[i]))))
+            self.multiplier[i] = rho
+            if rho >= 1.0:
+                self._note(i, f"marching settled although the largest Floquet multiplier is "
+                              f"{rho:.4f}")
+
+    def _note(self, i, text):
+        self.message[i] = f"{self.message[i]}; {text}" if self.message[i] else text
 
     def _shoot(self, active):
         best = np.full(len(self.cases), math.inf)
@@ -145,7 +189,7 @@ class _BatchSolver:
                 self.iterations[i] = it
                 if change[i] < self.tol:
                     self.X[i] = X1[i]
-                    self.residual[i] = change[i]
+                    self.residual[i] = float(change[i])
                     rho = float(np.max(np.abs(np.linalg.eigvals(J[i]))))
                     self.multiplier[i] = rho
                     if rho < 1.0:
@@ -184,7 +228,7 @@ class _BatchSolver:
                 self.periods[i] += 1
                 change = _scaled_change(prev[i:i + 1], X1[i:i + 1], self.S[i:i + 1])[0]
                 two = _scaled_change(prev2[i:i + 1], X1[i:i + 1], self.S[i:i + 1])[0]
-                self.residual[i] = change
+                self.residual[i] = float(change)
                 self.X[i] = X1[i]
                 if change < self.tol:
                     self.status[i] = "periodic"
@@ -212,16 +256,34 @@ class _BatchSolver:
                 v = y[:, 0]
                 out.append(SteadyState(
                     case, self.status[i], float(np.max(np.abs(v))), float((v.max() - v.min()) / 2),
-                    int(self.periods[i]), int(self.iterations[i]), float(self.residual[i]),
-                    self.message[i], multiplier=float(self.multiplier[i]), theta=theta,
+                    int(self.periods[i]), int(self.iterations[i]), self.residual[i],
+                    self.message[i], multiplier=self.multiplier[i], theta=theta,
                     t=theta / case.omega, v_mid=v, u_end=y[:, 1], extension=y[:, 2],
                     state=self.X[i].copy()))
             else:
                 status = self.status[i] if self.status[i] != "pending" else "failed"
-                out.append(SteadyState(case, status, math.nan, math.nan, int(self.periods[i]),
-                                       int(self.iterations[i]), float(self.residual[i]),
-                                       self.message[i] or "no result", multiplier=float(self.multiplier[i])))
+                message = self.message[i]
+                if show[i]:                   # the orbit was found but its revolution failed
+                    status = "failed"
+                    message = f"{message}; " if message else ""
+                    message += "the revolution at the periodic state failed: " + _failure_text(
+                        res, i, b.par[i, 5])
+                out.append(SteadyState(case, status, None, None, int(self.periods[i]),
+                                       int(self.iterations[i]), self.residual[i],
+                                       message or "no result", multiplier=self.multiplier[i]))
         return out
+
+
+def _check_resolved(case, where=""):
+    """Refuse a time step longer than the rod's first bending period (see the module docstring)."""
+    if case.omega * case.steps_per_rev < 1.0:
+        dt = 2 * math.pi / (case.omega * case.steps_per_rev)
+        raise ParameterError(
+            f"{where}steps_per_rev must be at least 1/Omega* = {math.ceil(1 / case.omega):d} for a "
+            f"steady state at Omega* = {case.omega:g} (got {case.steps_per_rev}): the time step "
+            f"dt* = {dt:.3g} would exceed the period 2 pi of the rod's first bending mode, and with "
+            f"such steps the Floquet multipliers, hence the stability verdict, are set by the time "
+            f"step instead of the mechanism; simulate() marches such slow, quasi-static runs")
 
 
 def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="shooting",
@@ -230,8 +292,11 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
     n_elements and steps_per_rev run together in the compiled engine.  A failing case comes back
     with status "failed" and its message; it does not stop the others.
     progress(done, total) is called after each batch.  parallel: run a batch's cases on all cores
-    (default: when there is more than one case), or serially (False)."""
+    (default: when there is more than one case), or serially (False).  A case with
+    Omega* * steps_per_rev < 1 raises ParameterError before any work (see the module docstring)."""
     cases = [c if isinstance(c, Case) else Case.from_dict(c) for c in cases]
+    for i, c in enumerate(cases):
+        _check_resolved(c, f"cases[{i}]: " if len(cases) > 1 else "")
     tol = in_range("tol", tol, 0, None, True)
     max_revolutions = integer("max_revolutions", max_revolutions, 1)
     warmup = integer("warmup", warmup, 1)

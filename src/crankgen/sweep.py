@@ -5,21 +5,31 @@ either in this process or through any `concurrent.futures.Executor` (a process p
 cluster via `distributed.Client.get_executor()`).  Each finished chunk is appended to an optional
 JSON Lines checkpoint, so an interrupted sweep resumes without recomputing what it finished.
 
-Failure never sinks a sweep: a case that diverges or does not settle comes back from
-`steady_states` with its status and message; a chunk that raises is retried case by case in the
-worker; a chunk whose future raises (a worker died, the task could not be sent) has each of its
-cases recorded as "failed" with the exception text.
+Failure never sinks a sweep, and a case that failed is told from one that never ran: a case that
+diverges or does not settle comes back from `steady_states` with its status and message (a
+result, recorded); a chunk that raises is retried case by case in the worker, so only the case at
+fault is recorded as "failed".  A chunk whose future raises did not run to its end (a worker
+died, the executor broke, the task could not be sent or was cancelled): nothing is recorded for
+it, and once the executor has returned every other chunk, such chunks are run again serially in
+this process, with a RuntimeWarning.  (Serial, not a fresh pool: crankgen cannot rebuild an
+arbitrary executor, e.g. a Dask client's, and the caller's executor may be broken for good.)
 
-Checkpoint format (one JSON document per line, Python's JSON, so missing numbers are NaN):
+No row holds NaN or inf: a missing number is None in the table, an empty field in the CSV and
+null in the checkpoint, with the row's status and message saying why.
+
+Checkpoint format (one strict JSON document per line; missing numbers are null):
 
     {"format": "crankgen-sweep-checkpoint", "version": 1}                      <- header
-    {"key": Case.key(), "settings": {"tol": ..., "max_revolutions": ...}, "row": {...}}
+    {"key": Case.key(), "settings": {"tol": ..., "max_revolutions": ...},
+     "code": provenance.code_version(), "row": {...}}
 
 Lines are only ever appended, a whole chunk in one write followed by flush and fsync, so a crash
 can tear at most the last line; on resume a torn last line is dropped (with a warning) and the
 file is truncated back to its last complete line before anything is appended.  The last record of
-a key wins.  Records made with other settings (tol, max_revolutions) are not reused.  One sweep
-at a time may write a given checkpoint.
+a key wins.  Records made with other settings (tol, max_revolutions) are not reused; records made
+by other code (another crankgen version or other generated kernels, or records without "code")
+are recomputed with a warning unless sweep(keep_other_versions=True).  One sweep at a time may
+write a given checkpoint.
 """
 
 import concurrent.futures as cf
@@ -37,7 +47,8 @@ import numpy as np
 
 from .cases import Case
 from .errors import ParameterError
-from .steady import SteadyState, steady_states
+from .provenance import code_version
+from .steady import SteadyState, _check_resolved, steady_states
 from .validation import in_range, integer
 
 __all__ = ["SweepTable", "sweep"]
@@ -51,12 +62,16 @@ _STRUCTURE = ("formulation", "approach", "damping", "integrator", "n_elements", 
 def _failed_row(case, error):
     """Row of a case whose computation raised instead of returning a SteadyState."""
     message = error if isinstance(error, str) else f"{type(error).__name__}: {error}"
-    return SteadyState(case, "failed", math.nan, math.nan, 0, 0, math.nan, message, 0.0).row()
+    return SteadyState(case, "failed", None, None, 0, 0, None, message, 0.0).row()
 
 
 def _plain(value):
-    """numpy scalars -> Python scalars (rows must be JSON and CSV friendly)."""
-    return value.item() if isinstance(value, np.generic) else value
+    """numpy scalars -> Python scalars, a non-finite float -> None (rows must be strict JSON and
+    CSV friendly; a missing number is None)."""
+    value = value.item() if isinstance(value, np.generic) else value
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
 
 
 def _run_chunk(cases, tol=1e-8, max_revolutions=400, parallel=None):
@@ -94,15 +109,18 @@ def _as_cases(cases):
         else:
             raise TypeError(f"cases[{i}] must be a crankgen.Case or a mapping of its parameters, "
                             f"got {type(item).__name__}")
+        _check_resolved(out[-1], f"cases[{i}]: ")
     return out
 
 
 class _Checkpoint:
     """Append-only JSON Lines record of finished cases (see the module docstring)."""
 
-    def __init__(self, path, settings):
+    def __init__(self, path, settings, keep_other_versions=False):
         self.path = Path(path)
         self.settings = settings
+        self.code = code_version()
+        self.keep_other_versions = keep_other_versions
 
     def open(self):
         """Create the file or repair its tail; return {key: row} of reusable records."""
@@ -128,10 +146,10 @@ class _Checkpoint:
                 fh.truncate(end)
                 fh.flush()
                 os.fsync(fh.fileno())
-        rows, bad, stale = {}, 0, 0
+        rows, bad, stale, other = {}, 0, 0, {}
         for line in data[len(header):end].splitlines():
-            try:
-                record = json.loads(line)
+            try:          # NaN / Infinity written by older versions are read as missing (None)
+                record = json.loads(line, parse_constant=lambda name: None)
                 key, settings, row = record["key"], record["settings"], record["row"]
                 if not isinstance(key, str) or not isinstance(row, dict):
                     raise TypeError
@@ -141,7 +159,18 @@ class _Checkpoint:
             if settings != self.settings:
                 stale += 1
                 continue
+            code = record.get("code")
+            if code != self.code and not self.keep_other_versions:
+                other[key] = code
+                continue
             rows[key] = row
+        other = {key: code for key, code in other.items() if key not in rows}
+        if other:
+            made_by = sorted({json.dumps(code, sort_keys=True) for code in other.values()})
+            warnings.warn(f"checkpoint {self.path}: {len(other)} record(s) made by other code "
+                          f"({'; '.join(made_by)}, this is {json.dumps(self.code, sort_keys=True)}) "
+                          "are recomputed; pass keep_other_versions=True to reuse them",
+                          RuntimeWarning, stacklevel=3)
         if bad:
             warnings.warn(f"checkpoint {self.path}: {bad} unreadable line(s) ignored; "
                           "their cases are recomputed", RuntimeWarning, stacklevel=3)
@@ -159,7 +188,8 @@ class _Checkpoint:
 
     def append(self, pairs):
         """Append (key, row) records in one write, then flush and fsync."""
-        payload = "".join(json.dumps({"key": key, "settings": self.settings, "row": row}) + "\n"
+        payload = "".join(json.dumps({"key": key, "settings": self.settings, "code": self.code,
+                                      "row": row}, allow_nan=False) + "\n"
                           for key, row in pairs)
         with open(self.path, "ab") as fh:
             fh.write(payload.encode())
@@ -182,18 +212,21 @@ def _fsync_dir(folder):
 
 
 def sweep(cases, executor=None, checkpoint=None, batch_size=64, tol=1e-8, progress=None, *,
-          max_revolutions=400, retry_failed=False):
+          max_revolutions=400, retry_failed=False, keep_other_versions=False):
     """Periodic steady states of many cases, as a SweepTable (one row per case, input order).
 
     cases: iterable of `Case` or mappings (`Case.from_dict`); all are validated before any work
         (a bad one raises ParameterError naming its index).  Duplicates are computed once.
     executor: None runs in this process; otherwise any `concurrent.futures.Executor`, e.g.
         `ProcessPoolExecutor()` or `distributed.Client(...).get_executor()`.  The executor is
-        the caller's: it is used, not shut down.
+        the caller's: it is used, not shut down.  Chunks it does not finish (a worker died, the
+        pool broke) are never recorded as results; they are run again in this process after the
+        others, with a RuntimeWarning.
     checkpoint: path of a JSON Lines file; finished cases are appended after every chunk and, on
-        a later call, cases already in it (same `Case.key()`, tol and max_revolutions) are taken
-        from it instead of being recomputed.  Failed cases are recorded too and are not retried
-        unless retry_failed=True.
+        a later call, cases already in it (same `Case.key()`, tol and max_revolutions, same
+        `provenance.code_version()`) are taken from it instead of being recomputed.  Failed
+        cases are recorded too and are not retried unless retry_failed=True.  Records made by
+        other code are recomputed, with a warning, unless keep_other_versions=True.
     batch_size: cases per call of `steady_states` (per task with an executor).
     tol, max_revolutions: passed to `steady_states`.
     progress: progress(done, total) after each finished chunk, counting cases in the input
@@ -210,7 +243,8 @@ def sweep(cases, executor=None, checkpoint=None, batch_size=64, tol=1e-8, progre
     results = {}
     store = None
     if checkpoint is not None:
-        store = _Checkpoint(checkpoint, {"tol": tol, "max_revolutions": max_revolutions})
+        store = _Checkpoint(checkpoint, {"tol": tol, "max_revolutions": max_revolutions},
+                            keep_other_versions)
         results = {key: row for key, row in store.open().items()
                    if key in multiplicity and not (retry_failed and row.get("status") == "failed")}
 
@@ -236,24 +270,43 @@ def sweep(cases, executor=None, checkpoint=None, batch_size=64, tol=1e-8, progre
         if progress is not None:
             progress(done, total)
 
-    if executor is None:
-        for chunk in chunks:
-            finish(chunk, _run_chunk(chunk, tol, max_revolutions))
-    else:
-        futures = {executor.submit(_run_chunk, chunk, tol, max_revolutions, False): chunk
-                   for chunk in chunks}
-        try:
-            for future in cf.as_completed(futures):
-                chunk = futures[future]
-                try:
-                    rows = future.result()
-                except Exception as exc:          # the task itself failed: worker died, etc.
-                    rows = [_failed_row(case, exc) for case in chunk]
-                finish(chunk, rows)
-        finally:
-            for future in futures:
-                future.cancel()
+    if executor is not None:
+        chunks = _run_on(executor, chunks, finish, tol, max_revolutions)
+    for chunk in chunks:
+        finish(chunk, _run_chunk(chunk, tol, max_revolutions))
     return SweepTable([results[key] for key in keys])
+
+
+def _run_on(executor, chunks, finish, tol, max_revolutions):
+    """Run the chunks through the executor, finish() each one that comes back, and return those
+    it did not finish (in their original order), after warning about them."""
+    futures, unfinished, reason = {}, set(), None
+    try:
+        for i, chunk in enumerate(chunks):
+            try:
+                futures[executor.submit(_run_chunk, chunk, tol, max_revolutions, False)] = i
+            except cf.BrokenExecutor as exc:      # broken before every chunk was sent
+                unfinished.update(range(i, len(chunks)))
+                reason = f"{type(exc).__name__}: {exc}"
+                break
+        for future in cf.as_completed(futures):
+            i = futures[future]
+            try:
+                rows = future.result()
+            except Exception as exc:   # _run_chunk itself never raises: the task did not complete
+                unfinished.add(i)
+                reason = reason or f"{type(exc).__name__}: {exc}"
+                continue
+            finish(chunks[i], rows)
+    finally:
+        for future in futures:
+            future.cancel()
+    left = [chunks[i] for i in sorted(unfinished)]
+    if left:
+        warnings.warn(f"{sum(map(len, left))} case(s) were not finished by the executor ({reason}); "
+                      "nothing was recorded for them and they are run again in this process",
+                      RuntimeWarning, stacklevel=3)
+    return left
 
 
 def _standard_columns():
@@ -278,10 +331,17 @@ class SweepTable:
         return list(names)
 
     def column(self, name):
-        """One column as a NumPy array (float for numbers, str for text)."""
+        """One column as a NumPy array (float for numbers, str for text).  A numeric column with
+        missing values (None) is a masked array (numpy.ma), masked where the value is missing."""
         if name not in self.columns:
             raise KeyError(f"no column {name!r}; columns are {', '.join(self.columns)}")
-        return np.array([row.get(name) for row in self.rows])
+        values = [row.get(name) for row in self.rows]
+        present = [v for v in values if v is not None]
+        if len(present) < len(values) and present and all(
+                isinstance(v, (int, float)) and not isinstance(v, bool) for v in present):
+            return np.ma.masked_array([0.0 if v is None else float(v) for v in values],
+                                      mask=[v is None for v in values])
+        return np.array(values)
 
     @property
     def failed(self):
@@ -306,7 +366,8 @@ class SweepTable:
         return f"SweepTable({len(self)} rows, {len(self.failed)} not periodic)"
 
     def to_csv(self, path):
-        """Write the table as CSV (floats in full precision), atomically: a temporary file in the
+        """Write the table as CSV (floats in full precision; a missing number, None, is an empty
+        field), atomically: a temporary file in the
         same folder is written, flushed, fsynced and then moved onto path with os.replace, so path
         holds either the old or the complete new table, never a partial one."""
         path = Path(path)
@@ -316,7 +377,7 @@ class SweepTable:
             with os.fdopen(fd, "w", newline="") as fh:
                 writer = csv.DictWriter(fh, fieldnames=self.columns)
                 writer.writeheader()
-                writer.writerows(self.rows)
+                writer.writerows({k: _plain(v) for k, v in row.items()} for row in self.rows)
                 fh.flush()
                 os.fsync(fh.fileno())
             os.replace(tmp, path)

@@ -67,6 +67,12 @@ def make_case(cfg, model_key, approach, n, omega, eps=None, ms=None, steps=None)
                 steps_per_rev=cfg.steps_per_rev if steps is None else steps, integrator="newton")
 
 
+def _num(x):
+    """A SteadyState number for this module's arithmetic: None (missing) -> NaN, which the CSV
+    tables write as an empty field."""
+    return math.nan if x is None else x
+
+
 def steady_row(model_key, s, **extra):
     """Flat record of a SteadyState (numbers as floats; NaN where there is no periodic state)."""
     c = s.case
@@ -74,10 +80,10 @@ def steady_row(model_key, s, **extra):
                approach=c.approach,
                n_elements=c.n_elements, steps_per_rev=c.steps_per_rev, omega=c.omega, eps=c.eps,
                ms=c.ms, status=s.status,
-               amplitude=s.amplitude if s.status == STABLE else math.nan,
-               orbit_amplitude=s.amplitude, half_peak_to_peak=s.half_peak_to_peak,
-               iterations=s.iterations, periods=s.periods, residual=s.residual,
-               multiplier=getattr(s, "multiplier", math.nan), message=s.message,
+               amplitude=_num(s.amplitude) if s.status == STABLE else math.nan,
+               orbit_amplitude=_num(s.amplitude), half_peak_to_peak=_num(s.half_peak_to_peak),
+               iterations=s.iterations, periods=s.periods, residual=_num(s.residual),
+               multiplier=_num(getattr(s, "multiplier", None)), message=s.message,
                envelope=math.nan, envelope_note="")
     row.update(extra)
     return row
