@@ -144,7 +144,7 @@ class _BatchSolver:
             self._shoot(shoot)
         rest = self.status == "pending"
         if rest.any():
-            self._march_until_periodic(rest)
+            self._march_until_periodic(rest.copy())          # clears its argument
             self._marched_multipliers(rest & (self.status == "periodic"))
         return self._results()
 
