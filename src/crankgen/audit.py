@@ -115,10 +115,9 @@ def write_report(out_dir="audit", sections=None, progress=None):
     from ._derive import audit as derived     # lazy: SymPy is loaded here, not at import time
     report = _Report(derived)
     text = report.document(chosen, progress)
+    from .io import atomic_write
     path = Path(out_dir) / "report.md"
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text, encoding="utf-8")
-    return path
+    return atomic_write(path, lambda fh: fh.write(text.encode("utf-8")), mode="wb")
 
 
 class _Report:
