@@ -570,7 +570,7 @@ def build_parser():
                                    "equations by kind, 3 the printed matrix form against the derivation, "
                                    "with each transcription problem of the printed equations checked, 4 "
                                    "weights of the term groups along steady trajectories, 5 the quartic "
-                                   "term, 6 element convergence and membrane locking. Offline; about 20 s "
+                                   "term, 6 element convergence and membrane locking. Offline; under a minute on 2 cores "
                                    "once the engine is compiled.")
     p.add_argument("--out", default="audit",
                    help="output folder (default ./audit); report.md is regenerated (replaced atomically)")
