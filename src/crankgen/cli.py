@@ -384,7 +384,7 @@ def _cmd_sweep(args):
     integer("batch_size", args.batch_size, 1)
     integer("workers", args.workers, 1)
     checkpoint = Path(args.checkpoint) if args.checkpoint else Path(args.out) / "sweep.jsonl"
-    _check_checkpoint(checkpoint)
+    _check_checkpoint(checkpoint, Path(args.out))
     out = _Outputs(args.out, ["sweep.csv"], args.force)
     try:
         return _sweep(args, cases, checkpoint, out)
@@ -392,9 +392,11 @@ def _cmd_sweep(args):
         out.abandon()
 
 
-def _check_checkpoint(path):
+def _check_checkpoint(path, out):
     if path.is_dir():
         raise UsageError(f"checkpoint {path} is a folder, not a file")
+    if path.parent != out and not path.parent.is_dir():
+        raise UsageError(f"checkpoint {path}: its folder {path.parent} does not exist")
     if path.exists():
         with open(path, "rb") as fh:
             head = fh.read(40)
