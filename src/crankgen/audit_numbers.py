@@ -3,8 +3,6 @@ convergence), computed from runs of the compiled engine; Markdown out, no SymPy.
 
 import math
 
-import numpy as np
-
 from .backbone import backbone
 from .cases import Case
 from .engine import SWITCHABLE_GROUPS

@@ -229,8 +229,6 @@ SIM_COLUMNS = ["t", "theta", "v_mid", "u_end", "extension", "status"]
 
 
 def _cmd_simulate(args):
-    from .parameters import Mechanism
-    from .simulation import simulate
     from .validation import in_range
 
     case = _case(args)                                       # validates every parameter ...
@@ -239,17 +237,19 @@ def _cmd_simulate(args):
     names = ["simulation.csv", "v_mid.png"] + (["nodes.csv"] if args.nodes else [])
     out = _Outputs(args.out, names, args.force)             # ... and the output folder, first
     try:
-        return _simulate(args, case, revolutions, out, Mechanism, simulate)
+        return _simulate(args, case, revolutions, out)
     finally:
         out.abandon()
 
 
-def _simulate(args, case, revolutions, out, Mechanism, simulate):
+def _simulate(args, case, revolutions, out):
     import numpy as np
 
     from .io import atomic_write, write_csv
+    from .parameters import Mechanism
     from .plotting import plot_deflection
     from .progress import Progress
+    from .simulation import simulate
 
     mech = Mechanism(a=case.a, eps=case.eps, ms=case.ms, mu=case.mu)
     steps = max(1, int(round(revolutions * case.steps_per_rev)))
