@@ -220,6 +220,7 @@ def test_sweep_grid_and_resume_after_an_interruption(tmp_path, capsys, monkeypat
     part = tmp_path / "part"
     assert run(SWEEP + ["--out", str(part)]) == 130
     assert not (part / "sweep.csv").exists() and (part / "sweep.jsonl").exists()
+    assert "the same command resumes" in capsys.readouterr().err
 
     def counted(cases, *args):
         calls.append(cases[0].omega)
@@ -273,3 +274,17 @@ def test_atomic_write_leaves_nothing_on_failure_and_old_file_intact(tmp_path):
     with pytest.raises(KeyboardInterrupt):
         atomic_write(path, broken)
     assert path.read_text() == "old\n" and [p.name for p in tmp_path.iterdir()] == ["x.csv"]
+
+
+def test_leftover_temporaries_of_a_killed_run_are_removed(tmp_path):
+    """A run killed while writing leaves `.NAME.PID.X.tmp`; the next run removes it when PID is gone."""
+    dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True,
+                          text=True).stdout.strip()
+    stale = tmp_path / f".simulation.csv.{dead}.0badc0de.tmp"
+    alive = tmp_path / f".simulation.csv.{os.getppid()}.0badc0de.tmp"
+    other = tmp_path / f".notes.txt.{dead}.0badc0de.tmp"
+    for p in (stale, alive, other):
+        p.write_text("half")
+    from crankgen.io import prepare_folder
+    prepare_folder(tmp_path, ["simulation.csv", "v_mid.png"])
+    assert not stale.exists() and alive.exists() and other.exists()

@@ -614,7 +614,9 @@ def main(argv=None):
         print(f"{name}: error: {where}{exc.strerror or exc}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
-        print(f"{name}: interrupted", file=sys.stderr)
+        resume = ("; the finished cases are in the checkpoint: the same command resumes"
+                  if args.command == "sweep" else "")
+        print(f"{name}: interrupted{resume}", file=sys.stderr)
         return 130
     finally:
         warnings.showwarning = previous

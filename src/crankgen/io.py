@@ -20,7 +20,7 @@ from .errors import CrankgenError
 
 __all__ = ["OutputExistsError", "OutputPathError", "atomic_write", "atomic_write_text", "csv_text",
            "write_csv", "save_figure", "existing_outputs", "prepare_folder", "remove_if_empty",
-           "fsync_dir"]
+           "remove_stale_temporaries", "fsync_dir"]
 
 
 class OutputExistsError(CrankgenError):
@@ -131,7 +131,7 @@ def existing_outputs(folder, names):
 
 def prepare_folder(folder, names=(), force=False):
     """Check, before any computing, that folder can receive the files `names`; create it if
-    missing.  Returns the list of folders created (for `remove_if_empty` if the run stops before
+    missing, and remove temporary files of those names left by a killed run.  Returns the list of folders created (for `remove_if_empty` if the run stops before
     writing anything).  Raises OutputPathError (a file, under a file, not creatable, not writable)
     or OutputExistsError (one of names is there and force is false)."""
     folder = Path(folder)
@@ -171,7 +171,34 @@ def _prepare(folder, names, force):
     except OSError as exc:
         remove_if_empty(created)
         raise OutputPathError(f"cannot write to {folder}: {exc.strerror or exc}") from None
+    remove_stale_temporaries(folder, names)
     return created
+
+
+def remove_stale_temporaries(folder, names):
+    """Remove temporary files that an earlier, killed run left beside the outputs `names`
+    (`.NAME.PID.XXXXXXXX.tmp` whose process no longer exists); return how many were removed."""
+    removed = 0
+    for name in names:
+        for tmp in Path(folder).glob(f".{name}.*.tmp"):
+            parts = tmp.name[len(name) + 2:].split(".")
+            if len(parts) != 3 or not parts[0].isdigit():
+                continue
+            pid = int(parts[0])
+            if pid != os.getpid():
+                try:
+                    os.kill(pid, 0)
+                    continue                        # still running: not ours to remove
+                except ProcessLookupError:
+                    pass
+                except OSError:
+                    continue
+            try:
+                tmp.unlink()
+                removed += 1
+            except OSError:
+                pass
+    return removed
 
 
 def remove_if_empty(folders):
