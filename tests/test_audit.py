@@ -270,7 +270,7 @@ def test_tangent_minus_secant(approach):
     assert is_zero(A.element_vector(A.tangent_minus_secant(approach)) - defect)
 
 
-# ---- ERRATA.md verdicts ------------------------------------------------------------------------
+# ---- transcription problems of the printed equations (docs/errata.md): verdicts ------------
 def test_every_errata_item_has_a_verdict():
     verdicts = {v.key: v.verdict for v in A.errata_verdicts()}
     assert list(verdicts) == ["eq1", "B3", "eq29", "eq37", "eq39", "B15/B16"]
