@@ -288,3 +288,16 @@ def test_leftover_temporaries_of_a_killed_run_are_removed(tmp_path):
     from crankgen.io import prepare_folder
     prepare_folder(tmp_path, ["simulation.csv", "v_mid.png"])
     assert not stale.exists() and alive.exists() and other.exists()
+
+
+def test_documents_cite_no_file_outside_the_repository(capsys):
+    """README, docs/ and every --help text state things in the project's own words."""
+    from pathlib import Path
+    root = Path(__file__).resolve().parent.parent
+    texts = [root / "README.md"] + sorted((root / "docs").glob("*.md"))
+    for command in ("simulate", "steady", "sweep", "reproduce", "audit"):
+        assert run([command, "--help"]) == 0
+    helps = capsys.readouterr().out
+    for text in [p.read_text(encoding="utf-8") for p in texts] + [helps]:
+        assert "ERRATA" not in text and "shared/" not in text
+    assert "docs/errata.md" in (root / "README.md").read_text(encoding="utf-8")
