@@ -65,7 +65,7 @@ def test_invalid_argument_exits_2_with_one_line_and_creates_nothing(tmp_path, ca
     assert not (tmp_path / "new").exists()
 
 
-@pytest.mark.parametrize("command", ["simulate", "steady", "sweep", "audit"])
+@pytest.mark.parametrize("command", ["simulate", "steady", "sweep", "audit", "reproduce"])
 def test_out_that_is_a_file_or_under_a_file_is_refused(tmp_path, capsys, command):
     f = tmp_path / "file"
     f.write_text("keep me")
