@@ -173,10 +173,9 @@ _figure_list = _number_list("figure", 2, 8)
 
 
 # ---- helpers -----------------------------------------------------------------------------------
-def _model_options(args, model=None):
+def _model_options(args):
     """formulation, damping, membrane: the model's (default consistent), explicit options winning."""
-    model = model or args.model or "consistent"
-    chosen = dict(MODELS[model])
+    chosen = dict(MODELS[args.model or "consistent"])
     for name in chosen:
         if getattr(args, name) is not None:
             chosen[name] = getattr(args, name)
