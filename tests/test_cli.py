@@ -192,6 +192,19 @@ def test_steady_end_to_end(tmp_path, capsys):
     assert "status periodic" in capsys.readouterr().out
 
 
+def test_failed_steady_exits_1_and_failed_sweep_case_is_a_row_without_nan(tmp_path, capsys):
+    """Approach B of the exact equations has no steady state at Omega* = 0.8 (it diverges)."""
+    diverging = ["--approach", "B", "--omega", "0.8"] + TINY
+    assert run(["steady", "--out", str(tmp_path / "st")] + diverging) == 1
+    one_line_error(capsys, "run failed")
+    row = read_csv(tmp_path / "st" / "steady.csv")[0]
+    assert row["status"] == "failed" and row["amplitude"] == "" and row["message"]
+    assert not (tmp_path / "st" / "orbit.csv").exists()
+    assert run(["sweep", "--out", str(tmp_path / "sw")] + diverging) == 0
+    text = (tmp_path / "sw" / "sweep.csv").read_text()
+    assert "nan" not in text.lower() and read_csv(tmp_path / "sw" / "sweep.csv")[0]["status"] == "failed"
+
+
 # ---- sweep -----------------------------------------------------------------------------------
 SWEEP = ["sweep", "--omega", "0.2:0.6:0.2", "--eps", "0.01", "--batch-size", "1"] + TINY
 
