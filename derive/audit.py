@@ -1,5 +1,6 @@
 """Symbolic audit: energies by order, Euler-Lagrange terms by kind, the printed matrix form
-(eqs. 17-29, Appendix B) against the derivation, and the items of ERRATA.md.
+(eqs. 17-29, Appendix B) against the derivation, and the transcription problems of the printed
+equations (docs/errata.md).
 
 Two levels are used throughout.
 - Field level: densities in the field symbols below (u, v, psi, their rates and x-derivatives,
@@ -822,7 +823,8 @@ def dimensions(expr):
 
 
 # ---------------------------------------------------------------------------------------------
-# ERRATA.md items and the conventions that follow from eq. (7)
+# Transcription problems of the printed equations (docs/errata.md) and the conventions that
+# follow from eq. (7)
 # ---------------------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class Evidence:
@@ -981,12 +983,12 @@ def erratum_b15_b16():
 
 @lru_cache(maxsize=None)
 def errata_verdicts():
-    """One Verdict per row of ERRATA.md, in its order."""
+    """One Verdict per transcription problem of the printed equations (docs/errata.md, same order)."""
     return (erratum_eq1(), erratum_b3(), erratum_eq29(), erratum_eq37(), erratum_eq39(), erratum_b15_b16())
 
 
 def convention_checks():
-    """ERRATA.md conventions: basis rates, eq. (7) from R = a e_r + xi e_i + eta e_j, the rigid rod
+    """Conventions of the derivation (docs/errata.md): basis rates, eq. (7) from R = a e_r + xi e_i + eta e_j, the rigid rod
     angle sin phi = (a/L) sin theta and eq. (26), both from the slider staying on the X axis."""
     t = sp.Symbol("t", real=True)
     xi, eta, xid, etad = sp.symbols("xi eta xid etad", real=True)

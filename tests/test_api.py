@@ -78,8 +78,9 @@ def test_cli_writes_csv_and_png(tmp_path):
     rc = cli_main(["simulate", "--elements", "2", "--revolutions", "1", "--steps-per-rev", "20",
                    "--out", str(tmp_path), "--quiet", "--nodes"])
     assert rc == 0
-    data = np.loadtxt(tmp_path / "simulation.csv", delimiter=",", skiprows=1)
+    data = np.loadtxt(tmp_path / "simulation.csv", delimiter=",", skiprows=1, usecols=range(5))
     assert data.shape == (21, 5) and np.all(np.isfinite(data))
+    assert (tmp_path / "simulation.csv").read_text().splitlines()[0].endswith(",status")
     assert (tmp_path / "v_mid.png").stat().st_size > 1000
     assert np.loadtxt(tmp_path / "nodes.csv", delimiter=",").shape == (21, 9)
 

@@ -270,7 +270,7 @@ def test_tangent_minus_secant(approach):
     assert is_zero(A.element_vector(A.tangent_minus_secant(approach)) - defect)
 
 
-# ---- ERRATA.md verdicts ------------------------------------------------------------------------
+# ---- transcription problems of the printed equations (docs/errata.md): verdicts ------------
 def test_every_errata_item_has_a_verdict():
     verdicts = {v.key: v.verdict for v in A.errata_verdicts()}
     assert list(verdicts) == ["eq1", "B3", "eq29", "eq37", "eq39", "B15/B16"]
@@ -351,6 +351,35 @@ def test_write_report_has_every_section_and_is_deterministic(tmp_path):
     again = report.write_report(tmp_path / "two", sections=[1, 2, 3]).read_text(encoding="utf-8")
     body = text[text.index("## 1."):text.index("## 4.")]
     assert again[again.index("## 1."):].rstrip() == body.rstrip()
+    _check_summary_and_tables(text)
+
+
+def _check_summary_and_tables(text):
+    """The summary opens the report, and its numbers are those of the tables below it; no table
+    is wider than 12 columns; no file outside the repository is cited."""
+    import re
+    assert text.index("## Summary") < text.index("## 1.")
+    summary = text[text.index("## Summary"):text.index("## 1.")]
+    assert "ERRATA" not in text and "shared/" not in text
+    widths = [line.count("|") - 1 for line in text.splitlines() if line.startswith("|---")]
+    assert widths and max(widths) <= 12
+    table = text[text.index("### 5.1"):text.index("### 5.2")]
+    rows = [[c.strip() for c in line.strip("|").split("|")] for line in table.splitlines()
+            if line.startswith("| paper") or line.startswith("| consistent")]
+    assert len(rows) == 24
+    for model in ("paper", "consistent"):
+        ratios = [float(r[5]) for r in rows if r[0] == model and r[1] == "0.01" and r[4] != "failed"]
+        n_ok = sum(1 for r in rows if r[0] == model and re.fullmatch(r"[0-9.]+", r[5]))
+        line = next(l for l in summary.splitlines() if l.startswith(f"- Steady amplitude, {model} model"))
+        assert f"B periodic in {n_ok} of 12 cases" in line
+        assert f"to {max(ratios):.3f}" in line.split("eps = 0.1:")[0]
+    where = next(l for l in summary.splitlines() if l.startswith("- Where (3.3)"))
+    assert "5 groups" in where and "cubic coupling" in where
+    switch = text[text.index("### 4.3"):text.index("## 5.")]
+    changes = [float(c.strip().rstrip("%")) for line in switch.splitlines() if line.startswith("| 0.")
+               for c in [line.strip("|").split("|")[6]] if c.strip().endswith("%")]
+    much = next(l for l in summary.splitlines() if l.startswith("- How much (4.3)"))
+    assert f"axial equation: at most {max(changes, key=abs):+.1f}%" in much
 
 
 def test_write_report_sections_subset_and_validation(tmp_path):

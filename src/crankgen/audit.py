@@ -2,10 +2,11 @@
 
 SymPy and the derivation (crankgen._derive) are loaded inside `write_report` only, so importing
 crankgen never imports SymPy.  The computations live in crankgen._derive.audit; this module only
-lays them out: numbered sections (1 energies by order, 2 Euler-Lagrange terms by kind, 3 printed
-form against the derivation and ERRATA.md); sections 4-6 are computed from runs of the compiled
-engine by audit_numbers.py (4 weights of the groups along steady trajectories, 5 the quartic term,
-6 element convergence and membrane locking).
+lays them out: a summary computed from the sections run, then numbered sections (1 energies by
+order, 2 Euler-Lagrange terms by kind, 3 printed form against the derivation, with the transcription
+problems of the printed equations checked one by one); sections 4-6 are computed from runs of the
+compiled engine by audit_numbers.py (4 weights of the groups along steady trajectories, 5 the
+quartic term, 6 element convergence and membrane locking).
 """
 
 from pathlib import Path
@@ -55,7 +56,7 @@ GROUP_RULES = {
 SLOT_TITLES = {"u": r"$\delta u$", "v": r"$\delta v$", "psi": r"$\delta\psi$",
                "u_x": r"$\delta u_{,x}$", "v_x": r"$\delta v_{,x}$", "v_xx": r"$\delta v_{,xx}$"}
 STATUS = {"kept": "✓", "dropped": "—", "differs": "≠", "present": "✓", "": ""}
-FORMULATION_TITLES = {"lagrange": "exact Lagrange", "paper": "printed, errata applied",
+FORMULATION_TITLES = {"lagrange": "exact Lagrange", "paper": "printed, corrected",
                       "printed": "as printed"}
 DAMPING_TITLES = {"eq24": "eq. (24)", "kelvin-voigt": "Kelvin-Voigt"}
 
@@ -87,7 +88,9 @@ EXPLANATIONS = {
         r"(item eq. 29 below)."),
 }
 
-ERRATA_TEXT = {
+# The transcription problems of the printed equations that the audit checks (section 3.5;
+# docs/errata.md states them for readers): as printed, what the derivation requires, how it is checked.
+TRANSCRIPTION_TEXT = {
     "eq1": (r"bending part $-y\,v_{,xxx}$", r"$-y\,v_{,xx}$",
             "integrate $E e_{xx}^2/2$ over the section for both bending terms and compare with eq. (2); "
             "dimension of the bending term"),
@@ -103,6 +106,28 @@ ERRATA_TEXT = {
     "B15/B16": (r"evaluated at $\xi = 1$", r"$\zeta = 1$ (node $i+1$, $x = l$)",
                 r"where the shape functions pick the end node; abscissa of that point in element $n$"),
 }
+# The same items in words: what is wrong in print and what it changes.
+TRANSCRIPTION_WORDS = {
+    "eq1": "The bending part of the axial strain carries a third derivative where the curvature (a "
+           "second derivative) belongs; only the curvature gives the strain energy of eq. (2), and the "
+           "printed term is not even dimensionless. Eq. (2) itself is right, so nothing downstream changes.",
+    "B3": "The rotary-inertia entry of the vector linear in the rates carries the crank-frame angular "
+          "speed squared instead of to the first power. Used as printed, eq. (25) turns it into a "
+          "forcing twice the angular speed times the angular acceleration instead of the angular "
+          "acceleration: a wrong force, and rows of mixed dimensions. Changes numbers; corrected in "
+          "crankgen's `paper` formulation.",
+    "eq29": "The slider's forcing subtracts the vector of its kinetic energy linear in the rates (a "
+            "momentum) where its time derivative (a force) is required. Changes numbers; corrected in "
+            "crankgen's `paper` formulation.",
+    "eq37": "A brace without its partner; read without it, eq. (37) is exactly the equation of motion "
+            "at the new time under eqs. (38)-(39). Typesetting only.",
+    "eq39": "The velocity corrector starts from the previous step's velocity predictor instead of the "
+            "current one: inconsistent with eq. (37), and its local error is of first order in the time "
+            "step instead of third. crankgen's one-pass scheme uses the current predictor.",
+    "B15/B16": "The slider terms are said to be evaluated at xi = 1, but xi is the moving-frame "
+               "co-ordinate; the element's end node is at the local co-ordinate zeta = 1 (x = l of the "
+               "last element, the rod end x = L). A wrong symbol; the terms are meant at the end node.",
+}
 
 
 def write_report(out_dir="audit", sections=None, progress=None):
@@ -115,10 +140,9 @@ def write_report(out_dir="audit", sections=None, progress=None):
     from ._derive import audit as derived     # lazy: SymPy is loaded here, not at import time
     report = _Report(derived)
     text = report.document(chosen, progress)
+    from .io import atomic_write
     path = Path(out_dir) / "report.md"
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text, encoding="utf-8")
-    return path
+    return atomic_write(path, lambda fh: fh.write(text.encode("utf-8")), mode="wb")
 
 
 class _Report:
@@ -186,14 +210,18 @@ class _Report:
 
     # ---- document -------------------------------------------------------------------------
     def document(self, sections, progress=None):
-        parts = [self.preamble(sections)]
+        from . import audit_numbers
+        self.facts = {}
+        parts = []
         builders = {1: self.section1, 2: self.section2, 3: self.section3, 4: self.section4,
                     5: self.section5, 6: self.section6}
         for k in sections:
             if progress is not None:
                 progress(k)
             parts.append(f"## {k}. {TITLES[k]}\n\n" + builders[k]())
-        return "\n".join(parts)
+        differences = self.d.differences() if 3 in sections else None
+        summary = audit_numbers.summary(self.facts, GROUP_TITLES, differences)
+        return "\n".join([self.preamble(sections), summary] + parts)
 
     def preamble(self, sections):
         weak = (r"\{r\}_i = \int_0^l \Big(\{N_u\} f_u + \{N_v\} f_v + \{N_\psi\} f_\psi"
@@ -206,8 +234,9 @@ class _Report:
             "Formulations compared:\n\n"
             "- **exact Lagrange**: the Euler-Lagrange equations of $T_c + T_s - U_c$ (eq. 19), energies "
             "from eqs. (2)-(7);\n"
-            "- **printed, errata applied**: the matrix form of eqs. (17)-(29) and Appendix B with the "
-            "two numerical errata (B3, eq. 29) corrected (crankgen's `paper` formulation);\n"
+            "- **printed, corrected**: the matrix form of eqs. (17)-(29) and Appendix B with the "
+            "two transcription problems that change numbers, (B3) and eq. (29), corrected (crankgen's "
+            "`paper` formulation; every transcription problem is checked in 3.5);\n"
             "- **as printed**: the same without those corrections.\n\n"
             "Approaches: A keeps eq. (2) whole, B drops the quartic term, C uses the linear strain.\n\n"
             "Field-level equations are written as weak forms, one density per virtual quantity "
@@ -217,7 +246,7 @@ class _Report:
             + "\nEvery field-level statement below is also checked on the element vectors in "
             "$\\{q\\}_i = \\{u_i, v_i, \\psi_i, u_{i+1}, v_{i+1}, \\psi_{i+1}\\}$ (eq. 14), where the "
             "printed matrices live (tests/test_audit.py).\n\n"
-            "Contents\n\n" + contents + "\n"
+            "Contents\n\nSummary\n" + contents + "\n"
         )
 
     # ---- section 1 ------------------------------------------------------------------------
@@ -378,7 +407,7 @@ class _Report:
                    "eq. (20) is obtained from eq. (18).\n")
 
         out.append("\n### 3.3 Terms of the Lagrange equations that the printed form does not contain\n\n"
-                   "Exact Lagrange equations minus the printed form (errata applied), group by group, "
+                   "Exact Lagrange equations minus the printed form (corrected), group by group, "
                    "for the rod's inertia and elastic forces and the slider's forces; no other group "
                    "differs. Items marked *as printed* are the additional differences of the uncorrected "
                    "text. (Damping is a modelling choice, compared in 3.4.)\n")
@@ -388,17 +417,20 @@ class _Report:
         out.append("\n### 3.4 Further findings\n\n")
         out.append(self.further_findings())
 
-        out.append("\n### 3.5 ERRATA.md, item by item\n\n")
+        out.append("\n### 3.5 Transcription problems of the printed equations, item by item\n\n"
+                   "Places where the printed equations cannot be what the derivation gives (a wrong "
+                   "derivative order, a missing time derivative, a wrong predictor, a wrong symbol), "
+                   "each checked symbolically; docs/errata.md states them in words.\n\n")
         rows = []
         for verdict in d.errata_verdicts():
-            printed, required, check = ERRATA_TEXT[verdict.key]
+            printed, required, check = TRANSCRIPTION_TEXT[verdict.key]
             rows.append([verdict.item, printed, required, check, f"**{verdict.verdict}**"])
         out.append(self.table(["item", "as printed", "required", "symbolic check", "verdict"], rows))
         for verdict in d.errata_verdicts():
-            out.append(f"\n**{verdict.item}** ({verdict.verdict})\n\n")
+            out.append(f"\n**{verdict.item}** ({verdict.verdict}). {TRANSCRIPTION_WORDS[verdict.key]}\n\n")
             for ev in verdict.evidence:
                 out.append(f"- {ev.label}: {self.value(ev.value)}\n")
-        out.append("\n### 3.6 Conventions of ERRATA.md\n\n"
+        out.append("\n### 3.6 Conventions the derivation relies on (checked)\n\n"
                    "$e_r = (\\cos\\theta, \\sin\\theta)$, $e_i = (\\cos\\phi, -\\sin\\phi)$, "
                    "$e_j = (\\sin\\phi, \\cos\\phi)$ in $X, Y$:\n\n")
         for ev in d.convention_checks():
@@ -492,11 +524,11 @@ class _Report:
     # ---- sections 4-6: numbers from runs --------------------------------------------------
     def section4(self):
         from . import audit_numbers
-        return audit_numbers.section4(GROUP_TITLES)
+        return audit_numbers.section4(GROUP_TITLES, self.facts)
 
     def section5(self):
         from . import audit_numbers
-        return audit_numbers.section5(GROUP_TITLES)
+        return audit_numbers.section5(GROUP_TITLES, self.facts)
 
     def section6(self):
         from . import audit_numbers

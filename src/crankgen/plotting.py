@@ -8,19 +8,55 @@ def _pyplot():
     return plt
 
 
-def plot_deflection(result, path):
-    """v* at x* = 1/2 against t*."""
+def _title(s):
+    return (f"approach {s['approach']}, {s['formulation']} formulation, {s['damping']} damping, "
+            f"{s.get('membrane', 'pointwise')} membrane\nOmega* = {s['omega']:g}, eps = {s['eps']:g}, "
+            f"ms* = {s['ms']:g}, mu* = {s['mu']:g}, n = {s['n_elements']}")
+
+
+def plot_deflection(result, path, failure=None):
+    """v* at x* = 1/2 against t*, written atomically to path (returned).  failure: the
+    ConvergenceError of a run that stopped, whose time is marked on the plot."""
+    from .io import save_figure
     plt = _pyplot()
-    s = result.settings
-    fig, ax = plt.subplots(figsize=(7, 3.5), constrained_layout=True)
-    ax.plot(result.t, result.v_mid, lw=1)
+    fig, ax = plt.subplots(figsize=(7, 3.8), constrained_layout=True)
+    ax.plot(result.t, result.v_mid, lw=1, color="C0", label="v* (x* = 1/2)")
+    if failure is not None:
+        ax.axvline(failure.time, color="C3", ls="--", lw=1,
+                   label=f"run failed at t* = {failure.time:.4g} (step {failure.step})")
+        if len(result.t):
+            ax.plot(result.t[-1:], result.v_mid[-1:], "x", color="C3", ms=9, mew=2,
+                    label="last computed state")
+        ax.legend(fontsize=8, loc="best")
     ax.set_xlabel("t*")
     ax.set_ylabel("v* at x* = 1/2")
-    ax.set_title(f"approach {s['approach']}, {s['formulation']} / {s['damping']} damping, "
-                 f"Omega* = {s['omega']:g}, eps = {s['eps']:g}, n = {s['n_elements']}", fontsize=9)
+    ax.set_title(_title(result.settings), fontsize=9)
     ax.grid(alpha=0.3)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    return save_figure(fig, path)
+
+
+def plot_orbit(state, path):
+    """A steady revolution (crankgen.SteadyState): v* at x* = 1/2 and the extension delta*
+    against the crank angle, written atomically to path (returned)."""
+    import numpy as np
+
+    from .io import save_figure
+    plt = _pyplot()
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 5.2), sharex=True, constrained_layout=True)
+    deg = np.degrees(state.theta)
+    a1.plot(deg, state.v_mid, lw=1.2, color="C0")
+    a1.set_ylabel("v* at x* = 1/2")
+    a2.plot(deg, state.extension, lw=1.2, color="C2")
+    a2.set_ylabel("extension delta*")
+    a2.set_xlabel("crank angle theta (degrees)")
+    a2.set_xticks(np.arange(0, 361, 60))
+    for ax in (a1, a2):
+        ax.grid(alpha=0.3)
+    s = dict(state.case.as_dict())
+    mult = (f", largest |multiplier| {state.multiplier:.4f}"
+            if state.multiplier is not None and np.isfinite(state.multiplier) else "")
+    a1.set_title(f"steady state: {state.status}{mult}\n" + _title(s), fontsize=9)
+    return save_figure(fig, path)
 
 
 # --- helpers for multi-panel figures (crankgen reproduce) -------------------------------------

@@ -7,8 +7,9 @@ from .errors import ParameterError
 
 
 def finite_number(name, value):
-    """value as a float; it must be a real, finite number."""
-    if isinstance(value, bool):
+    """value as a float; it must be a real, finite number.  Text is refused, even "0.8": a number
+    given as a string is a mistake to report, not to guess (the command line parses its own)."""
+    if isinstance(value, (bool, str, bytes, bytearray)):
         raise ParameterError(f"{name} must be a number, got {value!r}")
     try:
         x = float(value)
