@@ -85,8 +85,16 @@ def _coincide_note(pairs):
     if not groups:
         return None
     order = list(dict.fromkeys(x for a, b, _ in pairs for x in (a, b)))
-    text = "; ".join(", ".join(sorted(g, key=order.index)) for g in groups)
+    text = "; ".join(_compact(sorted(g, key=order.index)) for g in groups)
     return Line2D([], [], ls="none", label=f"{text}: coincide to 1 %")
+
+
+def _compact(names):
+    """"C ms* = 0", "C ms* = 1" -> "C ms* = 0, 1" (names sharing the text before their last '= ')."""
+    heads = {n.rpartition("= ")[0] for n in names}
+    if len(heads) == 1 and all("= " in n for n in names):
+        return heads.pop() + "= " + ", ".join(n.rpartition("= ")[2] for n in names)
+    return ", ".join(names)
 
 
 def _curve_coincidences(curves, name):
@@ -114,6 +122,7 @@ def _transient_axes(ax, curves, eps):
     if base is not None and any(c.has_history and c.max_abs > 5 * base for c in bad):
         top = 1.3 * base
         ax.set_ylim(-top, top)
+    stacked = {}
     for c in bad:
         col = getattr(c, "_color", "k")
         if not c.has_history:
@@ -122,9 +131,12 @@ def _transient_axes(ax, curves, eps):
         t, v = c.t[-1], c.v_mid[-1]
         if top is not None and abs(v) > top:
             y = math.copysign(0.9 * top, v)
+            k = stacked.setdefault(v > 0, 0)
+            stacked[v > 0] += 1
             ax.plot([t], [y], ls="none", marker="X", ms=9, color=col, markeredgecolor="k", zorder=6)
-            ax.annotate(f"v* = {v:.3g}", (t, y), xytext=(6, -3 if v > 0 else 3), textcoords="offset points",
-                        fontsize=FONT, color="k", va="top" if v > 0 else "bottom")
+            ax.annotate(f"v* = {v:.3g}", (t, y), xytext=(8, (-2 - 10 * k) if v > 0 else (2 + 10 * k)),
+                        textcoords="offset points", fontsize=FONT, color=col,
+                        va="top" if v > 0 else "bottom")
         else:
             ax.plot([t], [v], ls="none", marker="X", ms=9, color=col, markeredgecolor="k", zorder=6)
     vmax = max([c.max_abs for c in curves if c.has_history] or [math.nan])
@@ -217,7 +229,7 @@ def plot_figure3(data, cfg, counts):
 
 def plot_figure4(data, cfg, counts):
     masses = sorted({c.spec.ms for c in data["curves"] if c.spec.approach != "A"})
-    fig, axes = panels(2, 2, width=6.2, height=3.0, space_below=_below(2 * len(masses) + 2, 2), top_margin=0.95)
+    fig, axes = panels(2, 2, width=6.2, height=3.0, space_below=_below(2 * len(masses) + 4, 2), top_margin=0.95)
     for j, m in enumerate(MODELS):
         ax = axes[0, j]
         top = []

@@ -151,9 +151,11 @@ class _Lock:
         self.fd = os.open(folder, os.O_RDONLY)
         try:
             fcntl.flock(self.fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except OSError:
+        except BlockingIOError:
             os.close(self.fd)
             raise CrankgenError(f"another crankgen reproduce is writing to {folder}") from None
+        except OSError:         # a file system without flock: run unlocked
+            pass
 
     def release(self):
         os.close(self.fd)
