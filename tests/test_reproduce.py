@@ -400,3 +400,27 @@ def test_failed_transient_keeps_its_rows_up_to_the_failure(tiny_run):
         assert all(r["beyond_theory"] in ("yes", "no") for r in rr[:-1])
         flagged = [r for r in rr[:-1] if abs(0.01 * float(r["v_mid"])) > 0.1]
         assert all(r["beyond_theory"] == "yes" for r in flagged)
+
+
+def test_kill_then_rerun_finishes_the_job(tiny_run, tmp_path):
+    """SIGKILL (no clean-up at all) in the middle of Figure 7, then the same command."""
+    _, ref = tiny_run
+    out = tmp_path / "k"
+    cmd = [sys.executable, "-c", _TINY_CLI, "reproduce", "--quick", "--figures", "7", "--out", str(out)]
+    proc = subprocess.Popen(cmd, stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
+    for line in proc.stderr:
+        if "figure 7 (steady states)" in line:
+            proc.kill()
+            break
+    proc.wait(timeout=120)
+    proc.stderr.close()
+    steps = json.loads((out / "manifest.json").read_text())["steps"]
+    assert steps["figure 7"]["state"] == "incomplete"
+    done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert "figure 7: computing (incomplete" in done.stderr
+    assert "convergence check: kept" in done.stderr
+    assert (out / "fig7.csv").read_bytes() == (ref / "fig7.csv").read_bytes()
+    assert not list(out.glob(".*.tmp")) and not list((out / "data").glob(".*.tmp"))
+    text = (out / "findings.md").read_text()
+    assert "**Not in this report:** Figure 2 (not computed in this folder" in text
