@@ -173,6 +173,22 @@ def _convergence(cfg, conv, refine):
     return lines
 
 
+def _transient_note(c):
+    """Failure, deflection beyond the theory, and growth over the last two revolutions."""
+    notes = []
+    if not c.ok:
+        notes.append(f"failed at t* = {num(c.fail_time)} (history up to there kept): {_short(c.message, 80)}")
+    x = c.spec.eps * c.max_abs
+    if math.isfinite(x) and x > F.THEORY_LIMIT:
+        notes.append(f"beyond the theory: |v|/L up to {num(x, 3)}")
+    k = c.spec.steps_per_rev
+    if c.ok and c.has_history and len(c.v_mid) > 2 * k:
+        last, before = np.max(np.abs(c.v_mid[-k:])), np.max(np.abs(c.v_mid[-2 * k:-k]))
+        if last > 1.05 * before:
+            notes.append(f"still growing: max |v*| {num(before)} then {num(last)} over the last two revolutions")
+    return "; ".join(notes)
+
+
 def _transients(cfg, data):
     lines = []
     titles = {2: f"Figure 2: transient v* at Omega* = {cfg.fig2_omega:g}",
@@ -185,8 +201,7 @@ def _transients(cfg, data):
         lines += [f"## {titles[f]}", "",
                   table(["model", "approach", "n", "steps/rev", "ms*", "status", "max |v*|", "note"],
                         [[c.spec.model, c.spec.approach, c.spec.n_elements, c.spec.steps_per_rev,
-                          f"{c.spec.ms:g}", c.status, num(c.max_abs),
-                          "" if c.ok else f"failed at t* = {num(c.fail_time)}: {_short(c.message, 80)}"]
+                          f"{c.spec.ms:g}", c.status, num(c.max_abs), _transient_note(c)]
                          for c in curves]), ""]
         if f == 3:
             for m in MODELS:
@@ -476,8 +491,10 @@ def _failures(cfg, conv, data):
         if r["status"] == STABLE:
             return
         key = (fig, r["model"], r["approach"], r["eps"] if xkey != "eps" else None, r["ms"], r["status"])
-        g = groups.setdefault(key, dict(x=[], message=r["message"], env=[], diverged=[]))
+        g = groups.setdefault(key, dict(x=[], message=r["message"], env=[], diverged=[], defl=[]))
         g["x"].append(r[xkey])
+        if math.isfinite(r.get("deflection_over_L", math.nan)):
+            g["defl"].append(r["deflection_over_L"])
         if math.isfinite(r.get("envelope", math.nan)):
             g["env"].append(r["envelope"])
         elif r.get("envelope_note", "").startswith("transient failed"):
@@ -502,6 +519,8 @@ def _failures(cfg, conv, data):
         if g["env"]:
             lo, hi = min(g["env"]), max(g["env"])
             env.append(f"max |v*| {num(lo)}" + (f" to {num(hi)}" if hi != lo else ""))
+        if g["defl"] and max(g["defl"]) > F.THEORY_LIMIT:
+            env.append(f"up to |v|/L = {num(max(g['defl']), 3)}: beyond the theory")
         if g["diverged"]:
             env.append(f"transient diverges at {xname} = {fd.ranges_text(g['diverged'])}")
         env = "; ".join(env)
