@@ -86,7 +86,8 @@ def _cmd_reproduce(args):
     config = ReproduceConfig.quick() if args.quick else ReproduceConfig.full()
     res = reproduce(args.out, config=config, force=args.force, quiet=args.quiet,
                     figures=args.figures)
-    print(f"wrote {len(res['files'])} files to {res['out']} ({res['out'] / 'findings.md'}) "
+    print(f"{len(res['computed'])} step(s) computed, {len(res['kept'])} kept (complete and current); "
+          f"wrote {len(res['files'])} files to {res['out']} ({res['out'] / 'findings.md'}) "
           f"in {res['wall_time']:.1f} s")
     return 0
 
