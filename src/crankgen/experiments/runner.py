@@ -144,6 +144,17 @@ class Context:
         return out
 
 
+def run_version():
+    """What made a step: crankgen.provenance.code_version() and a hash of this package's source
+    (figures, plots, claims, findings), so that a rerun with changed reproduce code recomputes."""
+    import hashlib
+    h = hashlib.sha256()
+    for p in sorted(Path(__file__).parent.glob("*.py")):
+        h.update(p.name.encode())
+        h.update(p.read_bytes())
+    return dict(code_version(), experiments=h.hexdigest()[:16])
+
+
 class _Lock:
     """An exclusive lock on the output folder (flock), so that two runs never write it at once."""
 
@@ -211,7 +222,7 @@ def _reproduce(out, config, force, quiet, figures, stream):
         more = f" and {len(foreign) - 1} more" if len(foreign) > 1 else ""
         raise OutputExistsError(f"{out} already holds {names[0]}{more}, not made by a recorded "
                                 "crankgen reproduce run of this folder; use --force to overwrite")
-    version = code_version()
+    version = run_version()
     written, kept, computed = [], [], []
     records = {"TransientCurve": F.TransientCurve}
 
