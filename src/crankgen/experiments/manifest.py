@@ -68,8 +68,7 @@ class Manifest:
         if e.get("state") != "complete":
             return "incomplete", "an earlier run was interrupted while computing it"
         if e.get("code_version") != normalized(version):
-            return "stale", (f"made by other code ({_version_text(e.get('code_version'))}, now "
-                             f"{_version_text(normalized(version))})")
+            return "stale", f"made by other code ({_version_change(e.get('code_version'), normalized(version))})"
         now = normalized(settings)
         old = e.get("settings", {})
         if old != now:
@@ -106,7 +105,8 @@ class Manifest:
         return self.entries.get(step, {}).get("wall_time")
 
 
-def _version_text(v):
-    if not isinstance(v, dict):
-        return "unknown version"
-    return ", ".join(f"{k} {v[k]}" for k in sorted(v))
+def _version_change(old, new):
+    """'experiments 4c0f... -> 8f4a...' for the parts of the code version that differ."""
+    old = old if isinstance(old, dict) else {}
+    keys = sorted(k for k in set(old) | set(new) if old.get(k) != new.get(k))
+    return ", ".join(f"{k} {old.get(k, 'unknown')} -> {new.get(k, 'unknown')}" for k in keys)
