@@ -424,3 +424,30 @@ def test_kill_then_rerun_finishes_the_job(tiny_run, tmp_path):
     assert not list(out.glob(".*.tmp")) and not list((out / "data").glob(".*.tmp"))
     text = (out / "findings.md").read_text()
     assert "**Not in this report:** Figure 2 (not computed in this folder" in text
+
+
+def test_output_folder_that_cannot_be_made_is_refused_before_computing(tmp_path, capsys):
+    blocker = tmp_path / "file"
+    blocker.write_text("not a folder\n")
+    rc = cli_main(["reproduce", "--out", str(blocker / "sub"), "--quiet"])
+    err = capsys.readouterr().err
+    assert rc != 0 and "Traceback" not in err
+    assert len(err.strip().splitlines()) == 1 and "cannot write to" in err
+
+
+def test_theory_flag_matches_the_deflection(tiny_run):
+    _, out = tiny_run
+    rows = list(csv.DictReader(open(out / "fig6.csv")))
+    for r in rows:
+        vals = [float(r[k]) for k in ("amplitude", "orbit_amplitude", "envelope") if r[k] != ""]
+        if not vals:
+            assert r["beyond_theory"] == ""
+            continue
+        assert float(r["deflection_over_L"]) == pytest.approx(float(r["eps"]) * max(vals))
+        assert r["beyond_theory"] == ("yes" if float(r["eps"]) * max(vals) > 0.1 else "no")
+    text = (out / "findings.md").read_text()
+    assert "## Results beyond the range of the theory" in text
+    flagged = {(r["model"], r["approach"]) for r in rows if r["beyond_theory"] == "yes"}
+    section = text[text.index("## Results beyond"):text.index("## Settings")]
+    for m, ap in flagged:
+        assert f"| 6 | {m} | {ap} |" in section

@@ -191,8 +191,13 @@ def reproduce(out="results", config=None, force=False, quiet=False, figures=FIGU
     out = Path(out)
     if out.exists() and not out.is_dir():
         raise OutputExistsError(f"{out} exists and is not a folder")
-    out.mkdir(parents=True, exist_ok=True)
-    lock = _Lock(out)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        if not os.access(out, os.W_OK | os.X_OK):
+            raise PermissionError(13, "permission denied")
+        lock = _Lock(out)
+    except OSError as exc:          # before computing anything
+        raise CrankgenError(f"cannot write to {out}: {exc.strerror or exc}") from None
     try:
         return _reproduce(out, config, force, quiet, figures, stream)
     finally:
