@@ -231,8 +231,8 @@ def c3a(run, m):
         return Outcome(NOT_REPRODUCED, s["kind"], s["note"])
     n = s["n"]
     v = REPRODUCED if n == 16 else (PARTLY if n in (8, 32) else NOT_REPRODUCED)
-    return Outcome(v, f"n = {n}", f"steady amplitude converged to {_pct(run.cfg.conv_tol)}; "
-                   "the same count reproduces, one ladder step off partly")
+    return Outcome(v, f"converged at n = {n}", f"smallest n whose steady amplitude is within "
+                   f"{_pct(run.cfg.conv_tol)} of the next count's: 16 reproduces, 8 or 32 partly")
 
 
 def c3b(run, m):
