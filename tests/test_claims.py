@@ -3,7 +3,6 @@
 import math
 
 import numpy as np
-import pytest
 
 from crankgen.experiments import ReproduceConfig
 from crankgen.experiments import claims as C

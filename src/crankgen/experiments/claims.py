@@ -236,7 +236,6 @@ def c3a(run, m):
 
 
 def c3b(run, m):
-    cfg = run.cfg
     cs = _curves(run, 3, m)
     finest = max(c.spec.n_elements for c in cs)
     pair = sorted([c for c in cs if c.spec.n_elements == finest], key=lambda c: c.spec.steps_per_rev)
@@ -532,7 +531,7 @@ def k1(run, m):
         raise Missing("Figure 6 has no eps = 0.01 point at or below Omega* = 0.2")
     err = max(errs)
     return Outcome(_by_parts([fast, err <= cfg.differ_threshold]),
-                   f"converged n at Omega* = 0.1: " + ", ".join(f"{ap} {n[ap]}" for ap in "ABC")
+                   "converged n at Omega* = 0.1: " + ", ".join(f"{ap} {n[ap]}" for ap in "ABC")
                    + f"; max |X/A - 1| for Omega* <= 0.2: {_pct(err)}",
                    f"A needs no more elements than B or C; error within {_pct(cfg.differ_threshold)}")
 

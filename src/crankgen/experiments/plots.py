@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from ..plotting import APPROACH_COLORS, mark_at_axis, panels, status_legend_handles
+from ..plotting import APPROACH_COLORS, mark_at_axis, panels
 from . import findings as fd
 from .config import APPROACHES, MODELS
 from .figures import THEORY_LIMIT
