@@ -3,8 +3,14 @@ the overwrite policy, and a seconds-long 'tiny' configuration through the comman
 
 import csv
 import io
+import json
 import math
 import os
+import signal
+import stat
+import subprocess
+import sys
+import time
 
 import numpy as np
 import pytest
@@ -230,14 +236,20 @@ def test_tiny_findings_numbers_come_from_the_runs(tiny_run):
     assert f"| paper | 0.8 |" in text and f"{ratio:.5g}" in text
 
 
-def test_rerun_refuses_then_force_overwrites(tiny_run, capsys):
+def test_rerun_keeps_everything_and_force_recomputes(tiny_run, capsys):
     _, out = tiny_run
-    before = (out / "fig8.csv").read_bytes()
-    rc = cli_main(["reproduce", "--out", str(out), "--quiet", "--figures", "8"])
-    assert rc != 0 and "--force" in capsys.readouterr().err
-    assert (out / "fig8.csv").read_bytes() == before
+    before = {p.name: p.read_bytes() for p in out.iterdir() if p.is_file()}
+    stream = io.StringIO()
+    res = reproduce(out, config=ReproduceConfig.tiny(), figures=[8], stream=stream)
+    assert res["computed"] == [] and res["files"] == []
+    log = stream.getvalue()
+    assert "figure 8: kept (complete and current)" in log
+    assert "figure 5: not selected; its recorded result is used" in log
+    assert {p.name: p.read_bytes() for p in out.iterdir() if p.is_file()} == before
     res = reproduce(out, config=ReproduceConfig.tiny(), force=True, quiet=True, figures=[8])
-    assert (out / "fig8.csv").exists() and "fig8.csv" in res["files"]
+    assert "figure 8" in res["computed"] and "fig8.csv" in res["files"]
+    assert "figure 5" not in res["computed"]
+    assert (out / "fig8.csv").read_bytes() == before["fig8.csv"]      # same runs, same numbers
     assert (out / "notes.txt").read_text() == "keep me\n"
 
 
@@ -260,4 +272,184 @@ def test_interrupt_keeps_finished_figures_and_leaves_no_partial_file(tmp_path, m
     with pytest.raises(KeyboardInterrupt):
         reproduce(out, config=ReproduceConfig.tiny(), quiet=True, figures=[7, 8])
     names = sorted(os.listdir(out))
-    assert names == ["fig7.csv", "fig7.png"]
+    assert names == ["data", "fig7.csv", "fig7.png", "manifest.json"]
+    assert sorted(os.listdir(out / "data")) == ["convergence.json", "fig7.json"]
+    manifest = json.loads((out / "manifest.json").read_text())["steps"]
+    assert manifest["figure 7"]["state"] == "complete"
+    assert manifest["figure 8"]["state"] == "incomplete"
+
+
+# ----------------------------------------------------------------------------- resumable runs
+
+_TINY_CLI = ("import sys; from crankgen.experiments import ReproduceConfig as R; "
+             "R.quick = classmethod(lambda cls: R.tiny()); from crankgen.cli import main; "
+             "sys.exit(main(sys.argv[1:]))")
+
+
+def _findings_body(path):
+    """findings.md without its last section (Run: date and wall times)."""
+    text = path.read_text()
+    return text[: text.index("## Run")]
+
+
+def _tables(out):
+    return {p.name: p.read_bytes() for p in sorted(out.glob("*.csv"))}
+
+
+def test_sigint_then_rerun_gives_the_uninterrupted_result(tiny_run, tmp_path):
+    _, ref = tiny_run
+    out = tmp_path / "r"
+    cmd = [sys.executable, "-c", _TINY_CLI, "reproduce", "--quick", "--out", str(out)]
+    proc = subprocess.Popen(cmd, stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
+    seen = []
+    for line in proc.stderr:                     # interrupt in the middle of Figure 4
+        seen.append(line)
+        if "figure 4 (transients)" in line:
+            time.sleep(0.3)
+            proc.send_signal(signal.SIGINT)
+            break
+    proc.stderr.read()
+    assert proc.wait(timeout=120) == 130, "".join(seen)
+    assert not (out / "findings.md").exists() and not (out / "fig5.csv").exists()
+    (out / ".fig5.csv.x1y2z3.tmp").write_text("left by a killed run")     # as after a kill -9
+    stream = io.StringIO()
+    mp = pytest.MonkeyPatch()
+    mp.setattr(ReproduceConfig, "quick", classmethod(lambda cls: ReproduceConfig.tiny()))
+    try:
+        from crankgen.experiments import runner
+        mp.setattr(runner.sys, "stderr", stream)
+        assert cli_main(["reproduce", "--quick", "--out", str(out)]) == 0
+    finally:
+        mp.undo()
+    log = stream.getvalue()
+    assert "figure 2: kept (complete and current)" in log
+    assert "figure 4: computing (incomplete" in log or "figure 4: computing (missing" in log
+    assert "figure 5: computing (missing" in log and "removed 1 temporary file" in log
+    assert not list(out.glob(".*.tmp"))
+    assert _tables(out) == _tables(ref) and len(_tables(out)) == 8
+    for name in output_names():                  # the figures too, byte for byte
+        if name != "findings.md":
+            assert (out / name).read_bytes() == (ref / name).read_bytes(), name
+    assert _findings_body(out / "findings.md") == _findings_body(ref / "findings.md")
+    for p in (ref / "data").iterdir():
+        assert (out / "data" / p.name).read_bytes() == p.read_bytes()
+
+
+def test_output_files_have_the_mode_open_gives(tiny_run):
+    _, out = tiny_run
+    mask = os.umask(0)
+    os.umask(mask)
+    files = [p for p in list(out.iterdir()) + list((out / "data").iterdir())
+             if p.is_file() and p.name != "notes.txt"]
+    assert len(files) > 20
+    assert {stat.S_IMODE(p.stat().st_mode) for p in files} == {0o666 & ~mask}
+
+
+def test_second_command_line_run_recomputes_nothing(tiny_run, capsys):
+    _, out = tiny_run
+    mp = pytest.MonkeyPatch()
+    mp.setattr(ReproduceConfig, "quick", classmethod(lambda cls: ReproduceConfig.tiny()))
+    try:
+        start = time.perf_counter()
+        assert cli_main(["reproduce", "--quick", "--out", str(out)]) == 0
+        wall = time.perf_counter() - start
+    finally:
+        mp.undo()
+    err = capsys.readouterr().err
+    assert "0 step(s) computed, 11 kept" in err and "computing" not in err
+    assert wall < 5.0
+
+
+def test_figures_subset_in_a_fresh_folder_says_what_is_missing(tmp_path):
+    out = tmp_path / "r"
+    reproduce(out, config=ReproduceConfig.tiny(), quiet=True, figures=[8])
+    text = (out / "findings.md").read_text()
+    assert "Figures in this report: 8." in text
+    assert "**Not in this report:** Figure 2 (not computed in this folder" in text
+    rows = {line.split("|")[1].strip(): line for line in text.splitlines() if line.startswith("| C")}
+    assert "| not computable |" in rows["C5b"] and "Figure 5 not computed" in rows["C5b"]
+    assert "not computable" not in rows["C8b"].split("|")[7]
+
+
+def test_claims_table_is_complete(tiny_run):
+    from crankgen.experiments import claims
+    _, out = tiny_run
+    text = (out / "findings.md").read_text()
+    head = text[: text.index("## Summary")]
+    assert text.index("## The paper's claims beside both models") < text.index("## Summary")
+    rows = [line.split(" | ") for line in head.splitlines() if line.startswith(("| C", "| K"))]
+    ids = [r[0].strip("| ") for r in rows]
+    assert ids == list(claims.IDS) and len(ids) == 26
+    assert ids[0] == "C2a" and ids[-1] == "K4"
+    for r in rows:
+        assert r[6] in claims.VERDICTS, r
+        assert r[7].strip(" |")                  # a reason, always
+
+
+def test_failed_transient_keeps_its_rows_up_to_the_failure(tiny_run):
+    _, out = tiny_run
+    rows = list(csv.DictReader(open(out / "fig4.csv")))
+    failed = [r for r in rows if r["status"] == "failed"]
+    assert failed                                # the consistent model's B diverges at Omega* = 0.8
+    key = lambda r: (r["model"], r["approach"], r["ms"])
+    for k in {key(r) for r in failed}:
+        rr = [r for r in failed if key(r) == k]
+        t = [float(r["t"]) for r in rr]
+        assert len(rr) > 5 and all(b > a for a, b in zip(t, t[1:]))
+        assert all(r["v_mid"] != "" for r in rr[:-1]) and rr[-1]["v_mid"] == ""   # last: the failure
+        fail_t = float(rr[-1]["t"])
+        assert f"t* = {fail_t:.6g}" in rr[-1]["message"]
+        assert all(r["beyond_theory"] in ("yes", "no") for r in rr[:-1])
+        flagged = [r for r in rr[:-1] if abs(0.01 * float(r["v_mid"])) > 0.1]
+        assert all(r["beyond_theory"] == "yes" for r in flagged)
+
+
+def test_kill_then_rerun_finishes_the_job(tiny_run, tmp_path):
+    """SIGKILL (no clean-up at all) in the middle of Figure 7, then the same command."""
+    _, ref = tiny_run
+    out = tmp_path / "k"
+    cmd = [sys.executable, "-c", _TINY_CLI, "reproduce", "--quick", "--figures", "7", "--out", str(out)]
+    proc = subprocess.Popen(cmd, stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
+    for line in proc.stderr:
+        if "figure 7 (steady states)" in line:
+            proc.kill()
+            break
+    proc.wait(timeout=120)
+    proc.stderr.close()
+    steps = json.loads((out / "manifest.json").read_text())["steps"]
+    assert steps["figure 7"]["state"] == "incomplete"
+    done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert "figure 7: computing (incomplete" in done.stderr
+    assert "convergence check: kept" in done.stderr
+    assert (out / "fig7.csv").read_bytes() == (ref / "fig7.csv").read_bytes()
+    assert not list(out.glob(".*.tmp")) and not list((out / "data").glob(".*.tmp"))
+    text = (out / "findings.md").read_text()
+    assert "**Not in this report:** Figure 2 (not computed in this folder" in text
+
+
+def test_output_folder_that_cannot_be_made_is_refused_before_computing(tmp_path, capsys):
+    blocker = tmp_path / "file"
+    blocker.write_text("not a folder\n")
+    rc = cli_main(["reproduce", "--out", str(blocker / "sub"), "--quiet"])
+    err = capsys.readouterr().err
+    assert rc != 0 and "Traceback" not in err
+    assert len(err.strip().splitlines()) == 1 and "cannot write to" in err
+
+
+def test_theory_flag_matches_the_deflection(tiny_run):
+    _, out = tiny_run
+    rows = list(csv.DictReader(open(out / "fig6.csv")))
+    for r in rows:
+        vals = [float(r[k]) for k in ("amplitude", "orbit_amplitude", "envelope") if r[k] != ""]
+        if not vals:
+            assert r["beyond_theory"] == ""
+            continue
+        assert float(r["deflection_over_L"]) == pytest.approx(float(r["eps"]) * max(vals))
+        assert r["beyond_theory"] == ("yes" if float(r["eps"]) * max(vals) > 0.1 else "no")
+    text = (out / "findings.md").read_text()
+    assert "## Results beyond the range of the theory" in text
+    flagged = {(r["model"], r["approach"]) for r in rows if r["beyond_theory"] == "yes"}
+    section = text[text.index("## Results beyond"):text.index("## Settings")]
+    for m, ap in flagged:
+        assert f"| 6 | {m} | {ap} |" in section

@@ -449,7 +449,8 @@ def _cmd_reproduce(args):
         out.wrote(res["out"])
     finally:
         out.abandon()
-    print(f"wrote {len(res['files'])} files to {res['out']} ({res['out'] / 'findings.md'}) "
+    print(f"{len(res['computed'])} step(s) computed, {len(res['kept'])} kept (complete and current); "
+          f"wrote {len(res['files'])} files to {res['out']} ({res['out'] / 'findings.md'}) "
           f"in {res['wall_time']:.1f} s")
     return 0
 
@@ -550,13 +551,14 @@ def build_parser():
                                    "CSV per figure, convergence.png/.csv (element-count check) and "
                                    "findings.md, whose numbers are all computed from the runs.")
     p.add_argument("--out", default="results",
-                   help="output folder (created if missing; default ./results); files already there are "
-                        "kept unless --force")
+                   help="output folder (created if missing; default ./results); a rerun keeps what is "
+                        "complete and current there (manifest.json) and computes the rest")
     p.add_argument("--quick", action="store_true",
                    help="coarse pass: fewer speeds, eps values, slider masses and revolutions, element "
                         "ladder up to 64")
     p.add_argument("--force", action="store_true",
-                   help="overwrite output files left by an earlier run in --out")
+                   help="recompute every selected step, and overwrite files of the output names that "
+                        "no recorded run made")
     p.add_argument("--figures", type=_figure_list, default=[2, 3, 4, 5, 6, 7, 8], metavar="LIST",
                    help="comma-separated figures to compute, e.g. 5,6 (default: all, 2-8); the "
                         "element-count check always runs")

@@ -69,9 +69,10 @@ def pyplot():
     return _pyplot()
 
 
-def panels(rows, cols, width=6.0, height=3.4, space_below=0.0, **kwargs):
+def panels(rows, cols, width=6.0, height=3.4, space_below=0.0, top_margin=0.6, **kwargs):
     """Figure with a rows x cols grid of axes (always a 2-D array), panels of width x height
-    inches plus space_below inches under each row (for a legend placed below the axes).  Fixed
+    inches plus space_below inches under each row (for a legend placed below the axes) and
+    top_margin inches above the first row (suptitle and panel titles).  Fixed
     margins instead of a layout engine: constrained layout cost about a third of the wall time of
     `crankgen reproduce --quick`."""
     plt = _pyplot()
@@ -79,7 +80,7 @@ def panels(rows, cols, width=6.0, height=3.4, space_below=0.0, **kwargs):
     fig, axes = plt.subplots(rows, cols, figsize=(width * cols, h_row * rows), squeeze=False,
                              **kwargs)
     w, h = width * cols, h_row * rows
-    top_margin, gap = 0.6, 0.75 + space_below        # inches: suptitle, axis labels + titles
+    gap = 0.75 + space_below + (top_margin - 0.6)    # inches: axis labels + (taller) titles
     axes_h = (h - top_margin - 0.6 - space_below - gap * (rows - 1)) / rows
     left, right, between = 0.9, 0.25, 1.15           # inches: y tick labels and axis label
     fig.subplots_adjust(left=left / w, right=1 - right / w, bottom=(0.6 + space_below) / h,

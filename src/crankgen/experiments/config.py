@@ -38,7 +38,7 @@ class ReproduceConfig:
     `tiny()` a seconds-long smoke configuration (tests)."""
 
     preset: str = "full"
-    # mechanism (experiments.md: common to all figures unless a figure varies it)
+    # mechanism (the paper's common settings, unless a figure varies them)
     a: float = 0.1
     eps: float = 0.01
     ms: float = 0.5

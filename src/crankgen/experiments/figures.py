@@ -16,6 +16,15 @@ from . import findings as fd
 from .config import APPROACHES, MODELS
 
 STABLE = "periodic"
+# Range of the theory: the models assume small transverse deflections.  A result is flagged
+# "beyond the theory" when its largest |v| / L = eps |v*| exceeds this.
+THEORY_LIMIT = 0.1
+
+
+def beyond_theory(eps, v_star):
+    """(|v|/L, flag) for a deflection v* (scaled by r) at slenderness eps; flag "" when unknown."""
+    x = abs(float(eps) * float(v_star)) if v_star is not None and math.isfinite(float(v_star)) else math.nan
+    return x, ("" if not math.isfinite(x) else ("yes" if x > THEORY_LIMIT else "no"))
 
 
 # ----------------------------------------------------------------------------- basic records
@@ -34,7 +43,8 @@ class TransientSpec:
 
 @dataclass
 class TransientCurve:
-    """One run from zero initial conditions; status "ok" or "failed" (message, fail_time)."""
+    """One run from zero initial conditions; status "ok" or "failed" (message, fail_time).  A
+    failed run keeps its history up to the last good step in t, v_mid (possibly empty)."""
 
     spec: TransientSpec
     status: str = "ok"
@@ -48,11 +58,25 @@ class TransientCurve:
         return self.status == "ok"
 
     @property
+    def has_history(self):
+        return self.v_mid is not None and len(self.v_mid) > 0
+
+    @property
     def max_abs(self):
-        return float(np.max(np.abs(self.v_mid))) if self.ok else math.nan
+        """max |v*| of the run (of its history up to the failure for a failed run)."""
+        return float(np.max(np.abs(self.v_mid))) if self.has_history else math.nan
 
     def label(self):
         return f"{self.spec.approach}, n = {self.spec.n_elements}"
+
+    def to_record(self):
+        return dict(spec=self.spec.__dict__.copy(), status=self.status, message=self.message,
+                    fail_time=self.fail_time, t=self.t, v_mid=self.v_mid)
+
+    @classmethod
+    def from_record(cls, r):
+        return cls(TransientSpec(**r["spec"]), status=r["status"], message=r["message"],
+                   fail_time=r["fail_time"], t=r["t"], v_mid=r["v_mid"])
 
 
 def model_spec(key):
@@ -86,7 +110,16 @@ def steady_row(model_key, s, **extra):
                multiplier=_num(getattr(s, "multiplier", None)), message=s.message,
                envelope=math.nan, envelope_note="")
     row.update(extra)
+    flag_theory(row)
     return row
+
+
+def flag_theory(row):
+    """deflection_over_L (largest |v|/L of the row's response: periodic or unstable orbit, or the
+    envelope of a transient) and beyond_theory ("yes" above THEORY_LIMIT)."""
+    vals = [row.get(k, math.nan) for k in ("amplitude", "orbit_amplitude", "envelope")]
+    vals = [v for v in vals if v is not None and math.isfinite(v)]
+    row["deflection_over_L"], row["beyond_theory"] = beyond_theory(row["eps"], max(vals) if vals else math.nan)
 
 
 # ----------------------------------------------------------------------------- convergence
@@ -316,7 +349,9 @@ def _envelopes(ctx, rows, label):
             r["envelope_note"] = (f"max |v*| over revolutions {cfg.envelope_revolutions - cfg.envelope_window}"
                                   f"-{cfg.envelope_revolutions} from zero initial conditions")
         else:
-            r["envelope_note"] = f"transient failed at t* = {c.fail_time:.4g}: {c.message}"
+            r["envelope_note"] = (f"transient failed at t* = {c.fail_time:.4g} (max |v*| {c.max_abs:.4g} "
+                                  f"before the failure): {c.message}")
+        flag_theory(r)
 
 
 def _sweep(ctx, counts, points, label):
@@ -360,8 +395,9 @@ def _extension(ctx, counts, figure, omega):
         if s.status in ("periodic", "unstable") and s.extension is not None:
             row["theta_deg"] = np.degrees(np.asarray(s.theta, dtype=float))
             row["extension"] = np.asarray(s.extension, dtype=float)
+            row["u_end"] = None if s.u_end is None else np.asarray(s.u_end, dtype=float)
         else:
-            row["theta_deg"], row["extension"] = None, None
+            row["theta_deg"], row["extension"], row["u_end"] = None, None, None
         curves.append(row)
     return dict(figure=figure, omega=omega, curves=curves)
 
@@ -388,12 +424,14 @@ def extension_crossings_of(data, model_key, rel_tol):
 
 STEADY_COLUMNS = ["model", "formulation", "damping", "approach", "n_elements", "steps_per_rev",
                   "omega", "eps", "ms", "status", "amplitude", "ratio_to_A", "orbit_amplitude",
-                  "half_peak_to_peak", "envelope", "envelope_note", "iterations", "periods",
-                  "residual", "multiplier", "message"]
+                  "half_peak_to_peak", "envelope", "envelope_note", "deflection_over_L",
+                  "beyond_theory", "iterations", "periods", "residual", "multiplier", "message"]
 TRANSIENT_COLUMNS = ["model", "formulation", "damping", "approach", "n_elements", "steps_per_rev",
-                     "omega", "eps", "ms", "status", "message", "t", "theta_deg", "v_mid"]
+                     "omega", "eps", "ms", "status", "message", "t", "theta_deg", "v_mid",
+                     "deflection_over_L", "beyond_theory"]
 EXTENSION_COLUMNS = ["model", "formulation", "damping", "approach", "n_elements", "steps_per_rev",
-                     "omega", "eps", "ms", "status", "message", "theta_deg", "extension"]
+                     "omega", "eps", "ms", "status", "message", "deflection_over_L", "beyond_theory",
+                     "theta_deg", "extension", "u_end"]
 CONVERGENCE_COLUMNS = ["check", "model", "approach", "omega", "eps", "n_elements", "status",
                        "amplitude", "change_to_next", "n_refined", "amplitude_refined",
                        "status_refined", "change", "message"]
@@ -409,11 +447,13 @@ def csv_table(data):
             base = dict(model=s.model, formulation=m.formulation, damping=m.damping, membrane=m.membrane,
                         approach=s.approach, n_elements=s.n_elements, steps_per_rev=s.steps_per_rev,
                         omega=s.omega, eps=s.eps, ms=s.ms, status=c.status, message=c.message)
-            if c.ok:
+            if c.has_history:     # a failed run: its rows up to the last good step
                 theta = np.degrees(s.omega * c.t)
-                rows.extend(dict(base, t=t, theta_deg=th, v_mid=v)
-                            for t, th, v in zip(c.t, theta, c.v_mid))
-            else:    # one row: where the run failed (no v*)
+                for t, th, v in zip(c.t, theta, c.v_mid):
+                    x, flag = beyond_theory(s.eps, v)
+                    rows.append(dict(base, t=t, theta_deg=th, v_mid=v, deflection_over_L=x,
+                                     beyond_theory=flag))
+            if not c.ok:    # and one row where it failed (no v*)
                 rows.append(dict(base, t=c.fail_time, theta_deg=math.degrees(s.omega * c.fail_time)
                                  if math.isfinite(c.fail_time) else math.nan))
         return TRANSIENT_COLUMNS, rows
@@ -424,8 +464,10 @@ def csv_table(data):
         for c in data["curves"]:
             base = {k: c[k] for k in EXTENSION_COLUMNS if k in c and k not in ("theta_deg", "extension")}
             if c["theta_deg"] is not None:
-                rows.extend(dict(base, theta_deg=th, extension=e)
-                            for th, e in zip(c["theta_deg"], c["extension"]))
+                u = c.get("u_end")
+                u = [math.nan] * len(c["theta_deg"]) if u is None else u
+                rows.extend(dict(base, theta_deg=th, extension=e, u_end=ue)
+                            for th, e, ue in zip(c["theta_deg"], c["extension"], u))
             else:
                 rows.append(base)
         return EXTENSION_COLUMNS, rows

@@ -8,6 +8,7 @@ import numpy as np
 
 from .. import __version__
 from . import figures as F
+from . import claims
 from . import findings as fd
 from .config import APPROACHES, MODELS
 
@@ -172,6 +173,22 @@ def _convergence(cfg, conv, refine):
     return lines
 
 
+def _transient_note(c):
+    """Failure, deflection beyond the theory, and growth over the last two revolutions."""
+    notes = []
+    if not c.ok:
+        notes.append(f"failed at t* = {num(c.fail_time)} (history up to there kept): {_short(c.message, 80)}")
+    x = c.spec.eps * c.max_abs
+    if math.isfinite(x) and x > F.THEORY_LIMIT:
+        notes.append(f"beyond the theory: |v|/L up to {num(x, 3)}")
+    k = c.spec.steps_per_rev
+    if c.ok and c.has_history and len(c.v_mid) > 2 * k:
+        last, before = np.max(np.abs(c.v_mid[-k:])), np.max(np.abs(c.v_mid[-2 * k:-k]))
+        if last > 1.05 * before:
+            notes.append(f"still growing: max |v*| {num(before)} then {num(last)} over the last two revolutions")
+    return "; ".join(notes)
+
+
 def _transients(cfg, data):
     lines = []
     titles = {2: f"Figure 2: transient v* at Omega* = {cfg.fig2_omega:g}",
@@ -184,8 +201,7 @@ def _transients(cfg, data):
         lines += [f"## {titles[f]}", "",
                   table(["model", "approach", "n", "steps/rev", "ms*", "status", "max |v*|", "note"],
                         [[c.spec.model, c.spec.approach, c.spec.n_elements, c.spec.steps_per_rev,
-                          f"{c.spec.ms:g}", c.status, num(c.max_abs),
-                          "" if c.ok else f"failed at t* = {num(c.fail_time)}: {_short(c.message, 80)}"]
+                          f"{c.spec.ms:g}", c.status, num(c.max_abs), _transient_note(c)]
                          for c in curves]), ""]
         if f == 3:
             for m in MODELS:
@@ -475,8 +491,10 @@ def _failures(cfg, conv, data):
         if r["status"] == STABLE:
             return
         key = (fig, r["model"], r["approach"], r["eps"] if xkey != "eps" else None, r["ms"], r["status"])
-        g = groups.setdefault(key, dict(x=[], message=r["message"], env=[], diverged=[]))
+        g = groups.setdefault(key, dict(x=[], message=r["message"], env=[], diverged=[], defl=[]))
         g["x"].append(r[xkey])
+        if math.isfinite(r.get("deflection_over_L", math.nan)):
+            g["defl"].append(r["deflection_over_L"])
         if math.isfinite(r.get("envelope", math.nan)):
             g["env"].append(r["envelope"])
         elif r.get("envelope_note", "").startswith("transient failed"):
@@ -501,6 +519,8 @@ def _failures(cfg, conv, data):
         if g["env"]:
             lo, hi = min(g["env"]), max(g["env"])
             env.append(f"max |v*| {num(lo)}" + (f" to {num(hi)}" if hi != lo else ""))
+        if g["defl"] and max(g["defl"]) > F.THEORY_LIMIT:
+            env.append(f"up to |v|/L = {num(max(g['defl']), 3)}: beyond the theory")
         if g["diverged"]:
             env.append(f"transient diverges at {xname} = {fd.ranges_text(g['diverged'])}")
         env = "; ".join(env)
@@ -508,7 +528,8 @@ def _failures(cfg, conv, data):
                      f"{xname} = {fd.ranges_text(g['x'])}", _short(g["message"], 100), env])
     lines = ["## Cases without a stable periodic steady state", "",
              "Every such case is kept in the CSV tables (status, message) and marked in the figures "
-             "('x' on the axis, hollow markers for unstable orbits and non-periodic responses). "
+             "('x' inside the frame at the bottom, hollow markers for unstable orbits and non-periodic "
+             "responses, filled triangles at the top for values off the scale). "
              "Grouped by figure, model, approach and status; the reason is that of the first case "
              "of the group; 'response' is max |v*| over the last revolutions of a transient from zero "
              "initial conditions (cases whose integration itself failed have none).", ""]
@@ -596,14 +617,96 @@ def _summary(cfg, conv, data):
     return out + [""]
 
 
-def findings_markdown(cfg, conv, refine, data, timings, total, files=()):
+def _missing_note(missing):
+    if not missing:
+        return []
+    return ["**Not in this report:** " + "; ".join(
+        f"Figure {f} ({why}; `crankgen reproduce --figures {f}` with the same options adds it)"
+        for f, why in sorted(missing.items())) + ". Everything below that needs these figures says so.", ""]
+
+
+def _claims(cfg, conv, data, missing):
+    run = claims.RunData(cfg, conv, data, missing or {})
+    rows = claims.assess(run)
+    p, c = MODELS[0].key, MODELS[1].key
+    counts = {v: sum(r["verdict"] == v for r in rows) for v in claims.VERDICTS}
+    lines = ["## The paper's claims beside both models", "",
+             "Each statement the paper makes about its Figures 2-8 and in its conclusions, restated, "
+             "with the same quantity computed from both models' runs. Per model, the claim is "
+             "reproduced when the computed value meets the tolerance given in the reason, partly when "
+             "only some of its parts (or some of its points) do, not reproduced when none do, and not "
+             "computable when the runs it needs are absent. The verdict column combines the two "
+             "models: the common verdict when they agree, partly when they do not. Tolerances: "
+             f"'almost the same' {pct(claims.CLOSE)}, 'the same' / 'no effect' {pct(claims.SAME)}, "
+             f"'noticeable' above {pct(claims.NOTICEABLE)}, 'about N-fold' a factor {claims.FACTOR:g}, "
+             f"speeds +- {claims.SPEED:g}, crank angles +- {claims.ANGLE:g} deg. "
+             f"Verdicts: {', '.join(f'{n} {v}' for v, n in counts.items())}.", "",
+             table(["id", "figure", "claim", "paper's value", f"{p} model", f"{c} model", "verdict", "reason"],
+                   [[r["claim"].id, r["claim"].figure, r["claim"].statement, r["claim"].paper_value,
+                     f"{r['outcomes'][p].value} ({r['outcomes'][p].verdict})",
+                     f"{r['outcomes'][c].value} ({r['outcomes'][c].verdict})",
+                     r["verdict"], r["reason"]] for r in rows]), ""]
+    return lines
+
+
+def _theory(cfg, data):
+    """Results whose deflection leaves the range of the theory (|v|/L above THEORY_LIMIT)."""
+    lim = F.THEORY_LIMIT
+    rows = []
+    for f in (2, 3, 4):
+        for c in data.get(f, {}).get("curves", []):
+            x = c.spec.eps * c.max_abs
+            if math.isfinite(x) and x > lim:
+                rows.append([f, c.spec.model, c.spec.approach, f"n = {c.spec.n_elements}, ms* = {c.spec.ms:g}, "
+                             f"{c.spec.steps_per_rev} steps/rev", "transient" + (" (failed)" if not c.ok else ""),
+                             num(c.max_abs), num(x, 3)])
+    for f in (5, 6):
+        groups = OrderedDict()
+        for r in data.get(f, {}).get("rows", []):
+            if r.get("beyond_theory") == "yes":
+                key = (r["model"], r["approach"], r["eps"] if f == 6 else r["omega"], r["status"])
+                groups.setdefault(key, []).append(r)
+        for (m, ap, fixed, st), rr in groups.items():
+            xkey = "omega" if f == 6 else "eps"
+            where = (f"eps = {fixed:g}, Omega* = " if f == 6 else f"Omega* = {fixed:g}, eps = ") + \
+                fd.ranges_text([r[xkey] for r in rr])
+            top = max(rr, key=lambda r: r["deflection_over_L"])
+            rows.append([f, m, ap, where, st, num(top["deflection_over_L"] / top["eps"]),
+                         num(top["deflection_over_L"], 3)])
+    for f in (7, 8):
+        for r in data.get(f, {}).get("curves", []):
+            if r.get("beyond_theory") == "yes":
+                rows.append([f, r["model"], "A", f"ms* = {r['ms']:g}", r["status"],
+                             num(r["deflection_over_L"] / r["eps"]), num(r["deflection_over_L"], 3)])
+    lines = ["## Results beyond the range of the theory", "",
+             f"The models assume small transverse deflections. A result is flagged when its largest "
+             f"deflection |v| / L = eps max |v*| exceeds {lim:g} (steady or unstable orbit, envelope of a "
+             "non-periodic response, or a transient's history up to its end or failure); the CSV files "
+             "carry the same flag (columns deflection_over_L, beyond_theory) and the figures shade the "
+             "region. Such numbers are outputs of the equations, not predictions of a real rod.", ""]
+    if rows:
+        lines += [table(["figure", "model", "approach", "cases", "status", "max |v*|", "max |v|/L"], rows), ""]
+    else:
+        lines += ["None: every computed deflection stays within the range.", ""]
+    return lines
+
+
+def findings_markdown(cfg, conv, refine, data, timings, total, files=(), missing=None):
+    """The whole findings.md.  Deterministic for the same runs except the last section (Run:
+    date and wall times)."""
     now = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
-    lines = ["# Findings: Figures 2-8 recomputed", "",
-             f"Generated by `crankgen reproduce` (crankgen {__version__}, preset `{cfg.preset}`) on "
-             f"{now}; wall time {total:.1f} s. Every number below is computed from the runs written "
-             "beside this file (one CSV per figure, convergence.csv); the statements are generated "
-             "from those numbers.", ""]
+    figs = sorted(data)
+    title = "Figures 2-8" if not missing else "Figures " + ", ".join(map(str, figs)) + \
+        " of 2-8 (" + ", ".join(map(str, sorted(missing))) + " missing)"
+    lines = [f"# Findings: {title} recomputed", "",
+             f"Generated by `crankgen reproduce` (crankgen {__version__}, preset `{cfg.preset}`). "
+             f"Figures in this report: {', '.join(map(str, figs)) or 'none'}. Every number below is "
+             "computed from the runs recorded beside this file (one CSV per figure, convergence.csv, "
+             "data/*.json); the statements and verdicts are generated from those numbers.", ""]
+    lines += _missing_note(missing)
+    lines += _claims(cfg, conv, data, missing)
     lines += _summary(cfg, conv, data)
+    lines += _theory(cfg, data)
     lines += _settings(cfg, total, files)
     lines += _convergence(cfg, conv, refine)
     lines += _ratios(cfg, data)
@@ -613,7 +716,9 @@ def findings_markdown(cfg, conv, refine, data, timings, total, files=()):
     lines += _transients(cfg, data)
     lines += _disagreement(cfg, conv, data)
     lines += _failures(cfg, conv, data)
-    lines += ["## Run", "", table(["step", "wall time (s)"], [[k, f"{v:.1f}"] for k, v in timings.items()]
-                                  + [["total", f"{total:.1f}"]]), "",
+    lines += ["## Run", "", f"Written {now}. Wall time of each step when it was computed (a rerun "
+              "keeps complete, current steps without recomputing them):", "",
+              table(["step", "wall time (s)"], [[k, "n/a" if v is None else f"{v:.1f}"] for k, v in timings.items()]
+                    + [["total", f"{total:.1f}"]]), "",
               "Files: " + ", ".join(f"`{f}`" for f in files) + ".", ""]
     return "\n".join(lines)

@@ -1,10 +1,15 @@
-"""`crankgen reproduce`: recompute Figures 2-8 and findings.md into an output folder."""
+"""`crankgen reproduce`: recompute Figures 2-8 and findings.md into an output folder, resumably
+(manifest.py records what made each file; a rerun computes only what is missing or stale)."""
 
+import fcntl
 import inspect
 import math
+import os
 import sys
 import time
 from pathlib import Path
+
+import numpy as np
 
 from .. import steady as _steady
 from ..errors import CrankgenError
@@ -14,14 +19,63 @@ from ..simulation import simulate_many
 from . import figures as F
 from . import plots, report
 from .config import FIGURES, ReproduceConfig
-from .io import OutputExistsError, existing_outputs, save_figure, write_csv, atomic_write_text
+from ..provenance import code_version
+from .io import (OutputExistsError, atomic_write_text, read_json, remove_temporaries, save_figure,
+                 write_csv, write_json)
+from .manifest import NAME as MANIFEST, Manifest
+
+
+DATA = "data"          # subfolder of the computed data that findings.md is built from (JSON)
 
 
 def output_names(figures=FIGURES):
+    """The figure, convergence and findings files of a run over `figures`."""
     names = []
     for f in figures:
         names += [f"fig{f}.png", f"fig{f}.csv"]
     return names + ["convergence.png", "convergence.csv", "findings.md"]
+
+
+def step_files(step):
+    """Files a step writes (relative to the output folder)."""
+    if step.startswith("figure "):
+        f = step.split()[1]
+        return [f"{DATA}/fig{f}.json", f"fig{f}.csv", f"fig{f}.png"]
+    return {"convergence check": [f"{DATA}/convergence.json"],
+            "refinement check": [f"{DATA}/refinement.json"],
+            "convergence files": ["convergence.csv", "convergence.png"],
+            "findings": ["findings.md"]}[step]
+
+
+def all_files():
+    out = [MANIFEST]
+    for step in ["convergence check", *[f"figure {f}" for f in FIGURES], "refinement check",
+                 "convergence files", "findings"]:
+        out += step_files(step)
+    return out
+
+
+_COMMON = ("a", "eps", "ms", "mu", "steps_per_rev", "steady_options")
+_FIGURE_KEYS = {2: ("fig2_omega", "fig2_elements", "fig2_revolutions"),
+                3: ("fig3_omega", "fig3_elements", "fig3_steps", "fig3_revolutions"),
+                4: ("fig4_omega", "fig4_revolutions", "fig4_ms"),
+                5: ("fig5_omegas", "fig5_eps", "envelope_revolutions", "envelope_window"),
+                6: ("fig6_omegas", "fig6_eps", "fig6_inset_ylim", "envelope_revolutions",
+                    "envelope_window"),
+                7: ("fig7_omega", "ext_ms", "crossing_rel_tol"),
+                8: ("fig8_omega", "ext_ms", "crossing_rel_tol")}
+
+
+def _settings(cfg, keys, **extra):
+    d = cfg.as_dict()
+    out = {k: d[k] for k in _COMMON + tuple(keys)}
+    out["models"] = [m.__dict__ for m in F.MODELS]
+    out.update(extra)
+    return out
+
+
+def _counts_list(counts):
+    return sorted([m, ap, n] for (m, ap), n in counts.items())
 
 
 class Context:
@@ -79,74 +133,202 @@ class Context:
                 results = simulate_many(cases, revs, progress=lambda d, _t, o=offset: bar(o + d))
                 for i, r in zip(idx, results):
                     if isinstance(r, CrankgenError):
+                        part = getattr(r, "partial", None)
                         out[i] = F.TransientCurve(specs[i], status="failed", message=str(r),
-                                                  fail_time=math.nan if r.time is None else float(r.time))
+                                                  fail_time=math.nan if r.time is None else float(r.time),
+                                                  t=None if part is None else np.asarray(part.t),
+                                                  v_mid=None if part is None else np.asarray(part.v_mid))
                     else:
                         out[i] = F.TransientCurve(specs[i], t=r.t, v_mid=r.v_mid)
                 offset += sum(max(1, int(round(revs * specs[i].steps_per_rev))) for i in idx)
         return out
 
 
+def run_version():
+    """What made a step: crankgen.provenance.code_version() and a hash of this package's source
+    (figures, plots, claims, findings), so that a rerun with changed reproduce code recomputes."""
+    import hashlib
+    h = hashlib.sha256()
+    for p in sorted(Path(__file__).parent.glob("*.py")):
+        h.update(p.name.encode())
+        h.update(p.read_bytes())
+    return dict(code_version(), experiments=h.hexdigest()[:16])
+
+
+class _Lock:
+    """An exclusive lock on the output folder (flock), so that two runs never write it at once."""
+
+    def __init__(self, folder):
+        self.fd = os.open(folder, os.O_RDONLY)
+        try:
+            fcntl.flock(self.fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            os.close(self.fd)
+            raise CrankgenError(f"another crankgen reproduce is writing to {folder}") from None
+        except OSError:         # a file system without flock: run unlocked
+            pass
+
+    def release(self):
+        os.close(self.fd)
+
+
 def reproduce(out="results", config=None, force=False, quiet=False, figures=FIGURES, stream=None):
-    """Compute the selected figures (always with the convergence check), write one PNG and one CSV
-    per figure, convergence.{png,csv} and findings.md into `out`.  Without force, refuses (before
-    computing anything) if any of those files already exists; other files are left alone."""
+    """Compute the selected figures (always with the convergence check) into `out`: one PNG, one
+    CSV and one data file (data/figN.json) per figure, convergence.{png,csv} and findings.md, with
+    manifest.json recording what made each.
+
+    Rerunnable and resumable: a step whose recorded result is complete and was made with the
+    current settings and code is kept; missing, stale or incomplete ones are computed (the log
+    says which is which); force recomputes every selected step.  findings.md always covers all
+    figures: those not selected are taken from their recorded results when current, otherwise
+    findings.md says they are missing.  Files of the output names that no recorded run made are
+    not overwritten without force (refused before computing anything)."""
     config = config or ReproduceConfig.full()
     figures = tuple(sorted(set(int(f) for f in figures)))
     bad = [f for f in figures if f not in FIGURES]
     if bad:
         raise CrankgenError(f"figures must be among {', '.join(map(str, FIGURES))}; got {bad}")
     out = Path(out)
-    names = output_names(figures)
     if out.exists() and not out.is_dir():
         raise OutputExistsError(f"{out} exists and is not a folder")
-    clash = existing_outputs(out, names) if out.exists() else []
-    if clash and not force:
-        more = f" and {len(clash) - 1} more" if len(clash) > 1 else ""
-        raise OutputExistsError(f"{out} already holds {clash[0]}{more}; use --force to overwrite")
-    out.mkdir(parents=True, exist_ok=True)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        if not os.access(out, os.W_OK | os.X_OK):
+            raise PermissionError(13, "permission denied")
+        lock = _Lock(out)
+    except OSError as exc:          # before computing anything
+        raise CrankgenError(f"cannot write to {out}: {exc.strerror or exc}") from None
+    try:
+        return _reproduce(out, config, force, quiet, figures, stream)
+    finally:
+        lock.release()
+
+
+def _reproduce(out, config, force, quiet, figures, stream):
     ctx = Context(config, quiet=quiet, stream=stream)
     started = time.perf_counter()
-    timings = {}
-    written = []
+    removed = remove_temporaries(out, all_files()) + remove_temporaries(out / DATA, all_files())
+    if removed:
+        ctx.log(f"removed {len(removed)} temporary file(s) left by an interrupted run: "
+                + ", ".join(removed[:4]) + (" ..." if len(removed) > 4 else ""))
+    try:
+        manifest = Manifest.load(out)
+    except CrankgenError:
+        if not force:
+            raise
+        manifest = Manifest(out)
+    # files this run may write that no recorded step made: refuse before computing anything
+    selected = ["convergence check", *[f"figure {f}" for f in figures], "refinement check",
+                "convergence files", "findings"]
+    foreign = [n for s in selected for n in step_files(s)
+               if (out / n).exists() and not manifest.owned(n)]
+    if foreign and not force:
+        names = [n for n in output_names(figures) if n in foreign] or foreign
+        more = f" and {len(foreign) - 1} more" if len(foreign) > 1 else ""
+        raise OutputExistsError(f"{out} already holds {names[0]}{more}, not made by a recorded "
+                                "crankgen reproduce run of this folder; use --force to overwrite")
+    version = run_version()
+    written, kept, computed = [], [], []
+    records = {"TransientCurve": F.TransientCurve}
 
-    def write(name, kind, payload):
-        # refuse again at write time (a file may have appeared since the start)
-        overwrite = force
-        if kind == "csv":
-            write_csv(out / name, *payload, overwrite=overwrite)
-        elif kind == "png":
-            save_figure(payload, out / name, overwrite=overwrite, dpi=config.dpi)
-        else:
-            atomic_write_text(out / name, payload, overwrite=overwrite)
-        written.append(name)
+    def run_step(step, settings, compute, write, recompute=False):
+        """Keep the step if current (returns its recorded data), else compute, write, record."""
+        state, reason = manifest.state(step, settings, version)
+        if state == "current" and not (force or recompute):
+            ctx.log(f"{step}: kept ({reason})")
+            kept.append(step)
+            return None
+        why = "--force" if state == "current" else f"{state}: {reason}"
+        ctx.log(f"{step}: computing ({why})")
+        files = step_files(step)
+        manifest.start(step, settings, version, files)
+        t0 = time.perf_counter()
+        result = compute()
+        write(result)
+        manifest.finish(step, time.perf_counter() - t0)
+        written.extend(f for f in files if not f.startswith(DATA + "/"))
+        computed.append(step)
+        return result
 
-    t0 = time.perf_counter()
-    conv = F.convergence_study(ctx)
+    def load(name):
+        return read_json(out / DATA / name, records)
+
+    # convergence check: the element counts of every figure
+    conv_settings = _settings(config, ("paper_elements", "conv_ladder", "conv_omegas", "conv_tol"))
+    conv = run_step("convergence check", conv_settings, lambda: F.convergence_study(ctx),
+                    lambda c: write_json(out / DATA / "convergence.json", c))
+    conv = conv if conv is not None else load("convergence.json")
     counts = conv["counts"]
-    timings["convergence"] = time.perf_counter() - t0
     ctx.log("element counts used: " + ", ".join(f"{m} {a}: {n}" for (m, a), n in counts.items()))
 
-    data = {}
     funcs = {2: F.figure2, 3: F.figure3, 4: F.figure4, 5: F.figure5, 6: F.figure6,
              7: F.figure7, 8: F.figure8}
+    data, missing, current = {}, {}, {}
+    for f in FIGURES:
+        step = f"figure {f}"
+        settings = _settings(config, _FIGURE_KEYS[f], counts=_counts_list(counts), dpi=config.dpi)
+        if f in figures:
+            def write_figure(d, f=f):
+                write_json(out / DATA / f"fig{f}.json", d)
+                write_csv(out / f"fig{f}.csv", *F.csv_table(d))
+                save_figure(plots.plot_figure(d, config, counts), out / f"fig{f}.png", dpi=config.dpi)
+            d = run_step(step, settings, lambda f=f: funcs[f](ctx, counts), write_figure)
+            current[f] = True
+            if d is not None:
+                data[f] = d
+        else:
+            state, reason = manifest.state(step, settings, version)
+            if state == "current":
+                ctx.log(f"{step}: not selected; its recorded result is used (complete and current)")
+                current[f] = True
+            else:
+                word = {"missing": "not computed in this folder"}.get(state, f"its recorded result is {state} ({reason})")
+                ctx.log(f"{step}: not selected and {word}; findings.md lists it as missing")
+                missing[f] = word
+
+    def figure_data(f):
+        if f not in data and current.get(f):
+            data[f] = load(f"fig{f}.json")
+        return data.get(f)
+
     refine = None
-    for f in figures:
-        t0 = time.perf_counter()
-        data[f] = funcs[f](ctx, counts)
-        write(f"fig{f}.csv", "csv", F.csv_table(data[f]))
-        write(f"fig{f}.png", "png", plots.plot_figure(data[f], config, counts))
-        timings[f"figure {f}"] = time.perf_counter() - t0
     if config.refine_omegas or config.refine_fig5:
-        t0 = time.perf_counter()
-        refine = F.refinement_check(ctx, counts, data.get(6), data.get(5))
-        timings["refinement check"] = time.perf_counter() - t0
-    write("convergence.csv", "csv", F.convergence_table(conv, refine))
-    write("convergence.png", "png", plots.plot_convergence(conv, config))
+        uses = {str(f): manifest.fingerprint(f"figure {f}") for f in (5, 6) if current.get(f)}
+        settings = _settings(config, ("refine_omegas", "refine_fig5", "fig5_omegas", "fig5_eps",
+                                      "fig6_eps"), counts=_counts_list(counts), reuses=uses)
+        refine = run_step("refinement check", settings,
+                          lambda: F.refinement_check(ctx, counts, figure_data(6), figure_data(5)),
+                          lambda r: write_json(out / DATA / "refinement.json", r))
+        refine = refine if refine is not None else load("refinement.json")
+    inputs = {"convergence check": manifest.fingerprint("convergence check")}
+    if refine is not None:
+        inputs["refinement check"] = manifest.fingerprint("refinement check")
+
+    def write_conv(_):
+        write_csv(out / "convergence.csv", *F.convergence_table(conv, refine))
+        save_figure(plots.plot_convergence(conv, config), out / "convergence.png", dpi=config.dpi)
+    run_step("convergence files", dict(inputs=inputs, dpi=config.dpi, conv_tol=config.conv_tol),
+             lambda: None, write_conv)
+
+    for f in FIGURES:
+        if current.get(f):
+            inputs[f"figure {f}"] = manifest.fingerprint(f"figure {f}")
+    steps = ["convergence check", *[f"figure {f}" for f in FIGURES if current.get(f)],
+             "refinement check" if refine is not None else None]
+    timings = {s: manifest.wall_time(s) for s in steps if s}
+    present = [n for n in output_names(FIGURES) if n != "findings.md"
+               and (n.startswith("convergence") or int(n[3]) in current)]
+
+    def make_findings():
+        for f in FIGURES:
+            figure_data(f)
+        total = sum(v for v in timings.values() if v)
+        return report.findings_markdown(config, conv, refine, data, timings, total, files=present,
+                                        missing=missing)
+    run_step("findings", dict(config=config.as_dict(), inputs=inputs, missing=missing),
+             make_findings, lambda text: atomic_write_text(out / "findings.md", text))
     total = time.perf_counter() - started
-    text = report.findings_markdown(config, conv, refine, data, timings, total,
-                                    files=[n for n in names if n != "findings.md"])
-    write("findings.md", "text", text)
-    ctx.log(f"wrote {len(written)} files to {out} in {total:.1f} s")
+    ctx.log(f"{len(computed)} step(s) computed, {len(kept)} kept; wrote {len(written)} files to "
+            f"{out} in {total:.1f} s")
     return dict(out=out, files=written, wall_time=total, data=data, convergence=conv,
-                refinement=refine, timings=timings)
+                refinement=refine, timings=timings, computed=computed, kept=kept, missing=missing)
