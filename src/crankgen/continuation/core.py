@@ -26,6 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._blas import single_thread
 from .diagram import BifurcationDiagram, Branch, SpecialPoint
 from .maps import MapError
 from ..errors import CrankgenError, ParameterError
@@ -48,11 +49,12 @@ class Settings:
     switch_step: float = 0.02    # h of the branch switch, in the metric
     locate_tol: float = 1e-9     # |test function| at a located special point
     max_jump: float = 10.0       # largest corrector distance from the prediction, in steps ds
+    dp_max: float = math.inf     # largest parameter change per step
 
     def check(self):
-        for name in ("ds", "ds_min", "ds_max", "tol", "max_turn", "switch_step", "locate_tol", "max_jump"):
+        for name in ("ds", "ds_min", "ds_max", "tol", "max_turn", "switch_step", "locate_tol", "max_jump", "dp_max"):
             v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+            if not (isinstance(v, (int, float)) and v > 0 and (math.isfinite(v) or name == "dp_max")):
                 raise ParameterError(f"{name} must be a positive number, got {v!r}")
         if self.ds_min > self.ds or self.ds > self.ds_max:
             raise ParameterError(f"the steps must satisfy ds_min <= ds <= ds_max, got "
@@ -65,7 +67,7 @@ class Settings:
 
 
 class _Point:
-    __slots__ = ("z", "jx", "jp", "mu", "t", "iterations", "amplitude", "orbit")
+    __slots__ = ("z", "jx", "jp", "mu", "t", "iterations", "amplitude", "orbit", "section")
 
     def __init__(self, z, jx, jp, iterations):
         self.z, self.jx, self.jp, self.iterations = z, jx, jp, iterations
@@ -74,6 +76,7 @@ class _Point:
         self.t = None
         self.amplitude = math.nan
         self.orbit = None
+        self.section = None
 
     @property
     def p(self):
@@ -146,6 +149,12 @@ class Continuer:
             except np.linalg.LinAlgError:
                 raise _Failed("singular bordered Jacobian")
             z = z + dz
+            if it > 0 and np.max(np.abs(dz[:-1])) < self.s.tol * (1.0 + np.max(np.abs(z[:-1]))) \
+                    and abs(dz[-1]) < self.s.tol * (1.0 + abs(z[-1])):
+                # quadratic convergence: the last update is below tol, so z is converged far
+                # below it; keep the Jacobians of the previous iterate (O(|dz|) away)
+                pt.z = z.copy()
+                return pt
             d = z - z_pred
             if math.sqrt(max(self._dot(d, d), 0.0)) > max_jump:
                 raise _Failed(f"corrector left the neighbourhood of the prediction ({math.sqrt(max(self._dot(d, d), 0.0)):.3g} > {max_jump:.3g})")
@@ -155,7 +164,7 @@ class Continuer:
     def _finish(self, pt, period):
         """Amplitude and orbit states of an accepted point."""
         try:
-            pt.amplitude, pt.orbit = self.map.orbit(pt.x, pt.p, period)
+            pt.amplitude, pt.orbit, pt.section = self.map.orbit(pt.x, pt.p, period)
         except (MapError, CrankgenError) as exc:
             raise _Failed(str(exc))
         return pt
@@ -180,19 +189,12 @@ class Continuer:
             return self._real_crossing(mu, 1.0) if locate else float(pt.t[-1])
         if kind == "period-doubling":
             return self._real_crossing(mu, -1.0)
-        # neimark-sacker: the bialternate product prod_{i<j} (mu_i mu_j - 1), written as
-        # (|mu_c|^2 - 1) times the sign of the other factors, mu_c the complex pair nearest |mu| = 1
-        tiny = 1e-10
-        upper = np.flatnonzero(mu.imag > tiny * np.maximum(1.0, np.abs(mu)))
-        i, j = np.triu_indices(len(mu), 1)
-        f = mu[i] * mu[j] - 1.0
-        if upper.size == 0:
-            return float(np.cos(np.sum(np.angle(f)))) if f.size else 1.0
-        c = upper[np.argmin(np.abs(np.abs(mu[upper]) - 1.0))]
-        conj = np.argmin(np.abs(mu - np.conj(mu[c])) + (np.arange(len(mu)) == c))
-        pair = ((i == min(c, conj)) & (j == max(c, conj)))
-        sign = np.sign(np.cos(np.sum(np.angle(f[~pair])))) or 1.0
-        return float((abs(mu[c]) ** 2 - 1.0) * sign)
+        # neimark-sacker: detection by the parity of the number of complex multipliers outside the
+        # unit circle, location on |mu_c| - 1, mu_c the complex multiplier nearest the circle
+        cpx = mu[(np.abs(mu.imag) > 1e-8 * np.abs(mu)) & (np.abs(mu) > 1e-6)]
+        if locate:
+            return float(abs(cpx[np.argmin(np.abs(np.abs(cpx) - 1.0))]) - 1.0) if cpx.size else 1.0
+        return float((-1.0) ** (np.sum(np.abs(cpx) > 1.0) // 2))
 
     @staticmethod
     def critical(kind, pt):
@@ -206,9 +208,22 @@ class Continuer:
         return complex(upper[np.argmin(np.abs(np.abs(upper) - 1.0))]) if upper.size else complex(mu[0])
 
     def _locate(self, kind, a, b, period):
-        """Special point between accepted points a and b (b corrected from a along a.t)."""
+        """Special point between accepted points a and b (b corrected from a along a.t).  A fold
+        is located on det(dP/dx - I) (its critical multiplier), or on t_p where that fails."""
+        sp = self._illinois(kind, a, b, period, True)
+        if sp is None and kind == "fold":
+            sp = self._illinois(kind, a, b, period, False)
+        if sp is None:
+            self.log(f"period {period}: {kind} test changed sign between {self.map.parameter} = "
+                     f"{a.p:.6g} and {b.p:.6g}, but no critical multiplier was found there; "
+                     f"not reported")
+        return sp
+
+    def _illinois(self, kind, a, b, period, locate):
         s_a, s_b = 0.0, self._dot(a.t, b.z - a.z)
-        f_a, f_b = self._test(kind, a, True), self._test(kind, b, True)
+        f_a, f_b = self._test(kind, a, locate), self._test(kind, b, locate)
+        if f_a * f_b >= 0:
+            return None
         best = a if abs(f_a) < abs(f_b) else b
         jump = self.s.max_jump * abs(s_b)
         side = 0
@@ -224,8 +239,8 @@ class Continuer:
                     pt.t = self._tangent(pt, a.t)
                 except (_Failed, np.linalg.LinAlgError):
                     break
-            f_c = self._test(kind, pt, True)
-            if abs(f_c) < abs(self._test(kind, best, True)):
+            f_c = self._test(kind, pt, locate)
+            if abs(f_c) < abs(self._test(kind, best, locate)):
                 best = pt
             if abs(f_c) < self.s.locate_tol or abs(s_b - s_a) < 1e-13:
                 break
@@ -242,11 +257,7 @@ class Continuer:
         mu_c = self.critical(kind, best)
         ok = {"fold": abs(mu_c - 1.0), "period-doubling": abs(mu_c + 1.0),
               "neimark-sacker": abs(abs(mu_c) - 1.0)}[kind] < 1e-4
-        if not ok:
-            self.log(f"period {period}: {kind} test changed sign near {self.map.parameter} = "
-                     f"{best.p:.6g} without a critical multiplier (closest {mu_c:.6g}); not a {kind}")
-            return None
-        return self._finish(best, period)
+        return self._finish(best, period) if ok else None
 
     # -- one branch ----------------------------------------------------------------------------
     def first_point(self, x0, p0, period=1):
@@ -272,6 +283,7 @@ class Continuer:
         reason = f"{s.max_points} points (max_points)"
         while len(points) < s.max_points:
             prev = points[-1]
+            ds = min(ds, s.dp_max / max(abs(prev.t[-1]), 1e-300))
             try:
                 new = self.correct(prev.z + ds * prev.t, prev.t, period, max_jump=self.s.max_jump * ds)
                 new.t = self._tangent(new, prev.t)
@@ -349,6 +361,10 @@ class Continuer:
     def diagram(self, x0, p0, direction):
         """The branch through the fixed point near (x0, p0) in the given direction (+1 or -1), and
         the branches born at its period doublings, recursively up to settings.max_period."""
+        with single_thread():
+            return self._diagram(x0, p0, direction)
+
+    def _diagram(self, x0, p0, direction):
         t0 = np.zeros(self.map.dim + 1)
         t0[-1] = float(direction)
         first = self.first_point(x0, p0)
@@ -384,6 +400,7 @@ class Continuer:
             stable=np.array([bool(abs(p.mu[0]) < 1.0) for p in pts]),
             multipliers=np.array([p.mu for p in pts]).reshape(len(pts), dim),
             states=np.array([self.map.physical(p.x) for p in pts]).reshape(len(pts), -1),
+            section=np.array([p.section[:period] for p in pts]).reshape(len(pts), period),
             origin=origin, stop_reason=reason)
 
 

@@ -20,6 +20,8 @@ class Branch:
     stable: np.ndarray             # (n,) every multiplier inside the unit circle
     multipliers: np.ndarray        # (n, dim) complex, by decreasing modulus (of P^period)
     states: np.ndarray = field(repr=False)   # (n, dim) state at the start of the orbit
+    section: np.ndarray = field(default=None, repr=False)   # (n, period) observable at the
+    #                              start of each revolution of the orbit (mechanism: v* at theta = 0)
     origin: str = "start"
     stop_reason: str = ""
 

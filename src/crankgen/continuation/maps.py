@@ -3,8 +3,8 @@
 Periodic orbits of period k are the fixed points of P^k.  A map supplies
 - evaluate(x, p, period, dp): P^period(x, p), its Jacobian dP^period/dx (exact) and, when dp,
   dP^period/dp (exact or by a documented finite difference);
-- orbit(x, p, period): the amplitude of the orbit through x and its states after 0..period
-  applications of P;
+- orbit(x, p, period): the amplitude of the orbit through x, its states after 0..period
+  applications of P and the observable at each of them (its points on the Poincare section);
 - iterate(x, p, n): the states after 0..n applications and one observable sample each
   (the Poincare section of the brute-force sweeps);
 - physical(x): the state in the user's units (the core may work in scaled coordinates).
@@ -35,12 +35,13 @@ class Map:
         return float(x[0])
 
     def orbit(self, x, p, period=1):
-        """(amplitude, states (period + 1, dim)) of the orbit through x."""
+        """(amplitude, states (period + 1, dim), section samples (period + 1,)) of the orbit."""
         states = [np.asarray(x, dtype=float)]
         for _ in range(period):
             states.append(self.evaluate(states[-1], p, 1, dp=False)[0])
         states = np.array(states)
-        return max(abs(self.observe(s)) for s in states[:period]), states
+        section = np.array([self.observe(s) for s in states])
+        return float(np.max(np.abs(section[:period]))), states, section
 
     def iterate(self, x, p, n, jacobian=False):
         """(states (n + 1, dim) after 0..n applications, samples (n + 1,) of the observable,

@@ -90,7 +90,7 @@ class MechanismMap(Map):
         res = self.march(y, p, period, history=True)
         idx = np.arange(period + 1) * self.spr
         states = np.concatenate([res.D_history[0, idx], res.V_history[0, idx]], axis=1) / self.s
-        return float(np.max(np.abs(res.y[0, :, 0]))), states
+        return float(np.max(np.abs(res.y[0, :, 0]))), states, res.y[0, idx, 0]
 
     def iterate(self, y, p, n, jacobian=False):
         res = self.march(y, p, n, history=True)
