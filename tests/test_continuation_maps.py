@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from crankgen.continuation import FunctionMap, Settings, continue_map, sweep_map
+from crankgen.bifurcation import FunctionMap, Settings, continue_map, sweep_map
 
 
 def logistic():

@@ -145,7 +145,7 @@ def _branch_model(args):
 
 
 def _cmd_continue(args):
-    from .continuation import continuation
+    from .bifurcation import continuation
 
     mech, model = _branch_model(args)
     out = Path(args.out)
@@ -175,7 +175,7 @@ def _title(args, what):
 def _cmd_poincare(args):
     import numpy as np
 
-    from .continuation import continuation, poincare
+    from .bifurcation import continuation, poincare
     from .progress import Progress
 
     mech, model = _branch_model(args)

@@ -79,7 +79,7 @@ def poincare(mech=None, parameter="omega", values=None, direction="up", *, omega
     period-k (k <= max_period), quasi-periodic, irregular or unsettled, with the evidence (repeat
     residual, largest Lyapunov exponent of the revolution map, distinct samples).  Model options
     as in steady_state.  progress(done, total) after each value."""
-    from .poincare import sweep_map
+    from .sweeps import sweep_map
 
     if values is None or len(values) == 0:
         raise ParameterError("values must hold at least one parameter value")

@@ -10,12 +10,15 @@ orientation through folds.
 
 Test functions between consecutive points (each is located by the Illinois false-position method on
 the arclength from the earlier point, to ~1e-9 in the test function):
-- fold: t_p, the parameter component of the tangent (turning point: a real multiplier through +1);
+- fold: t_p, the parameter component of the tangent, changes sign (turning point) and so does
+  det(dP/dx - I) (a real multiplier through +1); located on the latter, or on t_p if that fails;
 - period-doubling: (mu_c + 1) times the sign of prod(mu + 1) over the others, mu_c the real
   multiplier nearest -1 (det(dP/dx + I) changes sign);
-- Neimark-Sacker: (|mu_c| - 1) times the sign of prod(|mu|^2 - 1) over the other complex pairs,
-  mu_c the complex pair nearest the unit circle; kept only when |mu_c| = 1 is reached (two real
-  multipliers that meet outside the circle also change the count).
+- Neimark-Sacker: the parity of the number of complex multipliers outside the unit circle changes;
+  located on |mu_c| - 1, mu_c the complex multiplier nearest the circle (two real multipliers that
+  meet outside the circle also change the count: no sign change of |mu_c| - 1, not reported).
+A special point is reported only when its critical multiplier is within 1e-4 of +1, -1 or the
+circle after location (typically 1e-9).
 At a period doubling of P^k the branch of P^2k starts from x* + h e (e the critical eigenvector,
 <e, e> = 1) with the constraint <(e, 0), z - z_pred> = 0, and is continued away from x*.  A period-2k
 branch that folds back onto the period-k branch (x and P^k(x) closer than h/4) ends there.
@@ -314,6 +317,10 @@ class Continuer:
             found = []
             for kind in KINDS:
                 fa, fb = self._test(kind, prev), self._test(kind, new)
+                if kind == "fold" and fa * fb < 0:
+                    # a turning point also has a real multiplier through +1 (a sign change of
+                    # t_p alone is noise where the branch runs flat in p)
+                    fa, fb = self._test(kind, prev, True), self._test(kind, new, True)
                 if fa * fb < 0:
                     sp = self._locate(kind, prev, new, period)
                     if sp is not None:
