@@ -154,7 +154,8 @@ def _cmd_continue(args):
     d = continuation(mech, args.parameter, args.start, args.stop, max_period=args.max_period,
                      progress=log, **model)
     paths = d.to_csv(out)
-    png = d.plot(out / "continuation.png", title=_title(args, "continuation"), ylabel="max |v*(1/2)| over the orbit")
+    png = d.plot(out / "continuation.png", title=_title(args, "continuation"),
+                 ylabel="max |v*(1/2)| over the orbit", xlabel=_AXIS[args.parameter])
     for s in d.special_points:
         print(f"{s.kind} on the period-{s.period} branch at {args.parameter} = {s.parameter:.7g}, "
               f"amplitude {s.amplitude:.6g}, multiplier {s.multiplier.real:.6g}{s.multiplier.imag:+.6g}j")
@@ -162,6 +163,9 @@ def _cmd_continue(args):
           f"{len(d.special_points)} special points in {d.info['wall_time']:.1f} s; wrote "
           f"{', '.join(str(p) for p in paths)} and {png}")
     return 0
+
+
+_AXIS = {"omega": "Omega*", "eps": "eps", "ms": "ms*", "mu": "mu*", "a": "a*"}
 
 
 def _title(args, what):
@@ -198,7 +202,7 @@ def _cmd_poincare(args):
         diagram.to_csv(out)
     paths = pc.to_csv(out)
     png = pc.plot(out / "poincare.png", diagram, title=_title(args, "Poincare sweep"),
-                  ylabel="v*(1/2) at theta = 0, once per revolution")
+                  ylabel="v*(1/2) at theta = 0, once per revolution", xlabel=_AXIS[args.parameter])
     counts = {}
     for q in pc.points:
         counts[q.classification] = counts.get(q.classification, 0) + 1

@@ -21,7 +21,9 @@ A special point is reported only when its critical multiplier is within 1e-4 of 
 circle after location (typically 1e-9).
 At a period doubling of P^k the branch of P^2k starts from x* + h e (e the critical eigenvector,
 <e, e> = 1) with the constraint <(e, 0), z - z_pred> = 0, and is continued away from x*.  A period-2k
-branch that folds back onto the period-k branch (x and P^k(x) closer than h/4) ends there.
+branch that folds back onto the period-k branch (x and P^k(x) closer than h/4) ends there.  Near
+its start such a branch can be flat in p to the map's precision (its p - p* ~ c a^2 with c tiny), so
+folds are not sought while both points lie within 1e-6 (1 + |p*|) of the period doubling.
 """
 
 import math
@@ -274,8 +276,9 @@ class Continuer:
                                 f"state at {self.map.parameter} = {p0:g}: {exc}") from None
 
     def branch(self, start, t0, period, merge=None):
-        """Continue from the accepted point start (tangent oriented like t0).  merge: (h, k) ends a
-        period-2k branch when x and P^k(x) come closer than h / 4.
+        """Continue from the accepted point start (tangent oriented like t0).  merge: (h, k, p_pd)
+        for a period-2k branch born at a period doubling at p_pd: it ends when x and P^k(x) come
+        closer than h / 4.
         Returns (points, [(kind, point)], stop reason)."""
         s = self.s
         start.t = self._tangent(start, t0)
@@ -308,7 +311,7 @@ class Continuer:
                     break
                 continue
             if merge is not None:
-                h, k = merge
+                h, k, _ = merge
                 d = np.append(new.orbit[k] - new.orbit[0], 0.0)
                 if math.sqrt(self._dot(d, d)) < 0.25 * h:
                     reason = (f"merged into the period-{k} branch at {self.map.parameter} = "
@@ -316,6 +319,9 @@ class Continuer:
                     break
             found = []
             for kind in KINDS:
+                if kind == "fold" and merge is not None and max(
+                        abs(prev.p - merge[2]), abs(new.p - merge[2])) < 1e-6 * (1 + abs(merge[2])):
+                    continue      # flat start of a branch born at a period doubling: see docstring
                 fa, fb = self._test(kind, prev), self._test(kind, new)
                 if kind == "fold" and fa * fb < 0:
                     # a turning point also has a real multiplier through +1 (a sign change of
@@ -393,7 +399,7 @@ class Continuer:
                         self.log(f"period {2 * period}: branch switching at "
                                  f"{self.map.parameter} = {sp.p:.6g} failed")
                         continue
-                    work.append((pt, t_e, 2 * period, (h, period),
+                    work.append((pt, t_e, 2 * period, (h, period, sp.p),
                                  f"period-doubling of branch {index} at {self.map.parameter} = {sp.p:.7g}"))
         return BifurcationDiagram(self.map.parameter, branches,
                                   sorted(specials, key=lambda s: (s.period, s.parameter)))

@@ -81,7 +81,7 @@ class BifurcationDiagram:
                                     repr(float(m.imag)), repr(float(abs(m)))])
         return paths
 
-    def plot(self, path, ax=None, title=None, ylabel="amplitude"):
+    def plot(self, path, ax=None, title=None, ylabel="amplitude", xlabel=None):
         """Amplitude against the parameter: stable solid, unstable dashed, one colour per period,
         special points marked and labelled (F fold, PD period doubling, NS Neimark-Sacker)."""
         from ..plotting import pyplot
@@ -113,12 +113,17 @@ class BifurcationDiagram:
                 continue
             ax.scatter([s.parameter for s in pts], [s.amplitude for s in pts], marker=m, s=36,
                        facecolor="white", edgecolor="black", zorder=5)
-            for s in pts:
-                ax.annotate(f"{LABELS[kind]} {s.parameter:.4g}", (s.parameter, s.amplitude),
-                            textcoords="offset points", xytext=(5, 6), fontsize=8)
+        # labels alternately above and below, so that neighbouring points stay readable
+        for i, s in enumerate(sorted(self.special_points, key=lambda s: s.parameter)):
+            ax.annotate(f"{LABELS[s.kind]} {s.parameter:.4g}", (s.parameter, s.amplitude),
+                        textcoords="offset points", xytext=(5, 7 if i % 2 == 0 else -13),
+                        fontsize=8, zorder=6)
+        for kind, m in markers.items():
+            if not any(s.kind == kind for s in self.special_points):
+                continue
             handles.append(Line2D([], [], ls="none", marker=m, markerfacecolor="white",
                                   color="black", label=f"{LABELS[kind]}: {kind}"))
-        ax.set_xlabel(self.parameter_name)
+        ax.set_xlabel(xlabel or self.parameter_name)
         ax.set_ylabel(ylabel)
         ax.grid(alpha=0.3)
         ax.legend(handles=handles, fontsize=8, loc="best")

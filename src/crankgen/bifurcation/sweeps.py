@@ -70,7 +70,7 @@ class PoincareDiagram:
                     w.writerow([q.direction, repr(q.parameter), j, repr(float(v))])
         return paths
 
-    def plot(self, path, diagram=None, title=None, ylabel="section sample"):
+    def plot(self, path, diagram=None, title=None, ylabel="section sample", xlabel=None):
         """Samples against the parameter (sweeps up and down in two colours); with a
         BifurcationDiagram, its branches' section points are drawn over them (stable solid,
         unstable dashed) and its special points marked."""
@@ -113,7 +113,7 @@ class PoincareDiagram:
                 ax.axvline(sp.parameter, color="grey", lw=0.6, ls=":", zorder=1)
                 ax.annotate(f"{LABELS[sp.kind]}", (sp.parameter, 1.0), xycoords=("data", "axes fraction"),
                             xytext=(2, -10), textcoords="offset points", fontsize=7, color="dimgrey")
-        ax.set_xlabel(self.parameter_name)
+        ax.set_xlabel(xlabel or self.parameter_name)
         ax.set_ylabel(ylabel)
         ax.grid(alpha=0.3)
         if handles:
