@@ -84,3 +84,19 @@ def test_parameter_errors():
         crankgen.continuation(parameter="eps", start=-0.1, stop=0.1, n_elements=2)
     with pytest.raises(crankgen.ParameterError, match="direction"):
         crankgen.poincare(parameter="omega", values=[0.5, 0.6], direction="sideways", n_elements=2)
+
+
+def test_command_line(tmp_path):
+    from crankgen.cli import main
+
+    common = ["--elements", "2", "--steps-per-rev", "24", "--damping", "kelvin-voigt", "--quiet"]
+    assert main(["continue", "--from", "0.4", "--to", "0.6", "--out", str(tmp_path / "c")] + common) == 0
+    for name in ("branches.csv", "special_points.csv", "multipliers.csv", "continuation.png"):
+        assert (tmp_path / "c" / name).stat().st_size > 0
+    rows = (tmp_path / "c" / "branches.csv").read_text().splitlines()
+    assert rows[0].startswith("branch,period,point,omega,amplitude,stable") and len(rows) > 5
+    assert main(["poincare", "--from", "0.4", "--to", "0.6", "--values", "3", "--transient", "5",
+                 "--samples", "4", "--out", str(tmp_path / "p")] + common) == 0
+    rows = (tmp_path / "p" / "poincare_summary.csv").read_text().splitlines()
+    assert len(rows) == 1 + 2 * 3                          # both directions by default
+    assert (tmp_path / "p" / "poincare.png").stat().st_size > 0

@@ -72,16 +72,23 @@ class Settings:
 
 
 class _Point:
-    __slots__ = ("z", "jx", "jp", "mu", "t", "iterations", "amplitude", "orbit", "section")
+    __slots__ = ("z", "jx", "jp", "_mu", "t", "iterations", "amplitude", "orbit", "section")
 
     def __init__(self, z, jx, jp, iterations):
         self.z, self.jx, self.jp, self.iterations = z, jx, jp, iterations
-        mu = np.linalg.eigvals(jx)
-        self.mu = mu[np.argsort(-np.abs(mu), kind="stable")]
+        self._mu = None
         self.t = None
         self.amplitude = math.nan
         self.orbit = None
         self.section = None
+
+    @property
+    def mu(self):
+        """Multipliers (eigenvalues of dP^k/dx) by decreasing modulus, computed when first asked."""
+        if self._mu is None:
+            mu = np.linalg.eigvals(self.jx)
+            self._mu = mu[np.argsort(-np.abs(mu), kind="stable")]
+        return self._mu
 
     @property
     def p(self):
