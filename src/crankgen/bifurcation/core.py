@@ -5,8 +5,10 @@ unit tangent t and corrects with Newton on
     P^k(x, p) - x = 0,   <t, z - z_pred> = 0
 (bordered Jacobian [[dP/dx - I, dP/dp], [t_x / dim, t_p]]).  The step grows after easy corrections,
 shrinks after hard ones and is halved on failure or on a sharp turn of the tangent (backtracking)
-down to ds_min.  The tangent solves [[dP/dx - I, dP/dp], [t_old]] t = (0, 1), which keeps its
-orientation through folds.
+down to ds_min; no step changes p by more than dp_max.  The tangent solves
+[[dP/dx - I, dP/dp], [t_old]] t = (0, 1), which keeps its orientation through folds.  A branch ends
+on the ends of the parameter range (its last point exactly there), after max_points, or when the
+step falls below ds_min (the reason is kept in Branch.stop_reason).
 
 Test functions between consecutive points (each is located by the Illinois false-position method on
 the arclength from the earlier point, to ~1e-9 in the test function):

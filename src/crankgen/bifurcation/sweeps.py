@@ -11,7 +11,8 @@ mechanism: v*(1/2) at theta = 0, once per crank revolution).  Classification, wi
   QR iteration; the first quarter aligns the vector and is not averaged): > lyapunov_tol "irregular", within +-lyapunov_tol "quasi-periodic", below
   -lyapunov_tol "unsettled" (still converging after the transient);
 - "failed" when the map cannot be evaluated (message says why; the next value restarts from the
-  last good state).
+  last good state).  When the transient from the previous value's state fails, the value is
+  approached once more from that state in four parameter steps of transient / 4 iterations each.
 distinct counts the sampled values that differ by more than 1e-6 (1 + |sample|).
 """
 
@@ -183,11 +184,19 @@ def sweep_map(fmap, values, x0, direction="up", transient=100, samples=64, max_p
 def _sweep(fmap, passes, x0, transient, samples, max_period, tol, lyapunov_tol, progress):
     total = sum(len(v) for _, v in passes)
     x = np.asarray(x0, dtype=float)
-    points, done = [], 0
+    points, done, p_last = [], 0, None
     for d, vals in passes:
         for p in vals:
             try:
-                states, _, _ = fmap.iterate(x, p, transient)
+                try:
+                    states, _, _ = fmap.iterate(x, p, transient)
+                except (MapError, CrankgenError):
+                    if p_last is None:
+                        raise
+                    # the jump from the last state failed: ramp the parameter in four steps
+                    for q in np.linspace(p_last, p, 5)[1:]:
+                        x = fmap.iterate(x, q, max(transient // 4, 1))[0][-1]
+                    states, _, _ = fmap.iterate(x, p, transient)
                 states, smp, _ = fmap.iterate(states[-1], p, samples)
                 k, r = _classify(states, tol, max_period)
                 for _ in range(4):
@@ -207,7 +216,7 @@ def _sweep(fmap, passes, x0, transient, samples, max_period, tol, lyapunov_tol, 
                     cls = ("irregular" if lyap > lyapunov_tol else
                            "quasi-periodic" if lyap >= -lyapunov_tol else "unsettled")
                 points.append(PoincarePoint(d, p, cls, k, r, lyap, _distinct(smp[1:]), smp[1:]))
-                x = states[-1]
+                x, p_last = states[-1], p
             except (MapError, CrankgenError) as exc:
                 points.append(PoincarePoint(d, p, "failed", 0, math.nan, math.nan, 0,
                                             np.zeros(0), str(exc)))
