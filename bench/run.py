@@ -8,6 +8,7 @@ Both are measured for the default "newton" scheme (factorization reused while th
 converges fast, extrapolated start) and, for comparison, for "full-newton" (tangent refreshed and
 factorized at every iteration).
   `crankgen reproduce` (both models, all figures)                        < 60 s;  --quick < 10 s
+  continuation 0.2 -> 1.6 in Omega*, n = 16, with its period-2 branch   < 60 s
 """
 
 import argparse
@@ -174,6 +175,22 @@ def shooting_vs_marching(count=32, tol=1e-6):
                 max_relative_amplitude_difference=agree)
 
 
+def continuation_time(n=16, steps_per_rev=100, max_period=2):
+    """crankgen.continuation of the consistent model (eps = 0.01) over 0.2 <= Omega* <= 1.6 with the
+    period-2 branch born at its period doubling (the compiled code loaded first)."""
+    model = dict(formulation="lagrange", damping="kelvin-voigt", membrane="averaged",
+                 n_elements=n, steps_per_rev=steps_per_rev)
+    crankgen.continuation(crankgen.Mechanism(), "omega", 0.9, 1.0, max_points=3, **model)
+    t = time.perf_counter()
+    d = crankgen.continuation(crankgen.Mechanism(), "omega", 0.2, 1.6, max_period=max_period, **model)
+    seconds = time.perf_counter() - t
+    return dict(n_elements=n, steps_per_rev=steps_per_rev, max_period=max_period, seconds=seconds,
+                branches=[dict(period=b.period, points=len(b), stop=b.stop_reason) for b in d.branches],
+                special_points=[dict(kind=s.kind, period=s.period, omega=s.parameter,
+                                     amplitude=s.amplitude) for s in d.special_points],
+                map_evaluations=d.info["map_evaluations"])
+
+
 def reproduce_times():
     exe = Path(sys.executable).with_name("crankgen")
     cmd = [str(exe)] if exe.exists() else [sys.executable, "-m", "crankgen.cli"]
@@ -219,6 +236,8 @@ def main(argv=None):
     results["batch"] = batch_vs_single()
     print("timing shooting against marching ...", flush=True)
     results["shooting"] = shooting_vs_marching()
+    print("timing a continuation ...", flush=True)
+    results["continuation"] = continuation_time()
     if not args.skip_reproduce:
         print("timing crankgen reproduce ...", flush=True)
         results["reproduce"] = reproduce_times()
@@ -233,6 +252,7 @@ def main(argv=None):
                    batch_case_step_n16_lt_10us=results["batch"]["n16_batch_us_per_case_step"] < 10,
                    batch_case_step_n16_full_newton_lt_10us=(
                        results["batch"]["n16_full_newton_batch_us_per_case_step"] < 10))
+    targets["continuation_n16_period2_lt_60s"] = results["continuation"]["seconds"] < 60
     if "reproduce" in results:
         targets["reproduce_full_lt_60s"] = results["reproduce"]["reproduce_full_s"] < 60
         targets["reproduce_quick_lt_10s"] = results["reproduce"]["reproduce_quick_s"] < 10
@@ -263,6 +283,11 @@ def main(argv=None):
     print(f"steady state to {s['tol']:g}, {s['cases']} cases: shooting {s['shooting_s']:.2f} s, "
           f"marching {s['marching_s']:.2f} s (ratio {s['ratio_marching_over_shooting']:.2f}; "
           f"{s['mean_revolutions_marching']:.1f} revolutions marched on average)")
+    c = results["continuation"]
+    print(f"continuation 0.2 -> 1.6, n = {c['n_elements']}, up to period {c['max_period']}: "
+          f"{c['seconds']:.1f} s, {sum(b['points'] for b in c['branches'])} points, "
+          f"{c['map_evaluations']} map evaluations, special points: "
+          + ", ".join(f"{p['kind']} (period {p['period']}) at {p['omega']:.5g}" for p in c["special_points"]))
     if "reproduce" in results:
         r = results["reproduce"]
         print(f"crankgen reproduce: full {r['reproduce_full_s']:.1f} s, --quick {r['reproduce_quick_s']:.1f} s")

@@ -9,10 +9,12 @@ from .cases import Case
 from .simulation import SimulationResult, simulate, simulate_many
 from .steady import SteadyState, steady_state, steady_states
 from .sweep import SweepTable, sweep
+from .bifurcation import BifurcationDiagram, PoincareDiagram, continuation, poincare
 
 __all__ = [
     "APPROACHES", "Case", "DAMPING_MODELS", "FORMULATIONS", "ConvergenceError", "CrankgenError", "Mechanism",
     "Model", "NewmarkSettings", "ParameterError", "SIMechanism", "SimulationResult", "integrate",
     "simulate", "simulate_many", "SteadyState", "steady_state", "steady_states", "SweepTable", "sweep",
+    "BifurcationDiagram", "PoincareDiagram", "continuation", "poincare",
 ]
 from .provenance import VERSION as __version__

@@ -474,6 +474,111 @@ def _cmd_audit(args):
     return 0
 
 
+# --- crankgen continue / crankgen poincare ----------------------------------------------------
+
+def _add_branch_model_options(p):
+    """Model options of continue and poincare (the continued parameter's own option is ignored)."""
+    from .kernels import MEMBRANE_OPTIONS
+
+    g = p.add_argument_group("model (the option of the continued parameter is replaced by its range)")
+    g.add_argument("--omega", type=float, default=0.8, help="crank speed Omega* when it is not the parameter (default 0.8)")
+    g.add_argument("--approach", choices=APPROACHES, default="A", help="strain energy A, B or C (default A)")
+    g.add_argument("--formulation", choices=FORMULATIONS, default="lagrange",
+                   help="lagrange (exact Euler-Lagrange equations) or paper (printed form) (default lagrange)")
+    g.add_argument("--damping", choices=DAMPING_MODELS, default="paper",
+                   help="paper (eq. 24) or kelvin-voigt (strain-rate damping) (default paper)")
+    g.add_argument("--membrane", choices=MEMBRANE_OPTIONS, default="pointwise",
+                   help="membrane strain of the element: pointwise or averaged (default pointwise)")
+    g.add_argument("--elements", type=int, default=16, help="number of rod elements, >= 1 (default 16)")
+    g.add_argument("--steps-per-rev", type=int, default=100, help="Newmark steps per crank revolution, >= 4 (default 100)")
+    g.add_argument("--parameter", choices=("omega", "eps", "ms", "mu", "a"), default="omega",
+                   help="the parameter varied (default omega)")
+    g.add_argument("--from", dest="start", type=float, required=True, help="first value of the parameter")
+    g.add_argument("--to", dest="stop", type=float, required=True, help="last value of the parameter")
+
+
+def _branch_model(args):
+    from .parameters import Mechanism
+
+    base = dict(a=args.a, eps=args.eps, ms=args.ms, mu=args.mu)
+    if args.parameter in base:       # replaced by the range; the other values must be valid
+        base[args.parameter] = args.start
+    mech = Mechanism(**base)
+    model = dict(omega=args.omega, approach=args.approach, formulation=args.formulation,
+                 damping=args.damping, membrane=args.membrane, n_elements=args.elements,
+                 steps_per_rev=args.steps_per_rev)
+    return mech, model
+
+
+def _cmd_continue(args):
+    from .bifurcation import continuation
+
+    mech, model = _branch_model(args)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    log = None if args.quiet else (lambda text: print(f"continue: {text}", file=sys.stderr, flush=True))
+    d = continuation(mech, args.parameter, args.start, args.stop, max_period=args.max_period,
+                     progress=log, **model)
+    paths = d.to_csv(out)
+    png = d.plot(out / "continuation.png", title=_title(args, "continuation"),
+                 ylabel="max |v*(1/2)| over the orbit", xlabel=_AXIS[args.parameter])
+    for s in d.special_points:
+        print(f"{s.kind} on the period-{s.period} branch at {args.parameter} = {s.parameter:.7g}, "
+              f"amplitude {s.amplitude:.6g}, multiplier {s.multiplier.real:.6g}{s.multiplier.imag:+.6g}j")
+    print(f"{len(d.branches)} branches, {sum(len(b) for b in d.branches)} points, "
+          f"{len(d.special_points)} special points in {d.info['wall_time']:.1f} s; wrote "
+          f"{', '.join(str(p) for p in paths)} and {png}")
+    return 0
+
+
+_AXIS = {"omega": "Omega*", "eps": "eps", "ms": "ms*", "mu": "mu*", "a": "a*"}
+
+
+def _title(args, what):
+    return (f"{what} in {args.parameter}: approach {args.approach}, {args.formulation} / {args.damping} "
+            f"damping, {args.membrane} membrane, n = {args.elements}, eps = {args.eps:g}"
+            if args.parameter != "eps" else
+            f"{what} in eps: approach {args.approach}, {args.formulation} / {args.damping} damping, "
+            f"{args.membrane} membrane, n = {args.elements}, Omega* = {args.omega:g}")
+
+
+def _cmd_poincare(args):
+    import numpy as np
+
+    from .bifurcation import continuation, poincare
+    from .progress import Progress
+
+    mech, model = _branch_model(args)
+    if args.values < 2:
+        print("crankgen poincare: error: --values must be >= 2", file=sys.stderr)
+        return 2
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    values = np.linspace(args.start, args.stop, args.values)
+    total = args.values * (2 if args.direction == "both" else 1)
+    with Progress("poincare", total, enabled=not args.quiet) as progress:
+        pc = poincare(mech, args.parameter, values, args.direction, transient=args.transient,
+                      samples=args.samples, progress=progress, **model)
+    diagram = None
+    if args.with_continuation:
+        log = None if args.quiet else (lambda text: print(f"continue: {text}", file=sys.stderr, flush=True))
+        diagram = continuation(mech, args.parameter, min(args.start, args.stop),
+                               max(args.start, args.stop), max_period=args.max_period, progress=log,
+                               **model)
+        diagram.to_csv(out)
+    paths = pc.to_csv(out)
+    png = pc.plot(out / "poincare.png", diagram, title=_title(args, "Poincare sweep"),
+                  ylabel="v*(1/2) at theta = 0, once per revolution", xlabel=_AXIS[args.parameter])
+    counts = {}
+    for q in pc.points:
+        counts[q.classification] = counts.get(q.classification, 0) + 1
+    print(", ".join(f"{k}: {v}" for k, v in sorted(counts.items())) +
+          f" in {pc.info['wall_time']:.1f} s; wrote {', '.join(str(p) for p in paths)} and {png}")
+    return 0
+
+
+
+
 # ---- parser ------------------------------------------------------------------------------------
 def build_parser():
     from .provenance import kernels_hash
@@ -582,6 +687,42 @@ def build_parser():
                    help="comma-separated sections to write (default: all, 1-6)")
     p.add_argument("--quiet", action="store_true", help="no progress output")
     p.set_defaults(func=_cmd_audit)
+
+    p = sub.add_parser("continue", help="continuation of the periodic response: branches, stability, folds, period doublings, Neimark-Sacker points",
+                       description="Follow the periodic response as one parameter varies (pseudo-arclength "
+                                   "continuation of the crank-revolution map), with its stability, folds, "
+                                   "period doublings and Neimark-Sacker points, and the period-2 (4, ...) "
+                                   "branches born at period doublings. Writes branches.csv, "
+                                   "special_points.csv, multipliers.csv and continuation.png.")
+    _add_mechanism_options(p)
+    _add_branch_model_options(p)
+    p.add_argument("--max-period", type=int, default=4,
+                   help="follow period doublings up to this period (default 4)")
+    p.add_argument("--out", default="continuation", help="output folder (default ./continuation)")
+    p.add_argument("--quiet", action="store_true", help="no progress output")
+    p.set_defaults(func=_cmd_continue)
+
+    p = sub.add_parser("poincare", help="brute-force bifurcation diagram: sweep a parameter, sample v* once per revolution, classify",
+                       description="March the mechanism at evenly spaced values of one parameter, each "
+                                   "value starting from the last state of the previous one (sweep up, "
+                                   "down or both, so hysteresis shows), sample v*(1/2) at theta = 0 once "
+                                   "per revolution after a transient and classify each value (period-k, "
+                                   "quasi-periodic, irregular, unsettled) with its evidence. Writes "
+                                   "poincare_summary.csv, poincare_samples.csv and poincare.png.")
+    _add_mechanism_options(p)
+    _add_branch_model_options(p)
+    p.add_argument("--values", type=int, default=57, help="number of parameter values, >= 2 (default 57)")
+    p.add_argument("--direction", choices=("up", "down", "both"), default="both",
+                   help="sweep direction (default both: up, then down)")
+    p.add_argument("--transient", type=int, default=100, help="revolutions marched before sampling (default 100)")
+    p.add_argument("--samples", type=int, default=64, help="revolutions sampled per value (default 64)")
+    p.add_argument("--with-continuation", action="store_true",
+                   help="also run the continuation over the same range and draw its branches over the samples")
+    p.add_argument("--max-period", type=int, default=4,
+                   help="with --with-continuation: follow period doublings up to this period (default 4)")
+    p.add_argument("--out", default="poincare", help="output folder (default ./poincare)")
+    p.add_argument("--quiet", action="store_true", help="no progress output")
+    p.set_defaults(func=_cmd_poincare)
     return parser
 
 

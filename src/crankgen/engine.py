@@ -1194,9 +1194,9 @@ _revolution_parallel = _variant(_revolution_impl, "_revolution_parallel", True)
 
 
 def revolution(batch, X0, step0=0, active=None, parallel=None, beta=0.25, gamma=0.5, tol=1e-10,
-               max_iter=30):
+               max_iter=30, revolutions=1):
     """(X1, J, status): the one-revolution map of the Newton-Newmark scheme and its Jacobian, for
-    states X0 (B, 2N) = (d, v) at step index step0."""
+    states X0 (B, 2N) = (d, v) at step index step0 (revolutions > 1: that many revolutions)."""
     B, N = len(batch), batch.N
     X0 = np.ascontiguousarray(X0, dtype=float)
     active = np.ones(B, dtype=np.bool_) if active is None else np.asarray(active, dtype=np.bool_)
@@ -1207,5 +1207,5 @@ def revolution(batch, X0, step0=0, active=None, parallel=None, beta=0.25, gamma=
         parallel = int(active.sum()) > 1
     fn = _revolution_parallel if parallel else _revolution_serial
     fn(batch.codes, batch.par, batch.dofs, batch.kb, batch.l, batch.scales, beta, gamma, tol,
-       max_iter, step0, batch.steps_per_rev, X0, active, X1, J, status)
+       max_iter, step0, revolutions * batch.steps_per_rev, X0, active, X1, J, status)
     return X1, J, status

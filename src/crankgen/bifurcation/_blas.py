@@ -1,0 +1,52 @@
+"""One BLAS thread for the small dense problems of the continuation (eigenvalues of the monodromy
+matrix, bordered solves of size 2N + 1 <= a few hundred).  On a loaded machine a multi-threaded
+OpenBLAS spends ~0.3 s in a 96 x 96 eigenvalue problem that takes ~3 ms on one thread.  The
+context manager sets NumPy's bundled OpenBLAS to one thread and restores the previous count on
+exit; where that library is not found it does nothing."""
+
+import contextlib
+import ctypes
+import glob
+import os
+
+_LIB = None
+
+
+def _lib():
+    global _LIB
+    if _LIB is None:
+        _LIB = False
+        import numpy
+        root = os.path.dirname(os.path.dirname(numpy.__file__))
+        for path in glob.glob(os.path.join(root, "numpy.libs", "*openblas*")):
+            try:
+                lib = ctypes.CDLL(path)
+            except OSError:
+                continue
+            for get, put in (("scipy_openblas_get_num_threads64_", "scipy_openblas_set_num_threads64_"),
+                             ("openblas_get_num_threads64_", "openblas_set_num_threads64_"),
+                             ("openblas_get_num_threads", "openblas_set_num_threads")):
+                if hasattr(lib, get) and hasattr(lib, put):
+                    getter, setter = getattr(lib, get), getattr(lib, put)
+                    getter.restype = ctypes.c_int
+                    setter.argtypes = [ctypes.c_int]
+                    _LIB = (getter, setter)
+                    break
+            if _LIB:
+                break
+    return _LIB
+
+
+@contextlib.contextmanager
+def single_thread():
+    lib = _lib()
+    if not lib:
+        yield
+        return
+    getter, setter = lib
+    before = getter()
+    setter(1)
+    try:
+        yield
+    finally:
+        setter(before)

@@ -1,0 +1,226 @@
+"""Brute-force bifurcation diagrams: march the map value by value and sample it once per period.
+
+Each parameter value starts from the last state of the previous one (so sweeps up and down show
+hysteresis), iterates `transient` times, then `samples` times, recording the observable (the
+mechanism: v*(1/2) at theta = 0, once per crank revolution).  Classification, with its evidence:
+- "period-k" (k <= max_period): the smallest k with max_j |x_{j+k} - x_j| / (1 + max |x|) < tol
+  over the sampled states (repeat_residual); while a divisor of k nearly repeats (to 1e-4), up to
+  four more rounds of samples are taken first (a slowly decaying alternation mimics period 2k);
+- otherwise the largest Lyapunov exponent per application, from the product of the exact
+  Jacobians along `samples` further applications (renormalized each time: the first column of a
+  QR iteration; the first quarter aligns the vector and is not averaged): > lyapunov_tol "irregular", within +-lyapunov_tol "quasi-periodic", below
+  -lyapunov_tol "unsettled" (still converging after the transient);
+- "failed" when the map cannot be evaluated (message says why; the next value restarts from the
+  last good state).  When the transient from the previous value's state fails, the value is
+  approached once more from that state in four parameter steps of transient / 4 iterations each.
+distinct counts the sampled values that differ by more than 1e-6 (1 + |sample|).
+"""
+
+import csv
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import CrankgenError, ParameterError
+from ._blas import single_thread
+from .maps import MapError
+
+DIRECTIONS = ("up", "down", "both")
+
+
+@dataclass
+class PoincarePoint:
+    direction: str                 # "up" or "down"
+    parameter: float
+    classification: str            # "period-k", "quasi-periodic", "irregular", "unsettled", "failed"
+    period: int                    # k of "period-k", else 0
+    repeat_residual: float         # scaled max |x_{j+k} - x_j| for that k (smallest over k otherwise)
+    lyapunov: float                # largest Lyapunov exponent per application (nan when periodic)
+    distinct: int                  # distinct sampled values
+    samples: np.ndarray = field(repr=False)   # the observable once per application
+    message: str = ""
+
+
+@dataclass
+class PoincareDiagram:
+    parameter_name: str
+    points: list
+    info: dict = field(default_factory=dict)
+
+    def to_csv(self, folder):
+        """poincare_summary.csv (one row per value and direction) and poincare_samples.csv (every
+        sample) in folder; returns the paths."""
+        folder = Path(folder)
+        folder.mkdir(parents=True, exist_ok=True)
+        name = self.parameter_name
+        paths = [folder / "poincare_summary.csv", folder / "poincare_samples.csv"]
+        with open(paths[0], "w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(["direction", name, "classification", "period", "repeat_residual",
+                        "lyapunov", "distinct", "message"])
+            for q in self.points:
+                w.writerow([q.direction, repr(q.parameter), q.classification, q.period,
+                            repr(q.repeat_residual), repr(q.lyapunov), q.distinct, q.message])
+        with open(paths[1], "w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(["direction", name, "sample", "value"])
+            for q in self.points:
+                for j, v in enumerate(q.samples):
+                    w.writerow([q.direction, repr(q.parameter), j, repr(float(v))])
+        return paths
+
+    def plot(self, path, diagram=None, title=None, ylabel="section sample", xlabel=None):
+        """Samples against the parameter (sweeps up and down in two colours); with a
+        BifurcationDiagram, its branches' section points are drawn over them (stable solid,
+        unstable dashed) and its special points marked."""
+        from matplotlib.lines import Line2D
+
+        from ..plotting import pyplot
+        from .diagram import LABELS
+
+        plt = pyplot()
+        fig, ax = plt.subplots(figsize=(7.5, 4.5), constrained_layout=True)
+        handles = []
+        style = {"up": ("C0", "o", 7), "down": ("C3", "x", 12)}
+        for d in ("up", "down"):
+            pts = [q for q in self.points if q.direction == d and len(q.samples)]
+            if not pts:
+                continue
+            c, m, s = style[d]
+            xs = np.concatenate([np.full(len(q.samples), q.parameter) for q in pts])
+            ys = np.concatenate([q.samples for q in pts])
+            ax.scatter(xs, ys, s=s, marker=m, color=c, lw=0.6, alpha=0.7, zorder=3)
+            handles.append(Line2D([], [], ls="none", marker=m, color=c, label=f"sweep {d}"))
+        if diagram is not None:
+            for br in diagram.branches:
+                if br.section is None:
+                    continue
+                st = np.asarray(br.stable, dtype=bool)
+                for j in range(br.period):
+                    y = br.section[:, j]
+                    start = 0
+                    for i in range(1, len(br) + 1):
+                        if i == len(br) or st[i] != st[start]:
+                            e = min(i + 1, len(br))
+                            ax.plot(br.parameter[start:e], y[start:e], color="black",
+                                    ls="-" if st[start] else "--", lw=0.9 if st[start] else 0.7,
+                                    zorder=4)
+                            start = i
+            handles += [Line2D([], [], color="black", ls="-", label="continuation, stable"),
+                        Line2D([], [], color="black", ls="--", label="continuation, unstable")]
+            for sp in diagram.special_points:
+                ax.axvline(sp.parameter, color="grey", lw=0.6, ls=":", zorder=1)
+                ax.annotate(f"{LABELS[sp.kind]}", (sp.parameter, 1.0), xycoords=("data", "axes fraction"),
+                            xytext=(2, -10), textcoords="offset points", fontsize=7, color="dimgrey")
+        ax.set_xlabel(xlabel or self.parameter_name)
+        ax.set_ylabel(ylabel)
+        ax.grid(alpha=0.3)
+        if handles:
+            ax.legend(handles=handles, fontsize=8, loc="best")
+        if title:
+            ax.set_title(title, fontsize=9)
+        fig.savefig(path, dpi=130)
+        plt.close(fig)
+        return path
+
+
+def _classify(states, tol, max_period):
+    scale = 1.0 + float(np.max(np.abs(states)))
+    best = (math.inf, 0)
+    n = len(states)
+    for k in range(1, max_period + 1):
+        if n - k < 2:
+            break
+        r = float(np.max(np.abs(states[k:] - states[:-k]))) / scale
+        if r < tol:
+            return k, r
+        best = min(best, (r, k))
+    return 0, best[0]
+
+
+def _lyapunov(jacs, seed=0):
+    """Mean log growth of a renormalized tangent vector over the last 3/4 of the Jacobians (the
+    first quarter aligns it with the most expanding direction)."""
+    w = np.random.default_rng(seed).standard_normal(jacs.shape[1])
+    w /= np.linalg.norm(w)
+    skip = len(jacs) // 4
+    total = 0.0
+    for i, J in enumerate(jacs):
+        w = J @ w
+        g = float(np.linalg.norm(w))
+        if not (g > 0 and math.isfinite(g)):
+            return math.inf if not math.isfinite(g) else -math.inf
+        if i >= skip:
+            total += math.log(g)
+        w /= g
+    return total / (len(jacs) - skip)
+
+
+def _distinct(samples):
+    s = np.sort(np.asarray(samples, dtype=float))
+    if s.size == 0:
+        return 0
+    gaps = np.diff(s) > 1e-6 * (1.0 + np.abs(s[1:]))
+    return int(1 + np.sum(gaps))
+
+
+def sweep_map(fmap, values, x0, direction="up", transient=100, samples=64, max_period=8, tol=1e-8,
+              lyapunov_tol=0.01, progress=None):
+    """PoincareDiagram of fmap over values (see module docstring); x0 the state the first value
+    starts from.  progress(done, total) after each value."""
+    if direction not in DIRECTIONS:
+        raise ParameterError(f"direction must be one of {', '.join(map(repr, DIRECTIONS))}, got {direction!r}")
+    values = sorted(float(v) for v in values)
+    if not values:
+        raise ParameterError("values must hold at least one parameter value")
+    passes = {"up": [("up", values)], "down": [("down", values[::-1])],
+              "both": [("up", values), ("down", values[::-1])]}[direction]
+    with single_thread():
+        return _sweep(fmap, passes, x0, transient, samples, max_period, tol, lyapunov_tol, progress)
+
+
+def _sweep(fmap, passes, x0, transient, samples, max_period, tol, lyapunov_tol, progress):
+    total = sum(len(v) for _, v in passes)
+    x = np.asarray(x0, dtype=float)
+    points, done, p_last = [], 0, None
+    for d, vals in passes:
+        for p in vals:
+            try:
+                try:
+                    states, _, _ = fmap.iterate(x, p, transient)
+                except (MapError, CrankgenError):
+                    if p_last is None:
+                        raise
+                    # the jump from the last state failed: ramp the parameter in four steps
+                    for q in np.linspace(p_last, p, 5)[1:]:
+                        x = fmap.iterate(x, q, max(transient // 4, 1))[0][-1]
+                    states, _, _ = fmap.iterate(x, p, transient)
+                states, smp, _ = fmap.iterate(states[-1], p, samples)
+                k, r = _classify(states, tol, max_period)
+                for _ in range(4):
+                    # a slowly decaying alternation (multiplier near -1) can pass the test at 2k
+                    # before it does at k: sample again while a divisor of k nearly repeats
+                    near = _classify(states, 1e-4, k - 1)[0] if k > 1 else 0
+                    if not near or k % near:
+                        break
+                    states, smp, _ = fmap.iterate(states[-1], p, samples)
+                    k, r = _classify(states, tol, max_period)
+                lyap = math.nan
+                if k:
+                    cls = f"period-{k}"
+                else:
+                    _, _, jacs = fmap.iterate(states[-1], p, samples, jacobian=True)
+                    lyap = _lyapunov(jacs)
+                    cls = ("irregular" if lyap > lyapunov_tol else
+                           "quasi-periodic" if lyap >= -lyapunov_tol else "unsettled")
+                points.append(PoincarePoint(d, p, cls, k, r, lyap, _distinct(smp[1:]), smp[1:]))
+                x, p_last = states[-1], p
+            except (MapError, CrankgenError) as exc:
+                points.append(PoincarePoint(d, p, "failed", 0, math.nan, math.nan, 0,
+                                            np.zeros(0), str(exc)))
+            done += 1
+            if progress is not None:
+                progress(done, total)
+    return PoincareDiagram(fmap.parameter, points)
