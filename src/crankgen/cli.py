@@ -6,7 +6,7 @@ from pathlib import Path
 
 from .audit import SECTIONS as AUDIT_SECTIONS
 from .errors import CrankgenError
-from .kernels import APPROACHES, DAMPING_MODELS, FORMULATIONS
+from .ingredients import CHOICES
 from .newmark import SCHEMES
 
 
@@ -21,11 +21,11 @@ def _add_mechanism_options(p):
 def _add_run_options(p):
     g = p.add_argument_group("model and integration")
     g.add_argument("--omega", type=float, default=0.8, help="crank speed Omega* = Omega/omega_b, > 0 (default 0.8)")
-    g.add_argument("--approach", choices=APPROACHES, default="A",
+    g.add_argument("--approach", choices=CHOICES["approach"], default="A",
                    help="strain energy: A full non-linear (eq. 2), B without the quartic v_x^4 term, C linear strain (default A)")
-    g.add_argument("--formulation", choices=FORMULATIONS, default="lagrange",
+    g.add_argument("--formulation", choices=CHOICES["formulation"], default="lagrange",
                    help="lagrange: exact Euler-Lagrange equations; paper: the printed matrix form eqs. (17)-(29) (default lagrange)")
-    g.add_argument("--damping", choices=DAMPING_MODELS, default="paper",
+    g.add_argument("--damping", choices=CHOICES["damping"], default="paper",
                    help="paper: C = mu (K_lin + K_non), eq. (24); kelvin-voigt: strain-rate damping of each approach's strain (default paper)")
     g.add_argument("--elements", type=int, default=16, help="number of rod elements, >= 1 (default 16)")
     g.add_argument("--steps-per-rev", type=int, default=100, help="Newmark steps per crank revolution, >= 4 (default 100)")
