@@ -143,10 +143,14 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
             d_new, v_new = d_pred + c_d * a_new, v_pred + c_v * a_new
             increment = np.max(np.abs(c_d * delta) / scales)
             size = np.max(np.abs(d_new) / scales)
-            done, refresh, reused_before, full = newton.next_iteration(
+            done, reject, refresh, reused_before, full = newton.next_iteration(
                 scheme, it, increment, previous, size, settings.tol, refresh, reused_before, full)
             if done:
                 break
+            if reject:
+                a_new -= delta
+                d_new, v_new = d_pred + c_d * a_new, v_pred + c_v * a_new
+                continue
             previous = increment
         else:
             raise ConvergenceError(

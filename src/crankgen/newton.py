@@ -9,10 +9,12 @@ Schemes (see newmark.py for the full description):
   reused while the increments contract at least REFRESH_RATE-fold per iteration; besides the
   increment test the iteration stops when the estimated remaining error theta/(1 - theta) |delta|
   is below ESTIMATE_FRACTION of the tolerance (theta from two increments of the same kind).
-  Safeguard: when a reused-factorization iteration stalls or diverges (theta > REFRESH_RATE) the
-  tangent is refreshed; when the fresh-tangent iteration itself stops contracting, the step
-  continues as full Newton (a fresh tangent every iteration) until it converges or runs out of
-  iterations, so "newton" never gives up where "full-newton" would converge.
+  Safeguards: when a reused-factorization iteration stalls (theta > REFRESH_RATE) the tangent is
+  refreshed; when it diverges (theta >= 1) its update is rejected (the iterate goes back to where
+  it was) and the rest of the step runs as full Newton; when two fresh-tangent iterations in a
+  row contract slowly, the rest of the step runs as full Newton too.  From a rejected update on,
+  the step follows the very iterates "full-newton" would, so "newton" does not give up where
+  "full-newton" converges.
 - "one-pass": the paper's eqs. (34)-(39), one linear solve per step;
 - "full-newton": a fresh tangent at every iteration.
 """
@@ -44,23 +46,27 @@ def converged(increment, size, tol):
 
 def next_iteration(scheme, it, increment, previous, size, tol, refresh, reused_before, full):
     """Decision after iteration `it` (1-based) whose largest scaled increment is `increment`
-    (`previous`: that of iteration it - 1; `size`: largest scaled displacement).  refresh: this
-    iteration factorized a fresh tangent; reused_before: the previous one reused a factorization;
-    full: the step already fell back to full Newton.
-    Returns (done, refresh_next, reused_before_next, full_next)."""
+    (`previous`: that of the last accepted iteration; `size`: largest scaled displacement).
+    refresh: this iteration factorized a fresh tangent; reused_before: the previous one reused a
+    factorization; full: the step already fell back to full Newton.
+    Returns (done, reject, refresh_next, reused_before_next, full_next); reject: undo this
+    iteration's update before going on."""
     limit = tol * (1.0 + size)
     if scheme == ONE_PASS or increment <= limit:
-        return True, refresh, reused_before, full
+        return True, False, refresh, reused_before, full
     if scheme == FULL_NEWTON or full:
-        return False, True, False, full
+        return False, False, True, False, full
     if it == 1:
-        return False, False, False, full
+        return False, False, False, False, full
     rate = increment / previous
+    if not refresh and rate >= 1.0:
+        # a reused factorization that diverges: undo its update, continue as full Newton
+        return False, True, True, False, True
     same_kind = refresh != reused_before
     if same_kind and rate < 1.0 and rate / (1.0 - rate) * increment <= ESTIMATE_FRACTION * limit:
-        return True, refresh, reused_before, full
+        return True, False, refresh, reused_before, full
     if refresh and same_kind and rate > REFRESH_RATE:
         # two fresh-tangent iterations in a row that do not contract fast: Newton itself is in
         # trouble (large step, strong non-linearity); reusing factorizations would only slow it
-        return False, True, False, True
-    return False, rate > REFRESH_RATE, not refresh, full
+        return False, False, True, False, True
+    return False, False, rate > REFRESH_RATE, not refresh, full

@@ -15,7 +15,7 @@ the same numbers and the same iteration counts.
 
 from .banded import (KB_FIXED, assemble_band, assemble_band_newmark, assemble_fixed, assemble_vector,  # noqa: F401
                      band_factor, band_lu_solve, band_matmul, band_solve, factor_fixed, solve_fixed)
-from .compiled import CACHE, KERNELS_HASH, is_warm  # noqa: F401
+from .compiled import CACHE, CODE_HASH, KERNELS_HASH, is_warm  # noqa: F401
 from .elements import FULL, NEWMARK, RESIDUAL, element_loop  # noqa: F401
 from .march import Batch, MarchResult, march  # noqa: F401
 from .records import RUN, Work, make_work  # noqa: F401

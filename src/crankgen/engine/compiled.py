@@ -1,18 +1,21 @@
-"""Compilation with numba, cached on disk under the generated kernels' hash, and repaired when unreadable.
+"""Compilation with numba, cached on disk under a hash of the compiled code, and repaired when unreadable.
 
 numba's own cache is keyed by the source file of each compiled function: a function that calls a
-generated kernel is not recompiled when only the kernel's file changed, so after `make derive` a
-stale engine would run.  Every crankgen function is therefore cached in a folder named by the
-kernels' hash (generated/dispatch.py KERNELS_HASH), with that hash also in its source stamp:
-regenerated kernels always get a fresh compilation.  The folder is, in order of preference,
-$CRANKGEN_CACHE_DIR, `__pycache__/numba-<hash>` inside the installed package, or
-~/.cache/crankgen/numba-<hash> when the package folder is read-only.
+function of another file (a generated kernel, the Newmark step) is not recompiled when only that
+other file changed, so after `make derive` or an edit of the engine a stale engine would run.
+Every crankgen function is therefore cached in a folder named by CODE_HASH, a hash of the
+generated kernels' specification (generated/dispatch.py KERNELS_HASH) and of the source of every
+module the engine compiles (crankgen/engine/*.py, crankgen/newton.py), with that hash also in its
+source stamp: changed kernels or engine code always get a fresh compilation.  The folder is, in
+order of preference, $CRANKGEN_CACHE_DIR/numba-<hash>, `__pycache__/numba-<hash>` inside the
+installed package, or ~/.cache/crankgen/numba-<hash> when the package folder is read-only.
 
 A cache file that cannot be read (a truncated write, a disk fault) makes numba fail on the first
 call of the function; `call` catches such a failure once, deletes the unreadable files with a
 warning and runs again (numba then recompiles what is missing).
 """
 
+import hashlib
 import os
 import pickle
 import sys
@@ -31,6 +34,17 @@ _GENERATED = Path(_table.__file__).resolve().parent
 _WARM_MARK = "compiled.ok"
 
 
+def _code_hash():
+    h = hashlib.sha256(KERNELS_HASH.encode())
+    for path in sorted(Path(__file__).resolve().parent.glob("*.py")) + [_PACKAGE / "newton.py"]:
+        h.update(path.name.encode())
+        h.update(path.read_bytes())
+    return h.hexdigest()[:16]
+
+
+CODE_HASH = _code_hash()
+
+
 def _writable(folder):
     try:
         folder.mkdir(parents=True, exist_ok=True)
@@ -46,18 +60,18 @@ def cache_folder():
     """Folder of this kernel hash's compiled code (see the module docstring)."""
     env = os.environ.get("CRANKGEN_CACHE_DIR")
     if env:
-        return Path(env) / f"numba-{KERNELS_HASH}"
-    inside = _PACKAGE / "__pycache__" / f"numba-{KERNELS_HASH}"
+        return Path(env) / f"numba-{CODE_HASH}"
+    inside = _PACKAGE / "__pycache__" / f"numba-{CODE_HASH}"
     if _writable(inside):
         return inside
-    return Path.home() / ".cache" / "crankgen" / f"numba-{KERNELS_HASH}"
+    return Path.home() / ".cache" / "crankgen" / f"numba-{CODE_HASH}"
 
 
 CACHE = cache_folder()
 
 
 class _KernelsHashLocator(caching._SourceFileBackedLocatorMixin, caching._CacheLocator):
-    """numba cache locator for crankgen's own files: CACHE, with the kernels' hash in the stamp."""
+    """numba cache locator for crankgen's own files: CACHE, with the code hash in the stamp."""
 
     def __init__(self, py_func, py_file):
         self._py_file = py_file
@@ -68,7 +82,7 @@ class _KernelsHashLocator(caching._SourceFileBackedLocatorMixin, caching._CacheL
         return self._cache_path
 
     def get_source_stamp(self):
-        return (super().get_source_stamp(), KERNELS_HASH)
+        return (super().get_source_stamp(), CODE_HASH)
 
     @classmethod
     def from_function(cls, py_func, py_file):

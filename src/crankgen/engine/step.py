@@ -121,9 +121,15 @@ def newmark_step(families, coef, run, dofs, kb, l, scales, beta, gamma, tol, max
                 size = x
         if not np.isfinite(inc):
             return NOT_FINITE, it, rnorm
-        done, refresh, reused_before, full = next_iteration(scheme, it, inc, previous, size, tol,
-                                                            refresh, reused_before, full)
+        done, reject, refresh, reused_before, full = next_iteration(scheme, it, inc, previous, size, tol,
+                                                                    refresh, reused_before, full)
         if done:
             return OK, it, rnorm
+        if reject:                      # undo the update of a diverging reused factorization
+            for i in range(N):
+                a_new[i] -= rhs[i, 0]
+                d_new[i] = d[i] + dt * v[i] + 0.5 * dt * dt * (1.0 - 2.0 * beta) * acc[i] + cd * a_new[i]
+                v_new[i] = v[i] + dt * (1.0 - gamma) * acc[i] + cv * a_new[i]
+            continue
         previous = inc
     return NOT_CONVERGED, max_iter, rnorm
