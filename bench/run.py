@@ -72,8 +72,8 @@ def kernel_vs_quadrature(n=16, repeats=200):
     """The lagrange element terms of approach A with Kelvin-Voigt damping (inertia r, K, C, M;
     elastic r, K; damping r, K, C) for n elements: generated kernels vs Gauss quadrature."""
     import reference as ref
-    from crankgen._generated import damping as gd
-    from crankgen._generated import lagrange as gl
+    from crankgen._generated import elements as E
+    from crankgen.model import Model
 
     rng = np.random.default_rng(0)
     mech = crankgen.Mechanism()
@@ -81,11 +81,13 @@ def kernel_vs_quadrature(n=16, repeats=200):
     q, qd, qdd = (1e-3 * rng.standard_normal((n, 6)) for _ in range(3))
     kin = (mech.a, 0.3, 0.8, 0.03, 0.07, -0.02)
     args = (mech.rhoA, mech.rhoI)
+    model = Model.from_case(Case(n_elements=n, damping="kelvin-voigt"))
+    geo, coef, kin_v = model.geometry, model.coefficients, np.array(kin)
 
     def generated():
-        gl.rod_inertia(q, qd, qdd, l, x0, *args, *kin)
-        gl.rod_elastic_A(q, l, mech.EA, mech.EI)
-        gd.kelvin_voigt_A(q, qd, l, mech.EA, mech.EI, mech.mu)
+        E.inertia_lagrange(q, qd, qdd, geo, coef, kin_v)
+        E.elastic_lagrange_A(q, qd, qdd, geo, coef, kin_v)
+        E.dissipation_kelvin_voigt_A(q, qd, qdd, geo, coef, kin_v)
 
     def quadrature():
         ref.rod_inertia(q, qd, qdd, l, x0, *args, *kin)
@@ -93,7 +95,7 @@ def kernel_vs_quadrature(n=16, repeats=200):
         ref.kelvin_voigt("A", q, qd, l, mech.EA, mech.EI, mech.mu)
 
     # same numbers first
-    a = gl.rod_elastic_A(q, l, mech.EA, mech.EI)[1]
+    a = E.elastic_lagrange_A(q, qd, qdd, geo, coef, kin_v)[1]
     b = ref.rod_elastic("A", q, l, mech.EA, mech.EI)[1]
     assert np.allclose(a, b, rtol=1e-9, atol=1e-12 * np.abs(b).max())
     t_gen = best_of(lambda: [generated() for _ in range(repeats)]) / repeats
@@ -102,20 +104,19 @@ def kernel_vs_quadrature(n=16, repeats=200):
     import numba
     case = Case(n_elements=n, damping="kelvin-voigt")
     batch = engine.Batch([case])
-    ws = engine._make_ws()
-    rE, KE, CE, ME = np.zeros((n, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6))
-    kin_arr = np.array(kin[1:])
+    w = engine.make_work(n, batch.N, batch.kb)
+    w.kin[:] = kin
     d = 1e-3 * rng.standard_normal(batch.N)
+    fam, cf = batch.families[0], batch.coef[0]
 
     @numba.njit
-    def loop(reps, codes, par, dofs, l, d, kin_arr, rE, KE, CE, ME, ws):
+    def loop(reps, fam, cf, dofs, l, d, w):
         for _ in range(reps):
-            engine.element_terms(codes, par, False, dofs, l, d, d, d, kin_arr, rE, KE, CE, ME, ws)
+            engine.element_loop(engine.FULL, fam, cf, False, dofs, l, d, d, d, w.kin, 0.0, 0.0, w)
 
-    loop(1, batch.codes[0], batch.par[0], batch.dofs, l, d, kin_arr, rE, KE, CE, ME, ws)
+    loop(1, fam, cf, batch.dofs, l, d, w)
     reps = 20000
-    t_jit = best_of(lambda: loop(reps, batch.codes[0], batch.par[0], batch.dofs, l, d, kin_arr,
-                                 rE, KE, CE, ME, ws)) / reps
+    t_jit = best_of(lambda: loop(reps, fam, cf, batch.dofs, l, d, w)) / reps
     return dict(n_elements=n, generated_numpy_us=1e6 * t_gen, quadrature_numpy_us=1e6 * t_quad,
                 compiled_element_loop_us=1e6 * t_jit,
                 ratio_quadrature_over_generated=t_quad / t_gen,

@@ -10,8 +10,9 @@ import difflib
 import sys
 from pathlib import Path
 
-from .emit import emit_module
-from .kernels import ACCUMULATING, MODULES
+from .dispatch import emit_dispatch
+from .emit import emit_module, spec_hash
+from .kernels import ACCUMULATING, MODULES, SCALAR, element_kernels
 
 COMMAND = "python -m derive"
 ROOT = Path(__file__).resolve().parent.parent
@@ -26,7 +27,9 @@ def render():
     """{file name: source} of every generated file, in a fixed order."""
     files = {"__init__.py": PACKAGE_DOC}
     for name, (title, build) in MODULES.items():
-        files[f"{name}.py"] = emit_module(title, build(), COMMAND, accumulating=name in ACCUMULATING)
+        files[f"{name}.py"] = emit_module(title, build(), COMMAND, accumulating=name in ACCUMULATING,
+                                          scalar=name in SCALAR)
+    files["dispatch.py"] = emit_dispatch(COMMAND, spec_hash(element_kernels()))
     return files
 
 

@@ -6,11 +6,16 @@
 - `name_into(..., out1, out2, ...)`: one element, scalar arguments, results written into
   preallocated arrays (every entry, zeros included).  Plain Python with `math`, written so that
   the runtime can compile it with numba for the hot path.
-Residual kernels (outputs r and its tangents K = dr/dq, C = dr/dqd, M = dr/dqdd) also get two
-accumulating one-element variants for the Newton-Newmark iteration:
+- (modules derive/kernels.SCALAR only) `name_into(..., out1, out2, ...)` as above.
+Element kernels (outputs r and its tangents K = dr/dq, C = dr/dqd, M = dr/dqdd) get accumulating
+one-element variants instead, the engine's calling convention:
+- `name_add(..., r, K, C, M)`: r += residual, K += K, C += C, M += M;
+- `name_printed_add(..., r, K, C, M)` (kernels with a K_printed output only): the same with K_printed
+  in place of K, the iteration matrix of the printed one-pass scheme, eq. (37);
 - `name_residual_add(..., r)`: r += residual (no tangents, for iterations that reuse a factorization);
 - `name_newmark_add(..., cv, cd, r, S)`: r += residual and S += M + cv C + cd K, the element part of
-  the iteration matrix of eq. (37) (cv = gamma dt, cd = beta dt^2); structural zeros are skipped.
+  the iteration matrix of eq. (37) (cv = gamma dt, cd = beta dt^2).
+Structural zeros are skipped in the accumulating variants.
 Every variant comes from the same specification and a common-subexpression elimination with a fixed
 prefix and canonical order, so the same derivation always gives byte-identical source.
 """
@@ -21,8 +26,8 @@ import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 from sympy.printing.pycode import PythonCodePrinter
 
-GENERATOR_VERSION = "3"
-VARIANT_SUFFIXES = ("_into", "_residual_add", "_newmark_add")
+GENERATOR_VERSION = "4"
+VARIANT_SUFFIXES = ("_into", "_add", "_printed_add", "_residual_add", "_newmark_add")
 TANGENTS = ("K", "C", "M")   # d r / d q, d r / d qd, d r / d qdd
 CSE_PREFIX = "_c"
 
@@ -138,7 +143,7 @@ def emit_scalar_kernel(kernel, cse=None):
 def is_residual_kernel(kernel):
     """A kernel whose outputs are a residual r and (some of) its exact tangents K, C, M."""
     names = [out.name for out in kernel.outputs]
-    return names[0] == "r" and "K" in names and all(n in TANGENTS or n in ("r", "K_sec") for n in names)
+    return names[0] == "r" and "K" in names and all(n in TANGENTS or n in ("r", "K_printed") for n in names)
 
 
 def _accumulating(kernel, name, entries, extra_args, out_args, doc):
@@ -164,6 +169,21 @@ def emit_residual_add(kernel):
     entries = [("r", idx, e) for idx, e in _entries(r.expr)]
     return _accumulating(kernel, f"{kernel.name}_residual_add", entries, (), ("r",),
                          f"{kernel.name} for one element, residual only: r += r_e.")
+
+
+def emit_add(kernel, printed=False):
+    """`<name>_add(inputs..., r, K, C, M)`: r += r_e and each tangent += its element part
+    (`<name>_printed_add`: K += K_printed instead of the exact K)."""
+    by_name = {out.name: out.expr for out in kernel.outputs}
+    entries = []
+    for out in ("r",) + TANGENTS:
+        source = "K_printed" if printed and out == "K" else out
+        if source in by_name:
+            entries += [(out, idx, e) for idx, e in _entries(by_name[source])]
+    name = f"{kernel.name}_{'printed_' if printed else ''}add"
+    what = "r += r_e, K += K_printed (eq. 37 as printed), C += C_e, M += M_e" if printed else \
+        "r += r_e, K += K_e, C += C_e, M += M_e"
+    return _accumulating(kernel, name, entries, (), ("r",) + TANGENTS, f"{kernel.name} for one element: {what}.")
 
 
 def emit_newmark_add(kernel):
@@ -236,9 +256,9 @@ def emit_kernel(kernel):
     return "\n".join(lines) + "\n"
 
 
-def emit_module(title, kernels, derive_command, accumulating=False):
+def emit_module(title, kernels, derive_command, accumulating=False, scalar=False):
     """Source of a generated module: header, import, kernels (with the accumulating variants of
-    residual kernels if accumulating)."""
+    residual kernels if accumulating, the `_into` variant if scalar)."""
     header = [
         f'"""{title}',
         "",
@@ -251,22 +271,36 @@ def emit_module(title, kernels, derive_command, accumulating=False):
         "",
         "import numpy",
         "",
-        f"__all__ = {[n for k in kernels for n in _names(k, accumulating)]!r}",
+        f"__all__ = {[n for k in kernels for n in _names(k, accumulating, scalar)]!r}",
         "",
     ]
-    body = "\n\n".join(_sources(k, accumulating) for k in kernels)
+    body = "\n\n".join(_sources(k, accumulating, scalar) for k in kernels)
     return "\n".join(header) + "\n" + body
 
 
-def _names(kernel, accumulating):
-    names = [kernel.name, kernel.name + "_into"]
+def _has_printed(kernel):
+    return any(out.name == "K_printed" for out in kernel.outputs)
+
+
+def _names(kernel, accumulating, scalar):
+    names = [kernel.name]
+    if scalar:
+        names.append(kernel.name + "_into")
     if accumulating and is_residual_kernel(kernel):
+        names.append(kernel.name + "_add")
+        if _has_printed(kernel):
+            names.append(kernel.name + "_printed_add")
         names += [kernel.name + "_residual_add", kernel.name + "_newmark_add"]
     return names
 
 
-def _sources(kernel, accumulating):
-    parts = [emit_kernel(kernel), emit_scalar_kernel(kernel)]
+def _sources(kernel, accumulating, scalar):
+    parts = [emit_kernel(kernel)]
+    if scalar:
+        parts.append(emit_scalar_kernel(kernel))
     if accumulating and is_residual_kernel(kernel):
+        parts.append(emit_add(kernel))
+        if _has_printed(kernel):
+            parts.append(emit_add(kernel, printed=True))
         parts += [emit_residual_add(kernel), emit_newmark_add(kernel)]
     return "\n\n".join(parts)

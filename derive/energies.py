@@ -145,3 +145,31 @@ def kelvin_voigt_dissipation_averaged(approach, q=s.q, qd=s.qd):
     f = fields(q, qd)
     rate = f["ud_x"] if approach == "C" else f["ud_x"] + mean_over_element(f["v_x"] * f["vd_x"])
     return sp.expand(s.mu * (s.l * s.EA * rate**2 + integrate_element(s.EI * f["vd_xx"] ** 2)) / 2)
+
+
+# ----------------------------------------------------------------------------------------------
+# Gravity: potential energy of the rod and the slider in a uniform field g = (gX, gY)
+# ----------------------------------------------------------------------------------------------
+#
+# Inertial frame: X along the guide towards the slider, Y perpendicular, crank pin at
+# a (cos theta, sin theta); e_i = (cos phi, -sin phi), e_j = (sin phi, cos phi) (module docstring).
+
+def inertial_position(xi, eta):
+    """Inertial (X, Y) of the point a e_r + xi e_i + eta e_j of the moving frame (eq. 4)."""
+    X = s.a * sp.cos(s.theta) + xi * sp.cos(s.phi) + eta * sp.sin(s.phi)
+    Y = s.a * sp.sin(s.theta) - xi * sp.sin(s.phi) + eta * sp.cos(s.phi)
+    return X, Y
+
+
+def rod_gravity_potential(q=s.q):
+    """Element potential of gravity, V_i = -int rho A g . R dx (the rotary part y(-psi e_i + e_j)
+    of eq. 4 integrates to zero over the section, int y dA = 0)."""
+    f = fields(q, q)
+    X, Y = inertial_position(s.x0 + s.l * s.zeta + f["u"], f["v"])
+    return integrate_element(-s.rhoA * (s.gX * X + s.gY * Y))
+
+
+def slider_gravity_potential(qs=s.qs):
+    """Potential of gravity on the slider, V_s = -m_s g . R_s (R_s: eq. 7's point at x = L)."""
+    X, Y = inertial_position(s.L + qs[0], qs[1])
+    return sp.expand(-s.ms * (s.gX * X + s.gY * Y))

@@ -1,21 +1,33 @@
-"""Stage 4: kernel specifications (name, ordered inputs, outputs, expressions), grouped by module.
+"""Stage 4: kernel specifications (name, ordered inputs, outputs, expressions), made from the
+declaration in derive/model.py, grouped by generated module.
 
-Every runtime quantity that needs the element equations comes from one of these specifications.
-Residual kernels return the residual and its exact derivatives with respect to q (K), qd (C) and
-qdd (M), so Newton's method gets exact tangents.
+One calling convention per kernel kind:
+- element kernels (one per family variant, module `elements`):
+      name(q, qd, qdd, geo, coef, kin) -> r, K, C, M [, K_printed]
+  q, qd, qdd: the element's nodal vector and rates (eq. 14); geo = (l, x0); coef = the coefficients
+  of derive/model.py (rho A, rho I, E A, E I, mu, m_s, gX, gY, the term weights); kin = (a, theta,
+  thetad, phi, phid, phidd).  r is the element residual, K, C, M its exact derivatives with respect
+  to q, qd, qdd; K_printed, where a variant declares one, is the stiffness the printed one-pass
+  scheme of eq. (37) iterates with.
+- energy kernels (module `energy`): name(q, qd, geo, coef, kin) -> scalar.
+- field kernels (module `fields`): name(q, zeta, geo, coef[, fiber]) -> value at zeta = x / l.
+- the kinematics kernel (module `guide`): crank_kinematics(t, omega, a, e) -> kin.
+- shape kernels (module `shape`): shape functions and the slope Gram matrix.
+- audit group kernels (module `groups`): the consistent model's element forces split by kind, in
+  the element convention (used by the audit to weigh each group along trajectories).
 """
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import sympy as sp
 
+from . import energies as en
+from . import guide
+from . import model
 from . import symbols as s
-from .energies import (
-    APPROACHES, kelvin_voigt_dissipation, kelvin_voigt_dissipation_averaged, rod_kinetic_energy,
-    slider_kinetic_energy, strain_energy, strain_energy_averaged,
-)
 from .euler_lagrange import gradient, jacobian, kinetic_residual
-from . import printed
+from .groups import ELEMENT_VARS, ROD_AXIAL_ROWS, SLIDER_AXIAL_ROWS, SLIDER_VARS, group_vector
 from .shape_functions import B_V, N_PSI, N_U, N_V, integrate_element
 
 
@@ -49,21 +61,110 @@ def vector(name, column):
 
 
 Q, QD, QDD = vector("q", s.q), vector("qd", s.qd), vector("qdd", s.qdd)
-QS, QSD, QSDD = vector("qs", s.qs), vector("qsd", s.qsd), vector("qsdd", s.qsdd)
-ELEMENT = (scalar(s.l), scalar(s.x0))
-KINEMATICS = tuple(scalar(sym) for sym in s.KINEMATICS)
-INERTIA = (scalar(s.rhoA), scalar(s.rhoI))
-STIFFNESS = (scalar(s.EA), scalar(s.EI))
-AVERAGED_APPROACHES = ("A", "B")     # C has no membrane coupling: its averaged element is the plain one
+GEO = vector("geo", s.GEOMETRY)
+COEF = vector("coef", s.COEFFICIENTS)
+KIN = vector("kin", s.KINEMATICS)
+ELEMENT_INPUTS = (Q, QD, QDD, GEO, COEF, KIN)
 
 
-def _residual_outputs(r, coords, rates=None, accels=None, what="residual"):
-    outs = [Output("r", r, what), Output("K", jacobian(r, coords), "d r / d q")]
-    if rates is not None:
-        outs.append(Output("C", jacobian(r, rates), "d r / d qd"))
-    if accels is not None:
-        outs.append(Output("M", jacobian(r, accels), "d r / d qdd"))
+def _residual_outputs(r, printed_stiffness="exact"):
+    K = jacobian(r, s.q)
+    outs = [Output("r", r, "element residual"), Output("K", K, "d r / d q"),
+            Output("C", jacobian(r, s.qd), "d r / d qd"), Output("M", jacobian(r, s.qdd), "d r / d qdd")]
+    if not (isinstance(printed_stiffness, str) and printed_stiffness == "exact"):
+        Kp = sp.zeros(6, 6) if isinstance(printed_stiffness, str) else printed_stiffness
+        outs.append(Output("K_printed", Kp.applyfunc(sp.expand), "stiffness of the printed eq. (37)"))
     return tuple(outs)
+
+
+def element_kernel_name(family, variant):
+    return f"{family.name}_{variant.name}"
+
+
+@lru_cache(maxsize=None)
+def element_kernels():
+    kernels = []
+    for family in model.FAMILIES:
+        for variant in family.variants:
+            term = variant.build()
+            kernels.append(Kernel(
+                element_kernel_name(family, variant),
+                f"{family.doc}: {variant.doc}.",
+                ELEMENT_INPUTS, _residual_outputs(sp.Matrix(term.residual), term.printed_stiffness)))
+    return tuple(kernels)
+
+
+def energy_kernels():
+    element = (Q, QD, GEO, COEF, KIN)
+    kernels = [
+        Kernel("rod_kinetic_energy", "Element kinetic energy T_i of the rod, eqs. (4)-(5).", element,
+               (Output("T", sp.Matrix([en.rod_kinetic_energy()]), "kinetic energy"),)),
+        Kernel("slider_kinetic_energy", "Kinetic energy T_s of the slider, eqs. (6)-(7), on the last element.",
+               element, (Output("T", sp.Matrix([en.slider_kinetic_energy().subs(model._ON_LAST_ELEMENT)]),
+                                "kinetic energy"),)),
+        Kernel("rod_gravity_potential", "Element potential of gravity V_i.", element,
+               (Output("V", sp.Matrix([en.rod_gravity_potential()]), "potential energy"),)),
+        Kernel("slider_gravity_potential", "Potential of gravity on the slider, on the last element.",
+               element, (Output("V", sp.Matrix([en.slider_gravity_potential().subs(model._ON_LAST_ELEMENT)]),
+                                "potential energy"),)),
+    ]
+    for ap in en.APPROACHES:
+        for averaged in ((False, True) if ap != "C" else (False,)):
+            suffix = "_averaged" if averaged else ""
+            U = (en.strain_energy_averaged if averaged else en.strain_energy)(ap)
+            D = (en.kelvin_voigt_dissipation_averaged if averaged else en.kelvin_voigt_dissipation)(ap)
+            kernels.append(Kernel(f"strain_energy_{ap}{suffix}",
+                                  f"Element strain energy U_i of approach {ap}{', element-mean membrane strain' if averaged else ''}.",
+                                  element, (Output("U", sp.Matrix([U]), "strain energy"),)))
+            kernels.append(Kernel(f"dissipation_{ap}{suffix}",
+                                  f"Kelvin-Voigt Rayleigh dissipation function D of approach {ap}"
+                                  f"{', element-mean membrane strain rate' if averaged else ''}.",
+                                  element, (Output("D", sp.Matrix([D]), "dissipation function"),)))
+    return tuple(kernels)
+
+
+def field_kernel_name(output, options):
+    """Name of the field kernel of an output for the option values (equal expressions share one)."""
+    if output.name == "bending_moment":
+        return "field_bending_moment"
+    if options["approach"] == "C":
+        key = "linear"
+    else:
+        key = "averaged" if options["membrane"] == "averaged" else "pointwise"
+    return f"field_{output.name}_{key}"
+
+
+FIELD_OPTION_CASES = ({"approach": "A", "membrane": "pointwise"}, {"approach": "A", "membrane": "averaged"},
+                      {"approach": "C", "membrane": "pointwise"})
+
+
+def field_kernels():
+    kernels = {}
+    for out in model.OUTPUTS:
+        if out.kind != "field":
+            continue
+        extra = tuple(scalar(model.fiber) for a in out.arguments if a == "fiber")
+        for options in FIELD_OPTION_CASES:
+            name = field_kernel_name(out, options)
+            if name in kernels:
+                continue
+            expr = sp.expand(out.build(options))
+            kernels[name] = Kernel(name, f"{out.doc} (at zeta = x / l of the element).",
+                                   (Q, scalar(s.zeta), GEO, COEF) + extra,
+                                   (Output("value", sp.Matrix([expr]), out.name),))
+    return tuple(kernels.values())
+
+
+def guide_kernels():
+    theta, thetad, phi, phid, phidd, x_slider = guide.kinematics()
+    inputs = (scalar(guide.t), scalar(guide.omega), scalar(s.a), scalar(s.e))
+    return (
+        Kernel("crank_kinematics", "Rigid kinematics kin = (a, theta, thetad, phi, phid, phidd) at time t "
+               "(constant crank speed omega, guide Y = e; derive/guide.py).", inputs,
+               (Output("kin", sp.Matrix([s.a, theta, thetad, phi, phid, phidd]), "kinematics"),)),
+        Kernel("slider_rigid_position", "X / L of the slider of the rigid mechanism at time t.", inputs,
+               (Output("X", sp.Matrix([x_slider]), "slider abscissa"),)),
+    )
 
 
 def shape_kernels():
@@ -78,150 +179,38 @@ def shape_kernels():
     )
 
 
-def energy_kernels():
-    kernels = [
-        Kernel("rod_kinetic_energy", "Element kinetic energy T_i of the rod, eqs. (4)-(5).",
-               (Q, QD) + ELEMENT + INERTIA + KINEMATICS[:-1],
-               (Output("T", sp.Matrix([rod_kinetic_energy()]), "kinetic energy"),)),
-        Kernel("slider_kinetic_energy", "Kinetic energy T_s of the slider, eqs. (6)-(7).",
-               (QS, QSD, scalar(s.ms), scalar(s.L)) + KINEMATICS[:-1],
-               (Output("T", sp.Matrix([slider_kinetic_energy()]), "kinetic energy"),)),
-    ]
-    for ap in APPROACHES:
-        kernels.append(Kernel(
-            f"strain_energy_{ap}", f"Element strain energy U_i of approach {ap} (eq. 2 and reductions).",
-            (Q, scalar(s.l)) + STIFFNESS,
-            (Output("U", sp.Matrix([strain_energy(ap)]), "strain energy"),)))
-        kernels.append(Kernel(
-            f"dissipation_{ap}", f"Kelvin-Voigt Rayleigh dissipation function D of approach {ap}.",
-            (Q, QD, scalar(s.l)) + STIFFNESS + (scalar(s.mu),),
-            (Output("D", sp.Matrix([kelvin_voigt_dissipation(ap)]), "dissipation function"),)))
-    for ap in AVERAGED_APPROACHES:
-        kernels.append(Kernel(
-            f"strain_energy_{ap}_averaged", f"Element strain energy of approach {ap}, element-mean membrane strain.",
-            (Q, scalar(s.l)) + STIFFNESS,
-            (Output("U", sp.Matrix([strain_energy_averaged(ap)]), "strain energy"),)))
-        kernels.append(Kernel(
-            f"dissipation_{ap}_averaged", f"Kelvin-Voigt dissipation function of approach {ap}, element-mean membrane strain rate.",
-            (Q, QD, scalar(s.l)) + STIFFNESS + (scalar(s.mu),),
-            (Output("D", sp.Matrix([kelvin_voigt_dissipation_averaged(ap)]), "dissipation function"),)))
-    return tuple(kernels)
-
-
-def lagrange_kernels():
-    rod_T, slider_T = rod_kinetic_energy(), slider_kinetic_energy()
-    kernels = [
-        Kernel("rod_inertia", "Exact Lagrange inertia forces of a rod element: d/dt dT/dqd - dT/dq.",
-               (Q, QD, QDD) + ELEMENT + INERTIA + KINEMATICS,
-               _residual_outputs(kinetic_residual(rod_T, s.q, s.qd, s.qdd), s.q, s.qd, s.qdd)),
-        Kernel("slider_inertia", "Exact Lagrange inertia forces of the slider on (u, v) of the last node.",
-               (QS, QSD, QSDD, scalar(s.ms), scalar(s.L)) + KINEMATICS,
-               _residual_outputs(kinetic_residual(slider_T, s.qs, s.qsd, s.qsdd), s.qs, s.qsd, s.qsdd)),
-    ]
-    for ap in APPROACHES:
-        kernels.append(Kernel(
-            f"rod_elastic_{ap}", f"Internal force dU/dq of approach {ap}, exact gradient, and its tangent.",
-            (Q, scalar(s.l)) + STIFFNESS,
-            _residual_outputs(gradient(strain_energy(ap), s.q), s.q)))
-    for ap in AVERAGED_APPROACHES:
-        kernels.append(Kernel(
-            f"rod_elastic_{ap}_averaged",
-            f"Internal force dU/dq of approach {ap} with the element-mean membrane strain, and its tangent.",
-            (Q, scalar(s.l)) + STIFFNESS,
-            _residual_outputs(gradient(strain_energy_averaged(ap), s.q), s.q)))
-    return tuple(kernels)
-
-
-def paper_kernels():
-    m = printed.printed_matrices(corrected=True)
-    kernels = [
-        Kernel("rod_inertia", "Printed inertia terms of eq. (20): m1 qdd - m2 q - (m4 - d/dt m3).",
-               (Q, QD, QDD) + ELEMENT + INERTIA + KINEMATICS,
-               _residual_outputs(printed.rod_kinetic_residual(m), s.q, s.qd, s.qdd)),
-        Kernel("slider_inertia", "Printed slider terms of eqs. (27)-(29), errata applied.",
-               (QS, QSD, QSDD, scalar(s.ms), scalar(s.L)) + KINEMATICS,
-               _residual_outputs(printed.slider_kinetic_residual(m), s.qs, s.qsd, s.qsdd)),
-    ]
-    for ap in APPROACHES:
-        r, k_secant = printed.rod_elastic_residual(ap, m)
-        kernels.append(Kernel(
-            f"rod_elastic_{ap}",
-            f"Printed elastic force (k_uu + k_psipsi + k_pvv + k_non) q of approach {ap}, its exact "
-            "tangent K and the printed secant matrix K_sec (P_i of eq. B9 taken at q).",
-            (Q, scalar(s.l)) + STIFFNESS,
-            _residual_outputs(r, s.q) + (Output("K_sec", k_secant, "k_uu + k_psipsi + k_pvv + k_non"),)))
-    return tuple(kernels)
-
-
-def damping_kernels():
-    m = printed.printed_matrices(corrected=True)
-    kernels = []
-    for ap in APPROACHES:
-        kernels.append(Kernel(
-            f"kelvin_voigt_{ap}", f"Strain-rate damping force dD/dqd of approach {ap} and its tangents.",
-            (Q, QD, scalar(s.l)) + STIFFNESS + (scalar(s.mu),),
-            _residual_outputs(gradient(kelvin_voigt_dissipation(ap), s.qd), s.q, s.qd)))
-    for ap in AVERAGED_APPROACHES:
-        kernels.append(Kernel(
-            f"kelvin_voigt_{ap}_averaged",
-            f"Strain-rate damping force of approach {ap} with the element-mean membrane strain rate.",
-            (Q, QD, scalar(s.l)) + STIFFNESS + (scalar(s.mu),),
-            _residual_outputs(gradient(kelvin_voigt_dissipation_averaged(ap), s.qd), s.q, s.qd)))
-    for ap in APPROACHES:
-        kernels.append(Kernel(
-            f"paper_{ap}", f"Printed damping force mu (K_lin + K_non) qd of approach {ap} (eq. 24).",
-            (Q, QD, scalar(s.l)) + STIFFNESS + INERTIA + (scalar(s.phid), scalar(s.mu)),
-            _residual_outputs(printed.rod_damping_residual(ap, m), s.q, s.qd)))
-    kernels.append(Kernel(
-        "paper_slider", "Printed slider damping force -mu m_s2 qd (eqs. 24, 28).",
-        (QSD, scalar(s.ms), scalar(s.phid), scalar(s.mu)),
-        _residual_outputs(printed.slider_damping_residual(m), s.qs, s.qsd)))
-    return tuple(kernels)
-
-
 def group_kernels():
-    """The consistent model's element forces split by kind (derive/audit.py classification) for
-    approach A: the rod and slider inertia terms of the lagrange formulation, the elastic force and
-    the Kelvin-Voigt damping force (pointwise and averaged membrane).  Used by the audit to weigh
-    each group along real trajectories and to switch groups off one at a time."""
-    from . import audit
-
+    """The consistent model's element forces (approach A: lagrange inertia, elastic force and
+    Kelvin-Voigt damping, pointwise and averaged membrane) split by kind (derive/groups.py), in the
+    element convention; the slider's inertia groups act on the last element."""
     sources = [
-        ("rod_inertia", (Q, QD, QDD) + ELEMENT + INERTIA + KINEMATICS,
-         kinetic_residual(rod_kinetic_energy(), s.q, s.qd, s.qdd), audit.ELEMENT_VARS,
-         audit.ROD_AXIAL_ROWS, (s.q, s.qd, s.qdd)),
-        ("slider_inertia", (QS, QSD, QSDD, scalar(s.ms), scalar(s.L)) + KINEMATICS,
-         kinetic_residual(slider_kinetic_energy(), s.qs, s.qsd, s.qsdd), audit.SLIDER_VARS,
-         audit.SLIDER_AXIAL_ROWS, (s.qs, s.qsd, s.qsdd)),
-        ("rod_elastic_A", (Q, scalar(s.l)) + STIFFNESS, gradient(strain_energy("A"), s.q),
-         audit.ELEMENT_VARS, audit.ROD_AXIAL_ROWS, (s.q, None, None)),
-        ("rod_elastic_A_averaged", (Q, scalar(s.l)) + STIFFNESS,
-         gradient(strain_energy_averaged("A"), s.q), audit.ELEMENT_VARS, audit.ROD_AXIAL_ROWS,
-         (s.q, None, None)),
-        ("kelvin_voigt_A", (Q, QD, scalar(s.l)) + STIFFNESS + (scalar(s.mu),),
-         gradient(kelvin_voigt_dissipation("A"), s.qd), audit.ELEMENT_VARS, audit.ROD_AXIAL_ROWS,
-         (s.q, s.qd, None)),
-        ("kelvin_voigt_A_averaged", (Q, QD, scalar(s.l)) + STIFFNESS + (scalar(s.mu),),
-         gradient(kelvin_voigt_dissipation_averaged("A"), s.qd), audit.ELEMENT_VARS,
-         audit.ROD_AXIAL_ROWS, (s.q, s.qd, None)),
+        ("rod_inertia", kinetic_residual(en.rod_kinetic_energy(), s.q, s.qd, s.qdd), False),
+        ("slider_inertia", kinetic_residual(en.slider_kinetic_energy(), s.qs, s.qsd, s.qsdd), True),
+        ("rod_elastic_A", gradient(en.strain_energy("A"), s.q), False),
+        ("rod_elastic_A_averaged", gradient(en.strain_energy_averaged("A"), s.q), False),
+        ("kelvin_voigt_A", gradient(en.kelvin_voigt_dissipation("A"), s.qd), False),
+        ("kelvin_voigt_A_averaged", gradient(en.kelvin_voigt_dissipation_averaged("A"), s.qd), False),
     ]
     kernels = []
-    for name, inputs, residual, variables, axial_rows, (coords, rates, accels) in sources:
-        for group, part in audit.group_vector(sp.Matrix(residual), variables, axial_rows).items():
+    for name, residual, slider in sources:
+        variables, rows = (SLIDER_VARS, SLIDER_AXIAL_ROWS) if slider else (ELEMENT_VARS, ROD_AXIAL_ROWS)
+        for group, part in group_vector(sp.Matrix(residual), variables, rows).items():
+            r = model.on_last_element(part) if slider else sp.Matrix(part)
             kernels.append(Kernel(
                 f"{name}__{group}", f"The '{group}' part of {name} (consistent model, approach A).",
-                inputs, _residual_outputs(sp.Matrix(part), coords, rates, accels)))
+                ELEMENT_INPUTS, _residual_outputs(r)))
     return tuple(kernels)
 
 
 MODULES = {
     "shape": ("Shape functions of Appendix A.", shape_kernels),
-    "energy": ("Element energies T_i, T_s, U_i and the Kelvin-Voigt dissipation function.", energy_kernels),
-    "lagrange": ("Exact Euler-Lagrange terms of T_c + T_s - U_c (the `lagrange` formulation).", lagrange_kernels),
-    "paper": ("The printed matrix form, eqs. (17)-(29) and Appendix B with errata (the `paper` formulation).",
-              paper_kernels),
-    "damping": ("Damping forces: Kelvin-Voigt strain-rate damping and the printed eq. (24).", damping_kernels),
+    "guide": ("Rigid kinematics of the crank, the rod's chord and the slider on its guide.", guide_kernels),
+    "elements": ("Element kernels of every term family variant declared in derive/model.py.", element_kernels),
+    "energy": ("Element energies T_i, T_s, U_i, V_i and the Kelvin-Voigt dissipation function.", energy_kernels),
+    "fields": ("Section quantities along the rod (the field outputs of derive/model.py).", field_kernels),
     "groups": ("Element forces of the consistent model split by kind (symbolic audit).", group_kernels),
 }
-# modules whose residual kernels also get the accumulating Newton-Newmark variants (emit.py)
-ACCUMULATING = ("lagrange", "paper", "damping")
+# modules whose element kernels also get the accumulating one-element variants (emit.py)
+ACCUMULATING = ("elements",)
+# modules whose kernels also get a one-element `_into` variant (compiled by the engine)
+SCALAR = ("guide", "shape")

@@ -42,3 +42,18 @@ KINEMATICS = (a, theta, thetad, phi, phid, phidd)
 # Time derivatives of the time-dependent symbols (constant crank speed: thetadd = 0).
 # phidd has no entry: no quantity differentiated in time by the derivation depends on it.
 TIME_DERIVATIVE = {theta: thetad, thetad: sp.Integer(0), phi: phid, phid: phidd}
+
+# Gravity in the inertial frame (X along the guide towards the slider, Y perpendicular), in units of
+# L omega_b^2, and the guide's offset e: the slider moves on the line Y = e (units of L).
+gX, gY = sp.symbols("gX gY", real=True)
+e = sp.Symbol("e", real=True)
+
+# Term weights: each switchable group of terms (derive/groups.py) enters the kernels multiplied by
+# its weight, 1 in every model; the audit switches a group off by setting its weight to 0.
+SWITCHABLE_GROUPS = ("gyroscopic", "phidd", "centrifugal", "cubic_axial", "cubic_transverse", "quartic")
+WEIGHT = {g: sp.Symbol(f"w_{g}", real=True) for g in SWITCHABLE_GROUPS}
+
+# The three vector arguments every element kernel takes besides q, qd, qdd (one calling convention):
+GEOMETRY = (l, x0)                                   # element length and first-node abscissa
+COEFFICIENTS = (rhoA, rhoI, EA, EI, mu, ms, gX, gY) + tuple(WEIGHT.values())
+KINEMATICS_ALL = KINEMATICS                          # (a, theta, thetad, phi, phid, phidd)

@@ -114,21 +114,18 @@ def test_iteration_matrix_factorizations_agree_on_a_real_step():
     n, N = 16, b.N
     rng = np.random.default_rng(5)
     d, v, a = (1e-4 * rng.standard_normal(N) for _ in range(3))
-    kin = np.zeros(5)
-    engine.crank_kinematics(case.a, case.omega, 1.3, kin)
-    rE, SE, KE, CE, ME = (np.zeros((n, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6)),
-                          np.zeros((n, 6, 6)), np.zeros((n, 6, 6)))
-    engine.element_newmark(b.codes[0], b.par[0], False, b.dofs, b.l, d, v, a, kin, 0.04, 1.5e-3,
-                           rE, SE, KE, CE, ME, engine._make_ws())
+    w = engine.make_work(n, N, b.kb)
+    engine.kinematics(b.runs[0], 1.3, w.kin)
+    fam, cf = b.families[0], b.coef[0]
+    engine.element_loop(engine.NEWMARK, fam, cf, False, b.dofs, b.l, d, v, a, w.kin, 0.04, 1.5e-3, w)
+    rE, SE = w.rE.copy(), w.SE.copy()
     # the combined element matrices equal M + cv C + cd K of the full terms
-    r2, K2, C2, M2 = (np.zeros((n, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6)))
-    engine.element_terms(b.codes[0], b.par[0], False, b.dofs, b.l, d, v, a, kin, r2, K2, C2, M2,
-                         engine._make_ws())
+    engine.element_loop(engine.FULL, fam, cf, False, b.dofs, b.l, d, v, a, w.kin, 0.0, 0.0, w)
+    r2, K2, C2, M2 = w.rE.copy(), w.KE.copy(), w.CE.copy(), w.ME.copy()
     np.testing.assert_allclose(SE, M2 + 0.04 * C2 + 1.5e-3 * K2, rtol=1e-12, atol=1e-12 * np.abs(SE).max())
     np.testing.assert_allclose(rE, r2, rtol=1e-12, atol=1e-12 * np.abs(r2).max())
-    res = np.zeros((n, 6))
-    engine.element_residual(b.codes[0], b.par[0], b.dofs, b.l, d, v, a, kin, res, KE, CE, ME,
-                            engine._make_ws())
+    engine.element_loop(engine.RESIDUAL, fam, cf, False, b.dofs, b.l, d, v, a, w.kin, 0.0, 0.0, w)
+    res = w.rE.copy()
     np.testing.assert_allclose(res, r2, rtol=1e-12, atol=1e-12 * np.abs(r2).max())
     A = np.zeros((N, N))
     for e in range(n):
@@ -165,12 +162,38 @@ def test_newton_with_reused_factorization_agrees_with_full_newton():
     assert np.max(np.abs(fast.u_end - full.u_end)) < 1e-9 * np.max(np.abs(full.u_end))
 
 
-def test_newton_scheme_constants_are_shared_by_engine_and_reference():
+def test_newton_control_is_one_code_for_engine_and_reference():
+    """The engine compiles the very functions the NumPy reference calls (newton.py), so the
+    schemes' constants and decisions cannot drift apart."""
+    from crankgen import newton
+    from crankgen.engine import kernels as compiled
+    assert compiled.next_iteration.py_func is newton.next_iteration
+    assert compiled.extrapolation_weight.py_func is newton.extrapolation_weight
     from crankgen import newmark
-    assert engine.REFRESH_RATE == newmark.REFRESH_RATE
-    assert engine.ESTIMATE_FRACTION == newmark.ESTIMATE_FRACTION
-    assert engine.HISTORY == newmark.HISTORY
-    assert list(engine.INTEGRATOR_CODE) == list(newmark.SCHEMES)
+    assert newmark.SCHEMES is newton.SCHEMES and newmark.HISTORY is newton.HISTORY
+
+
+NEW_OPTIONS = [dict(rotary_inertia=False), dict(gravity=(0.3, -0.7)), dict(offset=0.15),
+               dict(gravity=(-0.2, 0.4), offset=-0.1, rotary_inertia=False)]
+
+
+@pytest.mark.parametrize("formulation", ["lagrange", "paper"])
+@pytest.mark.parametrize("options", NEW_OPTIONS, ids=["no-rotary", "gravity", "offset", "all"])
+def test_compiled_engine_equals_numpy_reference_with_the_new_ingredients(formulation, options):
+    mech_kw = {k: v for k, v in options.items() if k in ("gravity", "offset")}
+    mech = crankgen.Mechanism(a=0.2, eps=0.02, ms=0.7, mu=0.3, **mech_kw)
+    kw = dict(omega=0.6, approach="A", formulation=formulation, damping="kelvin-voigt",
+              n_elements=3, steps_per_rev=40, revolutions=1.5,
+              rotary_inertia=options.get("rotary_inertia", True))
+    ref = crankgen.simulate(mech, engine="numpy", **kw)
+    fast = crankgen.simulate(mech, engine="compiled", **kw)
+    plain = crankgen.simulate(crankgen.Mechanism(a=0.2, eps=0.02, ms=0.7, mu=0.3),
+                              **{**kw, "rotary_inertia": True})
+    scale = np.max(np.abs(ref.v_mid))
+    np.testing.assert_allclose(fast.v_mid, ref.v_mid, rtol=0, atol=1e-11 * scale)
+    np.testing.assert_allclose(fast.u_end, ref.u_end, rtol=0, atol=1e-11 * np.max(np.abs(ref.u_end)))
+    assert np.array_equal(fast.iterations, ref.iterations)
+    assert np.max(np.abs(plain.v_mid - fast.v_mid)) > 1e-6 * scale       # the ingredient acts
 
 
 def test_chunked_marching_continues_the_starting_guess():

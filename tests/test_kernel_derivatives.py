@@ -14,7 +14,7 @@ Finite differences use the 5-point central stencil, which is exact for the polyn
 import numpy as np
 import pytest
 
-from crankgen._generated import damping, energy, lagrange, paper
+from kernel_api import damping, energy, lagrange, paper
 
 import reference as ref
 from reference import APPROACHES, assert_close, pick

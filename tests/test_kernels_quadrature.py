@@ -13,7 +13,16 @@ import zlib
 import numpy as np
 import pytest
 
-from crankgen._generated import damping, energy, lagrange, paper, shape
+from crankgen import ingredients
+from crankgen._generated import dispatch
+from crankgen._generated import elements as gen_elements
+from crankgen._generated import energy as gen_energy
+from crankgen._generated import fields as gen_fields
+from crankgen._generated import groups as gen_groups
+from crankgen._generated import guide as gen_guide
+from crankgen._generated import shape
+from crankgen._generated import shape as gen_shape
+from kernel_api import damping, energy, lagrange, paper
 
 import reference as ref
 from reference import APPROACHES, assert_close, pick
@@ -311,38 +320,57 @@ def test_paper_slider_damping(elems):
 # broadcasting: a leading batch axis behaves like a loop
 # --------------------------------------------------------------------------------------------
 
-VARIANTS = ("_into", "_residual_add", "_newmark_add")     # one-element variants of each kernel
+VARIANTS = ("_into", "_add", "_printed_add", "_residual_add", "_newmark_add")   # one-element variants
+GENERATED = (gen_shape, gen_guide, gen_elements, gen_energy, gen_fields, gen_groups)
 ALL_KERNELS = [(mod.__name__.rsplit(".", 1)[-1], name, getattr(mod, name))
-               for mod in (shape, energy, lagrange, paper, damping) for name in mod.__all__
-               if not name.endswith(VARIANTS)]
+               for mod in GENERATED for name in mod.__all__ if not name.endswith(VARIANTS)]
 
-VECTOR_SIZE = {"q": 6, "qd": 6, "qdd": 6, "qs": 2, "qsd": 2, "qsdd": 2}
-ELEMENT_SCALARS = {"l": (0.05, 0.5), "x0": (0.0, 0.9)}
-SCALAR_RANGE = {"zeta": (0.0, 1.0), "rhoA": (0.5, 2.0), "rhoI": (0.01, 0.1), "EA": (10.0, 1000.0),
-                "EI": (0.005, 0.05), "mu": (0.01, 0.5), "a": (0.05, 0.3), "theta": (0.0, 6.3),
-                "thetad": (0.2, 3.0), "phi": (-0.3, 0.3), "phid": (-1.0, 1.0),
-                "phidd": (-2.0, 2.0), "ms": (0.1, 1.0), "L": (0.8, 1.2)}
+VECTOR_SIZE = {"q": 6, "qd": 6, "qdd": 6}
+ELEMENT_RANGES = {"l": (0.05, 0.5), "x0": (0.0, 0.9)}          # geo = (l, x0)
+COEF_RANGES = {"rhoA": (0.5, 2.0), "rhoI": (0.01, 0.1), "EA": (10.0, 1000.0), "EI": (0.005, 0.05),
+               "mu": (0.01, 0.5), "ms": (0.1, 1.0), "gX": (-1.0, 1.0), "gY": (-1.0, 1.0)}
+KIN_RANGES = {"a": (0.05, 0.3), "theta": (0.0, 6.3), "thetad": (0.2, 3.0), "phi": (-0.3, 0.3),
+              "phid": (-1.0, 1.0), "phidd": (-2.0, 2.0)}
+SCALAR_RANGE = {"zeta": (0.0, 1.0), "l": (0.05, 0.5), "t": (0.0, 10.0), "omega": (0.2, 3.0),
+                "a": (0.05, 0.3), "e": (-0.3, 0.3), "fiber": (-2.0, 2.0)}
+
+
+def _coef(rng, shape):
+    cols = [rng.uniform(*COEF_RANGES[n], shape) if n in COEF_RANGES else rng.uniform(0.5, 1.5, shape)
+            for n in ingredients.COEFFICIENTS]               # term weights: any value acts linearly
+    return np.stack(cols, axis=-1)
+
+
+def _kin(rng, shape):
+    return np.stack([rng.uniform(*KIN_RANGES[n], shape) for n in KIN_RANGES], axis=-1)
+
+
+def _geo(rng, shape):
+    return np.stack([rng.uniform(*ELEMENT_RANGES[n], shape) for n in ELEMENT_RANGES], axis=-1)
 
 
 def test_every_kernel_is_covered():
+    """The generic tests below reach every generated kernel, in particular every element kernel the
+    dispatch table declares."""
     names = {f"{m}.{n}" for m, n, _ in ALL_KERNELS}
-    expected = {"shape.shape_functions", "shape.slope_gram", "energy.rod_kinetic_energy",
-                "energy.slider_kinetic_energy", "lagrange.rod_inertia", "lagrange.slider_inertia",
-                "paper.rod_inertia", "paper.slider_inertia", "damping.paper_slider"}
+    expected = {"shape.shape_functions", "shape.slope_gram", "guide.crank_kinematics",
+                "guide.slider_rigid_position", "energy.rod_kinetic_energy",
+                "energy.slider_kinetic_energy", "energy.rod_gravity_potential",
+                "energy.slider_gravity_potential"}
+    expected |= {f"elements.{k}" for k in dispatch.ELEMENT_KERNELS}
     for ap in APPROACHES:
-        expected |= {f"energy.strain_energy_{ap}", f"energy.dissipation_{ap}",
-                     f"lagrange.rod_elastic_{ap}", f"paper.rod_elastic_{ap}",
-                     f"damping.kelvin_voigt_{ap}", f"damping.paper_{ap}"}
+        expected |= {f"energy.strain_energy_{ap}", f"energy.dissipation_{ap}"}
     for ap in ("A", "B"):
-        expected |= {f"energy.strain_energy_{ap}_averaged", f"energy.dissipation_{ap}_averaged",
-                     f"lagrange.rod_elastic_{ap}_averaged", f"damping.kelvin_voigt_{ap}_averaged"}
-    assert names == expected
+        expected |= {f"energy.strain_energy_{ap}_averaged", f"energy.dissipation_{ap}_averaged"}
+    assert expected <= names
+    assert {n.split(".")[0] for n in names - expected} <= {"fields", "groups"}
 
 
 @pytest.mark.parametrize("element_data", ["shared", "batched"])
 @pytest.mark.parametrize("module,name,kernel", ALL_KERNELS, ids=[f"{m}.{n}" for m, n, _ in ALL_KERNELS])
 def test_batch_axis_matches_loop(module, name, kernel, element_data):
-    """Vectors (B, n, k), material/kinematic scalars (B, 1), l and x0 (n,) or (B, n)."""
+    """Vectors (B, n, k), coefficients and kinematics (B, 1, k), geo (n, 2) or (B, n, 2), scalars
+    (B, 1)."""
     rng = np.random.default_rng(zlib.crc32(f"{module}.{name}.{element_data}".encode()))
     B, n = 3, 4
     batched, per_b = [], []
@@ -350,12 +378,25 @@ def test_batch_axis_matches_loop(module, name, kernel, element_data):
     for arg in inspect.signature(kernel).parameters:
         if arg in VECTOR_SIZE:
             v = ref.random_nodal(rng, (B, n))
-            v = v[..., 3:5] if VECTOR_SIZE[arg] == 2 else v
             batched.append(v)
             per_b.append(lambda b, v=v: v[b])
             has_batch = True
-        elif arg in ELEMENT_SCALARS:
-            lo, hi = ELEMENT_SCALARS[arg]
+        elif arg == "geo":
+            if element_data == "shared":
+                v = _geo(rng, (n,))
+                per_b.append(lambda b, v=v: v)
+            else:
+                v = _geo(rng, (B, n))
+                per_b.append(lambda b, v=v: v[b])
+                has_batch = True
+            batched.append(v)
+        elif arg in ("coef", "kin"):
+            v = (_coef if arg == "coef" else _kin)(rng, (B, 1))
+            batched.append(v)
+            per_b.append(lambda b, v=v: v[b, 0])
+            has_batch = True
+        elif arg == "l" and module == "shape":
+            lo, hi = SCALAR_RANGE[arg]
             if element_data == "shared":
                 v = rng.uniform(lo, hi, n)
                 per_b.append(lambda b, v=v: v)
@@ -378,28 +419,18 @@ def test_batch_axis_matches_loop(module, name, kernel, element_data):
         assert len(single) == len(out)
         for k, (o, s) in enumerate(zip(out, single)):
             if has_batch:
-                assert o.shape[:2] == (B, n), f"{module}.{name} output {k}: shape {o.shape}"
                 ob = o[b]
+                if ob.shape != s.shape and ob.size == s.size:     # scalar inputs (B, 1)
+                    ob = ob.reshape(s.shape)
             else:                       # slope_gram with shared l: nothing carries the batch
                 ob = o
-            assert ob.shape == s.shape
+            assert ob.shape == s.shape, f"{module}.{name} output {k}: shape {o.shape}"
             np.testing.assert_allclose(ob, s, rtol=1e-12, atol=1e-14 * np.max(np.abs(s)) + 1e-300,
                                        err_msg=f"{module}.{name} output {k}, batch {b}")
-            # and element by element with plain Python floats / 1-D vectors
-            for i in (0, n - 1):
-                args_i = []
-                for f in per_b:
-                    x = f(b)
-                    args_i.append(x[i] if np.ndim(x) >= 1 else x)
-                si = kernel(*args_i)
-                si = si[k] if isinstance(si, tuple) else si
-                assert si.shape == s.shape[1:]
-                np.testing.assert_allclose(si, s[i], rtol=1e-12,
-                                           atol=1e-14 * np.max(np.abs(s)) + 1e-300)
 
 
 # --------------------------------------------------------------------------------------------
-# the one-element `_into` variants (compiled with numba at run time) equal the vectorized ones
+# the one-element variants (compiled with numba at run time) equal the vectorized ones
 # --------------------------------------------------------------------------------------------
 
 def _random_arguments(kernel, seed_text):
@@ -408,15 +439,26 @@ def _random_arguments(kernel, seed_text):
     args = []
     for arg in inspect.signature(kernel).parameters:
         if arg in VECTOR_SIZE:
-            v = ref.random_nodal(rng, (1,))[0]
-            args.append(v[3:5] if VECTOR_SIZE[arg] == 2 else v)
+            args.append(ref.random_nodal(rng, (1,))[0])
+        elif arg == "geo":
+            args.append(_geo(rng, ()))
+        elif arg == "coef":
+            args.append(_coef(rng, ()))
+        elif arg == "kin":
+            args.append(_kin(rng, ()))
         else:
-            lo, hi = {**ELEMENT_SCALARS, **SCALAR_RANGE}[arg]
-            args.append(float(rng.uniform(lo, hi)))
+            args.append(float(rng.uniform(*SCALAR_RANGE[arg])))
     return args
 
 
-@pytest.mark.parametrize("module,name,kernel", ALL_KERNELS, ids=[f"{m}.{n}" for m, n, _ in ALL_KERNELS])
+INTO_KERNELS = [(m, n, k) for m, n, k in ALL_KERNELS if hasattr(sys.modules[k.__module__], n + "_into")]
+
+
+def test_the_engine_kernels_have_one_element_variants():
+    assert {m for m, _, _ in INTO_KERNELS} == {"shape", "guide"}
+
+
+@pytest.mark.parametrize("module,name,kernel", INTO_KERNELS, ids=[f"{m}.{n}" for m, n, _ in INTO_KERNELS])
 def test_into_variant_matches_vectorized(module, name, kernel):
     """`<name>_into(inputs..., outputs...)` fills every entry of preallocated outputs with the same
     numbers as the vectorized kernel (pure Python here; the runtime compiles it with numba)."""
@@ -432,38 +474,48 @@ def test_into_variant_matches_vectorized(module, name, kernel):
 
 
 # --------------------------------------------------------------------------------------------
-# the accumulating variants of the Newton iteration: r += r_e and S += M_e + cv C_e + cd K_e
+# the accumulating variants of the element kernels: r += r_e, tangents +=, S += M + cv C + cd K
 # --------------------------------------------------------------------------------------------
 
 RESIDUAL_KERNELS = [(m, n, k) for m, n, k in ALL_KERNELS
                     if hasattr(sys.modules[k.__module__], n + "_newmark_add")]
 
 
-def test_residual_kernels_have_accumulating_variants():
-    names = {f"{m}.{n}" for m, n, _ in RESIDUAL_KERNELS}
-    assert names == {f"{m}.{n}" for m, n, _ in ALL_KERNELS if m in ("lagrange", "paper", "damping")}
+def test_element_kernels_have_accumulating_variants():
+    names = {n for m, n, _ in RESIDUAL_KERNELS}
+    assert names == set(dispatch.ELEMENT_KERNELS)
 
 
 @pytest.mark.parametrize("module,name,kernel", RESIDUAL_KERNELS,
                          ids=[f"{m}.{n}" for m, n, _ in RESIDUAL_KERNELS])
 def test_accumulating_variants_match_vectorized(module, name, kernel):
-    """`<name>_residual_add` adds r; `<name>_newmark_add` adds r and M + cv C + cd K (the exact
-    tangents; a printed secant matrix plays no part), onto whatever the outputs already hold."""
+    """`<name>_add` adds r, K, C, M; `<name>_printed_add` the same with K_printed for K;
+    `<name>_residual_add` adds r; `<name>_newmark_add` adds r and M + cv C + cd K (the exact
+    tangents), onto whatever the outputs already hold."""
     mod = sys.modules[kernel.__module__]
     args = _random_arguments(kernel, f"add.{module}.{name}")
-    n_in = len(inspect.signature(kernel).parameters)
-    names = list(inspect.signature(getattr(mod, name + "_into")).parameters)[n_in:]   # r, K, ...
-    outputs = dict(zip(names, kernel(*args)))
+    out = kernel(*args)
+    outputs = dict(zip(("r", "K", "C", "M", "K_printed"), out))
     r = outputs["r"]
     cv, cd = 0.037, 2.9e-4
-    S = sum((w * outputs[k] for k, w in (("M", 1.0), ("C", cv), ("K", cd)) if k in outputs),
-            np.zeros((r.size, r.size)))
+    S = outputs["M"] + cv * outputs["C"] + cd * outputs["K"]
     rng = np.random.default_rng(zlib.crc32(name.encode()))
     r0, S0 = rng.standard_normal(r.shape), rng.standard_normal(S.shape)
+    tol = dict(rtol=1e-11, atol=1e-13 * (1 + np.max(np.abs(r))))
     got_r = r0.copy()
     getattr(mod, name + "_residual_add")(*args, got_r)
-    np.testing.assert_allclose(got_r - r0, r, rtol=1e-11, atol=1e-13 * (1 + np.max(np.abs(r))))
+    np.testing.assert_allclose(got_r - r0, r, **tol)
     got_r, got_S = r0.copy(), S0.copy()
     getattr(mod, name + "_newmark_add")(*args, cv, cd, got_r, got_S)
-    np.testing.assert_allclose(got_r - r0, r, rtol=1e-11, atol=1e-13 * (1 + np.max(np.abs(r))))
-    np.testing.assert_allclose(got_S - S0, S, rtol=1e-10, atol=1e-12 * (1 + np.max(np.abs(S))))
+    np.testing.assert_allclose(got_r - r0, r, **tol)
+    np.testing.assert_allclose(got_S - S0, S, rtol=1e-11, atol=1e-13 * (1 + np.max(np.abs(S))))
+    for printed in (False, True):
+        if printed and "K_printed" not in outputs:
+            assert not hasattr(mod, name + "_printed_add")
+            continue
+        T0 = [rng.standard_normal(x.shape) for x in (r, S, S, S)]
+        got = [x.copy() for x in T0]
+        getattr(mod, name + ("_printed_add" if printed else "_add"))(*args, *got)
+        want = (r, outputs["K_printed" if printed else "K"], outputs["C"], outputs["M"])
+        for g, x0, w in zip(got, T0, want):
+            np.testing.assert_allclose(g - x0, w, rtol=1e-11, atol=1e-13 * (1 + np.max(np.abs(w))))

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import reference as ref
-from crankgen._generated import damping, energy, lagrange
+from kernel_api import damping, energy, lagrange
 from crankgen.cases import Case
 from crankgen.steady import steady_states
 

@@ -6,8 +6,11 @@ import numpy as np
 import pytest
 
 import reference as ref
-from crankgen import engine
-from crankgen._generated import damping, groups, lagrange
+from crankgen import ingredients
+from crankgen._generated import elements as E
+from crankgen._generated import groups
+from crankgen.ingredients import SWITCHABLE_GROUPS
+from kernel_api import coef, vec
 from crankgen.backbone import backbone
 from crankgen.cases import Case
 from crankgen.errors import ParameterError
@@ -16,18 +19,18 @@ from crankgen.term_weights import consistent_case, group_weights
 
 
 def _parts(prefix):
-    return [getattr(groups, n) for n in groups.__all__ if n.startswith(prefix + "__") and not n.endswith("_into")]
+    return [getattr(groups, n) for n in groups.__all__ if n.startswith(prefix + "__")]
 
 
 @pytest.fixture
 def data():
     rng = np.random.default_rng(5)
     n = 5
-    kin = dict(a=0.2, theta=rng.uniform(0, 6, n), thetad=0.8, phi=rng.uniform(-0.2, 0.2, n),
-               phid=rng.uniform(-0.3, 0.3, n), phidd=rng.uniform(-0.3, 0.3, n))
+    kin = vec(0.2, rng.uniform(0, 6, n), 0.8, rng.uniform(-0.2, 0.2, n), rng.uniform(-0.3, 0.3, n),
+              rng.uniform(-0.3, 0.3, n))
     return dict(q=ref.random_nodal(rng, (n,)), qd=ref.random_nodal(rng, (n,)),
-                qdd=ref.random_nodal(rng, (n,)), l=rng.uniform(0.05, 0.5, n), x0=rng.uniform(0, 0.9, n),
-                kin=kin)
+                qdd=ref.random_nodal(rng, (n,)), geo=vec(rng.uniform(0.05, 0.5, n), rng.uniform(0, 0.9, n)),
+                coef=coef(rhoA=1.0, rhoI=1e-3, EA=100.0, EI=0.01, mu=0.3, ms=0.7), kin=kin)
 
 
 def _sum_parts(parts, *args):
@@ -35,42 +38,53 @@ def _sum_parts(parts, *args):
     return [sum(o[k] for o in outs) for k in range(len(outs[0]))]
 
 
-def test_groups_add_up_to_the_full_kernels(data):
+SOURCES = [("rod_inertia", E.inertia_lagrange), ("slider_inertia", E.slider_inertia_lagrange),
+           ("rod_elastic_A", E.elastic_lagrange_A), ("rod_elastic_A_averaged", E.elastic_lagrange_A_averaged),
+           ("kelvin_voigt_A", E.dissipation_kelvin_voigt_A),
+           ("kelvin_voigt_A_averaged", E.dissipation_kelvin_voigt_A_averaged)]
+
+
+@pytest.mark.parametrize("source,kernel", SOURCES, ids=[s for s, _ in SOURCES])
+def test_groups_add_up_to_the_full_kernels(data, source, kernel):
     """Each group split is a partition: the parts sum to the kernel they come from (r and tangents)."""
-    d, k = data, data["kin"]
-    kin = (k["a"], k["theta"], k["thetad"], k["phi"], k["phid"], k["phidd"])
-    args = (d["q"], d["qd"], d["qdd"], d["l"], d["x0"], 1.0, 1e-3) + kin
-    for full, total in zip(lagrange.rod_inertia(*args), _sum_parts(_parts("rod_inertia"), *args)):
-        np.testing.assert_allclose(total, full, rtol=1e-12, atol=1e-13 * np.abs(full).max())
-    sargs = (d["q"][:, 3:5], d["qd"][:, 3:5], d["qdd"][:, 3:5], 0.7, 1.0) + kin
-    for full, total in zip(lagrange.slider_inertia(*sargs), _sum_parts(_parts("slider_inertia"), *sargs)):
-        np.testing.assert_allclose(total, full, rtol=1e-12, atol=1e-13 * np.abs(full).max())
-    for suffix in ("", "_averaged"):
-        eargs = (d["q"], d["l"], 100.0, 0.01)
-        full = getattr(lagrange, f"rod_elastic_A{suffix}")(*eargs)
-        parts = [p for p in _parts(f"rod_elastic_A{suffix}")]
-        total = _sum_parts(parts, *eargs)
-        for f, t in zip(full, total):
-            np.testing.assert_allclose(t, f, rtol=1e-12, atol=1e-13 * np.abs(f).max())
-        dargs = (d["q"], d["qd"], d["l"], 100.0, 0.01, 0.3)
-        full = getattr(damping, f"kelvin_voigt_A{suffix}")(*dargs)
-        total = _sum_parts(_parts(f"kelvin_voigt_A{suffix}"), *dargs)
-        for f, t in zip(full, total):
-            np.testing.assert_allclose(t, f, rtol=1e-12, atol=1e-13 * np.abs(f).max())
+    args = (data["q"], data["qd"], data["qdd"], data["geo"], data["coef"], data["kin"])
+    for full, total in zip(kernel(*args)[:4], _sum_parts(_parts(source), *args)):
+        np.testing.assert_allclose(total, full, rtol=1e-12, atol=1e-13 * max(np.abs(full).max(), 1e-300))
+
+
+@pytest.mark.parametrize("group", SWITCHABLE_GROUPS)
+def test_a_switched_off_group_is_removed_from_the_kernels(data, group):
+    """Weight 0 on a group (a term mask on the declared families) gives the full kernel minus that
+    group's part, computed independently by the audit's group kernels; nothing else changes."""
+    args = (data["q"], data["qd"], data["qdd"], data["geo"])
+    off = data["coef"].copy()
+    off[ingredients.COEFFICIENTS.index(f"w_{group}")] = 0.0
+    touched = 0
+    for source, kernel in SOURCES[:4]:
+        part = getattr(groups, f"{source}__{group}", None)
+        full = kernel(*args, data["coef"], data["kin"])[:4]
+        masked = kernel(*args, off, data["kin"])[:4]
+        removed = part(*args, data["coef"], data["kin"]) if part is not None else [0 * x for x in full]
+        touched += part is not None
+        for f, m, g in zip(full, masked, removed):
+            np.testing.assert_allclose(m, f - g, rtol=1e-11, atol=1e-12 * max(np.abs(f).max(), 1e-300))
+    assert touched >= 1
 
 
 def test_quartic_group_is_the_gradient_of_the_quartic_energy(data):
     """Independent check of one group: the quartic force is d/dq of EA/8 int v_x^4 (quadrature)."""
     d = data
-    r = groups.rod_elastic_A__quartic(d["q"], d["l"], 100.0, 0.01)[0]
+    l = d["geo"][:, 0]
+    z = 0 * d["q"]
+    r = groups.rod_elastic_A__quartic(d["q"], z, z, d["geo"], coef(EA=100.0, EI=0.01), d["kin"])[0]
     h = 1e-7
     for k in range(6):
         e = np.zeros(6)
         e[k] = h
 
         def quartic(q):
-            f = ref.element_fields(q, 0 * q, d["l"])
-            return ref.integrate(100.0 / 8 * f["v_x"] ** 4, d["l"])
+            f = ref.element_fields(q, 0 * q, l)
+            return ref.integrate(100.0 / 8 * f["v_x"] ** 4, l)
         fd = (quartic(d["q"] + e) - quartic(d["q"] - e)) / (2 * h)
         np.testing.assert_allclose(r[:, k], fd, rtol=1e-6, atol=1e-9 * np.abs(r).max())
 
@@ -80,7 +94,9 @@ def test_switch_validation():
         Case(groups_off="gravity")
     with pytest.raises(ParameterError):
         Case(groups_off="quartic", formulation="paper")
-    assert engine.groups_mask("gyroscopic, quartic") == 1 | 32
+    with pytest.raises(ParameterError):
+        Case(groups_off="quartic", approach="B")         # B has no quartic term to switch off
+    assert Case(groups_off="quartic, gyroscopic").groups_off == "gyroscopic,quartic"
 
 
 def test_switching_off_a_group_changes_only_that_group():

@@ -1,7 +1,7 @@
 """crankgen: dynamics of flexible slider-crank mechanisms (derived, generated, fast)."""
 
 from .errors import ConvergenceError, CrankgenError, ParameterError
-from .kernels import APPROACHES, DAMPING_MODELS, FORMULATIONS
+from .ingredients import CHOICES as _CHOICES
 from .model import Model
 from .newmark import NewmarkSettings, integrate
 from .parameters import Mechanism, SIMechanism
@@ -18,3 +18,9 @@ __all__ = [
     "BifurcationDiagram", "PoincareDiagram", "continuation", "poincare",
 ]
 from .provenance import VERSION as __version__
+
+# the choices of the model options (declared in derive/model.py)
+FORMULATIONS = _CHOICES["formulation"]
+APPROACHES = _CHOICES["approach"]
+DAMPING_MODELS = _CHOICES["damping"]
+MEMBRANE_OPTIONS = _CHOICES["membrane"]

@@ -14,9 +14,13 @@ from pathlib import Path
 
 from .audit import SECTIONS as AUDIT_SECTIONS
 from .errors import ConvergenceError, CrankgenError
-from .kernels import APPROACHES, DAMPING_MODELS, FORMULATIONS, MEMBRANE_OPTIONS
+from .ingredients import CHOICES
 from .newmark import SCHEMES
 from .provenance import VERSION
+
+# the choices of the model options, from the declared model (derive/model.py)
+APPROACHES, FORMULATIONS = CHOICES["approach"], CHOICES["formulation"]
+DAMPING_MODELS, MEMBRANE_OPTIONS = CHOICES["damping"], CHOICES["membrane"]
 
 # The two models the project compares (see README): --model sets these three options; an explicit
 # --formulation, --damping or --membrane overrides the model's value for that option.
@@ -478,8 +482,6 @@ def _cmd_audit(args):
 
 def _add_branch_model_options(p):
     """Model options of continue and poincare (the continued parameter's own option is ignored)."""
-    from .kernels import MEMBRANE_OPTIONS
-
     g = p.add_argument_group("model (the option of the continued parameter is replaced by its range)")
     g.add_argument("--omega", type=float, default=0.8, help="crank speed Omega* when it is not the parameter (default 0.8)")
     g.add_argument("--approach", choices=APPROACHES, default="A", help="strain energy A, B or C (default A)")

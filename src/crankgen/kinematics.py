@@ -1,7 +1,6 @@
-"""Exact rigid-body kinematics of the slider-crank (constant crank speed).
-
-theta = Omega t, and the rod angle phi follows from the slider staying on the X axis:
-sin phi = a* sin theta (ERRATA.md conventions), so with c = cos phi = sqrt(1 - a*^2 sin^2 theta)
+"""Exact rigid-body kinematics of the slider-crank (constant crank speed), from the generated guide
+kernel (derive/guide.py): theta = Omega t, and the rod angle phi follows from the slider staying on
+its guide Y = e:  sin phi = (a* sin theta - e) / L, so with c = cos phi
     phid  = a* Omega cos theta / c,
     phidd = -a* Omega^2 sin theta / c + phid^2 tan phi.
 """
@@ -9,6 +8,8 @@ sin phi = a* sin theta (ERRATA.md conventions), so with c = cos phi = sqrt(1 - a
 from dataclasses import dataclass
 
 import numpy as np
+
+from ._generated import guide as _guide
 
 
 @dataclass(frozen=True)
@@ -20,26 +21,21 @@ class CrankState:
     phi: np.ndarray
     phid: np.ndarray
     phidd: np.ndarray
+    vector: np.ndarray = None      # (..., 6): (a, theta, thetad, phi, phid, phidd), the kernels' kin
 
     def as_args(self):
-        """(theta, thetad, phi, phid, phidd), the order of the generated kernels' arguments."""
+        """(theta, thetad, phi, phid, phidd)."""
         return self.theta, self.thetad, self.phi, self.phid, self.phidd
 
 
-def crank_state(a, omega, t):
-    """Kinematics at time(s) t for crank ratio a (= a*) and crank speed omega (= Omega*)."""
+def crank_state(a, omega, t, offset=0.0):
+    """Kinematics at time(s) t for crank ratio a (= a*), crank speed omega (= Omega*), guide offset."""
     t = np.asarray(t, dtype=float)
-    omega = np.asarray(omega, dtype=float)
-    theta = omega * t
-    sin_phi = a * np.sin(theta)
-    cos_phi = np.sqrt(1.0 - sin_phi**2)
-    phi = np.arcsin(sin_phi)
-    phid = a * omega * np.cos(theta) / cos_phi
-    phidd = -a * omega**2 * np.sin(theta) / cos_phi + phid**2 * sin_phi / cos_phi
-    thetad = np.broadcast_to(omega, theta.shape).astype(float)
-    return CrankState(theta, thetad, phi, phid, phidd)
+    kin = _guide.crank_kinematics(t, float(omega), float(a), float(offset))
+    return CrankState(*(kin[..., k] for k in range(1, 6)), vector=kin)
 
 
-def slider_position(a, theta):
+def slider_position(a, theta, offset=0.0):
     """X co-ordinate of the rigid slider, a cos theta + L cos phi (L = 1)."""
-    return a * np.cos(theta) + np.sqrt(1.0 - (a * np.sin(theta)) ** 2)
+    theta = np.asarray(theta, dtype=float)
+    return _guide.slider_rigid_position(theta, 1.0, float(a), float(offset))

@@ -1,23 +1,23 @@
-"""The discrete model: mesh + generated element kernels + slider constraint + assembly.
+"""The discrete model in plain NumPy (the reference the compiled engine is tested against): mesh +
+the generated element kernels of the selected term families + slider constraint + assembly.
 
 For reduced displacements d, velocities v and accelerations a at time t the model gives the
 reduced residual R(t, d, v, a) of eq. (30) (exact Lagrange or printed form) and the Newmark
-iteration matrix  S = dR/da + c_v dR/dv + c_d dR/dd  in band storage.
+iteration matrix  S = dR/da + c_v dR/dv + c_d dR/dd  in band storage.  The families, their kernels
+and the coefficient vector come from the declared model (crankgen.ingredients); this module loops
+over them and never names one.
 """
 
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._generated import energy as _energy
+from . import ingredients
 from .assembly import BandedAssembler
-from .constraints import S_SLOT, expand, project, slider_map
-from .kernels import ElementKernels, select_kernels
+from .constraints import expand, project, slider_map
 from .kinematics import crank_state
 from .mesh import Mesh
 from .parameters import Mechanism
-
-SLIDER = slice(3, 5)   # (u, v) of the last node in the last element's nodal vector
 
 
 @dataclass(frozen=True)
@@ -35,23 +35,44 @@ class Model:
     mechanism: Mechanism
     omega: float
     mesh: Mesh
-    kernels: ElementKernels
+    selection: ingredients.Selection
+    coefficients: np.ndarray
     assembler: BandedAssembler = field(init=False, repr=False)
 
     def __post_init__(self):
         object.__setattr__(self, "assembler", BandedAssembler(self.mesh))
 
     @classmethod
-    def build(cls, mechanism, omega, n_elements, formulation, approach, damping, membrane="pointwise"):
-        return cls(mechanism, float(omega), Mesh(n_elements),
-                   select_kernels(formulation, approach, damping, membrane))
+    def build(cls, mechanism, omega, n_elements, formulation="lagrange", approach="A", damping="paper",
+              membrane="pointwise", rotary_inertia=True, groups_off=()):
+        options = ingredients.check_options(dict(formulation=formulation, approach=approach,
+                                                 damping=damping, membrane=membrane,
+                                                 rotary_inertia=rotary_inertia))
+        selection = ingredients.select(options)
+        off = ingredients.check_switched_off(groups_off, selection)
+        return cls(mechanism, float(omega), Mesh(n_elements), selection,
+                   ingredients.coefficients(mechanism, options, off))
+
+    @classmethod
+    def from_case(cls, case):
+        return cls(case.mechanism, case.omega, Mesh(case.n_elements), case.selection, case.coefficients)
+
+    @property
+    def options(self):
+        return self.selection.options
 
     @property
     def n_dofs(self):
         return self.mesh.n_dofs
 
     def kinematics(self, t):
-        return crank_state(self.mechanism.a, self.omega, t)
+        return crank_state(self.mechanism.a, self.omega, t, self.mechanism.offset)
+
+    @property
+    def geometry(self):
+        """(n, 2): (l, x0) of every element, the kernels' geo."""
+        mesh = self.mesh
+        return np.stack([np.full(mesh.n_elements, mesh.length), mesh.x0], axis=-1)
 
     def nodal_state(self, kin, d, v, a):
         """Element nodal vectors q, qd, qdd (n, 6) and the slider map of the last element."""
@@ -62,36 +83,21 @@ class Model:
         return p, pd, pdd, tmaps
 
     def element_terms(self, kin, d, v, a, secant=False):
-        """Residual and tangents per element.  secant=True gives the printed iteration matrices
-        of eq. (37) (K_lin + K_non, C) instead of the exact tangent (paper formulation only)."""
-        m, mesh, k = self.mechanism, self.mesh, self.kernels
+        """Residual and tangents per element.  secant=True gives the printed iteration matrices of
+        eq. (37) where the selected variants declare one (K_printed), for the one-pass scheme."""
         q, qd, qdd, tmaps = self.nodal_state(kin, d, v, a)
-        kin_args = (m.a,) + kin.as_args()
-        l, x0 = mesh.length, mesh.x0
-
-        r, K, C, M = k.rod_inertia(q, qd, qdd, l, x0, m.rhoA, m.rhoI, *kin_args)
-        elastic = k.rod_elastic(q, l, m.EA, m.EI)
-        if k.damping == "paper":
-            r_d, K_d, C_d = k.rod_damping(q, qd, l, m.EA, m.EI, m.rhoA, m.rhoI, kin.phid, m.mu)
-        else:
-            r_d, K_d, C_d = k.rod_damping(q, qd, l, m.EA, m.EI, m.mu)
-        r = r + elastic[0] + r_d
-        C = C + C_d
-        if secant:
-            K = K + elastic[2]            # printed K_lin + K_non; C(q) qd taken as given
-        else:
-            K = K + elastic[1] + K_d
-
-        rs, Ks, Cs, Ms = k.slider_inertia(q[-1, SLIDER], qd[-1, SLIDER], qdd[-1, SLIDER],
-                                          m.ms, 1.0, *kin_args)
-        if k.slider_damping is not None:
-            r_sd, K_sd, C_sd = k.slider_damping(qd[-1, SLIDER], m.ms, kin.phid, m.mu)
-            rs, Cs = rs + r_sd, Cs + C_sd
-        r[-1, SLIDER] += rs
-        K[-1, SLIDER, SLIDER] += Ks
-        C[-1, SLIDER, SLIDER] += Cs
-        M[-1, SLIDER, SLIDER] += Ms
-
+        geo, coef, kv = self.geometry, self.coefficients, kin.vector
+        n = self.mesh.n_elements
+        r, K, C, M = np.zeros((n, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6))
+        parts = [("rod", slice(None), (q, qd, qdd, geo)),
+                 ("end", n - 1, (q[-1], qd[-1], qdd[-1], geo[-1]))]
+        for part, where, args in parts:
+            for _name, kernel in self.selection.vectorized(part):
+                out = kernel(*args, coef, kv)
+                r[where] += out[0]
+                K[where] += out[4] if secant and len(out) > 4 else out[1]
+                C[where] += out[2]
+                M[where] += out[3]
         r[-1], K[-1], C[-1], M[-1] = project(*tmaps, r[-1], K[-1], C[-1], M[-1])
         return ElementTerms(r, K, C, M)
 
@@ -106,19 +112,23 @@ class Model:
         S = terms.M + c_v * terms.C + c_d * terms.K
         return self.assembler.vector(terms.r), self.assembler.banded(S)
 
-    def energies(self, t, d, v):
-        """(kinetic T_c + T_s, strain U_c) of the approach at time t for reduced d, v."""
-        m, mesh = self.mechanism, self.mesh
+    def energy(self, kind, t, d, v):
+        """Sum of the selected families' energies of one kind ('kinetic': T_c + T_s, 'potential':
+        U_c plus gravity's V, 'dissipation': the Rayleigh function D) at time t for reduced d, v."""
         kin = self.kinematics(t)
         q, qd, _, _ = self.nodal_state(kin, d, v, np.zeros_like(d))
-        kin_args = (m.a, kin.theta, kin.thetad, kin.phi, kin.phid)
-        T_rod = _energy.rod_kinetic_energy(q, qd, mesh.length, mesh.x0, m.rhoA, m.rhoI, *kin_args)
-        T_slider = _energy.slider_kinetic_energy(q[-1, SLIDER], qd[-1, SLIDER], m.ms, 1.0, *kin_args)
-        k = self.kernels
-        averaged = k.membrane == "averaged" and k.approach != "C" and k.formulation == "lagrange"
-        strain = getattr(_energy, f"strain_energy_{k.approach}" + ("_averaged" if averaged else ""))
-        U = strain(q, mesh.length, m.EA, m.EI)
-        return float(np.sum(T_rod) + T_slider), float(np.sum(U))
+        geo, coef = self.geometry, self.coefficients
+        total = 0.0
+        for _name, part, kernel in self.selection.energy_kernels(kind):
+            if part == "rod":
+                total += float(np.sum(kernel(q, qd, geo, coef, kin.vector)))
+            else:
+                total += float(kernel(q[-1], qd[-1], geo[-1], coef, kin.vector))
+        return total
+
+    def energies(self, t, d, v):
+        """(kinetic T_c + T_s, potential U_c + V) of the model at time t for reduced d, v."""
+        return self.energy("kinetic", t, d, v), self.energy("potential", t, d, v)
 
     def full_nodal(self, d, phi):
         """Full nodal vectors (..., 3 (n+1)) [u_0, v_0, psi_0, ...] from reduced d (..., N)."""

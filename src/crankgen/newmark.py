@@ -1,6 +1,7 @@
 """Newmark integration (beta = 1/4, gamma = 1/2 by default) of the reduced equations R = 0.
 
-Three schemes:
+Three schemes (the constants and the decisions of the iteration live in newton.py, shared with the
+compiled engine):
 - "one-pass": the paper's eqs. (34)-(39): predictors (35)-(36), one linear solve (37) with the
   iteration matrix evaluated at the predictor, correctors (38)-(39) (errata applied).  For the
   `paper` formulation the matrix is the printed M + gamma dt C + beta dt^2 (K_lin + K_non); for
@@ -31,13 +32,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import newton
 from .errors import ConvergenceError
+from .newton import ESTIMATE_FRACTION, HISTORY, REFRESH_RATE, SCHEMES  # noqa: F401  (re-exported)
 from .validation import choice, in_range, integer
-
-SCHEMES = ("newton", "one-pass", "full-newton")
-REFRESH_RATE = 0.1          # "newton" refreshes the iteration matrix when theta_k exceeds this
-ESTIMATE_FRACTION = 0.1    # ... and stops when its error estimate is below this fraction of tol
-HISTORY = 4                 # displacements kept for the starting guess (quartic extrapolation)
 
 
 @dataclass(frozen=True)
@@ -79,10 +77,12 @@ def _solve(model, S, rhs, step, t):
 
 def extrapolate(D):
     """Polynomial extrapolation one step ahead of the rows of D (oldest first, 2 to HISTORY + 1
-    rows): linear to quartic."""
-    k = len(D) - 1
-    weights = {1: (-1, 2), 2: (1, -3, 3), 3: (-1, 4, -6, 4), 4: (1, -5, 10, -10, 5)}[k]
-    return sum(w * row for w, row in zip(weights, D))
+    rows): linear to quartic (weights: newton.extrapolation_weight, oldest term first)."""
+    n_prev = len(D) - 1
+    out = np.zeros_like(D[-1])
+    for k in range(n_prev, -1, -1):
+        out = out + newton.extrapolation_weight(n_prev, k) * D[n_prev - k]
+    return out
 
 
 def initial_acceleration(model, t0, d0, v0):
@@ -98,8 +98,9 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
     dt = in_range("dt", dt, 0, None, True)
     beta, gamma = settings.beta, settings.gamma
     scales = model.mesh.dof_scales(model.mechanism.eps)
-    secant = settings.scheme == "one-pass" and model.kernels.has_secant
-    one_pass = settings.scheme == "one-pass"
+    scheme = SCHEMES.index(settings.scheme)
+    secant = scheme == newton.ONE_PASS and model.selection.printed_iteration
+    one_pass = scheme == newton.ONE_PASS
 
     N = model.n_dofs
     t = t0 + dt * np.arange(n_steps + 1)
@@ -120,7 +121,7 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
             a_new = a.copy()
         else:                                     # starting guess: extrapolated displacements
             a_new = (extrapolate(D[max(0, m - HISTORY):m + 1]) - d_pred) / c_d
-        refresh, previous, reused_before = True, 0.0, False
+        refresh, previous, reused_before, full = True, 0.0, False, False
         d_new, v_new = d_pred + c_d * a_new, v_pred + c_v * a_new          # eqs. (38)-(39)
         for it in range(1, settings.max_iterations + 1):
             if refresh:
@@ -140,23 +141,16 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
                 raise _singular(m + 1, t[m + 1], R)
             a_new += delta
             d_new, v_new = d_pred + c_d * a_new, v_pred + c_v * a_new
-            if one_pass:
-                break
             increment = np.max(np.abs(c_d * delta) / scales)
             size = np.max(np.abs(d_new) / scales)
-            limit = settings.tol * (1.0 + size)
-            if increment <= limit:
+            done, reject, refresh, reused_before, full = newton.next_iteration(
+                scheme, it, increment, previous, size, settings.tol, refresh, reused_before, full)
+            if done:
                 break
-            if settings.scheme == "newton":
-                if it > 1:
-                    rate = increment / previous
-                    same_kind = refresh != reused_before     # see the module docstring
-                    if same_kind and rate < 1.0 and rate / (1.0 - rate) * increment <= ESTIMATE_FRACTION * limit:
-                        break
-                    reused_before = not refresh
-                    refresh = rate > REFRESH_RATE
-                else:
-                    refresh = False
+            if reject:
+                a_new -= delta
+                d_new, v_new = d_pred + c_d * a_new, v_pred + c_v * a_new
+                continue
             previous = increment
         else:
             raise ConvergenceError(

@@ -9,23 +9,41 @@ paper's scaled outputs are  v* = v / eps,  u* = u / eps^2  (v, u in units of L).
 import math
 from dataclasses import dataclass
 
-from .validation import in_range
+from .errors import ParameterError
+from .validation import finite_number, in_range
 
 
 @dataclass(frozen=True)
 class Mechanism:
-    """Dimensionless slider-crank: a* = a/L, eps = r/L, ms* = m_s/(rho A L), mu* = omega_b mu."""
+    """Dimensionless slider-crank: a* = a/L, eps = r/L, ms* = m_s/(rho A L), mu* = omega_b mu,
+    gravity = (gX, gY) in units of L omega_b^2 (inertial frame: X along the guide towards the
+    slider, Y so that the crank pin is at a* (cos theta, sin theta)), and the guide's offset e: the
+    slider moves on the line Y = e (units of L).  The crank turns a full revolution only if
+    a* + |e| < 1."""
 
     a: float = 0.1
     eps: float = 0.01
     ms: float = 0.5
     mu: float = 0.5
+    gravity: tuple = (0.0, 0.0)
+    offset: float = 0.0
 
     def __post_init__(self):
         object.__setattr__(self, "a", in_range("a (crank length a* = a/L)", self.a, 0, 1, True, True))
         object.__setattr__(self, "eps", in_range("eps (slenderness r/L)", self.eps, 0, None, True))
         object.__setattr__(self, "ms", in_range("ms (slider mass ms* = m_s/(rho A L))", self.ms, 0))
         object.__setattr__(self, "mu", in_range("mu (damping mu* = omega_b mu)", self.mu, 0))
+        g = self.gravity
+        if isinstance(g, (str, bytes)) or not hasattr(g, "__len__") or len(g) != 2:
+            raise ParameterError(f"gravity must be a pair (gX, gY) of numbers, got {g!r}")
+        object.__setattr__(self, "gravity", tuple(finite_number(f"gravity[{k}]", x) for k, x in enumerate(g)))
+        e = finite_number("offset (guide offset e/L)", self.offset)
+        if self.a + abs(e) >= 1.0:
+            raise ParameterError(
+                f"the crank cannot turn a full revolution: a* + |offset| must be below 1 (the rod "
+                f"must reach the guide Y = offset at every crank angle), got a* = {self.a:g}, "
+                f"offset = {e:g}")
+        object.__setattr__(self, "offset", e)
 
     # Section constants in crankgen's units.
     @property

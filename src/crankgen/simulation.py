@@ -12,16 +12,18 @@ from .cases import Case
 from .errors import ConvergenceError, ParameterError
 from .model import Model
 from .newmark import NewmarkSettings, integrate
-from .outputs import element_history, end_axial, extension, mid_deflection
+from .outputs import DeclaredOutputs, element_history, end_axial, extension, mid_deflection
 from .parameters import Mechanism
-from .validation import choice, in_range, integer
+from .validation import choice, in_range
 
 ENGINES = ("compiled", "numpy")
 
 
 @dataclass(frozen=True)
-class SimulationResult:
-    """Per-step outputs: t*, theta (rad, unwrapped), v* at x* = 1/2, u*(1), delta* (eq. 40)."""
+class SimulationResult(DeclaredOutputs):
+    """Per-step outputs: t*, theta (rad, unwrapped), v* at x* = 1/2, u*(1), delta* (eq. 40), and
+    every declared output by name (crankgen.outputs): `slider_position`, `axial_force(x)`,
+    `bending_moment(x)`, `surface_strain(x, fiber)`, `quantity(name, ...)`."""
 
     t: np.ndarray
     theta: np.ndarray
@@ -31,6 +33,8 @@ class SimulationResult:
     iterations: np.ndarray
     settings: dict
     nodes: Optional[np.ndarray] = field(default=None, repr=False)   # (steps, 3 (n+1)) if requested
+    case: Optional[Case] = field(default=None, repr=False)
+    states: Optional[np.ndarray] = field(default=None, repr=False)  # (steps, N) reduced displacements
 
     def to_csv(self, path):
         """Write t*, theta, v_mid, u_end, extension as CSV (full double precision)."""
@@ -44,24 +48,28 @@ class SimulationResult:
 def simulate(mech, omega=0.8, approach="A", formulation="lagrange", n_elements=16,
              steps_per_rev=100, revolutions=10, integrator="newton", damping="paper",
              store_nodes=False, tol=1e-10, progress=None, initial=None, engine="compiled",
-             membrane="pointwise"):
+             membrane="pointwise", rotary_inertia=True):
     """Integrate the mechanism from theta = 0 with a constant crank speed omega (= Omega*).
 
     initial: optional (d0, v0) reduced displacement and velocity vectors (default: zero, the
     paper's initial conditions: rod undeformed and at rest in the moving frame).
     progress(step, n_steps) is called as the run advances.
-    engine: "compiled" (numba, engine.py) or "numpy" (model.py + newmark.py, the reference).
+    engine: "compiled" (numba, crankgen.engine) or "numpy" (model.py + newmark.py, the reference).
     membrane: "pointwise" (the element as derived from eq. 2) or "averaged" (element-mean membrane
     strain, which removes membrane locking; see derive/energies.py).
+    rotary_inertia: False drops the rho*I terms of the kinetic energy.
     """
     if not isinstance(mech, Mechanism):
         raise ParameterError(f"mech must be a crankgen.Mechanism, got {type(mech).__name__}")
-    omega = in_range("omega (crank speed Omega*)", omega, 0, None, True)
-    steps_per_rev = integer("steps_per_rev", steps_per_rev, 4)
     revolutions = in_range("revolutions", revolutions, 0, None, True)
     choice("engine", engine, ENGINES)
     settings = NewmarkSettings(scheme=integrator, tol=tol)
-    model = Model.build(mech, omega, n_elements, formulation, approach, damping, membrane)
+    case = Case(a=mech.a, eps=mech.eps, ms=mech.ms, mu=mech.mu, gravity=mech.gravity, offset=mech.offset,
+                omega=omega, approach=approach, formulation=formulation, damping=damping,
+                n_elements=n_elements, steps_per_rev=steps_per_rev, integrator=integrator,
+                membrane=membrane, rotary_inertia=rotary_inertia)
+    model = Model.from_case(case)
+    omega, steps_per_rev = case.omega, case.steps_per_rev
 
     period = 2 * math.pi / omega
     dt = period / steps_per_rev
@@ -73,43 +81,38 @@ def simulate(mech, omega=0.8, approach="A", formulation="lagrange", n_elements=1
         d0, v0 = (np.asarray(x, dtype=float) for x in initial)
         if d0.shape != (N,) or v0.shape != (N,) or not (np.all(np.isfinite(d0)) and np.all(np.isfinite(v0))):
             raise ParameterError(f"initial must be two finite vectors of length {N} (3 n_elements)")
-    info = dict(a=mech.a, eps=mech.eps, ms=mech.ms, mu=mech.mu, omega=omega, approach=approach,
-                formulation=formulation, n_elements=model.mesh.n_elements,
-                steps_per_rev=steps_per_rev, revolutions=revolutions, integrator=integrator,
-                damping=damping, tol=tol, engine=engine, membrane=membrane)
+    info = dict(case.as_dict(), revolutions=revolutions, tol=tol, engine=engine)
     if engine == "numpy":
         hist = integrate(model, d0, v0, 0.0, dt, n_steps, settings, progress=progress)
         kin = model.kinematics(hist.t)
-        q = element_history(model, hist.d, kin.phi)
+        q = element_history(model.mesh, hist.d, kin.phi)
         return SimulationResult(
-            t=hist.t, theta=kin.theta, v_mid=mid_deflection(model, q), u_end=end_axial(model, q),
-            extension=extension(model, q), iterations=hist.iterations, settings=info,
-            nodes=model.full_nodal(hist.d, kin.phi) if store_nodes else None)
+            t=hist.t, theta=kin.theta, v_mid=mid_deflection(model.mesh, q, case.eps),
+            u_end=end_axial(q, case.eps), extension=extension(model.mesh, q),
+            iterations=hist.iterations, settings=info,
+            nodes=model.full_nodal(hist.d, kin.phi) if store_nodes else None, case=case, states=hist.d)
 
-    case = Case(a=mech.a, eps=mech.eps, ms=mech.ms, mu=mech.mu, omega=omega, approach=approach,
-                formulation=formulation, damping=damping, n_elements=model.mesh.n_elements,
-                steps_per_rev=steps_per_rev, integrator=integrator, membrane=membrane)
     y, iterations, status, fail_step, fail_res, D = _march_in_chunks(
-        _engine.Batch([case]), d0[None], v0[None], n_steps, tol, store_nodes,
+        _engine.Batch([case]), d0[None], v0[None], n_steps, tol, True,
         None if progress is None else (lambda done: progress(done, n_steps)))
-    y, iterations, D = y[0], iterations[0].astype(np.int32), None if D is None else D[0]
+    y, iterations, D = y[0], iterations[0].astype(np.int32), D[0]
     t = dt * np.arange(n_steps + 1)
     theta = omega * t
     nodes = None
     if store_nodes:
-        nodes = model.full_nodal(D, np.arcsin(mech.a * np.sin(theta)))
+        nodes = model.full_nodal(D, model.kinematics(t).phi)
     result = SimulationResult(t=t, theta=theta, v_mid=y[:, 0], u_end=y[:, 1], extension=y[:, 2],
-                              iterations=iterations, settings=info, nodes=nodes)
+                              iterations=iterations, settings=info, nodes=nodes, case=case, states=D)
     if status[0] != _engine.OK:
         raise _failure(status[0], fail_step[0], fail_res[0], dt, result)
     return result
 
 
-def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_history=False, progress=None,
+def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progress=None,
                      chunks=20):
     """Run the compiled engine from (D0, V0) in a few chunks, so that progress(done_steps) can be
     shown; a case that fails stops alone.  Returns (y, iterations, status, fail_step,
-    fail_residual, D_history or None) with y (B, n_steps + 1, 3)."""
+    fail_residual, displacement history or None) with y (B, n_steps + 1, 3)."""
     B = len(batch)
     D, V, A, previous = np.array(D0, dtype=float), np.array(V0, dtype=float), None, None
     status = np.zeros(B, dtype=np.int64)
@@ -119,21 +122,22 @@ def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_history=False, prog
     done = 0
     while done < n_steps:
         k = min(size, n_steps - done)
-        res = _engine.march(batch, k, D0=D, V0=V, A0=A, step0=done, keep_history=keep_history,
+        res = _engine.march(batch, k, D0=D, V0=V, A0=A, step0=done,
+                            keep_history="displacements" if keep_states else False,
                             tol=tol, status=status, previous=previous)
         new_fail = (res.status != _engine.OK) & (status == _engine.OK)
         fail_step[new_fail], fail_res[new_fail] = res.fail_step[new_fail], res.fail_residual[new_fail]
         status = res.status
         ys.append(res.y if done == 0 else res.y[:, 1:])
         its.append(res.iterations)
-        if keep_history:
+        if keep_states:
             hist.append(res.D_history if done == 0 else res.D_history[:, 1:])
         D, V, A, previous = res.D, res.V, res.A, res.previous
         done += k
         if progress is not None:
             progress(done)
     return (np.concatenate(ys, axis=1), np.concatenate(its, axis=1), status, fail_step, fail_res,
-            np.concatenate(hist, axis=1) if keep_history else None)
+            np.concatenate(hist, axis=1) if keep_states else None)
 
 
 def _failure(status, step, residual, dt, result=None):
@@ -152,15 +156,19 @@ def _truncated(result, n_points):
     cut = {name: getattr(result, name)[:n_points] for name in ("t", "theta", "v_mid", "u_end", "extension")}
     cut["iterations"] = result.iterations[:max(0, n_points - 1)]
     nodes = None if result.nodes is None else result.nodes[:n_points]
-    return SimulationResult(settings=dict(result.settings, failed_at_step=n_points), nodes=nodes, **cut)
+    states = None if result.states is None else result.states[:n_points]
+    return SimulationResult(settings=dict(result.settings, failed_at_step=n_points), nodes=nodes,
+                            case=result.case, states=states, **cut)
 
 
-def simulate_many(cases, revolutions, progress=None, chunks=20):
+def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=False):
     """Transient runs of many cases from zero initial conditions, in lock-step compiled batches
     (cases sharing n_elements and steps_per_rev run together).
 
     Returns, in input order, a SimulationResult per case, or the ConvergenceError of a case whose
-    integration failed (the others are not affected).  progress(done, total) counts case-steps."""
+    integration failed (its `partial` holds the run up to the failure; the others are not
+    affected).  progress(done, total) counts case-steps.  keep_states: store the reduced states
+    (needed for the field outputs, e.g. axial_force)."""
     cases = [c if isinstance(c, Case) else Case.from_dict(c) for c in cases]
     revolutions = in_range("revolutions", revolutions, 0, None, True)
     groups = {}
@@ -174,16 +182,18 @@ def simulate_many(cases, revolutions, progress=None, chunks=20):
         n_steps = max(1, int(round(revolutions * spr)))
         B, N = len(idx), batch.N
         report = None if progress is None else (lambda done, o=done_total, b=B: progress(o + done * b, total))
-        y, iterations, status, fail_step, fail_res, _ = _march_in_chunks(
-            batch, np.zeros((B, N)), np.zeros((B, N)), n_steps, progress=report, chunks=chunks)
+        y, iterations, status, fail_step, fail_res, D = _march_in_chunks(
+            batch, np.zeros((B, N)), np.zeros((B, N)), n_steps, keep_states=keep_states,
+            progress=report, chunks=chunks)
         done_total += n_steps * B
         for j, i in enumerate(idx):
-            c, dt = cases[i], batch.par[j, 5]
+            c, dt = cases[i], float(batch.dt[j])
             t = dt * np.arange(n_steps + 1)
             result = SimulationResult(
                 t=t, theta=c.omega * t, v_mid=y[j, :, 0], u_end=y[j, :, 1], extension=y[j, :, 2],
                 iterations=iterations[j].astype(np.int32),
-                settings=dict(c.as_dict(), revolutions=revolutions, engine="compiled"))
+                settings=dict(c.as_dict(), revolutions=revolutions, engine="compiled"), case=c,
+                states=None if D is None else D[j])
             if status[j] != _engine.OK:
                 result = _failure(status[j], fail_step[j], fail_res[j], dt, result)
             out[i] = result

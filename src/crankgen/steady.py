@@ -43,6 +43,7 @@ import numpy as np
 from . import engine
 from .cases import Case
 from .errors import ParameterError
+from .outputs import DeclaredOutputs
 from .validation import choice, in_range, integer
 
 STATUSES = ("periodic", "not-periodic", "unstable", "failed")
@@ -50,8 +51,9 @@ METHODS = ("shooting", "march")
 
 
 @dataclass(frozen=True)
-class SteadyState:
-    """One steady revolution of a case (arrays over steps_per_rev + 1 points, theta from 0 to 2 pi).
+class SteadyState(DeclaredOutputs):
+    """One steady revolution of a case (arrays over steps_per_rev + 1 points, theta from 0 to 2 pi),
+    with every declared output by name (crankgen.outputs: `slider_position`, `axial_force(x)`, ...).
 
     Numbers that do not exist for a result are None (never NaN); status and message say why.
     """
@@ -72,6 +74,7 @@ class SteadyState:
     u_end: np.ndarray = field(default=None, repr=False)
     extension: np.ndarray = field(default=None, repr=False)
     state: np.ndarray = field(default=None, repr=False)   # reduced (d, v) at theta = 0, (2 N,)
+    states: np.ndarray = field(default=None, repr=False)  # reduced displacements over the revolution
 
     @property
     def ok(self):
@@ -128,7 +131,7 @@ class _BatchSolver:
         X1 = np.concatenate([res.D, res.V], axis=1)
         for i in np.flatnonzero(active & (res.status != engine.OK)):
             self.status[i] = "failed"
-            self.message[i] = _failure_text(res, i, b.par[i, 5])
+            self.message[i] = _failure_text(res, i, float(b.dt[i]))
         return X1, res
 
     def run(self):
@@ -247,7 +250,7 @@ class _BatchSolver:
         show = np.array([s in ("periodic", "unstable") for s in self.status])
         pre = np.where(show, engine.OK, engine.NOT_CONVERGED)
         res = engine.march(b, spr, D0=self.X[:, :N], V0=self.X[:, N:], status=pre,
-                           parallel=self.parallel)
+                           parallel=self.parallel, keep_history="displacements")
         theta = 2 * math.pi * np.arange(spr + 1) / spr
         out = []
         for i, case in enumerate(self.cases):
@@ -259,7 +262,7 @@ class _BatchSolver:
                     int(self.periods[i]), int(self.iterations[i]), self.residual[i],
                     self.message[i], multiplier=self.multiplier[i], theta=theta,
                     t=theta / case.omega, v_mid=v, u_end=y[:, 1], extension=y[:, 2],
-                    state=self.X[i].copy()))
+                    state=self.X[i].copy(), states=res.D_history[i]))
             else:
                 status = self.status[i] if self.status[i] != "pending" else "failed"
                 message = self.message[i]
@@ -267,7 +270,7 @@ class _BatchSolver:
                     status = "failed"
                     message = f"{message}; " if message else ""
                     message += "the revolution at the periodic state failed: " + _failure_text(
-                        res, i, b.par[i, 5])
+                        res, i, float(b.dt[i]))
                 out.append(SteadyState(case, status, None, None, int(self.periods[i]),
                                        int(self.iterations[i]), self.residual[i],
                                        message or "no result", multiplier=self.multiplier[i]))
@@ -323,12 +326,15 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
 
 def steady_state(mech=None, omega=0.8, approach="A", formulation="lagrange", damping="paper",
                  n_elements=16, steps_per_rev=100, integrator="newton", tol=1e-8,
-                 max_revolutions=400, method="shooting", membrane="pointwise", case=None):
+                 max_revolutions=400, method="shooting", membrane="pointwise", case=None,
+                 rotary_inertia=True):
     """Periodic response over one crank revolution of one case (see module docstring)."""
     if case is None:
         from .parameters import Mechanism
         mech = mech if mech is not None else Mechanism()
-        case = Case(a=mech.a, eps=mech.eps, ms=mech.ms, mu=mech.mu, omega=omega, approach=approach,
+        case = Case(a=mech.a, eps=mech.eps, ms=mech.ms, mu=mech.mu, gravity=mech.gravity,
+                    offset=mech.offset, omega=omega, approach=approach,
                     formulation=formulation, damping=damping, n_elements=n_elements,
-                    steps_per_rev=steps_per_rev, integrator=integrator, membrane=membrane)
+                    steps_per_rev=steps_per_rev, integrator=integrator, membrane=membrane,
+                    rotary_inertia=rotary_inertia)
     return steady_states([case], tol=tol, max_revolutions=max_revolutions, method=method)[0]

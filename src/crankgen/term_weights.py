@@ -12,12 +12,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import engine
+from . import engine, ingredients
 from ._generated import groups as _groups
 from .cases import Case
 from .mesh import U
-from .model import SLIDER, Model
-from .constraints import S_SLOT
+from .model import Model
 from .steady import steady_states
 
 ELASTIC_GROUPS = ("stiffness", "cubic_axial", "cubic_transverse", "quartic")
@@ -49,9 +48,9 @@ def _kernel(source, group, averaged):
 def group_weights(case, steady):
     """GroupWeights of one periodic steady state (steady.state must be set)."""
     averaged = case.membrane == "averaged"
-    model = Model.build(case.mechanism, case.omega, case.n_elements, case.formulation, case.approach,
-                        case.damping, case.membrane)
-    m, mesh, N = case.mechanism, model.mesh, model.n_dofs
+    model = Model.from_case(case)
+    mesh, N = model.mesh, model.n_dofs
+    geo, coef = model.geometry, model.coefficients
     batch = engine.Batch([case])
     res = engine.march(batch, case.steps_per_rev, D0=steady.state[None, :N], V0=steady.state[None, N:],
                        keep_history=True)
@@ -62,23 +61,24 @@ def group_weights(case, steady):
     elastic_sum, balance_sum = np.zeros(2), np.zeros(2)
     steps = case.steps_per_rev
     for k in range(steps):             # one revolution (the last point repeats the first)
-        t = k * batch.par[0, 5]
+        t = k * float(batch.dt[0])
         kin = model.kinematics(t)
         q, qd, qdd, tmaps = model.nodal_state(kin, res.D_history[0, k], res.V_history[0, k],
                                               res.A_history[0, k])
-        kin_args = (m.a,) + kin.as_args()
+        element = (q, qd, qdd, geo, coef, kin.vector)
+        last = (q[-1], qd[-1], qdd[-1], geo[-1], coef, kin.vector)
         vectors = {}
         for g in ALL_GROUPS:
             r = np.zeros((mesh.n_elements, 6))
             if g in KINETIC_GROUPS:
-                r += _kernel("rod_inertia", g, averaged)(q, qd, qdd, mesh.length, mesh.x0, m.rhoA,
-                                                         m.rhoI, *kin_args)[0]
-                r[-1, SLIDER] += _kernel("slider_inertia", g, averaged)(
-                    q[-1, SLIDER], qd[-1, SLIDER], qdd[-1, SLIDER], m.ms, 1.0, *kin_args)[0]
+                r += _kernel("rod_inertia", g, averaged)(*element)[0]
+                slider = _kernel("slider_inertia", g, averaged)
+                if slider is not None:
+                    r[-1] += slider(*last)[0]
             elif g in ELASTIC_GROUPS:
-                r += _kernel("rod_elastic_A", g, averaged)(q, mesh.length, m.EA, m.EI)[0]
+                r += _kernel("rod_elastic_A", g, averaged)(*element)[0]
             else:
-                r += _kernel("kelvin_voigt_A", g, averaged)(q, qd, mesh.length, m.EA, m.EI, m.mu)[0]
+                r += _kernel("kelvin_voigt_A", g, averaged)(*element)[0]
             T = tmaps[0]
             r[-1] = T.T @ r[-1]
             vectors[g] = model.assembler.vector(r)
@@ -110,7 +110,7 @@ def weights_table(eps_values=(0.01, 0.1), omegas=(0.1, 0.2, 0.4, 0.6, 0.8, 1.0),
 
 def switch_off_table(eps_values=(0.01, 0.1), omegas=(0.1, 0.2, 0.4, 0.6, 0.8, 1.0), n_elements=8):
     """{(eps, Omega*): {group: SteadyState}} with each switchable group removed alone ("" = none)."""
-    groups = ("",) + engine.SWITCHABLE_GROUPS
+    groups = ("",) + ingredients.SWITCHABLE_GROUPS
     cases = [consistent_case(e, w, n_elements, groups_off=g)
              for e in eps_values for w in omegas for g in groups]
     results = steady_states(cases)

@@ -1,0 +1,172 @@
+"""Compilation with numba, cached on disk under a hash of the compiled code, and repaired when unreadable.
+
+numba's own cache is keyed by the source file of each compiled function: a function that calls a
+function of another file (a generated kernel, the Newmark step) is not recompiled when only that
+other file changed, so after `make derive` or an edit of the engine a stale engine would run.
+Every crankgen function is therefore cached in a folder named by CODE_HASH, a hash of the
+generated kernels' specification (generated/dispatch.py KERNELS_HASH) and of the source of every
+module the engine compiles (crankgen/engine/*.py, crankgen/newton.py), with that hash also in its
+source stamp: changed kernels or engine code always get a fresh compilation.  The folder is, in
+order of preference, $CRANKGEN_CACHE_DIR/numba-<hash>, `__pycache__/numba-<hash>` inside the
+installed package, or ~/.cache/crankgen/numba-<hash> when the package folder is read-only.
+
+A cache file that cannot be read (a truncated write, a disk fault) makes numba fail on the first
+call of the function; `call` catches such a failure once, deletes the unreadable files with a
+warning and runs again (numba then recompiles what is missing).
+"""
+
+import hashlib
+import os
+import pickle
+import sys
+import types
+import warnings
+from pathlib import Path
+
+from numba import njit
+from numba.core import caching
+
+from .._generated import dispatch as _table
+
+KERNELS_HASH = _table.KERNELS_HASH
+_PACKAGE = Path(__file__).resolve().parent.parent
+_GENERATED = Path(_table.__file__).resolve().parent
+_WARM_MARK = "compiled.ok"
+
+
+def _code_hash():
+    h = hashlib.sha256(KERNELS_HASH.encode())
+    for path in sorted(Path(__file__).resolve().parent.glob("*.py")) + [_PACKAGE / "newton.py"]:
+        h.update(path.name.encode())
+        h.update(path.read_bytes())
+    return h.hexdigest()[:16]
+
+
+CODE_HASH = _code_hash()
+
+
+def _writable(folder):
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        probe = folder / f".probe-{os.getpid()}"
+        probe.write_bytes(b"")
+        probe.unlink()
+        return True
+    except OSError:
+        return False
+
+
+def cache_folder():
+    """Folder of this kernel hash's compiled code (see the module docstring)."""
+    env = os.environ.get("CRANKGEN_CACHE_DIR")
+    if env:
+        return Path(env) / f"numba-{CODE_HASH}"
+    inside = _PACKAGE / "__pycache__" / f"numba-{CODE_HASH}"
+    if _writable(inside):
+        return inside
+    return Path.home() / ".cache" / "crankgen" / f"numba-{CODE_HASH}"
+
+
+CACHE = cache_folder()
+
+
+class _KernelsHashLocator(caching._SourceFileBackedLocatorMixin, caching._CacheLocator):
+    """numba cache locator for crankgen's own files: CACHE, with the code hash in the stamp."""
+
+    def __init__(self, py_func, py_file):
+        self._py_file = py_file
+        self._lineno = py_func.__code__.co_firstlineno
+        self._cache_path = str(CACHE / Path(py_file).parent.name)
+
+    def get_cache_path(self):
+        return self._cache_path
+
+    def get_source_stamp(self):
+        return (super().get_source_stamp(), CODE_HASH)
+
+    @classmethod
+    def from_function(cls, py_func, py_file):
+        path = Path(py_file).resolve()
+        if not (path.is_relative_to(_PACKAGE) or path.is_relative_to(_GENERATED)):
+            return None
+        return super().from_function(py_func, py_file)
+
+
+if _KernelsHashLocator not in caching.CacheImpl._locator_classes:
+    caching.CacheImpl._locator_classes.insert(0, _KernelsHashLocator)
+
+
+def jit(fn, parallel=False, name=None, namespace=None):
+    """fn compiled with numba (nopython, cached as above).  name: compile a copy under another name
+    (numba's cache is keyed by the qualified name, so a serial and a parallel compilation of one
+    function need two); namespace: globals to bind in the copy (e.g. the compiled kernels that a
+    generated dispatch function calls by name)."""
+    if name is not None or namespace is not None:
+        glob = dict(fn.__globals__)
+        glob.update(namespace or {})
+        copy = types.FunctionType(fn.__code__, glob, name or fn.__name__, fn.__defaults__, fn.__closure__)
+        copy.__qualname__ = name or fn.__qualname__
+        copy.__doc__ = fn.__doc__
+        copy.__module__ = fn.__module__
+        fn = copy
+    return njit(cache=True, parallel=parallel)(fn)
+
+
+def is_warm():
+    """True once a run has completed with this kernel hash's compiled code (nothing to compile)."""
+    return (CACHE / _WARM_MARK).exists()
+
+
+def mark_warm():
+    try:
+        (CACHE / _WARM_MARK).touch()
+    except OSError:
+        pass
+
+
+def _from_numba_cache(exc):
+    tb = exc.__traceback__
+    while tb is not None:
+        name = tb.tb_frame.f_code.co_filename.replace(os.sep, "/")
+        if name.endswith("numba/core/caching.py"):
+            return True
+        tb = tb.tb_next
+    return False
+
+
+def _unreadable(path):
+    try:
+        with open(path, "rb") as fh:
+            if path.suffix == ".nbi":
+                pickle.load(fh)
+                pickle.loads(fh.read())
+            else:
+                pickle.loads(fh.read())
+        return False
+    except Exception:
+        return True
+
+
+def repair():
+    """Delete the unreadable files of the cache folder; returns their names."""
+    bad = []
+    for path in sorted(CACHE.rglob("*.nb[ic]")):
+        if _unreadable(path):
+            path.unlink(missing_ok=True)
+            bad.append(path.name)
+    return bad
+
+
+def call(fn, *args):
+    """fn(*args); a failure to read numba's cache is repaired once (module docstring)."""
+    try:
+        return fn(*args)
+    except Exception as exc:
+        if not _from_numba_cache(exc):
+            raise
+        bad = repair()
+        warnings.warn(f"crankgen: the compiled-code cache in {CACHE} could not be read "
+                      f"({type(exc).__name__}: {exc}); removed {len(bad)} unreadable file(s) and "
+                      "recompiling once", RuntimeWarning, stacklevel=3)
+        print("crankgen: recompiling the engine after a damaged cache (about a minute)", file=sys.stderr)
+        return fn(*args)

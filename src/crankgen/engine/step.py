@@ -1,0 +1,135 @@
+"""One Newmark step of one case (compiled), the same scheme as newmark.py: predictors (35)-(36),
+Newton iterations on a_{m+1} with the decisions of newton.py (shared with the NumPy reference),
+correctors (38)-(39); and the initial acceleration of eq. (34)."""
+
+import math
+
+import numpy as np
+
+from .. import newton
+from .banded import (KB_FIXED, assemble_band, assemble_band_newmark, assemble_fixed, assemble_vector,
+                     band_factor, band_lu_solve, band_solve, factor_fixed, solve_fixed)
+from .compiled import jit
+from .elements import FULL, NEWMARK, RESIDUAL, element_loop
+from .kernels import crank_kinematics_into, extrapolation_weight, next_iteration
+
+# status codes of a case
+OK, NOT_CONVERGED, SINGULAR, NOT_FINITE = 0, 1, 2, 3
+STATUS_TEXT = {OK: "ok", NOT_CONVERGED: "Newton did not converge", SINGULAR: "singular iteration matrix",
+               NOT_FINITE: "non-finite state"}
+ONE_PASS = newton.ONE_PASS
+
+
+@jit
+def kinematics(run, t, kin):
+    crank_kinematics_into(t, run.omega, run.a, run.offset, kin)
+
+
+@jit
+def initial_acceleration(families, coef, run, dofs, kb, l, t0, d, v, out, w):
+    """Solve R(t0, d, v, a) = 0 for a (eq. 34; R is linear in a).  Returns False if singular."""
+    N = d.shape[0]
+    kinematics(run, t0, w.kin)
+    zero = np.zeros(N)
+    element_loop(FULL, families, coef, False, dofs, l, d, v, zero, w.kin, 0.0, 0.0, w)
+    assemble_vector(dofs, w.rE, w.R)
+    W = np.zeros((N, 3 * kb + 1))
+    assemble_band(dofs, kb, w.ME, w.CE, w.KE, 1.0, 0.0, 0.0, W)
+    rhs = np.zeros((N, 1))
+    for i in range(N):
+        rhs[i, 0] = -w.R[i]
+    ok = band_solve(W, kb, rhs)
+    for i in range(N):
+        out[i] = rhs[i, 0]
+    return ok
+
+
+@jit
+def newmark_step(families, coef, run, dofs, kb, l, scales, beta, gamma, tol, max_iter, t_new,
+                 d, v, acc, hist, n_prev, d_new, v_new, a_new, w):
+    """One Newmark step from (d, v, acc) to (d_new, v_new, a_new) at t_new (scheme run.scheme).
+    hist[k]: the displacements k + 1 steps before d, of which the first n_prev (0 to HISTORY) are
+    known, for the starting guess.  Returns (status, iterations, residual norm)."""
+    N = d.shape[0]
+    dt = run.dt
+    scheme = run.scheme
+    one_pass = scheme == ONE_PASS
+    printed = one_pass and run.printed
+    cd = beta * dt * dt
+    cv = gamma * dt
+    kinematics(run, t_new, w.kin)
+    R, rhs = w.R, w.rhs
+    for i in range(N):
+        if one_pass:
+            a_new[i] = 0.0
+        elif n_prev == 0:
+            a_new[i] = acc[i]
+        else:                           # d_{m+1} on the extrapolation of the last displacements
+            dp = d[i] + dt * v[i] + 0.5 * dt * dt * (1.0 - 2.0 * beta) * acc[i]
+            dx = 0.0
+            for k in range(n_prev, 0, -1):
+                dx += extrapolation_weight(n_prev, k) * hist[k - 1, i]
+            dx += extrapolation_weight(n_prev, 0) * d[i]
+            a_new[i] = (dx - dp) / cd
+    rnorm = 0.0
+    refresh = True
+    full = False
+    fixed = False
+    previous = 0.0
+    reused_before = False
+    for i in range(N):                  # eqs. (38)-(39) at the starting guess
+        dp = d[i] + dt * v[i] + 0.5 * dt * dt * (1.0 - 2.0 * beta) * acc[i]
+        vp = v[i] + dt * (1.0 - gamma) * acc[i]
+        d_new[i] = dp + cd * a_new[i]
+        v_new[i] = vp + cv * a_new[i]
+    for it in range(1, max_iter + 1):
+        mode = NEWMARK if refresh else RESIDUAL
+        element_loop(mode, families, coef, printed, dofs, l, d_new, v_new, a_new, w.kin, cv, cd, w)
+        assemble_vector(dofs, w.rE, R)
+        rnorm = 0.0
+        for i in range(N):
+            rnorm += R[i] * R[i]
+            rhs[i, 0] = -R[i]
+        rnorm = math.sqrt(rnorm)
+        if not np.isfinite(rnorm):
+            return NOT_FINITE, it, rnorm
+        if refresh:
+            fixed = False
+            if kb == KB_FIXED:
+                assemble_fixed(dofs, w.SE, w.F, N)
+                fixed = factor_fixed(w.F, N, w.diag)
+            if not fixed:
+                assemble_band_newmark(dofs, kb, w.SE, w.W)
+                if not band_factor(w.W, kb, w.piv, w.ext):
+                    return SINGULAR, it, rnorm
+        if fixed:
+            solve_fixed(w.F, N, rhs[:, 0])
+        else:
+            band_lu_solve(w.W, kb, w.piv, w.ext, rhs)
+        inc = 0.0
+        size = 0.0
+        for i in range(N):
+            a_new[i] += rhs[i, 0]
+            x = abs(cd * rhs[i, 0]) / scales[i]
+            if x > inc:
+                inc = x
+        for i in range(N):
+            d_new[i] = d[i] + dt * v[i] + 0.5 * dt * dt * (1.0 - 2.0 * beta) * acc[i] + cd * a_new[i]
+            v_new[i] = v[i] + dt * (1.0 - gamma) * acc[i] + cv * a_new[i]
+            x = abs(d_new[i]) / scales[i]
+            if x > size:
+                size = x
+        if not np.isfinite(inc):
+            return NOT_FINITE, it, rnorm
+        done, reject, refresh, reused_before, full = next_iteration(scheme, it, inc, previous, size, tol,
+                                                                    refresh, reused_before, full)
+        if done:
+            return OK, it, rnorm
+        if reject:                      # undo the update of a diverging reused factorization
+            for i in range(N):
+                a_new[i] -= rhs[i, 0]
+                d_new[i] = d[i] + dt * v[i] + 0.5 * dt * dt * (1.0 - 2.0 * beta) * acc[i] + cd * a_new[i]
+                v_new[i] = v[i] + dt * (1.0 - gamma) * acc[i] + cv * a_new[i]
+            continue
+        previous = inc
+    return NOT_CONVERGED, max_iter, rnorm

@@ -1,0 +1,135 @@
+"""The model's ingredients as the runtime sees them: the generated table of derive/model.py.
+
+Everything that depends on which options a case chose goes through here: validation of the
+options, the selection of each term family's variant (`Model.families`, an index per family,
+-1 when absent), the coefficient vector of the element kernels, the vectorized kernels of the
+NumPy reference, and the field kernels of the declared outputs.  No module of the runtime names a
+family, a kernel or an option value beyond what this table holds.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._generated import dispatch as _table
+from ._generated import elements as _elements
+from ._generated import energy as _energy
+from ._generated import fields as _fields
+from .errors import ParameterError
+
+OPTION_NAMES = tuple(name for name, *_ in _table.OPTIONS)
+CHOICES = {name: choices for name, choices, _, _ in _table.OPTIONS}
+DEFAULTS = {name: default for name, _, default, _ in _table.OPTIONS}
+OPTION_DOCS = {name: doc for name, _, _, doc in _table.OPTIONS}
+COEFFICIENTS = _table.COEFFICIENTS
+SWITCHABLE_GROUPS = _table.SWITCHABLE_GROUPS
+FAMILIES = tuple(name for name, *_ in _table.FAMILIES)
+PARTS = {name: part for name, part, *_ in _table.FAMILIES}
+ENERGY_KINDS = {name: kind for name, _, _, kind, _ in _table.FAMILIES}
+OUTPUTS = {name: dict(kind=kind, doc=doc, arguments=args, kernels=kernels)
+           for name, kind, doc, args, kernels in _table.OUTPUTS}
+KERNELS_HASH = _table.KERNELS_HASH
+
+
+def check_options(options):
+    """The options (dict) completed with defaults and checked: an unknown option or value raises
+    ParameterError naming it and its choices."""
+    unknown = sorted(set(options) - set(OPTION_NAMES))
+    if unknown:
+        raise ParameterError(f"unknown model option {unknown[0]!r}; the options are {', '.join(OPTION_NAMES)}")
+    out = dict(DEFAULTS)
+    for name, value in options.items():
+        if isinstance(value, np.generic):
+            value = value.item()
+        if value not in CHOICES[name] or type(value) is not type(CHOICES[name][0]):
+            allowed = ", ".join(repr(c) for c in CHOICES[name])
+            raise ParameterError(f"{name} must be one of {allowed}, got {value!r}")
+        out[name] = value
+    return out
+
+
+def _matches(when, options):
+    return all(options[k] == v for k, v in when.items())
+
+
+@dataclass(frozen=True)
+class Selection:
+    """The family variants one set of options selects."""
+
+    options: dict
+    families: tuple        # per family: variant index, or -1 when the family is absent
+    kernels: tuple         # per family: element kernel name, or None
+    energies: tuple        # per family: its energy kernel name, or None
+    groups: frozenset      # switchable term groups present in the selected variants
+
+    @property
+    def printed_iteration(self):
+        """True when the one-pass scheme iterates with the printed matrices of eq. (37)."""
+        return _matches(_table.PRINTED_ITERATION, self.options)
+
+    def energy_kernels(self, kind):
+        """[(family name, part, vectorized energy kernel)] of the selected families whose energy kind
+        is 'kinetic', 'potential' or 'dissipation'."""
+        return [(name, PARTS[name], getattr(_energy, energy)) for name, energy in zip(FAMILIES, self.energies)
+                if energy is not None and ENERGY_KINDS[name] == kind]
+
+    def vectorized(self, part):
+        """[(family name, vectorized kernel)] of the families selected for part 'rod' or 'end'."""
+        return [(name, getattr(_elements, kernel)) for name, kernel in zip(FAMILIES, self.kernels)
+                if kernel is not None and PARTS[name] == part]
+
+
+def select(options):
+    """Selection of checked options (see check_options)."""
+    families, kernels, energies, groups = [], [], [], set()
+    for name, _part, _doc, _kind, variants in _table.FAMILIES:
+        hits = [(k, v) for k, v in enumerate(variants) if _matches(v[2], options)]
+        if len(hits) > 1:
+            raise ParameterError(f"options {options} select several variants of {name}")
+        if hits:
+            k, (_vname, kernel, _when, carried, energy) = hits[0]
+            families.append(k)
+            kernels.append(kernel)
+            energies.append(energy)
+            groups.update(carried)
+        else:
+            families.append(-1)
+            kernels.append(None)
+            energies.append(None)
+    return Selection(dict(options), tuple(families), tuple(kernels), tuple(energies), frozenset(groups))
+
+
+def check_switched_off(groups_off, selection):
+    """Tuple of the switched-off group names (comma-separated text or iterable), each of which must
+    be a switchable group present in the selected model (ParameterError otherwise)."""
+    names = groups_off.split(",") if isinstance(groups_off, str) else list(groups_off)
+    names = tuple(dict.fromkeys(g.strip() for g in names if g.strip()))
+    for g in names:
+        if g not in SWITCHABLE_GROUPS:
+            raise ParameterError(f"groups_off must name groups among {', '.join(SWITCHABLE_GROUPS)}, got {g!r}")
+        if g not in selection.groups:
+            present = ", ".join(sorted(selection.groups)) or "none"
+            raise ParameterError(f"groups_off: the selected model has no '{g}' group to switch off "
+                                 f"(its switchable groups: {present})")
+    return names
+
+
+def coefficients(mechanism, options, switched_off=()):
+    """Coefficient vector (COEFFICIENTS order) of the element kernels for a mechanism and options."""
+    gX, gY = mechanism.gravity
+    values = _table.coefficients(mechanism.eps, mechanism.ms, mechanism.mu, gX, gY,
+                                 1.0 if options["rotary_inertia"] else 0.0,
+                                 *(1.0 if g in switched_off else 0.0 for g in SWITCHABLE_GROUPS))
+    return np.array(values, dtype=float)
+
+
+def field_kernel(output, options):
+    """The vectorized field kernel of a declared field output for the options."""
+    spec = OUTPUTS.get(output)
+    if spec is None or spec["kind"] != "field":
+        fields = ", ".join(n for n, o in OUTPUTS.items() if o["kind"] == "field")
+        raise ParameterError(f"no field output {output!r}; the field outputs are {fields}")
+    for when, kernel in spec["kernels"]:
+        if _matches(when, options):
+            return getattr(_fields, kernel)
+    raise ParameterError(f"output {output!r} is not declared for options {options}")
