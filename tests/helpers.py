@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 
-from crankgen.backbone import mode_state as bending_mode_state   # noqa: F401  (v = A sin(pi x))
+from crankgen.audit.backbone import mode_state as bending_mode_state   # noqa: F401  (v = A sin(pi x))
 
 
 def zero_crossing_frequency(t, y):

@@ -11,11 +11,11 @@ from crankgen._generated import elements as E
 from crankgen._generated import groups
 from crankgen.ingredients import SWITCHABLE_GROUPS
 from kernel_api import coef, vec
-from crankgen.backbone import backbone
+from crankgen.audit.backbone import backbone
 from crankgen.cases import Case
 from crankgen.errors import ParameterError
 from crankgen.steady import steady_state, steady_states
-from crankgen.term_weights import consistent_case, group_weights
+from crankgen.audit.term_weights import consistent_case, group_weights
 
 
 def _parts(prefix):

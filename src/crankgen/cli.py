@@ -54,9 +54,14 @@ def _add_mechanism_options(p, grid=False):
     g.add_argument("--eps", type=kind, default=0.01, help="slenderness eps = r/L, r the radius of gyration, > 0 (default 0.01)")
     g.add_argument("--ms", type=kind, default=0.5, help="slider mass ms* = m_s/(rho A L), >= 0 (default 0.5)")
     g.add_argument("--mu", type=kind, default=0.5, help="damping mu* = omega_b mu, >= 0 (default 0.5)")
+    g.add_argument("--offset", type=kind, default=0.0,
+                   help="guide offset e/L: the slider moves on the line Y = e; a* + |e| < 1 (default 0)")
+    g.add_argument("--gravity", type=_pair, default=(0.0, 0.0), metavar="GX,GY",
+                   help="gravity (gX, gY) in units of L omega_b^2, X along the guide towards the slider, "
+                        "Y perpendicular (crank pin at a* (cos theta, sin theta)) (default 0,0)")
 
 
-def _add_model_options(p, grid=False):
+def _add_model_options(p, grid=False, integrator=True):
     g = p.add_argument_group("model and integration"
                              + (" (lists allowed: A,B or 8,16)" if grid else ""))
     many = " (a list of them allowed)" if grid else ""
@@ -77,14 +82,17 @@ def _add_model_options(p, grid=False):
     g.add_argument("--membrane", type=_choices("membrane", MEMBRANE_OPTIONS, grid), default=None,
                    help="pointwise: the element as derived from eq. (2); averaged: element-mean "
                         "membrane strain, free of membrane locking (default: the model's)" + many)
+    g.add_argument("--rotary-inertia", type=_choices("rotary-inertia", ("on", "off"), grid), default="on",
+                   help="on: keep the rho I terms of the kinetic energy; off: drop them (default on)" + many)
     g.add_argument("--elements", type=_int_list("elements", 1) if grid else int, default=16,
                    help="number of rod elements, >= 1 (default 16)")
     g.add_argument("--steps-per-rev", type=_int_list("steps-per-rev", 4) if grid else int, default=100,
                    help="Newmark steps per crank revolution, >= 4 (default 100)")
-    g.add_argument("--integrator", type=_choices("integrator", SCHEMES, grid), default="newton",
-                   help="newton: Newton iterations on the exact tangent, its factorization reused while "
-                        "they converge fast; full-newton: the tangent refreshed at every iteration; "
-                        "one-pass: the paper's eqs. (34)-(39) (default newton)" + many)
+    if integrator:
+        g.add_argument("--integrator", type=_choices("integrator", SCHEMES, grid), default="newton",
+                       help="newton: Newton iterations on the exact tangent, its factorization reused "
+                            "while they converge fast; full-newton: the tangent refreshed at every "
+                            "iteration; one-pass: the paper's eqs. (34)-(39) (default newton)" + many)
     return g
 
 
@@ -98,6 +106,14 @@ def _add_output_options(p, default_out, names):
 
 
 # ---- argument types ----------------------------------------------------------------------------
+def _pair(text):
+    """argparse type: two numbers 'X,Y'."""
+    parts = [p for p in text.replace(" ", "").split(",") if p]
+    if len(parts) != 2:
+        raise argparse.ArgumentTypeError(f"expected two numbers GX,GY, got {text!r}")
+    return tuple(_number(p) for p in parts)
+
+
 def _number(text):
     try:
         return float(text)
@@ -178,18 +194,21 @@ _figure_list = _number_list("figure", 2, 8)
 
 # ---- helpers -----------------------------------------------------------------------------------
 def _model_options(args):
-    """formulation, damping, membrane: the model's (default consistent), explicit options winning."""
+    """formulation, damping, membrane: the model's (default consistent), explicit options winning;
+    and rotary_inertia."""
     chosen = dict(MODELS[args.model or "consistent"])
     for name in chosen:
         if getattr(args, name) is not None:
             chosen[name] = getattr(args, name)
+    chosen["rotary_inertia"] = args.rotary_inertia == "on"
     return chosen
 
 
 def _case(args):
     from .cases import Case
     return Case(a=args.a, eps=args.eps, ms=args.ms, mu=args.mu, omega=args.omega,
-                approach=args.approach, n_elements=args.elements, steps_per_rev=args.steps_per_rev,
+                gravity=args.gravity, offset=args.offset, approach=args.approach,
+                n_elements=args.elements, steps_per_rev=args.steps_per_rev,
                 integrator=args.integrator, **_model_options(args))
 
 
@@ -343,8 +362,8 @@ def _steady(args, case, out):
 
 
 # ---- sweep -------------------------------------------------------------------------------------
-GRID_FIELDS = [("a", "a"), ("eps", "eps"), ("ms", "ms"), ("mu", "mu"), ("omega", "omega"),
-               ("approach", "approach"), ("n_elements", "elements"),
+GRID_FIELDS = [("a", "a"), ("eps", "eps"), ("ms", "ms"), ("mu", "mu"), ("offset", "offset"),
+               ("omega", "omega"), ("approach", "approach"), ("n_elements", "elements"),
                ("steps_per_rev", "steps_per_rev"), ("integrator", "integrator")]
 
 
@@ -364,6 +383,7 @@ def _sweep_cases(args):
         base = dict(MODELS[model])
         options = [[(name, v) for v in _listed(getattr(args, name))] if getattr(args, name) is not None
                    else [(name, base[name])] for name in base]
+        options.append([("rotary_inertia", v == "on") for v in _listed(args.rotary_inertia)])
         for combo in itertools.product(*options):
             if dict(combo) not in models:
                 models.append(dict(combo))
@@ -372,7 +392,7 @@ def _sweep_cases(args):
     for model in models:
         for combo in itertools.product(*axes):
             try:
-                cases.append(Case(**dict(combo), **model))
+                cases.append(Case(**dict(combo), **model, gravity=args.gravity))
             except ParameterError as exc:
                 raise ParameterError(f"{exc} (in the grid: {dict(combo, **model)})") from None
     return list(dict.fromkeys(cases))
@@ -482,18 +502,10 @@ def _cmd_audit(args):
 
 def _add_branch_model_options(p):
     """Model options of continue and poincare (the continued parameter's own option is ignored)."""
-    g = p.add_argument_group("model (the option of the continued parameter is replaced by its range)")
-    g.add_argument("--omega", type=float, default=0.8, help="crank speed Omega* when it is not the parameter (default 0.8)")
-    g.add_argument("--approach", choices=APPROACHES, default="A", help="strain energy A, B or C (default A)")
-    g.add_argument("--formulation", choices=FORMULATIONS, default="lagrange",
-                   help="lagrange (exact Euler-Lagrange equations) or paper (printed form) (default lagrange)")
-    g.add_argument("--damping", choices=DAMPING_MODELS, default="paper",
-                   help="paper (eq. 24) or kelvin-voigt (strain-rate damping) (default paper)")
-    g.add_argument("--membrane", choices=MEMBRANE_OPTIONS, default="pointwise",
-                   help="membrane strain of the element: pointwise or averaged (default pointwise)")
-    g.add_argument("--elements", type=int, default=16, help="number of rod elements, >= 1 (default 16)")
-    g.add_argument("--steps-per-rev", type=int, default=100, help="Newmark steps per crank revolution, >= 4 (default 100)")
-    g.add_argument("--parameter", choices=("omega", "eps", "ms", "mu", "a"), default="omega",
+    g = _add_model_options(p, integrator=False)
+    g.title = "model (the option of the continued parameter is replaced by its range)"
+    from .bifurcation.mechanism import PARAMETERS
+    g.add_argument("--parameter", choices=PARAMETERS, default="omega",
                    help="the parameter varied (default omega)")
     g.add_argument("--from", dest="start", type=float, required=True, help="first value of the parameter")
     g.add_argument("--to", dest="stop", type=float, required=True, help="last value of the parameter")
@@ -502,13 +514,12 @@ def _add_branch_model_options(p):
 def _branch_model(args):
     from .parameters import Mechanism
 
-    base = dict(a=args.a, eps=args.eps, ms=args.ms, mu=args.mu)
+    base = dict(a=args.a, eps=args.eps, ms=args.ms, mu=args.mu, offset=args.offset, gravity=args.gravity)
     if args.parameter in base:       # replaced by the range; the other values must be valid
         base[args.parameter] = args.start
     mech = Mechanism(**base)
-    model = dict(omega=args.omega, approach=args.approach, formulation=args.formulation,
-                 damping=args.damping, membrane=args.membrane, n_elements=args.elements,
-                 steps_per_rev=args.steps_per_rev)
+    model = dict(omega=args.omega, approach=args.approach, n_elements=args.elements,
+                 steps_per_rev=args.steps_per_rev, **_model_options(args))
     return mech, model
 
 

@@ -18,15 +18,16 @@ def make_case(mech, parameter, value, case, **model):
     if case is None:
         from ..parameters import Mechanism
         mech = mech if mech is not None else Mechanism()
-        case = Case(a=mech.a, eps=mech.eps, ms=mech.ms, mu=mech.mu, **model)
+        case = Case(a=mech.a, eps=mech.eps, ms=mech.ms, mu=mech.mu, gravity=mech.gravity,
+                    offset=mech.offset, **model)
     return replace(case, **{parameter: float(value)})
 
 
 def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, omega=0.8, approach="A",
-                 formulation="lagrange", damping="paper", membrane="pointwise", n_elements=16,
-                 steps_per_rev=100, max_period=4, ds=0.05, ds_min=1e-4, ds_max=100.0, dp_max=None, max_points=400,
+                 formulation="lagrange", damping="paper", membrane="pointwise", rotary_inertia=True,
+                 n_elements=16, steps_per_rev=100, max_period=4, ds=0.05, ds_min=1e-4, ds_max=100.0, dp_max=None, max_points=400,
                  tol=1e-9, switch_step=0.05, case=None, progress=None):
-    """Follow the periodic response of the mechanism as `parameter` (omega, eps, ms, mu or a) goes
+    """Follow the periodic response of the mechanism as `parameter` (omega, eps, ms, mu, a or offset) goes
     from start to stop, by pseudo-arclength continuation of the fixed points of the crank-revolution
     map, and return a BifurcationDiagram: branches (period, parameter, amplitude = max |v*(1/2)|
     over the orbit, stable, Floquet multipliers, states) and special points (fold, period-doubling,
@@ -41,7 +42,7 @@ def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, omega=0.8
         raise ParameterError(f"start and stop must differ, got {start:g}")
     c0 = make_case(mech, parameter, start, case, omega=omega, approach=approach,
                    formulation=formulation, damping=damping, membrane=membrane,
-                   n_elements=n_elements, steps_per_rev=steps_per_rev)
+                   rotary_inertia=rotary_inertia, n_elements=n_elements, steps_per_rev=steps_per_rev)
     make_case(None, parameter, stop, c0)                       # validates stop for the parameter
     settings = Settings(ds=in_range("ds", ds, 0, None, True), ds_min=in_range("ds_min", ds_min, 0, None, True),
                         ds_max=in_range("ds_max", ds_max, 0, None, True),
@@ -69,8 +70,8 @@ def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, omega=0.8
 
 
 def poincare(mech=None, parameter="omega", values=None, direction="up", *, omega=0.8, approach="A",
-             formulation="lagrange", damping="paper", membrane="pointwise", n_elements=16,
-             steps_per_rev=100, transient=100, samples=64, max_period=8, tol=1e-8,
+             formulation="lagrange", damping="paper", membrane="pointwise", rotary_inertia=True,
+             n_elements=16, steps_per_rev=100, transient=100, samples=64, max_period=8, tol=1e-8,
              lyapunov_tol=0.01, case=None, progress=None):
     """Brute-force bifurcation diagram (a PoincareDiagram): for each value of `parameter` in
     `values`, swept "up", "down" or "both" (up, then down from where up ended), march `transient`
@@ -86,6 +87,7 @@ def poincare(mech=None, parameter="omega", values=None, direction="up", *, omega
     values = [in_range(f"values ({parameter})", v) for v in values]
     c0 = make_case(mech, parameter, min(values), case, omega=omega, approach=approach,
                    formulation=formulation, damping=damping, membrane=membrane,
+                   rotary_inertia=rotary_inertia,
                    n_elements=n_elements, steps_per_rev=steps_per_rev)
     for v in values:
         make_case(None, parameter, v, c0)                      # validates every value

@@ -20,7 +20,7 @@ from ..errors import ParameterError
 from ..validation import choice
 from .maps import Map, MapError
 
-PARAMETERS = ("omega", "eps", "ms", "mu", "a")
+PARAMETERS = ("omega", "eps", "ms", "mu", "a", "offset")
 
 
 class MechanismMap(Map):

@@ -12,12 +12,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import engine, ingredients
-from ._generated import groups as _groups
-from .cases import Case
-from .mesh import U
-from .model import Model
-from .steady import steady_states
+from .. import engine, ingredients
+from .._generated import groups as _groups
+from ..cases import Case
+from ..mesh import U
+from ..model import Model
+from ..steady import steady_states
 
 ELASTIC_GROUPS = ("stiffness", "cubic_axial", "cubic_transverse", "quartic")
 KINETIC_GROUPS = ("inertia", "gyroscopic", "phidd", "centrifugal", "forcing")

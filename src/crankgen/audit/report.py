@@ -11,7 +11,7 @@ quartic term, 6 element convergence and membrane locking).
 
 from pathlib import Path
 
-from .errors import ParameterError
+from ..errors import ParameterError
 
 SECTIONS = (1, 2, 3, 4, 5, 6)
 TITLES = {
@@ -137,10 +137,10 @@ def write_report(out_dir="audit", sections=None, progress=None):
     unknown = [k for k in chosen if k not in SECTIONS]
     if unknown:
         raise ParameterError(f"sections must be among {SECTIONS}, got {unknown}")
-    from ._derive import audit as derived     # lazy: SymPy is loaded here, not at import time
+    from .._derive import audit as derived     # lazy: SymPy is loaded here, not at import time
     report = _Report(derived)
     text = report.document(chosen, progress)
-    from .io import atomic_write
+    from ..io import atomic_write
     path = Path(out_dir) / "report.md"
     return atomic_write(path, lambda fh: fh.write(text.encode("utf-8")), mode="wb")
 
@@ -210,7 +210,7 @@ class _Report:
 
     # ---- document -------------------------------------------------------------------------
     def document(self, sections, progress=None):
-        from . import audit_numbers
+        from . import numbers as audit_numbers
         self.facts = {}
         parts = []
         builders = {1: self.section1, 2: self.section2, 3: self.section3, 4: self.section4,
@@ -523,13 +523,13 @@ class _Report:
 
     # ---- sections 4-6: numbers from runs --------------------------------------------------
     def section4(self):
-        from . import audit_numbers
+        from . import numbers as audit_numbers
         return audit_numbers.section4(GROUP_TITLES, self.facts)
 
     def section5(self):
-        from . import audit_numbers
+        from . import numbers as audit_numbers
         return audit_numbers.section5(GROUP_TITLES, self.facts)
 
     def section6(self):
-        from . import audit_numbers
+        from . import numbers as audit_numbers
         return audit_numbers.section6()

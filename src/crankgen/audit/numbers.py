@@ -3,10 +3,10 @@ convergence), computed from runs of the compiled engine; Markdown out, no SymPy.
 
 import math
 
+from ..cases import Case
+from ..ingredients import SWITCHABLE_GROUPS
+from ..steady import steady_states
 from .backbone import backbone
-from .cases import Case
-from .engine import SWITCHABLE_GROUPS
-from .steady import steady_states
 from .term_weights import (DAMPING_GROUPS, ELASTIC_GROUPS, KINETIC_GROUPS, switch_off_table,
                            weights_table)
 

@@ -12,9 +12,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import engine
-from .cases import Case
-from .mesh import Mesh, PSI, V
+from .. import engine
+from ..cases import Case
+from ..mesh import Mesh, PSI, V
 
 STANDSTILL = 1e-9       # Omega* of a crank that does not move over the run
 
