@@ -1,26 +1,41 @@
-"""crankgen: dynamics of flexible slider-crank mechanisms (derived, generated, fast)."""
+"""crankgen: dynamics of flexible slider-crank mechanisms (derived, generated, fast).
+
+The public names are loaded on first use (PEP 562), so that `import crankgen` (and the command
+line) starts at once; the compiled engine and numba are imported only by what needs them.
+"""
+
+from importlib import import_module
 
 from .errors import ConvergenceError, CrankgenError, ParameterError
-from .ingredients import CHOICES as _CHOICES
-from .model import Model
-from .newmark import NewmarkSettings, integrate
-from .parameters import Mechanism, SIMechanism
-from .cases import Case
-from .simulation import SimulationResult, simulate, simulate_many
-from .steady import SteadyState, steady_state, steady_states
-from .sweep import SweepTable, sweep
-from .bifurcation import BifurcationDiagram, PoincareDiagram, continuation, poincare
+from .provenance import VERSION as __version__  # noqa: F401
 
-__all__ = [
-    "APPROACHES", "Case", "DAMPING_MODELS", "FORMULATIONS", "ConvergenceError", "CrankgenError", "Mechanism",
-    "Model", "NewmarkSettings", "ParameterError", "SIMechanism", "SimulationResult", "integrate",
-    "simulate", "simulate_many", "SteadyState", "steady_state", "steady_states", "SweepTable", "sweep",
-    "BifurcationDiagram", "PoincareDiagram", "continuation", "poincare",
-]
-from .provenance import VERSION as __version__
+# public name -> module that defines it
+_LAZY = {
+    "Mechanism": "parameters", "SIMechanism": "parameters", "Case": "cases", "Model": "model",
+    "NewmarkSettings": "newmark", "integrate": "newmark",
+    "SimulationResult": "simulation", "simulate": "simulation", "simulate_many": "simulation",
+    "SteadyState": "steady", "steady_state": "steady", "steady_states": "steady",
+    "SweepTable": "sweep", "sweep": "sweep",
+    "BifurcationDiagram": "bifurcation", "PoincareDiagram": "bifurcation",
+    "continuation": "bifurcation", "poincare": "bifurcation",
+}
+# the choices of the model options (declared in derive/model.py), read from the generated table
+_CHOICE_NAMES = {"FORMULATIONS": "formulation", "APPROACHES": "approach", "DAMPING_MODELS": "damping",
+                 "MEMBRANE_OPTIONS": "membrane"}
 
-# the choices of the model options (declared in derive/model.py)
-FORMULATIONS = _CHOICES["formulation"]
-APPROACHES = _CHOICES["approach"]
-DAMPING_MODELS = _CHOICES["damping"]
-MEMBRANE_OPTIONS = _CHOICES["membrane"]
+__all__ = ["ConvergenceError", "CrankgenError", "ParameterError"] + list(_LAZY) + list(_CHOICE_NAMES)
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        value = getattr(import_module(f".{_LAZY[name]}", __name__), name)
+    elif name in _CHOICE_NAMES:
+        value = import_module(".ingredients", __name__).CHOICES[_CHOICE_NAMES[name]]
+    else:
+        raise AttributeError(f"module 'crankgen' has no attribute {name!r}")
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))

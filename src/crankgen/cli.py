@@ -228,10 +228,12 @@ class _Outputs:
     stops before writing anything, the folders it created are removed again."""
 
     def __init__(self, folder, names, force):
+        from .compile_cache import announce
         from .io import prepare_folder
         self.folder = Path(folder)
         self.created = prepare_folder(self.folder, names, force)
         self.written = []
+        announce()                  # arguments and folder are fine: computing starts now
 
     def path(self, name):
         return self.folder / name
@@ -523,18 +525,24 @@ def _branch_model(args):
     return mech, model
 
 
+CONTINUE_NAMES = ("branches.csv", "special_points.csv", "multipliers.csv", "continuation.png")
+POINCARE_NAMES = ("poincare_summary.csv", "poincare_samples.csv", "poincare.png")
+
+
 def _cmd_continue(args):
     from .bifurcation import continuation
 
     mech, model = _branch_model(args)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    log = None if args.quiet else (lambda text: print(f"continue: {text}", file=sys.stderr, flush=True))
-    d = continuation(mech, args.parameter, args.start, args.stop, max_period=args.max_period,
-                     progress=log, **model)
-    paths = d.to_csv(out)
-    png = d.plot(out / "continuation.png", title=_title(args, "continuation"),
-                 ylabel="max |v*(1/2)| over the orbit", xlabel=_AXIS[args.parameter])
+    folder = _Outputs(args.out, CONTINUE_NAMES, args.force)
+    try:
+        log = None if args.quiet else (lambda text: print(f"continue: {text}", file=sys.stderr, flush=True))
+        d = continuation(mech, args.parameter, args.start, args.stop, max_period=args.max_period,
+                         progress=log, **model)
+        paths = [folder.wrote(p) for p in d.to_csv(folder.folder)]
+        png = folder.wrote(d.plot(folder.path("continuation.png"), title=_title(args, "continuation"),
+                                  ylabel="max |v*(1/2)| over the orbit", xlabel=_AXIS[args.parameter]))
+    finally:
+        folder.abandon()
     for s in d.special_points:
         print(f"{s.kind} on the period-{s.period} branch at {args.parameter} = {s.parameter:.7g}, "
               f"amplitude {s.amplitude:.6g}, multiplier {s.multiplier.real:.6g}{s.multiplier.imag:+.6g}j")
@@ -544,15 +552,16 @@ def _cmd_continue(args):
     return 0
 
 
-_AXIS = {"omega": "Omega*", "eps": "eps", "ms": "ms*", "mu": "mu*", "a": "a*"}
+_AXIS = {"omega": "Omega*", "eps": "eps", "ms": "ms*", "mu": "mu*", "a": "a*", "offset": "offset e/L"}
 
 
 def _title(args, what):
-    return (f"{what} in {args.parameter}: approach {args.approach}, {args.formulation} / {args.damping} "
-            f"damping, {args.membrane} membrane, n = {args.elements}, eps = {args.eps:g}"
+    m = _model_options(args)
+    return (f"{what} in {args.parameter}: approach {args.approach}, {m['formulation']} / {m['damping']} "
+            f"damping, {m['membrane']} membrane, n = {args.elements}, eps = {args.eps:g}"
             if args.parameter != "eps" else
-            f"{what} in eps: approach {args.approach}, {args.formulation} / {args.damping} damping, "
-            f"{args.membrane} membrane, n = {args.elements}, Omega* = {args.omega:g}")
+            f"{what} in eps: approach {args.approach}, {m['formulation']} / {m['damping']} damping, "
+            f"{m['membrane']} membrane, n = {args.elements}, Omega* = {args.omega:g}")
 
 
 def _cmd_poincare(args):
@@ -563,25 +572,29 @@ def _cmd_poincare(args):
 
     mech, model = _branch_model(args)
     if args.values < 2:
-        print("crankgen poincare: error: --values must be >= 2", file=sys.stderr)
-        return 2
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    values = np.linspace(args.start, args.stop, args.values)
-    total = args.values * (2 if args.direction == "both" else 1)
-    with Progress("poincare", total, enabled=not args.quiet) as progress:
-        pc = poincare(mech, args.parameter, values, args.direction, transient=args.transient,
-                      samples=args.samples, progress=progress, **model)
-    diagram = None
-    if args.with_continuation:
-        log = None if args.quiet else (lambda text: print(f"continue: {text}", file=sys.stderr, flush=True))
-        diagram = continuation(mech, args.parameter, min(args.start, args.stop),
-                               max(args.start, args.stop), max_period=args.max_period, progress=log,
-                               **model)
-        diagram.to_csv(out)
-    paths = pc.to_csv(out)
-    png = pc.plot(out / "poincare.png", diagram, title=_title(args, "Poincare sweep"),
-                  ylabel="v*(1/2) at theta = 0, once per revolution", xlabel=_AXIS[args.parameter])
+        raise UsageError("--values must be >= 2")
+    names = POINCARE_NAMES + (CONTINUE_NAMES[:3] if args.with_continuation else ())
+    folder = _Outputs(args.out, names, args.force)
+    try:
+        values = np.linspace(args.start, args.stop, args.values)
+        total = args.values * (2 if args.direction == "both" else 1)
+        with Progress("poincare", total, enabled=not args.quiet) as progress:
+            pc = poincare(mech, args.parameter, values, args.direction, transient=args.transient,
+                          samples=args.samples, progress=progress, **model)
+        diagram = None
+        if args.with_continuation:
+            log = None if args.quiet else (lambda text: print(f"continue: {text}", file=sys.stderr, flush=True))
+            diagram = continuation(mech, args.parameter, min(args.start, args.stop),
+                                   max(args.start, args.stop), max_period=args.max_period, progress=log,
+                                   **model)
+            for p in diagram.to_csv(folder.folder):
+                folder.wrote(p)
+        paths = [folder.wrote(p) for p in pc.to_csv(folder.folder)]
+        png = folder.wrote(pc.plot(folder.path("poincare.png"), diagram, title=_title(args, "Poincare sweep"),
+                                   ylabel="v*(1/2) at theta = 0, once per revolution",
+                                   xlabel=_AXIS[args.parameter]))
+    finally:
+        folder.abandon()
     counts = {}
     for q in pc.points:
         counts[q.classification] = counts.get(q.classification, 0) + 1
@@ -711,8 +724,7 @@ def build_parser():
     _add_branch_model_options(p)
     p.add_argument("--max-period", type=int, default=4,
                    help="follow period doublings up to this period (default 4)")
-    p.add_argument("--out", default="continuation", help="output folder (default ./continuation)")
-    p.add_argument("--quiet", action="store_true", help="no progress output")
+    _add_output_options(p, "continuation", ", ".join(CONTINUE_NAMES))
     p.set_defaults(func=_cmd_continue)
 
     p = sub.add_parser("poincare", help="brute-force bifurcation diagram: sweep a parameter, sample v* once per revolution, classify",
@@ -733,8 +745,8 @@ def build_parser():
                    help="also run the continuation over the same range and draw its branches over the samples")
     p.add_argument("--max-period", type=int, default=4,
                    help="with --with-continuation: follow period doublings up to this period (default 4)")
-    p.add_argument("--out", default="poincare", help="output folder (default ./poincare)")
-    p.add_argument("--quiet", action="store_true", help="no progress output")
+    _add_output_options(p, "poincare", ", ".join(POINCARE_NAMES) + " (and, with --with-continuation, "
+                        + ", ".join(CONTINUE_NAMES[:3]) + ")")
     p.set_defaults(func=_cmd_poincare)
     return parser
 

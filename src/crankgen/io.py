@@ -10,6 +10,7 @@ Also: the checks every command makes on its output folder before computing anyth
 import csv
 import io
 import math
+import contextlib
 import os
 import uuid
 from pathlib import Path
@@ -80,6 +81,29 @@ def atomic_write(path, write, mode="w", overwrite=True):
         raise
     fsync_dir(path.parent)
     return path
+
+
+@contextlib.contextmanager
+def atomic_file(path, mode="w"):
+    """`with atomic_file(path) as fh:` -- write fh, and path appears complete (atomic_write) or not
+    at all; text mode uses newline="" (CSV)."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = _temporary(path)
+    try:
+        kwargs = {"newline": ""} if "b" not in mode else {}
+        with os.fdopen(fd, mode, **kwargs) as fh:
+            yield fh
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except FileNotFoundError:
+            pass
+        raise
+    fsync_dir(path.parent)
 
 
 def atomic_write_text(path, text, overwrite=True):

@@ -6,6 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..io import atomic_file, save_figure
+
 LABELS = {"fold": "F", "period-doubling": "PD", "neimark-sacker": "NS"}
 
 
@@ -54,7 +56,7 @@ class BifurcationDiagram:
         folder.mkdir(parents=True, exist_ok=True)
         name = self.parameter_name
         paths = [folder / "branches.csv", folder / "special_points.csv", folder / "multipliers.csv"]
-        with open(paths[0], "w", newline="") as fh:
+        with atomic_file(paths[0]) as fh:
             w = csv.writer(fh)
             w.writerow(["branch", "period", "point", name, "amplitude", "stable",
                         "max_abs_multiplier", "origin"])
@@ -63,7 +65,7 @@ class BifurcationDiagram:
                     w.writerow([b, br.period, i, repr(float(br.parameter[i])),
                                 repr(float(br.amplitude[i])), int(br.stable[i]),
                                 repr(float(np.abs(br.multipliers[i]).max())), br.origin])
-        with open(paths[1], "w", newline="") as fh:
+        with atomic_file(paths[1]) as fh:
             w = csv.writer(fh)
             w.writerow(["kind", name, "amplitude", "period", "branch", "multiplier_re",
                         "multiplier_im", "multiplier_abs"])
@@ -71,7 +73,7 @@ class BifurcationDiagram:
                 w.writerow([s.kind, repr(float(s.parameter)), repr(float(s.amplitude)), s.period,
                             s.branch, repr(s.multiplier.real), repr(s.multiplier.imag),
                             repr(abs(s.multiplier))])
-        with open(paths[2], "w", newline="") as fh:
+        with atomic_file(paths[2]) as fh:
             w = csv.writer(fh)
             w.writerow(["branch", "point", name, "index", "re", "im", "abs"])
             for b, br in enumerate(self.branches):
@@ -130,6 +132,5 @@ class BifurcationDiagram:
         if title:
             ax.set_title(title, fontsize=9)
         if own:
-            fig.savefig(path, dpi=130)
-            plt.close(fig)
+            save_figure(fig, path, dpi=130)
         return path

@@ -9,13 +9,11 @@ corrector needs it only approximately).  Amplitude: max |v*(1/2)| over the k rev
 orbit, marched from the state as in steady_state.
 """
 
-import math
 from dataclasses import replace
 
 import numpy as np
 
 from .. import engine
-from ..cases import Case
 from ..errors import ParameterError
 from ..validation import choice
 from .maps import Map, MapError

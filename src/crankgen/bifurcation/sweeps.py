@@ -27,6 +27,8 @@ from ..errors import CrankgenError, ParameterError
 from ._blas import single_thread
 from .maps import MapError
 
+from ..io import atomic_file, save_figure
+
 DIRECTIONS = ("up", "down", "both")
 
 
@@ -56,14 +58,14 @@ class PoincareDiagram:
         folder.mkdir(parents=True, exist_ok=True)
         name = self.parameter_name
         paths = [folder / "poincare_summary.csv", folder / "poincare_samples.csv"]
-        with open(paths[0], "w", newline="") as fh:
+        with atomic_file(paths[0]) as fh:
             w = csv.writer(fh)
             w.writerow(["direction", name, "classification", "period", "repeat_residual",
                         "lyapunov", "distinct", "message"])
             for q in self.points:
                 w.writerow([q.direction, repr(q.parameter), q.classification, q.period,
                             repr(q.repeat_residual), repr(q.lyapunov), q.distinct, q.message])
-        with open(paths[1], "w", newline="") as fh:
+        with atomic_file(paths[1]) as fh:
             w = csv.writer(fh)
             w.writerow(["direction", name, "sample", "value"])
             for q in self.points:
@@ -121,8 +123,7 @@ class PoincareDiagram:
             ax.legend(handles=handles, fontsize=8, loc="best")
         if title:
             ax.set_title(title, fontsize=9)
-        fig.savefig(path, dpi=130)
-        plt.close(fig)
+        save_figure(fig, path, dpi=130)
         return path
 
 

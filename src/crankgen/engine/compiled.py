@@ -3,19 +3,15 @@
 numba's own cache is keyed by the source file of each compiled function: a function that calls a
 function of another file (a generated kernel, the Newmark step) is not recompiled when only that
 other file changed, so after `make derive` or an edit of the engine a stale engine would run.
-Every crankgen function is therefore cached in a folder named by CODE_HASH, a hash of the
-generated kernels' specification (generated/dispatch.py KERNELS_HASH) and of the source of every
-module the engine compiles (crankgen/engine/*.py, crankgen/newton.py), with that hash also in its
-source stamp: changed kernels or engine code always get a fresh compilation.  The folder is, in
-order of preference, $CRANKGEN_CACHE_DIR/numba-<hash>, `__pycache__/numba-<hash>` inside the
-installed package, or ~/.cache/crankgen/numba-<hash> when the package folder is read-only.
+Every crankgen function is therefore cached in the folder of crankgen.compile_cache, named by
+CODE_HASH (the generated kernels' specification and the engine's source), with that hash also in
+its source stamp: changed kernels or engine code always get a fresh compilation.
 
 A cache file that cannot be read (a truncated write, a disk fault) makes numba fail on the first
 call of the function; `call` catches such a failure once, deletes the unreadable files with a
 warning and runs again (numba then recompiles what is missing).
 """
 
-import hashlib
 import os
 import pickle
 import sys
@@ -27,47 +23,11 @@ from numba import njit
 from numba.core import caching
 
 from .._generated import dispatch as _table
+from ..compile_cache import CACHE, CODE_HASH, announce, is_warm, mark_warm  # noqa: F401
 
 KERNELS_HASH = _table.KERNELS_HASH
 _PACKAGE = Path(__file__).resolve().parent.parent
 _GENERATED = Path(_table.__file__).resolve().parent
-_WARM_MARK = "compiled.ok"
-
-
-def _code_hash():
-    h = hashlib.sha256(KERNELS_HASH.encode())
-    for path in sorted(Path(__file__).resolve().parent.glob("*.py")) + [_PACKAGE / "newton.py"]:
-        h.update(path.name.encode())
-        h.update(path.read_bytes())
-    return h.hexdigest()[:16]
-
-
-CODE_HASH = _code_hash()
-
-
-def _writable(folder):
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
-        probe = folder / f".probe-{os.getpid()}"
-        probe.write_bytes(b"")
-        probe.unlink()
-        return True
-    except OSError:
-        return False
-
-
-def cache_folder():
-    """Folder of this kernel hash's compiled code (see the module docstring)."""
-    env = os.environ.get("CRANKGEN_CACHE_DIR")
-    if env:
-        return Path(env) / f"numba-{CODE_HASH}"
-    inside = _PACKAGE / "__pycache__" / f"numba-{CODE_HASH}"
-    if _writable(inside):
-        return inside
-    return Path.home() / ".cache" / "crankgen" / f"numba-{CODE_HASH}"
-
-
-CACHE = cache_folder()
 
 
 class _KernelsHashLocator(caching._SourceFileBackedLocatorMixin, caching._CacheLocator):
@@ -112,18 +72,6 @@ def jit(fn, parallel=False, name=None, namespace=None):
     return njit(cache=True, parallel=parallel)(fn)
 
 
-def is_warm():
-    """True once a run has completed with this kernel hash's compiled code (nothing to compile)."""
-    return (CACHE / _WARM_MARK).exists()
-
-
-def mark_warm():
-    try:
-        (CACHE / _WARM_MARK).touch()
-    except OSError:
-        pass
-
-
 def _from_numba_cache(exc):
     tb = exc.__traceback__
     while tb is not None:
@@ -159,6 +107,7 @@ def repair():
 
 def call(fn, *args):
     """fn(*args); a failure to read numba's cache is repaired once (module docstring)."""
+    announce()
     try:
         return fn(*args)
     except Exception as exc:
