@@ -1,0 +1,207 @@
+"""Command-line interface: `crankgen simulate | steady | sweep | reproduce | audit | continue | poincare`.
+
+Exit codes: 0 success; 1 a run that failed (simulate: the integration stopped, and what was
+computed up to the failure is written; steady: status "failed"; a file that could not be written);
+2 a usage error (a bad option or parameter, an unusable --out, outputs already there without
+--force), reported on one line before anything is computed or created; 130 interrupted.
+"""
+
+import sys
+import warnings
+
+from ..audit import SECTIONS as AUDIT_SECTIONS
+from ..errors import ConvergenceError, CrankgenError
+from ..provenance import VERSION
+from .options import (_Parser, _add_mechanism_options, _add_model_options, _add_output_options,
+                      _figure_list, _number_list)
+from .runs import _cmd_simulate, _cmd_steady, _cmd_sweep
+from .studies import (CONTINUE_NAMES, POINCARE_NAMES, _add_branch_model_options, _cmd_audit,
+                      _cmd_continue, _cmd_poincare, _cmd_reproduce)
+
+
+# ---- parser ------------------------------------------------------------------------------------
+def build_parser():
+    from ..provenance import kernels_hash
+
+    parser = _Parser(
+        prog="crankgen",
+        description="Dynamics of flexible slider-crank mechanisms (rigid crank at constant speed, "
+                    "flexible finite-element connecting rod, slider on a straight guide).",
+        epilog="Exit codes: 0 success; 1 a run that failed (what it computed before failing is "
+               "written); 2 a usage error (bad option or parameter, unusable --out, outputs already "
+               "there without --force); 130 interrupted.")
+    parser.add_argument("--version", action="version",
+                        version=f"crankgen {VERSION} (generated kernels {kernels_hash()})")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    p = sub.add_parser("simulate", help="one run from zero initial conditions; writes CSV and a PNG of v*(t*)",
+                       description="Integrate one mechanism from the paper's zero initial conditions and "
+                                   "write simulation.csv (t*, theta, v* at x*=1/2, u*(1), extension delta*, "
+                                   "status) and v_mid.png to the output folder. If the integration fails, "
+                                   "the history up to the failure is written, a last row with status "
+                                   "'failed: <reason>' marks the failure (also marked in the plot), and "
+                                   "the exit code is 1.")
+    _add_mechanism_options(p)
+    g = _add_model_options(p)
+    g.add_argument("--revolutions", type=float, default=10, help="number of crank revolutions to simulate, > 0 (default 10)")
+    g.add_argument("--tol", type=float, default=1e-10, help="Newton tolerance on the scaled displacement increment (default 1e-10)")
+    p.add_argument("--nodes", action="store_true", help="also write the nodal history nodes.csv")
+    _add_output_options(p, "out", "simulation.csv, v_mid.png (and nodes.csv with --nodes)")
+    p.set_defaults(func=_cmd_simulate)
+
+    p = sub.add_parser("steady", help="one periodic steady state: amplitude, status, Floquet multiplier; CSV and PNG of the orbit",
+                       description="Find the periodic response over one crank revolution by shooting "
+                                   "(crankgen.steady_state) and write steady.csv (one row: the case, "
+                                   "status, amplitude max|v*|, half peak-to-peak, iterations, residual, "
+                                   "largest |Floquet multiplier|, message), orbit.csv (theta, t*, v*, "
+                                   "u*(1), delta* over the revolution) and orbit.png. Status: periodic, "
+                                   "unstable (orbit exists, multiplier > 1), not-periodic (no orbit, no "
+                                   "orbit files) or failed (exit code 1). A missing number is an empty "
+                                   "CSV field.")
+    _add_mechanism_options(p)
+    g = _add_model_options(p)
+    _add_steady_options(g)
+    g.add_argument("--method", choices=("shooting", "march"), default="shooting",
+                   help="shooting: Newton on the revolution map; march: revolution by revolution (default shooting)")
+    _add_output_options(p, "out", "steady.csv, orbit.csv and orbit.png")
+    p.set_defaults(func=_cmd_steady)
+
+    p = sub.add_parser("sweep", help="steady states over a grid of parameters; checkpointed and resumable; CSV out",
+                       description="Steady states (as `crankgen steady`) of every combination of the "
+                                   "values given, e.g. --omega 0.2:1.6:0.05 --eps 0.01,0.1 --model "
+                                   "paper,consistent. Finished cases are appended to a checkpoint "
+                                   "(default OUT/sweep.jsonl) as they complete; running the same command "
+                                   "again after an interruption resumes from it. sweep.csv (one row per "
+                                   "case, in grid order; missing numbers are empty fields) is written at "
+                                   "the end. Cases that fail or have no periodic state are rows with their "
+                                   "status and message; the exit code is 0 once every case has a row.")
+    _add_mechanism_options(p, grid=True)
+    g = _add_model_options(p, grid=True)
+    _add_steady_options(g)
+    g.add_argument("--batch-size", type=int, default=64, help="cases per batch (per task with --workers) (default 64)")
+    g.add_argument("--workers", type=int, default=1,
+                   help="processes (a process pool) when > 1; default 1: this process, whose compiled "
+                        "batches already use every core")
+    p.add_argument("--checkpoint", default=None,
+                   help="checkpoint file (JSON Lines; default OUT/sweep.jsonl); cases recorded there "
+                        "with the same tolerances are reused. --force starts it afresh")
+    p.add_argument("--retry-failed", action="store_true", help="recompute cases recorded as failed in the checkpoint")
+    _add_output_options(p, "out", "sweep.csv and the checkpoint sweep.jsonl")
+    p.set_defaults(func=_cmd_sweep)
+
+    p = sub.add_parser("reproduce", help="recompute the paper's Figures 2-8 and findings.md (paper and consistent models)",
+                       description="Recompute Figures 2-8 of the source paper for the paper model (paper "
+                                   "formulation, paper damping) and the consistent model (lagrange "
+                                   "formulation, kelvin-voigt damping, averaged membrane): one PNG and one "
+                                   "CSV per figure, convergence.png/.csv (element-count check) and "
+                                   "findings.md, whose numbers are all computed from the runs.")
+    p.add_argument("--out", default="results",
+                   help="output folder (created if missing; default ./results); a rerun keeps what is "
+                        "complete and current there (manifest.json) and computes the rest")
+    p.add_argument("--quick", action="store_true",
+                   help="coarse pass: fewer speeds, eps values, slider masses and revolutions, element "
+                        "ladder up to 64")
+    p.add_argument("--force", action="store_true",
+                   help="recompute every selected step, and overwrite files of the output names that "
+                        "no recorded run made")
+    p.add_argument("--figures", type=_figure_list, default=[2, 3, 4, 5, 6, 7, 8], metavar="LIST",
+                   help="comma-separated figures to compute, e.g. 5,6 (default: all, 2-8); the "
+                        "element-count check always runs")
+    p.add_argument("--quiet", action="store_true", help="no progress output")
+    p.set_defaults(func=_cmd_reproduce)
+
+    p = sub.add_parser("audit", help="symbolic audit report audit/report.md: what each approach and formulation keeps, and what it weighs",
+                       description="Write a Markdown report (LaTeX formulas) that opens with a summary "
+                                   "(the effect of the quartic term; where the printed equations differ "
+                                   "from the exact Lagrange equations and how much it matters), then: 1 "
+                                   "energies and dissipation functions by order, 2 element Euler-Lagrange "
+                                   "equations by kind, 3 the printed matrix form against the derivation, "
+                                   "with each transcription problem of the printed equations checked, 4 "
+                                   "weights of the term groups along steady trajectories, 5 the quartic "
+                                   "term, 6 element convergence and membrane locking. Offline; under a minute on 2 cores "
+                                   "once the engine is compiled.")
+    p.add_argument("--out", default="audit",
+                   help="output folder (default ./audit); report.md is regenerated (replaced atomically)")
+    p.add_argument("--sections", type=_number_list("section", min(AUDIT_SECTIONS), max(AUDIT_SECTIONS)),
+                   default=None, metavar="LIST",
+                   help="comma-separated sections to write (default: all, 1-6)")
+    p.add_argument("--quiet", action="store_true", help="no progress output")
+    p.set_defaults(func=_cmd_audit)
+
+    p = sub.add_parser("continue", help="continuation of the periodic response: branches, stability, folds, period doublings, Neimark-Sacker points",
+                       description="Follow the periodic response as one parameter varies (pseudo-arclength "
+                                   "continuation of the crank-revolution map), with its stability, folds, "
+                                   "period doublings and Neimark-Sacker points, and the period-2 (4, ...) "
+                                   "branches born at period doublings. Writes branches.csv, "
+                                   "special_points.csv, multipliers.csv and continuation.png.")
+    _add_mechanism_options(p)
+    _add_branch_model_options(p)
+    p.add_argument("--max-period", type=int, default=4,
+                   help="follow period doublings up to this period (default 4)")
+    _add_output_options(p, "continuation", ", ".join(CONTINUE_NAMES))
+    p.set_defaults(func=_cmd_continue)
+
+    p = sub.add_parser("poincare", help="brute-force bifurcation diagram: sweep a parameter, sample v* once per revolution, classify",
+                       description="March the mechanism at evenly spaced values of one parameter, each "
+                                   "value starting from the last state of the previous one (sweep up, "
+                                   "down or both, so hysteresis shows), sample v*(1/2) at theta = 0 once "
+                                   "per revolution after a transient and classify each value (period-k, "
+                                   "quasi-periodic, irregular, unsettled) with its evidence. Writes "
+                                   "poincare_summary.csv, poincare_samples.csv and poincare.png.")
+    _add_mechanism_options(p)
+    _add_branch_model_options(p)
+    p.add_argument("--values", type=int, default=57, help="number of parameter values, >= 2 (default 57)")
+    p.add_argument("--direction", choices=("up", "down", "both"), default="both",
+                   help="sweep direction (default both: up, then down)")
+    p.add_argument("--transient", type=int, default=100, help="revolutions marched before sampling (default 100)")
+    p.add_argument("--samples", type=int, default=64, help="revolutions sampled per value (default 64)")
+    p.add_argument("--with-continuation", action="store_true",
+                   help="also run the continuation over the same range and draw its branches over the samples")
+    p.add_argument("--max-period", type=int, default=4,
+                   help="with --with-continuation: follow period doublings up to this period (default 4)")
+    _add_output_options(p, "poincare", ", ".join(POINCARE_NAMES) + " (and, with --with-continuation, "
+                        + ", ".join(CONTINUE_NAMES[:3]) + ")")
+    p.set_defaults(func=_cmd_poincare)
+    return parser
+
+
+def _add_steady_options(g):
+    g.add_argument("--tol", type=float, default=1e-8,
+                   help="periodicity tolerance on the scaled change of the state over one revolution (default 1e-8)")
+    g.add_argument("--max-revolutions", type=int, default=400,
+                   help="revolutions marched at most when shooting does not converge (default 400)")
+
+
+def _one_line_warning(message, category, filename, lineno, file=None, line=None):
+    print(f"crankgen: warning: {message}", file=sys.stderr, flush=True)
+
+
+def main(argv=None):
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    name = f"crankgen {args.command}"
+    previous = warnings.showwarning
+    warnings.showwarning = _one_line_warning
+    try:
+        return args.func(args)
+    except ConvergenceError as exc:                          # a run that failed
+        print(f"{name}: run failed: {exc}", file=sys.stderr)
+        return 1
+    except CrankgenError as exc:                             # parameters, --out, existing outputs
+        print(f"{name}: error: {exc}", file=sys.stderr)
+        return 2
+    except OSError as exc:                                   # writing an output failed mid-run
+        where = f"{exc.filename}: " if exc.filename else ""
+        print(f"{name}: error: {where}{exc.strerror or exc}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        resume = ("; the finished cases are in the checkpoint: the same command resumes"
+                  if args.command == "sweep" else "")
+        print(f"{name}: interrupted{resume}", file=sys.stderr)
+        return 130
+    finally:
+        warnings.showwarning = previous
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,144 @@
+"""`crankgen reproduce`, `crankgen audit`, `crankgen continue`, `crankgen poincare`: studies."""
+
+import sys
+
+from .options import UsageError, _Outputs, _add_model_options, _model_options, _say
+
+
+def _cmd_reproduce(args):
+    from ..experiments import ReproduceConfig, reproduce
+
+    config = ReproduceConfig.quick() if args.quick else ReproduceConfig.full()
+    out = _Outputs(args.out, (), True)     # a usable folder, checked first (reproduce keeps its files)
+    try:
+        res = reproduce(args.out, config=config, force=args.force, quiet=args.quiet,
+                        figures=args.figures)
+        out.wrote(res["out"])
+    finally:
+        out.abandon()
+    print(f"{len(res['computed'])} step(s) computed, {len(res['kept'])} kept (complete and current); "
+          f"wrote {len(res['files'])} files to {res['out']} ({res['out'] / 'findings.md'}) "
+          f"in {res['wall_time']:.1f} s")
+    return 0
+
+
+def _cmd_audit(args):
+    import time
+
+    from ..audit import SECTIONS, TITLES, write_report
+
+    sections = args.sections or list(SECTIONS)
+    out = _Outputs(args.out, (), True)            # report.md is regenerated: replaced, atomically
+    start = time.perf_counter()
+
+    def progress(k):
+        _say(args, f"audit: section {k}, {TITLES[k]} ({time.perf_counter() - start:.0f} s)")
+    try:
+        path = out.wrote(write_report(args.out, sections=sections, progress=progress))
+    finally:
+        out.abandon()
+    print(f"wrote {path} in {time.perf_counter() - start:.1f} s")
+    return 0
+
+
+# --- crankgen continue / crankgen poincare ----------------------------------------------------
+
+def _add_branch_model_options(p):
+    """Model options of continue and poincare (the continued parameter's own option is ignored)."""
+    g = _add_model_options(p, integrator=False)
+    g.title = "model (the option of the continued parameter is replaced by its range)"
+    from ..bifurcation.mechanism import PARAMETERS
+    g.add_argument("--parameter", choices=PARAMETERS, default="omega",
+                   help="the parameter varied (default omega)")
+    g.add_argument("--from", dest="start", type=float, required=True, help="first value of the parameter")
+    g.add_argument("--to", dest="stop", type=float, required=True, help="last value of the parameter")
+
+
+def _branch_model(args):
+    from ..parameters import Mechanism
+
+    base = dict(a=args.a, eps=args.eps, ms=args.ms, mu=args.mu, offset=args.offset, gravity=args.gravity)
+    if args.parameter in base:       # replaced by the range; the other values must be valid
+        base[args.parameter] = args.start
+    mech = Mechanism(**base)
+    model = dict(omega=args.omega, approach=args.approach, n_elements=args.elements,
+                 steps_per_rev=args.steps_per_rev, **_model_options(args))
+    return mech, model
+
+
+CONTINUE_NAMES = ("branches.csv", "special_points.csv", "multipliers.csv", "continuation.png")
+POINCARE_NAMES = ("poincare_summary.csv", "poincare_samples.csv", "poincare.png")
+
+
+def _cmd_continue(args):
+    from ..bifurcation import continuation
+
+    mech, model = _branch_model(args)
+    folder = _Outputs(args.out, CONTINUE_NAMES, args.force)
+    try:
+        log = None if args.quiet else (lambda text: print(f"continue: {text}", file=sys.stderr, flush=True))
+        d = continuation(mech, args.parameter, args.start, args.stop, max_period=args.max_period,
+                         progress=log, **model)
+        paths = [folder.wrote(p) for p in d.to_csv(folder.folder)]
+        png = folder.wrote(d.plot(folder.path("continuation.png"), title=_title(args, "continuation"),
+                                  ylabel="max |v*(1/2)| over the orbit", xlabel=_AXIS[args.parameter]))
+    finally:
+        folder.abandon()
+    for s in d.special_points:
+        print(f"{s.kind} on the period-{s.period} branch at {args.parameter} = {s.parameter:.7g}, "
+              f"amplitude {s.amplitude:.6g}, multiplier {s.multiplier.real:.6g}{s.multiplier.imag:+.6g}j")
+    print(f"{len(d.branches)} branches, {sum(len(b) for b in d.branches)} points, "
+          f"{len(d.special_points)} special points in {d.info['wall_time']:.1f} s; wrote "
+          f"{', '.join(str(p) for p in paths)} and {png}")
+    return 0
+
+
+_AXIS = {"omega": "Omega*", "eps": "eps", "ms": "ms*", "mu": "mu*", "a": "a*", "offset": "offset e/L"}
+
+
+def _title(args, what):
+    m = _model_options(args)
+    return (f"{what} in {args.parameter}: approach {args.approach}, {m['formulation']} / {m['damping']} "
+            f"damping, {m['membrane']} membrane, n = {args.elements}, eps = {args.eps:g}"
+            if args.parameter != "eps" else
+            f"{what} in eps: approach {args.approach}, {m['formulation']} / {m['damping']} damping, "
+            f"{m['membrane']} membrane, n = {args.elements}, Omega* = {args.omega:g}")
+
+
+def _cmd_poincare(args):
+    import numpy as np
+
+    from ..bifurcation import continuation, poincare
+    from ..progress import Progress
+
+    mech, model = _branch_model(args)
+    if args.values < 2:
+        raise UsageError("--values must be >= 2")
+    names = POINCARE_NAMES + (CONTINUE_NAMES[:3] if args.with_continuation else ())
+    folder = _Outputs(args.out, names, args.force)
+    try:
+        values = np.linspace(args.start, args.stop, args.values)
+        total = args.values * (2 if args.direction == "both" else 1)
+        with Progress("poincare", total, enabled=not args.quiet) as progress:
+            pc = poincare(mech, args.parameter, values, args.direction, transient=args.transient,
+                          samples=args.samples, progress=progress, **model)
+        diagram = None
+        if args.with_continuation:
+            log = None if args.quiet else (lambda text: print(f"continue: {text}", file=sys.stderr, flush=True))
+            diagram = continuation(mech, args.parameter, min(args.start, args.stop),
+                                   max(args.start, args.stop), max_period=args.max_period, progress=log,
+                                   **model)
+            for p in diagram.to_csv(folder.folder):
+                folder.wrote(p)
+        paths = [folder.wrote(p) for p in pc.to_csv(folder.folder)]
+        png = folder.wrote(pc.plot(folder.path("poincare.png"), diagram, title=_title(args, "Poincare sweep"),
+                                   ylabel="v*(1/2) at theta = 0, once per revolution",
+                                   xlabel=_AXIS[args.parameter]))
+    finally:
+        folder.abandon()
+    counts = {}
+    for q in pc.points:
+        counts[q.classification] = counts.get(q.classification, 0) + 1
+    print(", ".join(f"{k}: {v}" for k, v in sorted(counts.items())) +
+          f" in {pc.info['wall_time']:.1f} s; wrote {', '.join(str(p) for p in paths)} and {png}")
+    return 0
