@@ -37,7 +37,6 @@ import csv
 import json
 import math
 import os
-import uuid
 import warnings
 from collections import Counter
 from collections.abc import Mapping
@@ -47,6 +46,7 @@ import numpy as np
 
 from .cases import Case
 from .errors import ParameterError
+from .io import atomic_file, fsync_dir
 from .provenance import code_version
 from .steady import SteadyState, _check_resolved, steady_states
 from .validation import in_range, integer
@@ -184,7 +184,7 @@ class _Checkpoint:
             fh.write(content)
             fh.flush()
             os.fsync(fh.fileno())
-        _fsync_dir(self.path.parent)
+        fsync_dir(self.path.parent)
 
     def append(self, pairs):
         """Append (key, row) records in one write, then flush and fsync."""
@@ -195,20 +195,6 @@ class _Checkpoint:
             fh.write(payload.encode())
             fh.flush()
             os.fsync(fh.fileno())
-
-
-def _fsync_dir(folder):
-    """Make a new directory entry durable (best effort; not every platform can open folders)."""
-    try:
-        fd = os.open(folder, os.O_RDONLY)
-    except OSError:
-        return
-    try:
-        os.fsync(fd)
-    except OSError:
-        pass
-    finally:
-        os.close(fd)
 
 
 def sweep(cases, executor=None, checkpoint=None, batch_size=64, tol=1e-8, progress=None, *,
@@ -367,25 +353,13 @@ class SweepTable:
 
     def to_csv(self, path):
         """Write the table as CSV (floats in full precision; a missing number, None, is an empty
-        field), atomically: a temporary file in the
-        same folder is written, flushed, fsynced and then moved onto path with os.replace, so path
-        holds either the old or the complete new table, never a partial one."""
-        path = Path(path)
-        tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
-        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
-        try:
-            with os.fdopen(fd, "w", newline="") as fh:
-                writer = csv.DictWriter(fh, fieldnames=self.columns)
-                writer.writeheader()
-                writer.writerows({k: _plain(v) for k, v in row.items()} for row in self.rows)
-                fh.flush()
-                os.fsync(fh.fileno())
-            os.replace(tmp, path)
-        except BaseException:
-            tmp.unlink(missing_ok=True)
-            raise
-        _fsync_dir(path.parent)
-        return path
+        field), atomically (crankgen.io.atomic_file): path holds either the old or the complete new
+        table, never a partial one."""
+        with atomic_file(path) as fh:
+            writer = csv.DictWriter(fh, fieldnames=self.columns)
+            writer.writeheader()
+            writer.writerows({k: _plain(v) for k, v in row.items()} for row in self.rows)
+        return Path(path)
 
     def to_pandas(self):
         """The table as a pandas DataFrame (needs pandas, which crankgen does not require)."""
