@@ -55,6 +55,11 @@ class Case:
         off = ingredients.check_switched_off(self.groups_off, self.selection)
         object.__setattr__(self, "groups_off", ",".join(sorted(off)))
 
+    @classmethod
+    def from_mechanism(cls, mech, **settings):
+        """The case of a Mechanism (every one of its fields) with the given run settings."""
+        return cls(**{f.name: getattr(mech, f.name) for f in fields(mech)}, **settings)
+
     @property
     def mechanism(self):
         return Mechanism(self.a, self.eps, self.ms, self.mu, self.gravity, self.offset)

@@ -64,10 +64,9 @@ def simulate(mech, omega=0.8, approach="A", formulation="lagrange", n_elements=1
     revolutions = in_range("revolutions", revolutions, 0, None, True)
     choice("engine", engine, ENGINES)
     settings = NewmarkSettings(scheme=integrator, tol=tol)
-    case = Case(a=mech.a, eps=mech.eps, ms=mech.ms, mu=mech.mu, gravity=mech.gravity, offset=mech.offset,
-                omega=omega, approach=approach, formulation=formulation, damping=damping,
-                n_elements=n_elements, steps_per_rev=steps_per_rev, integrator=integrator,
-                membrane=membrane, rotary_inertia=rotary_inertia)
+    case = Case.from_mechanism(mech, omega=omega, approach=approach, formulation=formulation,
+                               damping=damping, n_elements=n_elements, steps_per_rev=steps_per_rev,
+                               integrator=integrator, membrane=membrane, rotary_inertia=rotary_inertia)
     model = Model.from_case(case)
     omega, steps_per_rev = case.omega, case.steps_per_rev
 

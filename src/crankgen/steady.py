@@ -332,9 +332,8 @@ def steady_state(mech=None, omega=0.8, approach="A", formulation="lagrange", dam
     if case is None:
         from .parameters import Mechanism
         mech = mech if mech is not None else Mechanism()
-        case = Case(a=mech.a, eps=mech.eps, ms=mech.ms, mu=mech.mu, gravity=mech.gravity,
-                    offset=mech.offset, omega=omega, approach=approach,
-                    formulation=formulation, damping=damping, n_elements=n_elements,
-                    steps_per_rev=steps_per_rev, integrator=integrator, membrane=membrane,
-                    rotary_inertia=rotary_inertia)
+        case = Case.from_mechanism(mech, omega=omega, approach=approach, formulation=formulation,
+                                   damping=damping, n_elements=n_elements,
+                                   steps_per_rev=steps_per_rev, integrator=integrator,
+                                   membrane=membrane, rotary_inertia=rotary_inertia)
     return steady_states([case], tol=tol, max_revolutions=max_revolutions, method=method)[0]

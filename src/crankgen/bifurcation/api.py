@@ -18,8 +18,7 @@ def make_case(mech, parameter, value, case, **model):
     if case is None:
         from ..parameters import Mechanism
         mech = mech if mech is not None else Mechanism()
-        case = Case(a=mech.a, eps=mech.eps, ms=mech.ms, mu=mech.mu, gravity=mech.gravity,
-                    offset=mech.offset, **model)
+        case = Case.from_mechanism(mech, **model)
     return replace(case, **{parameter: float(value)})
 
 
