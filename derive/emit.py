@@ -1,12 +1,12 @@
-"""Stage 5: emit kernel specifications as straight-line Python source, in two variants.
+"""Stage 5: emit kernel specifications as straight-line Python source, in several variants.
 
-- `name(...)`: vectorized NumPy.  Array arguments broadcast against each other; vector inputs carry
-  their components on the trailing axis.  Leading axes (elements, and an optional batch of
-  parameter sets) pass straight through: an output has shape  broadcast(inputs) + (6,) or (6, 6).
-- `name_into(..., out1, out2, ...)`: one element, scalar arguments, results written into
-  preallocated arrays (every entry, zeros included).  Plain Python with `math`, written so that
-  the runtime can compile it with numba for the hot path.
-- (modules derive/kernels.SCALAR only) `name_into(..., out1, out2, ...)` as above.
+- `name(...)`: vectorized NumPy, for every kernel.  Array arguments broadcast against each other;
+  vector inputs carry their components on the trailing axis.  Leading axes (elements, and an
+  optional batch of parameter sets) pass straight through: an output has shape
+  broadcast(inputs) + (6,) or (6, 6).
+- `name_into(..., out1, out2, ...)` (modules in derive/kernels.SCALAR): one element, scalar
+  arguments, results written into preallocated arrays (every entry, zeros included).  Plain Python
+  with `math`, written so that the runtime can compile it with numba for the hot path.
 Element kernels (outputs r and its tangents K = dr/dq, C = dr/dqd, M = dr/dqdd) get accumulating
 one-element variants instead, the engine's calling convention:
 - `name_add(..., r, K, C, M)`: r += residual, K += K, C += C, M += M;

@@ -1,7 +1,7 @@
 """The model's ingredients as the runtime sees them: the generated table of derive/model.py.
 
 Everything that depends on which options a case chose goes through here: validation of the
-options, the selection of each term family's variant (`Model.families`, an index per family,
+options, the selection of each term family's variant (`Selection.families`, an index per family,
 -1 when absent), the coefficient vector of the element kernels, the vectorized kernels of the
 NumPy reference, and the field kernels of the declared outputs.  No module of the runtime names a
 family, a kernel or an option value beyond what this table holds.
