@@ -133,12 +133,6 @@ class Family:
     energy_kind: str             # what its variants' energy kernels give: "kinetic", "potential", "dissipation"
     variants: tuple = field(default_factory=tuple)
 
-    def select(self, options):
-        """The variant matching the option values (dict), or None when the family is absent."""
-        hits = [v for v in self.variants if all(options[k] == val for k, val in v.when.items())]
-        if len(hits) > 1:
-            raise ValueError(f"family {self.name}: options {options} select {len(hits)} variants")
-        return hits[0] if hits else None
 
 
 def _weighted(residual, variables, axial_rows, groups):

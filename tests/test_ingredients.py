@@ -173,3 +173,29 @@ def test_field_outputs_average_the_two_elements_at_a_node_and_refuse_bad_input()
     with pytest.raises(ParameterError):
         r.quantity("torque", 0.5)
     np.testing.assert_allclose(r.slider_position[0], 1.1, rtol=1e-12)   # a + L at theta = 0, at rest
+
+
+def test_every_combination_of_options_selects_one_variant_of_each_family():
+    """The declaration is consistent: for every combination of the options, each family has at
+    most one variant (variants exclude each other), inertia, elastic force, dissipation and the
+    slider's inertia are always present, and the slider's dissipation exactly with eq. (24)."""
+    import itertools
+    names = ingredients.OPTION_NAMES
+    for values in itertools.product(*(ingredients.CHOICES[n] for n in names)):
+        options = dict(zip(names, values))
+        sel = ingredients.select(options)                       # raises if two variants match
+        present = {f for f, k in zip(ingredients.FAMILIES, sel.families) if k >= 0}
+        assert {"inertia", "elastic", "dissipation", "slider_inertia", "gravity",
+                "slider_gravity"} <= present, options
+        assert ("slider_dissipation" in present) == (options["damping"] == "paper"), options
+
+
+def test_unknown_or_incompatible_options_are_refused_by_name():
+    with pytest.raises(ParameterError, match="approach"):
+        Case(approach="D")
+    with pytest.raises(ParameterError, match="rotary_inertia"):
+        Case(rotary_inertia="no")
+    with pytest.raises(ParameterError, match="unknown model option 'stiffening'"):
+        ingredients.check_options({"stiffening": True})
+    with pytest.raises(ParameterError, match="cubic_axial"):
+        Case(groups_off="cubic_axial", approach="C")            # C has no cubic terms
