@@ -139,3 +139,14 @@ def test_cli_audit_writes_the_report(tmp_path):
     with pytest.raises(SystemExit) as exc:                  # argparse: usage and a one-line error
         cli_main(["audit", "--out", str(tmp_path), "--sections", "9", "--quiet"])
     assert exc.value.code == 2
+
+
+def test_public_names_are_the_functions_whatever_was_imported_first():
+    """The public names load on first use; a submodule imported earlier must not shadow one."""
+    import subprocess
+    import sys
+    code = ("import crankgen.sweeps, crankgen.simulation, crankgen.steady, crankgen.bifurcation, types; "
+            "from crankgen import sweep, simulate, steady_state, continuation, Case; "
+            "assert not any(isinstance(f, types.ModuleType) for f in (sweep, simulate, steady_state, "
+            "continuation, Case)); import crankgen; assert callable(crankgen.sweep)")
+    subprocess.run([sys.executable, "-c", code], check=True)

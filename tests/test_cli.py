@@ -214,7 +214,7 @@ def _without_wall_time(rows):
 
 
 def test_sweep_grid_and_resume_after_an_interruption(tmp_path, capsys, monkeypatch):
-    sweep_module = sys.modules["crankgen.sweep"]        # (crankgen.sweep is the function)
+    sweep_module = sys.modules["crankgen.sweeps"]        # (crankgen.sweep is the function)
     whole = tmp_path / "whole"
     assert run(SWEEP + ["--out", str(whole)]) == 0
     rows = read_csv(whole / "sweep.csv")

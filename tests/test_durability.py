@@ -18,7 +18,7 @@ import crankgen
 from crankgen import Case, ParameterError, SteadyState, engine, sweep
 from crankgen.provenance import code_version
 
-sweep_mod = importlib.import_module("crankgen.sweep")
+sweep_mod = importlib.import_module("crankgen.sweeps")
 
 SMALL = dict(formulation="paper", n_elements=2, eps=0.1, steps_per_rev=24)
 CASES = [Case(omega=w, approach=ap, **SMALL) for w in (0.3, 0.5, 0.8) for ap in ("A", "C")]

@@ -193,7 +193,7 @@ def _sweep(args, cases, checkpoint, out):
     from collections import Counter
 
     from ..progress import Progress
-    from ..sweep import sweep
+    from ..sweeps import sweep
 
     if args.force and checkpoint.exists():
         checkpoint.unlink()
