@@ -1,6 +1,6 @@
 """Stage 2: element energies from eqs. (2)-(7), with the reduced strain energies of approaches B, C.
 
-Kinematic convention (ERRATA.md): e_i = (cos phi, -sin phi), e_j = (sin phi, cos phi) in the inertial
+Kinematic convention (docs/errata.md): e_i = (cos phi, -sin phi), e_j = (sin phi, cos phi) in the inertial
 frame, so de_i/dt = -phid e_j and de_j/dt = phid e_i.  The crank pin is at a e_r, e_r = (cos theta,
 sin theta); e_r . e_i = cos(theta + phi), e_theta . e_i = -sin(theta + phi).
 """

@@ -1,7 +1,8 @@
 """The paper's printed matrix form: Appendix B and eqs. (17)-(29), transcribed term by term.
 
-`printed_matrices(corrected=False)` is the text as printed; `corrected=True` applies the two
-ERRATA.md items that change numbers (B3: rho I phid^2 -> rho I phid; eq. 29: m_s4 -> d/dt m_s4).
+`printed_matrices(corrected=False)` is the text as printed; `corrected=True` corrects the two
+transcription problems of the printed text that change numbers (docs/errata.md; B3: rho I phid^2 ->
+rho I phid; eq. 29: m_s4 -> d/dt m_s4).
 The `paper` formulation of crankgen is the corrected form; the audit compares both with the exact
 Lagrange equations of `energies.py`.
 """
@@ -45,7 +46,7 @@ def printed_matrices(corrected=True, q=s.q):
     slope = (B_V.T * q)[0, 0]
     m["kvvv"] = _integrate(s.EA * slope**2 * _outer(B_V) / 4)                               # B8
 
-    end = {s.zeta: 1}                                                                       # ERRATA: xi -> zeta
+    end = {s.zeta: 1}                                                                       # B15-16: xi -> zeta
     nu, nv = N_U.subs(end), N_V.subs(end)
     m["ms1"] = s.ms * (_outer(nu) + _outer(nv))                                             # B13
     m["ms2"] = s.ms * s.phid**2 * (_outer(nu) + _outer(nv))                                 # B14
@@ -103,7 +104,7 @@ def _slider_rows(matrix):
 def slider_kinetic_residual(m, corrected=True):
     """Slider part of eqs. (27)-(29): m_s1 qdd - m_s2 q - (m_s3 - d/dt m_s4) on (u, v)_{n+1}.
 
-    As printed, eq. (29) subtracts m_s4 itself; `corrected` uses its time derivative (ERRATA.md).
+    As printed, eq. (29) subtracts m_s4 itself; `corrected` uses its time derivative (docs/errata.md).
     """
     ms1, ms2 = _slider_rows(m["ms1"]), _slider_rows(m["ms2"])
     ms3, ms4 = _slider_rows(m["ms3"]), _slider_rows(m["ms4"])

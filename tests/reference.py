@@ -297,7 +297,8 @@ def kelvin_voigt(approach, q, qd, l, EA, EI, mu):
 
 
 # --------------------------------------------------------------------------------------------
-# the printed matrix form (Appendix B, ERRATA: B3 -> -rhoI phid N_psi, eq. 29 -> -d/dt m_s4)
+# the printed matrix form (Appendix B), corrected as docs/errata.md says: B3 -> -rhoI phid N_psi,
+# eq. 29 -> -d/dt m_s4
 # --------------------------------------------------------------------------------------------
 
 def printed_matrices(q, l, x0, rhoA, rhoI, EA, EI, a, theta, thetad, phi, phid, phidd):
