@@ -85,11 +85,11 @@ def _table_source():
     out.append(f"COEFFICIENTS = {tuple(sym.name for sym in s.COEFFICIENTS)!r}")
     out.append(f"SWITCHABLE_GROUPS = {s.SWITCHABLE_GROUPS!r}")
     out.append("# family name, part ('rod': every element; 'end': the slider on the last element), doc,")
-    out.append("# energy kind of its energy kernels, variants: (name, element kernel, selecting option")
-    out.append("# values, switchable groups it carries, energy kernel or None)")
+    out.append("# energy kind of its energy kernels, the coefficients whose vanishing leaves it out, variants:")
+    out.append("# (name, element kernel, selecting option values, switchable groups it carries, energy kernel)")
     out.append("FAMILIES = (")
     for f in model.FAMILIES:
-        out.append(f"    ({f.name!r}, {f.part!r}, {f.doc!r}, {f.energy_kind!r}, (")
+        out.append(f"    ({f.name!r}, {f.part!r}, {f.doc!r}, {f.energy_kind!r}, {f.vanishes_with!r}, (")
         for v in f.variants:
             when = dict(sorted(v.when.items()))
             out.append(f"        ({v.name!r}, {kn.element_kernel_name(f, v)!r}, {when!r}, {v.groups!r}, {v.energy!r}),")

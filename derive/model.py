@@ -132,6 +132,7 @@ class Family:
     doc: str
     energy_kind: str             # what its variants' energy kernels give: "kinetic", "potential", "dissipation"
     variants: tuple = field(default_factory=tuple)
+    vanishes_with: tuple = ()    # coefficients that scale the whole family: all zero -> left out of a case
 
 
 
@@ -268,7 +269,7 @@ FAMILIES = (
     Family("gravity", "rod", "weight of the rod element, dV/dq with V = -int rho A g.R dx", "potential", (
         Variant("uniform", {}, rod_gravity, "consistent load vector of a uniform gravity field",
                 energy="rod_gravity_potential"),
-    )),
+    ), vanishes_with=("gX", "gY")),
     Family("slider_inertia", "end", "inertia forces of the slider on (u, v) of the last node, eqs. (6)-(7)", "kinetic", (
         Variant("lagrange", {"formulation": "lagrange"}, slider_inertia_lagrange,
                 "d/dt dT_s/dqd - dT_s/dq, exact", INERTIA_GROUPS, "slider_kinetic_energy"),
@@ -282,7 +283,7 @@ FAMILIES = (
     Family("slider_gravity", "end", "weight of the slider, dV_s/dq with V_s = -m_s g.R_s", "potential", (
         Variant("uniform", {}, slider_gravity, "gravity on the slider; the guide carries its normal part",
                 energy="slider_gravity_potential"),
-    )),
+    ), vanishes_with=("gX", "gY")),
 )
 FAMILY = {f.name: f for f in FAMILIES}
 

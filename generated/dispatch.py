@@ -36,14 +36,14 @@ PARAMETERS = (
 COEFFICIENTS = ('rhoA', 'rhoI', 'EA', 'EI', 'mu', 'ms', 'gX', 'gY', 'w_gyroscopic', 'w_phidd', 'w_centrifugal', 'w_cubic_axial', 'w_cubic_transverse', 'w_quartic')
 SWITCHABLE_GROUPS = ('gyroscopic', 'phidd', 'centrifugal', 'cubic_axial', 'cubic_transverse', 'quartic')
 # family name, part ('rod': every element; 'end': the slider on the last element), doc,
-# energy kind of its energy kernels, variants: (name, element kernel, selecting option
-# values, switchable groups it carries, energy kernel or None)
+# energy kind of its energy kernels, the coefficients whose vanishing leaves it out, variants:
+# (name, element kernel, selecting option values, switchable groups it carries, energy kernel)
 FAMILIES = (
-    ('inertia', 'rod', 'inertia forces of the rod element, from T_c of eqs. (4)-(5)', 'kinetic', (
+    ('inertia', 'rod', 'inertia forces of the rod element, from T_c of eqs. (4)-(5)', 'kinetic', (), (
         ('lagrange', 'inertia_lagrange', {'formulation': 'lagrange'}, ('gyroscopic', 'phidd', 'centrifugal'), 'rod_kinetic_energy'),
         ('paper', 'inertia_paper', {'formulation': 'paper'}, (), 'rod_kinetic_energy'),
     )),
-    ('elastic', 'rod', 'internal elastic force of the rod element, from U_c of eq. (2)', 'potential', (
+    ('elastic', 'rod', 'internal elastic force of the rod element, from U_c of eq. (2)', 'potential', (), (
         ('lagrange_A', 'elastic_lagrange_A', {'approach': 'A', 'formulation': 'lagrange', 'membrane': 'pointwise'}, ('cubic_axial', 'cubic_transverse', 'quartic'), 'strain_energy_A'),
         ('lagrange_A_averaged', 'elastic_lagrange_A_averaged', {'approach': 'A', 'formulation': 'lagrange', 'membrane': 'averaged'}, ('cubic_axial', 'cubic_transverse', 'quartic'), 'strain_energy_A_averaged'),
         ('lagrange_B', 'elastic_lagrange_B', {'approach': 'B', 'formulation': 'lagrange', 'membrane': 'pointwise'}, (), 'strain_energy_B'),
@@ -53,7 +53,7 @@ FAMILIES = (
         ('paper_B', 'elastic_paper_B', {'approach': 'B', 'formulation': 'paper'}, (), 'strain_energy_B'),
         ('paper_C', 'elastic_paper_C', {'approach': 'C', 'formulation': 'paper'}, (), 'strain_energy_C'),
     )),
-    ('dissipation', 'rod', 'damping force of the rod element', 'dissipation', (
+    ('dissipation', 'rod', 'damping force of the rod element', 'dissipation', (), (
         ('kelvin_voigt_A', 'dissipation_kelvin_voigt_A', {'approach': 'A', 'damping': 'kelvin-voigt', 'membrane': 'pointwise'}, (), 'dissipation_A'),
         ('kelvin_voigt_A_averaged', 'dissipation_kelvin_voigt_A_averaged', {'approach': 'A', 'damping': 'kelvin-voigt', 'membrane': 'averaged'}, (), 'dissipation_A_averaged'),
         ('kelvin_voigt_B', 'dissipation_kelvin_voigt_B', {'approach': 'B', 'damping': 'kelvin-voigt', 'membrane': 'pointwise'}, (), 'dissipation_B'),
@@ -63,17 +63,17 @@ FAMILIES = (
         ('paper_B', 'dissipation_paper_B', {'approach': 'B', 'damping': 'paper'}, (), None),
         ('paper_C', 'dissipation_paper_C', {'approach': 'C', 'damping': 'paper'}, (), None),
     )),
-    ('gravity', 'rod', 'weight of the rod element, dV/dq with V = -int rho A g.R dx', 'potential', (
+    ('gravity', 'rod', 'weight of the rod element, dV/dq with V = -int rho A g.R dx', 'potential', ('gX', 'gY'), (
         ('uniform', 'gravity_uniform', {}, (), 'rod_gravity_potential'),
     )),
-    ('slider_inertia', 'end', 'inertia forces of the slider on (u, v) of the last node, eqs. (6)-(7)', 'kinetic', (
+    ('slider_inertia', 'end', 'inertia forces of the slider on (u, v) of the last node, eqs. (6)-(7)', 'kinetic', (), (
         ('lagrange', 'slider_inertia_lagrange', {'formulation': 'lagrange'}, ('gyroscopic', 'phidd', 'centrifugal'), 'slider_kinetic_energy'),
         ('paper', 'slider_inertia_paper', {'formulation': 'paper'}, (), 'slider_kinetic_energy'),
     )),
-    ('slider_dissipation', 'end', 'damping force of the slider', 'dissipation', (
+    ('slider_dissipation', 'end', 'damping force of the slider', 'dissipation', (), (
         ('paper', 'slider_dissipation_paper', {'damping': 'paper'}, (), None),
     )),
-    ('slider_gravity', 'end', 'weight of the slider, dV_s/dq with V_s = -m_s g.R_s', 'potential', (
+    ('slider_gravity', 'end', 'weight of the slider, dV_s/dq with V_s = -m_s g.R_s', 'potential', ('gX', 'gY'), (
         ('uniform', 'slider_gravity_uniform', {}, (), 'slider_gravity_potential'),
     )),
 )

@@ -71,8 +71,9 @@ class Case:
 
     @property
     def selection(self):
-        """The term-family variants the options select (ingredients.Selection)."""
-        return ingredients.select(self.options)
+        """The term-family variants the options select (ingredients.Selection); families whose
+        coefficients vanish for this case (gravity without gravity) are left out."""
+        return ingredients.select(self.options, self.coefficients)
 
     @property
     def coefficients(self):

@@ -25,7 +25,7 @@ COEFFICIENTS = _table.COEFFICIENTS
 SWITCHABLE_GROUPS = _table.SWITCHABLE_GROUPS
 FAMILIES = tuple(name for name, *_ in _table.FAMILIES)
 PARTS = {name: part for name, part, *_ in _table.FAMILIES}
-ENERGY_KINDS = {name: kind for name, _, _, kind, _ in _table.FAMILIES}
+ENERGY_KINDS = {name: kind for name, _, _, kind, _, _ in _table.FAMILIES}
 OUTPUTS = {name: dict(kind=kind, doc=doc, arguments=args, kernels=kernels)
            for name, kind, doc, args, kernels in _table.OUTPUTS}
 KERNELS_HASH = _table.KERNELS_HASH
@@ -79,11 +79,16 @@ class Selection:
                 if kernel is not None and PARTS[name] == part]
 
 
-def select(options):
-    """Selection of checked options (see check_options)."""
+def select(options, coefficients=None):
+    """Selection of checked options (see check_options).  With the case's coefficient vector, a
+    family whose scaling coefficients all vanish (gravity without gravity) is left out: it would
+    add zeros at the cost of a kernel call per element and iteration."""
     families, kernels, energies, groups = [], [], [], set()
-    for name, _part, _doc, _kind, variants in _table.FAMILIES:
+    for name, _part, _doc, _kind, vanishes_with, variants in _table.FAMILIES:
         hits = [(k, v) for k, v in enumerate(variants) if _matches(v[2], options)]
+        if hits and coefficients is not None and vanishes_with and all(
+                coefficients[COEFFICIENTS.index(c)] == 0.0 for c in vanishes_with):
+            hits = []
         if len(hits) > 1:
             raise ParameterError(f"options {options} select several variants of {name}")
         if hits:

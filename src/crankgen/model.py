@@ -48,10 +48,10 @@ class Model:
         options = ingredients.check_options(dict(formulation=formulation, approach=approach,
                                                  damping=damping, membrane=membrane,
                                                  rotary_inertia=rotary_inertia))
-        selection = ingredients.select(options)
-        off = ingredients.check_switched_off(groups_off, selection)
-        return cls(mechanism, float(omega), Mesh(n_elements), selection,
-                   ingredients.coefficients(mechanism, options, off))
+        off = ingredients.check_switched_off(groups_off, ingredients.select(options))
+        coefficients = ingredients.coefficients(mechanism, options, off)
+        return cls(mechanism, float(omega), Mesh(n_elements), ingredients.select(options, coefficients),
+                   coefficients)
 
     @classmethod
     def from_case(cls, case):
