@@ -3,9 +3,9 @@
 The rod's material points are R = a e_r + (x + u - y psi) e_i + (y + v) e_j with
 e_i = (cos phi, -sin phi), e_j = (sin phi, cos phi), psi = v_x (eq. 4, ERRATA conventions).  The
 kinematics of the section is written out here by hand and integrated by Gauss quadrature: this
-module does not use crankgen's energy kernels.  It uses crankgen only for the element residuals
-of the unreduced system (to read the pin reaction and the guide reaction), and for the damping
-kernels of eq. (24).
+module does not use crankgen's energy or damping kernels (eq. 24 is written out from Appendix B).
+It uses crankgen only for the element residuals of the unreduced system (to read the pin
+reaction and the guide reaction) and for the DOF layout (Mesh.gather).
 
 Along a solution of the Lagrange equations of T - U (T the inertial kinetic energy) with the
 crank pin and the guide as the only constraints,
@@ -177,6 +177,26 @@ def damping_forces(model, kin, q, qd):
     return r_d, r_sd
 
 
+def printed_damping_forces(model, kin, q, qd, approach):
+    """Eq. (24) written out here: C qd = mu (K_lin + K_non) qd with K_lin = k_uu + k_psipsi + k_pvv
+    - m2 (eq. 22; k_pvv with P_i = EA u_x, the element's constant axial strain, A and B only),
+    K_non = 2 k_vvv = (EA/2) v_x^2 B_v B_v^T (A only); at the slider -mu m_s2 qd (eq. 28)."""
+    m = model.mechanism
+    f = rod_fields(model, q, qd, 0 * q)
+    Nu, Nux, Nv, Nvx, Nvxx = shapes(ZETA, f["l"])
+    phd2 = _col(kin.phid, f["u"]) ** 2
+    wl = WEIGHTS * f["l"]
+    axial = m.EA * f["uxd"]
+    transverse_slope = m.EA * f["ux"] * f["psid"] if approach in "AB" else 0 * f["psid"]
+    if approach == "A":
+        transverse_slope = transverse_slope + 0.5 * m.EA * f["psi"] ** 2 * f["psid"]
+    r = ((axial * wl) @ Nux + (transverse_slope * wl) @ Nvx + (m.EI * f["vxxd"] * wl) @ Nvxx
+         - (phd2 * m.rhoA * f["ud"] * wl) @ Nu - (phd2 * m.rhoA * f["vd"] * wl) @ Nv
+         - (phd2 * m.rhoI * f["psid"] * wl) @ Nvx)
+    r_s = -m.ms * kin.phid[:, None] ** 2 * qd[:, -1, 3:5]
+    return m.mu * r, m.mu * r_s
+
+
 def unreduced_residual(model, kin, q, qd, qdd):
     """Element residuals (Nt, n, 6) of the unreduced system from crankgen's kernels: the pinned
     rows (pin reaction) and the slider rows (guide reaction) are kept, nothing is projected."""
@@ -206,7 +226,8 @@ def power_history(model, t, d, v, a, averaged=False):
     r_d, r_sd = damping_forces(model, kin, q, qd)
     if k.damping == "kelvin-voigt":
         P_diss = kelvin_voigt_power(model, q, qd, k.approach, averaged)
-    else:                                                           # eq. (24): qd . C qd
+    else:                           # eq. (24): qd . C qd, C written out here (not the kernels)
+        r_d, r_sd = printed_damping_forces(model, kin, q, qd, k.approach)
         P_diss = np.sum(r_d * qd, axis=(1, 2)) + np.sum(r_sd * qd[:, -1, 3:5], axis=1)
     net_i = np.sum(r_d[:, :, [0, 3]], axis=(1, 2)) + r_sd[:, 0]
     net_j = np.sum(r_d[:, :, [1, 4]], axis=(1, 2)) + r_sd[:, 1]
