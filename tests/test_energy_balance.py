@@ -7,11 +7,12 @@ the guide as the only constraints; energy_balance.py writes out the kinematics b
 
 E = T + U (T the inertial kinetic energy of rod and slider), W_pin the work of the pin reaction
 (read from the rows of u_1, v_1 of the unreduced residual) on the crank pin's velocity, W_diss the
-dissipated energy (Kelvin-Voigt: the integral of 2 D; eq. (24): qd . C qd with C = mu (K_lin + K_non)
-written out from Appendix B; both by quadrature), W_frame the work done through the prescribed frame angle phi(t) (nonzero
-because the strain energy is not invariant under a rotation of the frame: small for A, B; large
-for C, which has no geometric stiffness), W_resultant the work of the net force of eq. (24)'s
-damping (its -mu m2 part is not an internal force; zero for Kelvin-Voigt).
+dissipated energy (Kelvin-Voigt: the integral of 2 D; eq. (24): qd . C qd with
+C = mu (K_lin + K_non) written out from Appendix B; both by quadrature), W_frame the work done
+through the prescribed frame angle phi(t) (nonzero because the discrete strain energy is not
+invariant under a rotation of the frame: for A it shrinks with the mesh, for C, which has no
+geometric stiffness, it does not; see energy_balance.py), W_resultant the work of the net force
+of eq. (24)'s damping (its -mu m2 part is not an internal force; zero for Kelvin-Voigt).
 
 Every term is integrated with the trapezoidal rule, the average-acceleration rule's own quadrature,
 so the balance closes to O(dt^2).  The powers are evaluated along trajectories of the compiled
