@@ -257,9 +257,11 @@ def test_steady_state_is_a_fixed_point_of_the_simulation():
     np.testing.assert_allclose(r.v_mid[-61:], s.v_mid, atol=1e-7 * s.amplitude)
 
 
-def test_failed_and_unstable_cases_are_reported_not_hidden():
+def test_failed_cases_are_reported_not_hidden():
     res = steady_states([Case(omega=0.8, approach="B", formulation="lagrange", n_elements=4),
                          Case(omega=0.8, n_elements=4)])
-    assert res[0].status in ("failed", "not-periodic", "unstable")
-    assert res[0].message and not res[0].ok
+    # B (no quartic term: its strain energy is unbounded below) diverges from rest within the
+    # first revolution at Omega* = 0.8: Newton fails, which is reported as such
+    assert res[0].status == "failed" and not res[0].ok
+    assert "Newton did not converge in step" in res[0].message
     assert res[1].status == "periodic" and math.isfinite(res[1].amplitude)
