@@ -167,14 +167,24 @@ def frame_moment(model, kin, q, qd, qdd):
 
 def damping_forces(model, kin, q, qd):
     """(rod (Nt, n, 6), slider (Nt, 2)) forces of the model's damping kernels."""
-    m, k, l = model.mechanism, model.kernels, model.mesh.length
-    if k.damping == "paper":
-        r_d = k.rod_damping(q, qd, l, m.EA, m.EI, m.rhoA, m.rhoI, kin.phid[:, None], m.mu)[0]
-        r_sd = k.slider_damping(qd[:, -1, 3:5], m.ms, kin.phid, m.mu)[0]
-    else:
-        r_d = k.rod_damping(q, qd, l, m.EA, m.EI, m.mu)[0]
-        r_sd = np.zeros(q.shape[:1] + (2,))
+    r_d = _family_forces(model, kin, q, qd, 0 * q, "rod", {"dissipation"})
+    r_sd = _family_forces(model, kin, q, qd, 0 * q, "end", {"slider_dissipation"})[:, 3:5]
     return r_d, r_sd
+
+
+def _family_forces(model, kin, q, qd, qdd, part, names):
+    """Sum of the residuals of the model's selected kernels of the named families on every element
+    ('rod': (Nt, n, 6)) or on the last one ('end': (Nt, 6))."""
+    geo, coef = model.geometry, model.coefficients
+    if part == "rod":
+        args, shape = (q, qd, qdd, geo, coef, kin.vector[:, None, :]), q.shape
+    else:
+        args, shape = (q[:, -1], qd[:, -1], qdd[:, -1], geo[-1], coef, kin.vector), q[:, -1].shape
+    total = np.zeros(shape)
+    for name, kernel in model.selection.vectorized(part):
+        if name in names:
+            total = total + kernel(*args)[0]
+    return total
 
 
 def printed_damping_forces(model, kin, q, qd, approach):
@@ -200,14 +210,11 @@ def printed_damping_forces(model, kin, q, qd, approach):
 def unreduced_residual(model, kin, q, qd, qdd):
     """Element residuals (Nt, n, 6) of the unreduced system from crankgen's kernels: the pinned
     rows (pin reaction) and the slider rows (guide reaction) are kept, nothing is projected."""
-    m, mesh, k = model.mechanism, model.mesh, model.kernels
-    col = [x[:, None] for x in kin.as_args()]
-    r = k.rod_inertia(q, qd, qdd, mesh.length, mesh.x0, m.rhoA, m.rhoI, m.a, *col)[0]
-    r = r + k.rod_elastic(q, mesh.length, m.EA, m.EI)[0]
+    r = _family_forces(model, kin, q, qd, qdd, "rod", {"inertia", "elastic", "gravity"})
     r_d, r_sd = damping_forces(model, kin, q, qd)
     r = r + r_d
-    r[:, -1, 3:5] += k.slider_inertia(q[:, -1, 3:5], qd[:, -1, 3:5], qdd[:, -1, 3:5], m.ms, 1.0,
-                                      m.a, *kin.as_args())[0] + r_sd
+    r[:, -1, 3:5] += _family_forces(model, kin, q, qd, qdd, "end", {"slider_inertia", "slider_gravity"})[:, 3:5]
+    r[:, -1, 3:5] += r_sd
     return r
 
 
@@ -216,7 +223,7 @@ def power_history(model, t, d, v, a, averaged=False):
     dE/dt = P_pin - P_diss + P_frame + P_resultant (module docstring), each (Nt,).
     P_resultant = -(net damping force) . V_pin: zero for Kelvin-Voigt damping (internal forces),
     not for eq. (24), whose -mu m2 part has a net resultant that the pin must balance."""
-    m, k = model.mechanism, model.kernels
+    m, options = model.mechanism, model.options
     kin = model.kinematics(t)
     q, qd, qdd = nodal_states(model, kin, d, v, a)
     r = unreduced_residual(model, kin, q, qd, qdd)
@@ -224,10 +231,10 @@ def power_history(model, t, d, v, a, averaged=False):
     V_pin = m.a * kin.thetad[:, None] * np.stack([-np.sin(kin.theta), np.cos(kin.theta)], -1)
     F_pin = r[:, 0, 0:1] * ei + r[:, 0, 1:2] * ej                  # force of the crank on the rod
     r_d, r_sd = damping_forces(model, kin, q, qd)
-    if k.damping == "kelvin-voigt":
-        P_diss = kelvin_voigt_power(model, q, qd, k.approach, averaged)
+    if options["damping"] == "kelvin-voigt":
+        P_diss = kelvin_voigt_power(model, q, qd, options["approach"], averaged)
     else:                           # eq. (24): qd . C qd, C written out here (not the kernels)
-        r_d, r_sd = printed_damping_forces(model, kin, q, qd, k.approach)
+        r_d, r_sd = printed_damping_forces(model, kin, q, qd, options["approach"])
         P_diss = np.sum(r_d * qd, axis=(1, 2)) + np.sum(r_sd * qd[:, -1, 3:5], axis=1)
     net_i = np.sum(r_d[:, :, [0, 3]], axis=(1, 2)) + r_sd[:, 0]
     net_j = np.sum(r_d[:, :, [1, 4]], axis=(1, 2)) + r_sd[:, 1]
@@ -235,7 +242,7 @@ def power_history(model, t, d, v, a, averaged=False):
     us, vs = q[:, -1, 3], q[:, -1, 4]
     Q_phi = frame_moment(model, kin, q, qd, qdd) - (rs[:, 0] * vs - rs[:, 1] * (1.0 + us))
     T = kinetic_energy(model, kin, q, qd)
-    U = strain_energy(model, q, k.approach, averaged)
+    U = strain_energy(model, q, options["approach"], averaged)
     return {"E": T + U, "T": T, "U": U,
             "P_pin": np.sum(F_pin * V_pin, -1), "P_diss": P_diss, "P_frame": kin.phid * Q_phi,
             "P_resultant": -np.sum((net_i[:, None] * ei + net_j[:, None] * ej) * V_pin, -1),

@@ -102,7 +102,7 @@ def test_without_rotary_inertia_the_rod_vibrates_at_omega_b():
     mech = crankgen.Mechanism(eps=0.05, mu=0.0)
     steps, periods = 200, 4
     dt = 2 * math.pi / steps
-    errors, with_rotary = [], None
+    errors = []
     for n in (2, 4, 8):
         model = Model.build(mech, 0.0, n, "lagrange", "A", "kelvin-voigt", rotary_inertia=False)
         d0 = bending_mode_state(model.mesh, 1e-7)
