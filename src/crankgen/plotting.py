@@ -9,9 +9,17 @@ def _pyplot():
 
 
 def _title(s):
+    extra = ""
+    gravity = tuple(s.get("gravity", (0.0, 0.0)))
+    if any(gravity):
+        extra += f", gravity ({gravity[0]:g}, {gravity[1]:g})"
+    if s.get("offset", 0.0):
+        extra += f", offset {s['offset']:g}"
+    if not s.get("rotary_inertia", True):
+        extra += ", no rotary inertia"
     return (f"approach {s['approach']}, {s['formulation']} formulation, {s['damping']} damping, "
             f"{s.get('membrane', 'pointwise')} membrane\nOmega* = {s['omega']:g}, eps = {s['eps']:g}, "
-            f"ms* = {s['ms']:g}, mu* = {s['mu']:g}, n = {s['n_elements']}")
+            f"ms* = {s['ms']:g}, mu* = {s['mu']:g}, n = {s['n_elements']}{extra}")
 
 
 def plot_deflection(result, path, failure=None):

@@ -205,9 +205,14 @@ def _case(args):
 
 
 def _describe(case):
+    extra = "" if case.rotary_inertia else ", no rotary inertia"
+    if any(case.gravity):
+        extra += f", gravity ({case.gravity[0]:g}, {case.gravity[1]:g})"
+    if case.offset:
+        extra += f", offset {case.offset:g}"
     return (f"approach {case.approach}, {case.formulation} formulation, {case.damping} damping, "
             f"{case.membrane} membrane, Omega* = {case.omega:g}, eps = {case.eps:g}, "
-            f"n = {case.n_elements}")
+            f"n = {case.n_elements}{extra}")
 
 
 def _say(args, text):

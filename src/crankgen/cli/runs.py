@@ -29,12 +29,11 @@ def _simulate(args, case, revolutions, out):
     import numpy as np
 
     from ..io import atomic_write, write_csv
-    from ..parameters import Mechanism
     from ..plotting import plot_deflection
     from ..progress import Progress
     from ..simulation import simulate
 
-    mech = Mechanism(a=case.a, eps=case.eps, ms=case.ms, mu=case.mu)
+    mech = case.mechanism
     steps = max(1, int(round(revolutions * case.steps_per_rev)))
     _say(args, f"simulate: {_describe(case)}, {revolutions:g} revolutions ({steps} steps)")
     failure = None
@@ -43,8 +42,8 @@ def _simulate(args, case, revolutions, out):
             res = simulate(mech, omega=case.omega, approach=case.approach, formulation=case.formulation,
                            n_elements=case.n_elements, steps_per_rev=case.steps_per_rev,
                            revolutions=revolutions, integrator=case.integrator, damping=case.damping,
-                           membrane=case.membrane, store_nodes=args.nodes, tol=args.tol,
-                           progress=progress)
+                           membrane=case.membrane, rotary_inertia=case.rotary_inertia,
+                           store_nodes=args.nodes, tol=args.tol, progress=progress)
         except ConvergenceError as exc:
             if exc.partial is None:
                 raise
