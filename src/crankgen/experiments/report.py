@@ -13,6 +13,7 @@ from .. import __version__
 from . import figures as F
 from . import claims
 from . import findings as fd
+from . import report_bifurcations as RB
 from .config import APPROACHES, MODELS
 from .markdown import num, pct, table
 from .markdown import rows_where as _rows, series as _series, short as _short
@@ -39,6 +40,10 @@ def _settings(cfg, total, files):
                  ["Figure 4", f"Omega* = {cfg.fig4_omega:g}, ms* = {', '.join(f'{m:g}' for m in cfg.fig4_ms)} (B, C), {cfg.fig4_revolutions:g} revolutions"],
                  ["Figure 5", f"Omega* = {', '.join(f'{o:g}' for o in cfg.fig5_omegas)}; eps = {', '.join(f'{e:g}' for e in cfg.fig5_eps)}"],
                  ["Figure 6", f"eps = {', '.join(f'{e:g}' for e in cfg.fig6_eps)}; Omega* = {fd.ranges_text(cfg.fig6_omegas)}"],
+                 ["bifurcations (approach A)", f"continuation over Omega* = {cfg.bif_range[0]:g} to {cfg.bif_range[1]:g}, eps = {', '.join(f'{e:g}' for e in cfg.fig6_eps)}, "
+                  + (f"n = {cfg.bif_elements}" if cfg.bif_elements else "n = the count used for A")
+                  + f", {cfg.bif_steps_per_rev or cfg.steps_per_rev} steps/rev, periods up to {cfg.bif_max_period}, Omega* steps up to {cfg.bif_dp_max:g}; "
+                  f"beyond the last special point a Poincare sweep over {cfg.bif_beyond_values} speeds ({cfg.bif_transient} transient + {cfg.bif_samples} sampled revolutions each)"],
                  ["Figures 7, 8", f"Omega* = {cfg.fig7_omega:g}, {cfg.fig8_omega:g}; ms* = {', '.join(f'{m:g}' for m in cfg.ext_ms)}; approach A"],
                  ["steady state", "periodic orbit with the crank period (shooting); amplitude = max |v*(1/2)| over the steady revolution"],
                  ["cases without a stable periodic state", (f"transient of {cfg.envelope_revolutions} revolutions from zero initial conditions, max |v*| over the last {cfg.envelope_window}" if cfg.envelope_revolutions > 0 else "no transient computed")],
@@ -257,9 +262,11 @@ def _theory(cfg, data):
     return lines
 
 
-def findings_markdown(cfg, conv, refine, data, timings, total, files=(), missing=None):
+def findings_markdown(cfg, conv, refine, data, timings, total, files=(), missing=None,
+                      bifurcations=None, bifurcations_missing=None):
     """The whole findings.md.  Deterministic for the same runs except the last section (Run:
-    date and wall times)."""
+    date and wall times).  bifurcations: the data of the bifurcations step (None: absent, for the
+    reason bifurcations_missing)."""
     now = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     figs = sorted(data)
     title = "Figures 2-8" if not missing else "Figures " + ", ".join(map(str, figs)) + \
@@ -271,12 +278,13 @@ def findings_markdown(cfg, conv, refine, data, timings, total, files=(), missing
              "data/*.json); the statements and verdicts are generated from those numbers.", ""]
     lines += _missing_note(missing)
     lines += _claims(cfg, conv, data, missing)
-    lines += _summary(cfg, conv, data)
+    lines += _summary(cfg, conv, data)[:-1] + [RB.summary_line(bifurcations, bifurcations_missing), ""]
     lines += _theory(cfg, data)
     lines += _settings(cfg, total, files)
     lines += _convergence(cfg, conv, refine)
     lines += _ratios(cfg, data)
     lines += _threshold(cfg, data)
+    lines += RB.section(cfg, bifurcations, bifurcations_missing)
     lines += _slopes(cfg, data)
     lines += _extensions(cfg, data)
     lines += _transients(cfg, data)
