@@ -52,7 +52,7 @@ def test_section_lists_points_failures_and_empty_runs():
     runs = [_run("paper", 0.01, branches=[_branch(1, [0.1, 0.8, 1.6], [1, 1, 1])]),
             _run("paper", 0.1, status="failed", message="CrankgenError: no periodic orbit near the start"),
             _run("consistent", 0.01, branches=[_branch(1, [0.1, 1.0, 1.1, 1.6], [1, 1, 0, 0]),
-                                               _branch(2, [1.055, 1.3, 1.6], [1, 0, 0])],
+                                               _branch(2, [1.055, 1.0550001, 1.3, 1.6], [0, 1, 0, 0])],
                  points=[pd, ns], beyond=beyond),
             _run("consistent", 0.1, branches=[_branch(1, [0.1, 1.6], [1, 0])])]
     text = "\n".join(RB.section(ReproduceConfig.full(), _data(runs)))
@@ -67,6 +67,8 @@ def test_section_lists_points_failures_and_empty_runs():
     assert "stable there" in text                           # paper 0.01: stable at the end
     assert "no special point, but the crank-period branch is unstable at Omega* = 1.6" in text
     assert "Period 1 (start): stable 0.1 -> 1.055, unstable 1.055 -> 1.6" in text
+    # a run shorter than the printed precision (marginal first point of a born branch) is left out
+    assert "Period 2 (start): stable 1.055 -> 1.3, unstable 1.3 -> 1.6" in text
     assert "above Omega* = 1.4 (the last special point)" in text
     assert "1.5: period-2" in text and "1.6: irregular (Lyapunov exponent 0.12 per revolution" in text
     assert "No branch followed (periods 1, 2) is stable at Omega* = 1.6." in text

@@ -17,9 +17,12 @@ def _where(r):
 
 
 def _segments(r, b):
+    """Stability along branch b; a run shorter than the printed precision (the first point of a
+    branch born at a period doubling, whose multiplier there is +1: marginal) is left out."""
     sps = [s for s in r["special_points"] if s["branch"] == b]
-    return ", ".join(f"{'stable' if s else 'unstable'} {num(x, 5)} -> {num(y, 5)}"
-                     for s, x, y in stability_segments(r["branches"][b], sps))
+    segs = stability_segments(r["branches"][b], sps)
+    shown = [g for g in segs if num(g[1], 5) != num(g[2], 5)] or segs
+    return ", ".join(f"{'stable' if s else 'unstable'} {num(x, 5)} -> {num(y, 5)}" for s, x, y in shown)
 
 
 def _point_text(s):
