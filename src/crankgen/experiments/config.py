@@ -85,7 +85,8 @@ class ReproduceConfig:
     # bifurcations of approach A (bifurcations.py): crankgen.continuation over Omega* in bif_range
     # for both models at every eps of Figure 6, with bif_elements elements (None: the count the
     # run uses for A) and bif_steps_per_rev steps (None: steps_per_rev), period-doubling branches
-    # followed up to bif_max_period, no step longer than bif_dp_max in Omega*; then a Poincare
+    # followed up to bif_max_period, no step longer than bif_dp_max in Omega*, points converged to
+    # bif_tol (the continuation's corrector tolerance); then a Poincare
     # sweep up over bif_beyond_values speeds above the last special point (bif_transient
     # revolutions from the previous speed's state, then bif_samples sampled ones)
     bif_range: tuple = (0.1, 1.6)
@@ -93,6 +94,7 @@ class ReproduceConfig:
     bif_steps_per_rev: object = None
     bif_max_period: int = 4
     bif_dp_max: float = 0.1
+    bif_tol: float = 1e-9
     bif_beyond_values: int = 4
     bif_transient: int = 100
     bif_samples: int = 32
@@ -125,8 +127,8 @@ class ReproduceConfig:
             fig5_eps=(0.005, 0.01, 0.03, 0.1),
             fig6_omegas=_speeds(0.2, 1.6, 0.2),
             ext_ms=(0.0, 0.5, 2.0), envelope_revolutions=20, envelope_window=5,
-            bif_elements=4, bif_steps_per_rev=50, bif_max_period=2, bif_beyond_values=2,
-            bif_transient=60, bif_samples=16,
+            bif_elements=4, bif_steps_per_rev=50, bif_max_period=2, bif_tol=1e-7,
+            bif_beyond_values=2, bif_transient=60, bif_samples=16,
             steady_options={"max_revolutions": 50, "tol": 1e-6})
 
     @classmethod

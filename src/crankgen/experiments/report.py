@@ -42,7 +42,7 @@ def _settings(cfg, total, files):
                  ["Figure 6", f"eps = {', '.join(f'{e:g}' for e in cfg.fig6_eps)}; Omega* = {fd.ranges_text(cfg.fig6_omegas)}"],
                  ["bifurcations (approach A)", f"continuation over Omega* = {cfg.bif_range[0]:g} to {cfg.bif_range[1]:g}, eps = {', '.join(f'{e:g}' for e in cfg.fig6_eps)}, "
                   + (f"n = {cfg.bif_elements}" if cfg.bif_elements else "n = the count used for A")
-                  + f", {cfg.bif_steps_per_rev or cfg.steps_per_rev} steps/rev, periods up to {cfg.bif_max_period}, Omega* steps up to {cfg.bif_dp_max:g}; "
+                  + f", {cfg.bif_steps_per_rev or cfg.steps_per_rev} steps/rev, periods up to {cfg.bif_max_period}, Omega* steps up to {cfg.bif_dp_max:g}, points converged to {cfg.bif_tol:g}; "
                   f"beyond the last special point a Poincare sweep over {cfg.bif_beyond_values} speeds ({cfg.bif_transient} transient + {cfg.bif_samples} sampled revolutions each)"],
                  ["Figures 7, 8", f"Omega* = {cfg.fig7_omega:g}, {cfg.fig8_omega:g}; ms* = {', '.join(f'{m:g}' for m in cfg.ext_ms)}; approach A"],
                  ["steady state", "periodic orbit with the crank period (shooting); amplitude = max |v*(1/2)| over the steady revolution"],

@@ -73,7 +73,7 @@ _FIGURE_KEYS = {2: ("fig2_omega", "fig2_elements", "fig2_revolutions"),
                 7: ("fig7_omega", "ext_ms", "crossing_rel_tol"),
                 8: ("fig8_omega", "ext_ms", "crossing_rel_tol")}
 _BIFURCATION_KEYS = ("fig6_eps", "bif_range", "bif_elements", "bif_steps_per_rev", "bif_max_period",
-                     "bif_dp_max", "bif_beyond_values", "bif_transient", "bif_samples")
+                     "bif_dp_max", "bif_tol", "bif_beyond_values", "bif_transient", "bif_samples")
 
 
 def _settings(cfg, keys, **extra):
