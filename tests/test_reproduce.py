@@ -245,6 +245,7 @@ def test_rerun_keeps_everything_and_force_recomputes(tiny_run, capsys):
     log = stream.getvalue()
     assert "figure 8: kept (complete and current)" in log
     assert "figure 5: not selected; its recorded result is used" in log
+    assert "bifurcations: not selected; its recorded result is used" in log
     assert {p.name: p.read_bytes() for p in out.iterdir() if p.is_file()} == before
     res = reproduce(out, config=ReproduceConfig.tiny(), force=True, quiet=True, figures=[8])
     assert "figure 8" in res["computed"] and "fig8.csv" in res["files"]
@@ -326,7 +327,7 @@ def test_sigint_then_rerun_gives_the_uninterrupted_result(tiny_run, tmp_path):
     assert "figure 4: computing (incomplete" in log or "figure 4: computing (missing" in log
     assert "figure 5: computing (missing" in log and "removed 1 temporary file" in log
     assert not list(out.glob(".*.tmp"))
-    assert _tables(out) == _tables(ref) and len(_tables(out)) == 8
+    assert _tables(out) == _tables(ref) and len(_tables(out)) == 11
     for name in output_names():                  # the figures too, byte for byte
         if name != "findings.md":
             assert (out / name).read_bytes() == (ref / name).read_bytes(), name
@@ -356,7 +357,8 @@ def test_second_command_line_run_recomputes_nothing(tiny_run, capsys):
     finally:
         mp.undo()
     err = capsys.readouterr().err
-    assert "0 step(s) computed, 11 kept" in err and "computing" not in err
+    assert "0 step(s) computed, 12 kept" in err and "computing" not in err
+    assert "bifurcations: kept (complete and current)" in err
     assert wall < 5.0
 
 
@@ -435,7 +437,7 @@ def test_output_folder_that_cannot_be_made_is_refused_before_computing(tmp_path,
     err = capsys.readouterr().err
     assert rc != 0 and "Traceback" not in err
     assert len(err.strip().splitlines()) == 1 and str(blocker) in err
-    assert "cannot write to" in err or "is a file, not a folder" in err
+    assert "cannot write to" in err or "cannot create" in err
 
 
 def test_theory_flag_matches_the_deflection(tiny_run):
@@ -454,3 +456,72 @@ def test_theory_flag_matches_the_deflection(tiny_run):
     section = text[text.index("## Results beyond"):text.index("## Settings")]
     for m, ap in flagged:
         assert f"| 6 | {m} | {ap} |" in section
+
+
+# ----------------------------------------------------------------------------- bifurcations step
+
+def _section(text):
+    return text[text.index("## Bifurcations of approach A"):text.index("## Slope of log v*")]
+
+
+def test_bifurcation_findings_list_every_special_point(tiny_run):
+    """Every special point of bifurcations.csv is in findings.md with its kind, Omega* and period;
+    its critical multiplier is +1 (fold), -1 (period doubling) or on the unit circle."""
+    _, out = tiny_run
+    section = _section((out / "findings.md").read_text())
+    rows = list(csv.DictReader(open(out / "bifurcations.csv")))
+    cfg = ReproduceConfig.tiny()
+    assert {(r["model"], float(r["eps"])) for r in rows} == {(m, e) for m in ("paper", "consistent")
+                                                           for e in cfg.fig6_eps}
+    points = [r for r in rows if r["kind"] in ("fold", "period-doubling", "neimark-sacker")]
+    assert points
+    table = [[c.strip() for c in line.split("|")[1:-1]] for line in section.splitlines()
+             if line.startswith("| paper |") or line.startswith("| consistent |")]
+    for r in points:
+        cells = [r["model"], f"{float(r['eps']):g}", r["kind"], f"{float(r['omega']):.7g}", r["period"]]
+        assert any(row[:5] == cells for row in table), cells
+        mu = complex(float(r["multiplier_re"]), float(r["multiplier_im"]))
+        target = {"fold": 1.0, "period-doubling": -1.0}.get(r["kind"])
+        assert (abs(mu - target) if target is not None else abs(abs(mu) - 1.0)) < 1e-6, r
+    for m in ("paper", "consistent"):
+        assert f"- {m} model, eps = 0.01 (n = {cfg.bif_elements}, {cfg.bif_steps_per_rev} steps/rev)" in section
+    assert "Beyond:" in section
+    summary = (out / "findings.md").read_text().split("## Summary")[1].split("##")[0]
+    assert "Bifurcations of approach A for 0.9 <= Omega* <= 1.3" in summary
+
+
+def test_continuation_loses_stability_where_the_sweep_does(tiny_run):
+    """Independent of the continuation: Figure 6's steady states (shooting) of the consistent
+    model's A say stable or unstable at each swept speed; the continuation's crank-period branch
+    says the same there, and between a stable start and an unstable swept speed it has a special
+    point."""
+    _, out = tiny_run
+    lo, hi = ReproduceConfig.tiny().bif_range
+    sweep = {float(r["omega"]): r["status"] for r in csv.DictReader(open(out / "fig6.csv"))
+             if r["model"] == "consistent" and r["approach"] == "A" and float(r["eps"]) == 0.01}
+    branch = [r for r in csv.DictReader(open(out / "bifurcation_branches.csv"))
+              if r["model"] == "consistent" and r["branch"] == "0" and float(r["eps"]) == 0.01]
+    om = np.array([float(r["omega"]) for r in branch])
+    stable = [r["stable"] == "1" for r in branch]
+    inside = {w: s for w, s in sweep.items() if lo <= w <= hi and s in ("periodic", "unstable")}
+    assert "unstable" in inside.values()          # the tiny sweep: unstable at 1.2
+    for w, s in inside.items():
+        assert stable[int(np.argmin(np.abs(om - w)))] == (s == "periodic"), w
+    pts = [float(r["omega"]) for r in csv.DictReader(open(out / "bifurcations.csv"))
+           if r["model"] == "consistent" and r["branch"] == "0" and float(r["eps"]) == 0.01]
+    first_unstable = min(w for w, s in inside.items() if s == "unstable")
+    assert stable[0] and any(lo < p < first_unstable for p in pts), pts
+
+
+def test_findings_rebuilt_from_the_recorded_bifurcations(tiny_run, tmp_path):
+    """findings.md deleted: a rerun computes only the findings step, from the recorded data, and
+    the bifurcation section is the same."""
+    import shutil
+    _, ref = tiny_run
+    out = tmp_path / "copy"
+    shutil.copytree(ref, out)
+    before = _findings_body(out / "findings.md")
+    (out / "findings.md").unlink()
+    res = reproduce(out, config=ReproduceConfig.tiny(), quiet=True)
+    assert res["computed"] == ["findings"]
+    assert _findings_body(out / "findings.md") == before

@@ -82,6 +82,22 @@ class ReproduceConfig:
     # max |v*| over the last `envelope_window` of `envelope_revolutions` revolutions (0: skip)
     envelope_revolutions: int = 80
     envelope_window: int = 10
+    # bifurcations of approach A (bifurcations.py): crankgen.continuation over Omega* in bif_range
+    # for both models at every eps of Figure 6, with bif_elements elements (None: the count the
+    # run uses for A) and bif_steps_per_rev steps (None: steps_per_rev), period-doubling branches
+    # followed up to bif_max_period, no step longer than bif_dp_max in Omega*, points converged to
+    # bif_tol (the continuation's corrector tolerance); then a Poincare
+    # sweep up over bif_beyond_values speeds above the last special point (bif_transient
+    # revolutions from the previous speed's state, then bif_samples sampled ones)
+    bif_range: tuple = (0.1, 1.6)
+    bif_elements: object = None
+    bif_steps_per_rev: object = None
+    bif_max_period: int = 4
+    bif_dp_max: float = 0.1
+    bif_tol: float = 1e-9
+    bif_beyond_values: int = 4
+    bif_transient: int = 100
+    bif_samples: int = 32
     # thresholds of the findings
     differ_threshold: float = 0.10       # "B or C differs from A by more than 10 %"
     crossing_rel_tol: float = 0.05       # extension spread at a common crossing / largest spread
@@ -94,6 +110,8 @@ class ReproduceConfig:
             raise ValueError("fig5_eps must contain the base eps (the ratio table reads it)")
         if len(self.conv_ladder) < 2 or list(self.conv_ladder) != sorted(set(self.conv_ladder)):
             raise ValueError("conv_ladder must hold at least two increasing element counts")
+        if len(self.bif_range) != 2 or not 0 < self.bif_range[0] < self.bif_range[1]:
+            raise ValueError("bif_range must be (start, stop) with 0 < start < stop")
 
     @classmethod
     def full(cls):
@@ -109,6 +127,8 @@ class ReproduceConfig:
             fig5_eps=(0.005, 0.01, 0.03, 0.1),
             fig6_omegas=_speeds(0.2, 1.6, 0.2),
             ext_ms=(0.0, 0.5, 2.0), envelope_revolutions=20, envelope_window=5,
+            bif_elements=4, bif_steps_per_rev=50, bif_max_period=2, bif_tol=1e-7,
+            bif_beyond_values=2, bif_transient=60, bif_samples=16,
             steady_options={"max_revolutions": 50, "tol": 1e-6})
 
     @classmethod
@@ -121,6 +141,8 @@ class ReproduceConfig:
             fig4_revolutions=0.5, fig4_ms=(0.0, 1.0), fig5_omegas=(0.1, 0.8),
             fig5_eps=(0.01, 0.05), fig6_omegas=(0.4, 0.8, 1.2), fig6_eps=(0.01,),
             ext_ms=(0.0, 1.0), envelope_revolutions=4, envelope_window=1,
+            bif_range=(0.9, 1.3), bif_elements=4, bif_steps_per_rev=50, bif_max_period=2,
+            bif_beyond_values=2, bif_transient=20, bif_samples=8,
             steady_options={"max_revolutions": 20})
 
     @classmethod

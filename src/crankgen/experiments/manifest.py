@@ -1,8 +1,8 @@
 """The record of a `crankgen reproduce` output folder (manifest.json): for each step of the run
-(convergence check, each figure, refinement check, convergence files, findings) the settings and
-code version (runner.run_version) that made it, its files with their sha256, and its wall time.  A rerun keeps a step
-whose record is complete, whose settings and code version are the current ones and whose files
-are unchanged, and recomputes the others."""
+(convergence check, bifurcations, each figure, refinement check, convergence files, findings) the
+settings and code version (runner.run_version) that made it, its files with their sha256, and its
+wall time.  A rerun keeps a step whose record is complete, whose settings and code version are
+the current ones and whose files are unchanged, and recomputes the others."""
 
 import json
 from pathlib import Path

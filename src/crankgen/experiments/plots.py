@@ -12,6 +12,7 @@ import numpy as np
 
 from ..plotting import APPROACH_COLORS, mark_at_axis, panels
 from . import findings as fd
+from . import plot_bifurcations as PB
 from .config import APPROACHES, MODELS
 from .figures import THEORY_LIMIT
 
@@ -317,12 +318,14 @@ def _off_scale(ax, rows, top, xkey):
                        color=APPROACH_COLORS[ap], edgecolors="k", linewidths=0.5, s=40, zorder=5)
 
 
-def _limit_to_steady(ax, rows, xkey, margin=1.25):
-    """Linear y axis scaled to the steady amplitudes (periodic and unstable orbits); responses
-    beyond it are marked at the top inside the frame, so they never squash the curves."""
+def _limit_to_steady(ax, rows, xkey, margin=1.25, extra=()):
+    """Linear y axis scaled to the steady amplitudes (periodic and unstable orbits, and the
+    `extra` values: continuation branches); responses beyond it are marked at the top inside the
+    frame, so they never squash the curves."""
     vals = [r["amplitude"] for r in rows if math.isfinite(r["amplitude"])]
     vals += [r["orbit_amplitude"] for r in rows if r["status"] == "unstable"
              and math.isfinite(r["orbit_amplitude"])]
+    vals += [v for v in extra if math.isfinite(v)]
     if not vals:
         return
     top = margin * max(vals)
@@ -424,12 +427,21 @@ def plot_figure5(data, cfg, counts):
     return fig
 
 
-def plot_figure6(data, cfg, counts):
+def plot_figure6(data, cfg, counts, bifurcations=None):
+    """Steady amplitude against Omega*; with `bifurcations` (bifurcations.py), the continuation
+    of approach A drawn over the consistent model's panels."""
     n_rows = 2 * len(cfg.fig6_eps)
-    fig, axes = panels(n_rows, 2, width=6.4, height=2.9, space_below=_below(7, 2), top_margin=0.8)
+    runs = {}
+    for r in (bifurcations or {}).get("runs", []):
+        if r["model"] == MODELS[1].key:
+            runs[r["eps"]] = r
+    n_bif = max((len(PB.legend_handles(r)) for r in runs.values()), default=0)
+    fig, axes = panels(n_rows, 2, width=6.4, height=2.9, space_below=_below(7 + n_bif, 2),
+                       top_margin=1.0 if runs else 0.8)
     for j, m in enumerate(MODELS):
         for i, eps in enumerate(cfg.fig6_eps):
             rows = [r for r in data["rows"] if r["model"] == m.key and r["eps"] == eps]
+            run = runs.get(eps) if m is MODELS[1] else None
             for zoom in (False, True):
                 ax = axes[2 * i + zoom, j]
                 for ap in APPROACHES:
@@ -449,11 +461,17 @@ def plot_figure6(data, cfg, counts):
                     _title(ax, m, f", eps = {eps:g}\nmagnified: v* from 0 to {cfg.fig6_inset_ylim:g}")
                     extra = []
                 else:
-                    _limit_to_steady(ax, rows, "omega")
+                    xlim = ax.get_xlim()
+                    _limit_to_steady(ax, rows, "omega",
+                                     extra=[PB.top(run, xlim) * 1.05 / 1.25] if run else ())
+                    ax.set_xlim(*xlim)
                     if _has_missing(rows):
                         _room_below(ax)
-                    _title(ax, m, f", eps = {eps:g}")
+                    _title(ax, m, f", eps = {eps:g}" + ("\nswept points and the continuation of approach A"
+                                                        if run else ""))
                     extra = _status_handles(rows, off_scale=_has_off_scale(ax, rows))
+                if run is not None:
+                    extra = PB.draw(ax, run) + extra
                 extra = _theory_curve(ax, "omega", eps, rows) + extra
                 note = _approach_coincidences(rows, "omega")
                 _legend(ax, ncol=2, extra=extra + ([note] if note else []))
@@ -509,10 +527,12 @@ def plot_extension(data, cfg, counts):
     return fig
 
 
-def plot_figure(data, cfg, counts):
+def plot_figure(data, cfg, counts, bifurcations=None):
     f = data["figure"]
-    fn = {2: plot_figure2, 3: plot_figure3, 4: plot_figure4, 5: plot_figure5, 6: plot_figure6,
-          7: plot_extension, 8: plot_extension}[f]
+    if f == 6:
+        return plot_figure6(data, cfg, counts, bifurcations)
+    fn = {2: plot_figure2, 3: plot_figure3, 4: plot_figure4, 5: plot_figure5, 7: plot_extension,
+          8: plot_extension}[f]
     return fn(data, cfg, counts)
 
 

@@ -16,6 +16,7 @@ from ..errors import CrankgenError
 from ..cases import Case
 from ..progress import Progress
 from ..simulation import simulate_many
+from . import bifurcations as BF
 from . import figures as F
 from . import plots, report
 from .config import FIGURES, ReproduceConfig
@@ -28,11 +29,17 @@ from .manifest import NAME as MANIFEST, Manifest
 DATA = "data"          # subfolder of the computed data that findings.md is built from (JSON)
 
 
+BIFURCATION_FILES = ["bifurcations.csv", "bifurcation_branches.csv", "bifurcation_beyond.csv"]
+
+
 def output_names(figures=FIGURES):
-    """The figure, convergence and findings files of a run over `figures`."""
+    """The figure, bifurcation (with Figure 6), convergence and findings files of a run over
+    `figures`."""
     names = []
     for f in figures:
         names += [f"fig{f}.png", f"fig{f}.csv"]
+    if 6 in figures:
+        names += BIFURCATION_FILES
     return names + ["convergence.png", "convergence.csv", "findings.md"]
 
 
@@ -42,6 +49,7 @@ def step_files(step):
         f = step.split()[1]
         return [f"{DATA}/fig{f}.json", f"fig{f}.csv", f"fig{f}.png"]
     return {"convergence check": [f"{DATA}/convergence.json"],
+            "bifurcations": [f"{DATA}/bifurcations.json", *BIFURCATION_FILES],
             "refinement check": [f"{DATA}/refinement.json"],
             "convergence files": ["convergence.csv", "convergence.png"],
             "findings": ["findings.md"]}[step]
@@ -49,8 +57,8 @@ def step_files(step):
 
 def all_files():
     out = [MANIFEST]
-    for step in ["convergence check", *[f"figure {f}" for f in FIGURES], "refinement check",
-                 "convergence files", "findings"]:
+    for step in ["convergence check", "bifurcations", *[f"figure {f}" for f in FIGURES],
+                 "refinement check", "convergence files", "findings"]:
         out += step_files(step)
     return out
 
@@ -64,6 +72,8 @@ _FIGURE_KEYS = {2: ("fig2_omega", "fig2_elements", "fig2_revolutions"),
                     "envelope_window"),
                 7: ("fig7_omega", "ext_ms", "crossing_rel_tol"),
                 8: ("fig8_omega", "ext_ms", "crossing_rel_tol")}
+_BIFURCATION_KEYS = ("fig6_eps", "bif_range", "bif_elements", "bif_steps_per_rev", "bif_max_period",
+                     "bif_dp_max", "bif_tol", "bif_beyond_values", "bif_transient", "bif_samples")
 
 
 def _settings(cfg, keys, **extra):
@@ -175,7 +185,8 @@ class _Lock:
 def reproduce(out="results", config=None, force=False, quiet=False, figures=FIGURES, stream=None):
     """Compute the selected figures (always with the convergence check) into `out`: one PNG, one
     CSV and one data file (data/figN.json) per figure, convergence.{png,csv} and findings.md, with
-    manifest.json recording what made each.
+    manifest.json recording what made each.  With Figure 6 the bifurcations step runs first
+    (bifurcations.py: the continuation of approach A, drawn over Figure 6, and its CSV files).
 
     Rerunnable and resumable: a step whose recorded result is complete and was made with the
     current settings and code is kept; missing, stale or incomplete ones are computed (the log
@@ -218,8 +229,8 @@ def _reproduce(out, config, force, quiet, figures, stream):
             raise
         manifest = Manifest(out)
     # files this run may write that no recorded step made: refuse before computing anything
-    selected = ["convergence check", *[f"figure {f}" for f in figures], "refinement check",
-                "convergence files", "findings"]
+    selected = ["convergence check", *(["bifurcations"] if 6 in figures else []),
+                *[f"figure {f}" for f in figures], "refinement check", "convergence files", "findings"]
     foreign = [n for s in selected for n in step_files(s)
                if (out / n).exists() and not manifest.owned(n)]
     if foreign and not force:
@@ -261,17 +272,44 @@ def _reproduce(out, config, force, quiet, figures, stream):
     counts = conv["counts"]
     ctx.log("element counts used: " + ", ".join(f"{m} {a}: {n}" for (m, a), n in counts.items()))
 
+    # bifurcations of approach A (drawn over Figure 6): computed with Figure 6, else the recorded
+    # result when current
+    bif_step = "bifurcations"
+    bif_settings = _settings(config, _BIFURCATION_KEYS, runs=BF.settings_of(config, counts))
+    bif, bif_missing = None, None
+
+    def write_bifurcations(b):
+        write_json(out / DATA / "bifurcations.json", b)
+        for name, (cols, rows) in BF.tables(b).items():
+            write_csv(out / name, cols, rows)
+    if 6 in figures:
+        bif = run_step(bif_step, bif_settings, lambda: BF.bifurcations(ctx, counts), write_bifurcations)
+        bif = bif if bif is not None else load("bifurcations.json")
+    else:
+        state, reason = manifest.state(bif_step, bif_settings, version)
+        if state == "current":
+            ctx.log(f"{bif_step}: not selected; its recorded result is used (complete and current)")
+            bif = load("bifurcations.json")
+        else:
+            bif_missing = ({"missing": "not computed in this folder"}.get(state)
+                           or f"its recorded result is {state} ({reason})")
+            ctx.log(f"{bif_step}: not selected and {bif_missing}; findings.md says so")
+    bif_print = manifest.fingerprint(bif_step) if bif is not None else None
+
     funcs = {2: F.figure2, 3: F.figure3, 4: F.figure4, 5: F.figure5, 6: F.figure6,
              7: F.figure7, 8: F.figure8}
     data, missing, current = {}, {}, {}
     for f in FIGURES:
         step = f"figure {f}"
-        settings = _settings(config, _FIGURE_KEYS[f], counts=_counts_list(counts), dpi=config.dpi)
+        extra = dict(bifurcations=bif_print) if f == 6 else {}
+        settings = _settings(config, _FIGURE_KEYS[f], counts=_counts_list(counts), dpi=config.dpi,
+                             **extra)
         if f in figures:
             def write_figure(d, f=f):
                 write_json(out / DATA / f"fig{f}.json", d)
                 write_csv(out / f"fig{f}.csv", *F.csv_table(d))
-                save_figure(plots.plot_figure(d, config, counts), out / f"fig{f}.png", dpi=config.dpi)
+                save_figure(plots.plot_figure(d, config, counts, bifurcations=bif if f == 6 else None),
+                            out / f"fig{f}.png", dpi=config.dpi)
             d = run_step(step, settings, lambda f=f: funcs[f](ctx, counts), write_figure)
             current[f] = True
             if d is not None:
@@ -313,22 +351,29 @@ def _reproduce(out, config, force, quiet, figures, stream):
     for f in FIGURES:
         if current.get(f):
             inputs[f"figure {f}"] = manifest.fingerprint(f"figure {f}")
-    steps = ["convergence check", *[f"figure {f}" for f in FIGURES if current.get(f)],
+    if bif is not None:
+        inputs[bif_step] = bif_print
+    steps = ["convergence check", bif_step if bif is not None else None,
+             *[f"figure {f}" for f in FIGURES if current.get(f)],
              "refinement check" if refine is not None else None]
     timings = {s: manifest.wall_time(s) for s in steps if s}
     present = [n for n in output_names(FIGURES) if n != "findings.md"
-               and (n.startswith("convergence") or int(n[3]) in current)]
+               and (n.startswith("convergence") or (n in BIFURCATION_FILES and bif is not None)
+                    or (n.startswith("fig") and int(n[3]) in current))]
 
     def make_findings():
         for f in FIGURES:
             figure_data(f)
         total = sum(v for v in timings.values() if v)
         return report.findings_markdown(config, conv, refine, data, timings, total, files=present,
-                                        missing=missing)
-    run_step("findings", dict(config=config.as_dict(), inputs=inputs, missing=missing),
+                                        missing=missing, bifurcations=bif,
+                                        bifurcations_missing=bif_missing)
+    run_step("findings", dict(config=config.as_dict(), inputs=inputs, missing=missing,
+                              bifurcations_missing=bif_missing),
              make_findings, lambda text: atomic_write_text(out / "findings.md", text))
     total = time.perf_counter() - started
     ctx.log(f"{len(computed)} step(s) computed, {len(kept)} kept; wrote {len(written)} files to "
             f"{out} in {total:.1f} s")
     return dict(out=out, files=written, wall_time=total, data=data, convergence=conv,
-                refinement=refine, timings=timings, computed=computed, kept=kept, missing=missing)
+                refinement=refine, bifurcations=bif, timings=timings, computed=computed, kept=kept,
+                missing=missing)

@@ -1,0 +1,567 @@
+"""How each of the paper's claims (claims.py) is computed from a model's runs: the verdict
+vocabulary, the tolerances, the run data a check reads, and one function per claim returning an
+Outcome (verdict, the computed value in words, the reason).  A quantity a check needs that the runs
+do not hold raises Missing (the claim is then "not computable", with the message)."""
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import findings as fd
+
+REPRODUCED, PARTLY, NOT_REPRODUCED, NOT_COMPUTABLE = (
+    "reproduced", "partly", "not reproduced", "not computable")
+VERDICTS = (REPRODUCED, PARTLY, NOT_REPRODUCED, NOT_COMPUTABLE)
+STABLE = "periodic"
+
+# tolerances (stated in findings.md beside the table)
+CLOSE = 0.05          # "almost the same", "negligible", "almost indistinguishable": within 5 %
+SAME = 0.02           # "the same result", "no effect": within 2 %
+NOTICEABLE = 0.10     # "noticeable" difference: above 10 %
+FACTOR = 1.5          # "about N-fold": within a factor 1.5 of N
+SPEED = 0.1           # a speed limit "about Omega*": within +- 0.1
+ANGLE = 3.0           # crank angles: within 3 degrees
+SLOPE = 0.15          # "slope about -1": within +- 0.15, and the power law holding to 0.1 in log v*
+
+
+@dataclass
+class Outcome:
+    verdict: str
+    value: str = ""
+    reason: str = ""
+
+
+@dataclass
+class RunData:
+    cfg: object
+    conv: dict
+    data: dict                       # figure number -> figure data (as figures.py returns it)
+    missing: dict = field(default_factory=dict)   # figure number -> why it is absent
+
+
+class Missing(Exception):
+    """A quantity a claim needs is not available (the message says why)."""
+
+
+# ----------------------------------------------------------------------------- helpers
+
+def _num(x, d=3):
+    return "n/a" if x is None or not math.isfinite(x) else f"{x:.{d}g}"
+
+
+def _pct(x):
+    if x is not None and x == math.inf:
+        return "inf (one run diverges or has no stable state)"
+    return "n/a" if x is None or not math.isfinite(x) else f"{100 * x:.3g} %"
+
+
+def _fig(run, f):
+    if f not in run.data:
+        raise Missing(f"Figure {f} {run.missing.get(f, 'was not computed')}")
+    return run.data[f]
+
+
+def _rows(run, f, **match):
+    return [r for r in _fig(run, f)["rows"] if all(r[k] == v for k, v in match.items())]
+
+
+def _amp(run, f, **match):
+    rr = _rows(run, f, **match)
+    return rr[0]["amplitude"] if rr else math.nan
+
+
+def _curves(run, f, model, **match):
+    return [c for c in _fig(run, f)["curves"] if c.spec.model == model
+            and all(getattr(c.spec, k) == v for k, v in match.items())]
+
+
+def _diff(a, b):
+    """Transient difference max |v_a - v_b| / max |v_b| over their common history (a failed run
+    counts as an infinite difference: it diverges)."""
+    if not (a.ok and b.ok):
+        return math.inf
+    ka, kb = a.spec.steps_per_rev, b.spec.steps_per_rev
+    va, vb = a.v_mid, b.v_mid
+    if kb % ka == 0:
+        vb = vb[:: kb // ka]
+    elif ka % kb == 0:
+        va = va[:: ka // kb]
+    k = min(len(va), len(vb))
+    scale = float(np.max(np.abs(vb[:k])))
+    return float(np.max(np.abs(va[:k] - vb[:k])) / scale) if scale > 0 else math.nan
+
+
+def _by_parts(parts):
+    """Verdict from sub-statements (bool each): all -> reproduced, some -> partly, none -> not."""
+    n = sum(bool(p) for p in parts)
+    return REPRODUCED if n == len(parts) else (NOT_REPRODUCED if n == 0 else PARTLY)
+
+
+def _near(x, target, tol, partly_tol=None):
+    if x is None or not math.isfinite(x):
+        return NOT_REPRODUCED
+    if abs(x - target) <= tol:
+        return REPRODUCED
+    if partly_tol is not None and abs(x - target) <= partly_tol:
+        return PARTLY
+    return NOT_REPRODUCED
+
+
+def _fold(x, target):
+    """"About target-fold": within FACTOR reproduced, beyond 2 at least (a large overestimate)
+    partly, otherwise not reproduced."""
+    if x is None or not math.isfinite(x):
+        return NOT_REPRODUCED
+    if target / FACTOR <= x <= target * FACTOR:
+        return REPRODUCED
+    return PARTLY if x >= 2.0 else NOT_REPRODUCED
+
+
+def _at_speed(run, f, model, ap, eps, omega, tol=0.026):
+    """Row of Figure f nearest to omega (None if no sweep point within tol)."""
+    rr = _rows(run, f, model=model, approach=ap, eps=eps)
+    if not rr:
+        return None
+    r = min(rr, key=lambda r: abs(r["omega"] - omega))
+    return r if abs(r["omega"] - omega) <= tol else None
+
+
+def _limit_speed(run, model, eps):
+    """Lowest Omega* (Figure 6) where B or C differs from A by more than the config's threshold or
+    loses its stable periodic state while A has one (as findings.md's threshold table)."""
+    thr = run.cfg.differ_threshold
+    first = []
+    a_ok = {r["omega"]: r["status"] == STABLE for r in _rows(run, 6, model=model, eps=eps, approach="A")}
+    if not a_ok:
+        raise Missing(f"Figure 6 has no eps = {eps:g}")
+    for ap in ("B", "C"):
+        rr = sorted(_rows(run, 6, model=model, eps=eps, approach=ap), key=lambda r: r["omega"])
+        x = [r["omega"] for r in rr]
+        d = np.abs(np.array([r["ratio_to_A"] for r in rr], dtype=float) - 1.0)
+        c = fd.first_exceedance(x, d, thr)
+        lost = fd.first_where(x, [r["status"] != STABLE and a_ok.get(r["omega"], False) for r in rr])
+        first += [v for v in (c, lost) if v is not None]
+    return min(first) if first else None
+
+
+def _conv_series(run, model, ap, omega):
+    s = run.conv["series"].get((model, ap, omega))
+    if s is None:
+        raise Missing(f"the convergence check did not run at Omega* = {omega:g}")
+    return s
+
+
+def _crossings(run, f, model):
+    from .figures import extension_crossings_of
+    xs = extension_crossings_of(_fig(run, f), model, run.cfg.crossing_rel_tol)
+    if xs is None:
+        raise Missing(f"Figure {f} has fewer than two stable extension curves")
+    return [x["angle"] for x in xs]
+
+
+def _angle_match(found, expected):
+    d = [min(abs((e - a + 180) % 360 - 180) for a in found) if found else math.inf for e in expected]
+    return d
+
+
+def _ext_curves(run, f, model):
+    cs = [c for c in _fig(run, f)["curves"] if c["model"] == model and c["status"] == STABLE]
+    if not cs:
+        raise Missing(f"Figure {f} has no stable extension curve")
+    return sorted(cs, key=lambda c: c["ms"])
+
+
+# ----------------------------------------------------------------------------- claims
+
+def c2a(run, m):
+    cfg = run.cfg
+    out = {}
+    for ap in "ABC":
+        c2 = _curves(run, 2, m, approach=ap, n_elements=2)
+        c4 = _curves(run, 2, m, approach=ap, n_elements=4)
+        if not (c2 and c4):
+            raise Missing("Figure 2 was not run with 2 and 4 elements")
+        out[ap] = _diff(c2[0], c4[0])
+    worst = max(out.values())
+    value = ", ".join(f"{ap} {_pct(d)}" for ap, d in out.items())
+    return Outcome(_by_parts([d <= CLOSE for d in out.values()]), f"2 vs 4 elements: {value}",
+                   f"largest {_pct(worst)} (tolerance {_pct(CLOSE)}) at Omega* = {cfg.fig2_omega:g}")
+
+
+def _fig2_count(run, m):
+    ns = {c.spec.n_elements for c in _fig(run, 2)["curves"] if c.spec.model == m}
+    return 4 if 4 in ns else max(ns)
+
+
+def c2b(run, m):
+    n = _fig2_count(run, m)
+    a = _curves(run, 2, m, approach="A", n_elements=n)
+    out = {}
+    for ap in "BC":
+        c = _curves(run, 2, m, approach=ap, n_elements=n)
+        if not (a and c):
+            raise Missing(f"Figure 2 has no A and {ap} run with the same count")
+        out[ap] = _diff(c[0], a[0])
+    return Outcome(_by_parts([d <= CLOSE for d in out.values()]),
+                   f"vs A (n = {n}): " + ", ".join(f"{ap} {_pct(d)}" for ap, d in out.items()),
+                   f"tolerance {_pct(CLOSE)} of max |v*_A|")
+
+
+def c3a(run, m):
+    s = _conv_series(run, m, "A", run.cfg.fig3_omega)
+    if s["kind"] != "converged":
+        return Outcome(NOT_REPRODUCED, s["kind"], s["note"])
+    n = s["n"]
+    v = REPRODUCED if n == 16 else (PARTLY if n in (8, 32) else NOT_REPRODUCED)
+    return Outcome(v, f"converged at n = {n}", f"smallest n whose steady amplitude is within "
+                   f"{_pct(run.cfg.conv_tol)} of the next count's: 16 reproduces, 8 or 32 partly")
+
+
+def c3b(run, m):
+    cs = _curves(run, 3, m)
+    finest = max(c.spec.n_elements for c in cs)
+    pair = sorted([c for c in cs if c.spec.n_elements == finest], key=lambda c: c.spec.steps_per_rev)
+    if len(pair) < 2:
+        raise Missing("Figure 3 has no run with a second time step")
+    d = _diff(pair[0], pair[-1])
+    v = REPRODUCED if d <= SAME else (PARTLY if d <= NOTICEABLE else NOT_REPRODUCED)
+    return Outcome(v, f"{_pct(d)} (n = {finest}, {pair[0].spec.steps_per_rev} vs "
+                   f"{pair[-1].spec.steps_per_rev} steps)",
+                   f"same within {_pct(SAME)}, partly within {_pct(NOTICEABLE)}")
+
+
+def c3c(run, m):
+    om = run.cfg.fig3_omega
+    res = {ap: _conv_series(run, m, ap, om) for ap in "BC"}
+    ok = [s["kind"] == "converged" and s["n"] <= 4 for s in res.values()]
+    value = ", ".join(f"{ap}: {s['n'] if s['kind'] == 'converged' else s['kind']}" for ap, s in res.items())
+    return Outcome(_by_parts(ok), f"converged n {value}",
+                   f"converged count at Omega* = {om:g} at most 4")
+
+
+def c4a(run, m):
+    cfg = run.cfg
+    base = {ap: _curves(run, 4, m, approach=ap, ms=cfg.ms) for ap in "BC"}
+    heavy_ms = max(c.spec.ms for c in _curves(run, 4, m, approach="B"))
+    heavy = {ap: _curves(run, 4, m, approach=ap, ms=heavy_ms) for ap in "BC"}
+    if not all(base.values()) or not all(heavy.values()) or heavy_ms <= cfg.ms:
+        raise Missing("Figure 4 has no B and C runs with a larger slider mass")
+    d0, d1 = _diff(base["C"][0], base["B"][0]), _diff(heavy["C"][0], heavy["B"][0])
+    return Outcome(_by_parts([d0 > NOTICEABLE, d1 > NOTICEABLE and d1 > d0]),
+                   f"|C - B| / max |B|: {_pct(d0)} at ms* = {cfg.ms:g}, {_pct(d1)} at ms* = {heavy_ms:g}",
+                   f"noticeable above {_pct(NOTICEABLE)}, and larger with the larger mass "
+                   "(inf: one of them diverges)")
+
+
+def c4b(run, m):
+    cfg = run.cfg
+    cs = _curves(run, 4, m, approach="C")
+    ref = [c for c in cs if c.spec.ms == cfg.ms]
+    if len(cs) < 2 or not ref:
+        raise Missing("Figure 4 has no C runs with several slider masses")
+    d = max(_diff(c, ref[0]) for c in cs if c is not ref[0])
+    v = REPRODUCED if d <= SAME else (PARTLY if d <= NOTICEABLE else NOT_REPRODUCED)
+    return Outcome(v, f"largest change of C with ms*: {_pct(d)}",
+                   f"no effect within {_pct(SAME)}, partly within {_pct(NOTICEABLE)}")
+
+
+def c4c(run, m):
+    cfg = run.cfg
+    a = _curves(run, 4, m, approach="A", ms=cfg.ms)
+    out = {}
+    for ap in "BC":
+        c = _curves(run, 4, m, approach=ap, ms=cfg.ms)
+        if not (a and c):
+            raise Missing("Figure 4 lacks A, B or C at the base slider mass")
+        if not (a[0].ok and c[0].ok):
+            out[ap] = math.nan
+            continue
+        out[ap] = a[0].max_abs / c[0].max_abs
+    ok = [_fold(r, 0.1) == REPRODUCED if math.isfinite(r) else False for r in out.values()]
+    failed = [ap for ap, r in out.items() if not math.isfinite(r)]
+    return Outcome(_by_parts(ok), "max|A| / max|X|: " + ", ".join(f"{ap} {_num(r)}" for ap, r in out.items()),
+                   f"within a factor {FACTOR:g} of 0.1" + (f"; {', '.join(failed)} (or A) diverges" if failed else ""))
+
+
+def c5a(run, m):
+    om = min(run.cfg.fig5_omegas, key=lambda o: abs(o - 0.1))
+    if abs(om - 0.1) > 1e-9:
+        raise Missing("Figure 5 was not run at Omega* = 0.1")
+    worst, held, total = 0.0, 0, 0
+    for eps in run.cfg.fig5_eps:
+        a = _amp(run, 5, model=m, approach="A", omega=om, eps=eps)
+        ds = [abs(_amp(run, 5, model=m, approach=ap, omega=om, eps=eps) / a - 1) for ap in "BC"]
+        d = max(ds) if all(math.isfinite(x) for x in ds) else math.inf
+        worst, held, total = max(worst, d), held + (d <= CLOSE), total + 1
+    v = REPRODUCED if held == total else (NOT_REPRODUCED if held == 0 else PARTLY)
+    return Outcome(v, f"max |X/A - 1| = {_pct(worst)}; holds at {held} of {total} eps",
+                   f"within {_pct(CLOSE)} at every eps")
+
+
+def c5b(run, m):
+    cfg = run.cfg
+    if 0.8 not in cfg.fig5_omegas or 0.01 not in cfg.fig5_eps:
+        raise Missing("Figure 5 was not run at Omega* = 0.8, eps = 0.01")
+    r = _amp(run, 5, model=m, approach="B", omega=0.8, eps=0.01) / _amp(run, 5, model=m, approach="A", omega=0.8, eps=0.01)
+    return Outcome(_fold(r, 10.0), f"B/A = {_num(r)}",
+                   f"within a factor {FACTOR:g} of 10; partly if at least 2" +
+                   ("" if math.isfinite(r) else " (B or A has no stable periodic state)"))
+
+
+def c5c(run, m):
+    worst, held, total = 0.0, 0, 0
+    where = None
+    for om in run.cfg.fig5_omegas:
+        for eps in run.cfg.fig5_eps:
+            b = _amp(run, 5, model=m, approach="B", omega=om, eps=eps)
+            c = _amp(run, 5, model=m, approach="C", omega=om, eps=eps)
+            d = abs(c / b - 1) if math.isfinite(b) and math.isfinite(c) else math.inf
+            if d > worst:
+                worst, where = d, (om, eps)
+            held, total = held + (d <= CLOSE), total + 1
+    v = REPRODUCED if held == total else (NOT_REPRODUCED if held == 0 else PARTLY)
+    at = f" at Omega* = {where[0]:g}, eps = {where[1]:g}" if where else ""
+    return Outcome(v, f"max |C/B - 1| = {_pct(worst)}{at}; holds at {held} of {total} points",
+                   f"within {_pct(CLOSE)} (inf: one has no stable periodic state)")
+
+
+def c5d(run, m):
+    parts, texts = [], []
+    for om in run.cfg.fig5_omegas:
+        for ap in "ABC":
+            rr = sorted(_rows(run, 5, model=m, approach=ap, omega=om), key=lambda r: r["eps"])
+            f = fd.loglog_slope([r["eps"] for r in rr], [r["amplitude"] for r in rr])
+            ok = bool(f) and f["points"] >= 3 and abs(f["slope"] + 1) <= SLOPE and f["max_residual"] <= 0.1
+            parts.append(ok)
+            texts.append(f"{ap}@{om:g}: {_num(f['slope']) if f else 'n/a'}")
+    return Outcome(_by_parts(parts), "slopes " + ", ".join(texts),
+                   f"slope -1 +- {SLOPE:g} with max residual 0.1 in log v*, every approach and speed")
+
+
+def c6a(run, m):
+    rows_b = {r["omega"]: r for r in _rows(run, 6, model=m, approach="B", eps=0.01)}
+    rows_c = {r["omega"]: r for r in _rows(run, 6, model=m, approach="C", eps=0.01)}
+    oms = sorted(o for o in rows_b if o < 0.7 and o in rows_c)
+    if not oms:
+        raise Missing("Figure 6 has no eps = 0.01 points below Omega* = 0.7")
+    ds = [abs(rows_c[o]["amplitude"] / rows_b[o]["amplitude"] - 1)
+          if math.isfinite(rows_b[o]["amplitude"]) and math.isfinite(rows_c[o]["amplitude"]) else math.inf
+          for o in oms]
+    held = [d <= CLOSE for d in ds]
+    upto = max([o for o, h in zip(oms, held) if all(held[:oms.index(o) + 1])], default=None)
+    v = REPRODUCED if all(held) else (NOT_REPRODUCED if not any(held) else PARTLY)
+    return Outcome(v, f"max |C/B - 1| below 0.7: {_pct(max(ds))}; within {_pct(CLOSE)} up to Omega* = "
+                   f"{_num(upto) if upto is not None else 'none'}", f"within {_pct(CLOSE)} at every Omega* < 0.7")
+
+
+def c6b(run, m):
+    s = _limit_speed(run, m, 0.01)
+    return Outcome(_near(s, 0.2, SPEED, 2 * SPEED) if s is not None else NOT_REPRODUCED,
+                   f"Omega* = {_num(s)}" if s is not None else "never over the sweep",
+                   f"speed where B or C first differs from A by more than "
+                   f"{_pct(run.cfg.differ_threshold)}; 0.2 +- {SPEED:g}, partly +- {2 * SPEED:g}")
+
+
+def c6c(run, m):
+    rs = {ap: _at_speed(run, 6, m, ap, 0.01, 1.0) for ap in "ABC"}
+    if any(r is None for r in rs.values()):
+        raise Missing("Figure 6 has no eps = 0.01 point at Omega* = 1")
+    ratios = {ap: rs[ap]["ratio_to_A"] for ap in "BC"}
+    vs = [_fold(x, 10.0) for x in ratios.values()]
+    v = vs[0] if vs[0] == vs[1] else PARTLY
+    return Outcome(v, "at Omega* = 1: " + ", ".join(f"{ap}/A {_num(x)}" for ap, x in ratios.items()),
+                   f"within a factor {FACTOR:g} of 10" +
+                   ("; A has no stable periodic state there" if rs["A"]["status"] != STABLE else ""))
+
+
+def c6d(run, m):
+    parts, texts = [], []
+    for ap in "BC":
+        rr = [r for r in _rows(run, 6, model=m, approach=ap, eps=0.01) if r["status"] == STABLE]
+        if not rr:
+            parts.append(False)
+            texts.append(f"{ap}: no stable points")
+            continue
+        top = max(rr, key=lambda r: r["amplitude"])
+        hi = max(r["omega"] for r in _rows(run, 6, model=m, approach=ap, eps=0.01))
+        parts.append(abs(top["omega"] - 1.0) <= 2 * SPEED and top["omega"] < hi)
+        texts.append(f"{ap} max at {top['omega']:g}")
+    ra = sorted([r for r in _rows(run, 6, model=m, approach="A", eps=0.01)
+                 if r["omega"] >= 1.0 - 1e-9], key=lambda r: r["omega"])
+    amps = [r["amplitude"] for r in ra]
+    grows = len(amps) >= 2 and all(math.isfinite(x) for x in amps) and all(np.diff(amps) > 0)
+    parts.append(grows)
+    texts.append("A " + ("grows" if grows else "does not grow") + " beyond 1"
+                 + ("" if all(math.isfinite(x) for x in amps) else " (no stable state at some speeds)"))
+    return Outcome(_by_parts(parts), "; ".join(texts),
+                   f"B and C peak within 1 +- {2 * SPEED:g} inside the sweep; A increasing at every "
+                   "sweep speed from 1 on")
+
+
+def c6e(run, m):
+    if 0.1 not in run.cfg.fig6_eps or 0.01 not in run.cfg.fig6_eps:
+        raise Missing("Figure 6 was not run at eps = 0.01 and 0.1")
+    ratios = []
+    for ap in "ABC":
+        lo = {r["omega"]: r["amplitude"] for r in _rows(run, 6, model=m, approach=ap, eps=0.01)}
+        hi = {r["omega"]: r["amplitude"] for r in _rows(run, 6, model=m, approach=ap, eps=0.1)}
+        ratios += [hi[o] / lo[o] for o in lo if o in hi and math.isfinite(hi[o]) and math.isfinite(lo[o])
+                   and lo[o] > 0]
+    med = float(np.median(ratios)) if ratios else math.nan
+    s = _limit_speed(run, m, 0.1)
+    parts = [_fold(med, 0.1) == REPRODUCED, _near(s, 0.4, SPEED) == REPRODUCED if s is not None else False]
+    return Outcome(_by_parts(parts), f"median amplitude ratio eps 0.1 / 0.01: {_num(med)}; B or C "
+                   f"leaves A at Omega* = {_num(s) if s is not None else 'never'}",
+                   f"ratio within a factor {FACTOR:g} of 0.1; limit speed 0.4 +- {SPEED:g}")
+
+
+def c7a(run, m):
+    cs = _ext_curves(run, 7, m)
+    if len(cs) < 2:
+        raise Missing("Figure 7 has fewer than two stable curves")
+    mx = [float(np.max(c["extension"])) for c in cs]
+    mn = [float(np.min(c["extension"])) for c in cs]
+    parts = [all(np.diff(mx) > 0), all(np.diff(mn) < 0)]
+    return Outcome(_by_parts(parts), "max delta* " + ", ".join(f"{x:.3g}" for x in mx) + "; min delta* "
+                   + ", ".join(f"{x:.3g}" for x in mn) + " (ms* " + ", ".join(f"{c['ms']:g}" for c in cs) + ")",
+                   "extension and contraction both grow with ms*")
+
+
+def _crossing_claim(run, f, m, expected):
+    xs = _crossings(run, f, m)
+    d = _angle_match(xs, expected)
+    ok = [x <= ANGLE for x in d]
+    v = _by_parts(ok) if len(xs) == 2 or not all(ok) else PARTLY
+    return xs, d, v
+
+
+def c7b(run, m):
+    xs, d, v = _crossing_claim(run, 7, m, (106.4, 295.2))
+    return Outcome(v, ", ".join(f"{x:.1f}" for x in xs) + " deg" if xs else "no common crossing",
+                   f"two crossings, each within {ANGLE:g} deg of the paper's (off by "
+                   + ", ".join(f"{x:.1f}" for x in d) + " deg)")
+
+
+def c7c(run, m):
+    xs = _crossings(run, 7, m)
+    if not xs:
+        return Outcome(NOT_REPRODUCED, "no common crossing", "no crossing to check")
+    cs = _ext_curves(run, 7, m)
+    eps2 = run.cfg.eps ** 2
+    worst = 0.0
+    for c in cs:
+        if c.get("u_end") is None:
+            raise Missing("Figure 7 data has no u*(1)")
+        first = eps2 * np.asarray(c["u_end"])
+        scale = float(np.max(np.abs(first)))
+        for x in xs:
+            val = float(np.interp(x, c["theta_deg"], first))
+            worst = max(worst, abs(val) / scale if scale > 0 else 0.0)
+    v = REPRODUCED if worst <= CLOSE else (PARTLY if worst <= 4 * CLOSE else NOT_REPRODUCED)
+    return Outcome(v, f"|eps^2 u*(1)| at the crossings: up to {_pct(worst)} of its largest value",
+                   f"u*(1) zero within {_pct(CLOSE)} of its range (partly {_pct(4 * CLOSE)}); v*(1) is "
+                   "zero by the slider constraint")
+
+
+def c8a(run, m):
+    cs = _ext_curves(run, 8, m)
+    c = min(cs, key=lambda c: abs(c["ms"] - run.cfg.ms))
+    if c.get("u_end") is None:
+        raise Missing("Figure 8 data has no u*(1)")
+    first = run.cfg.eps ** 2 * np.asarray(c["u_end"])
+    second = np.asarray(c["extension"]) - first
+    share = float(np.max(np.abs(second)) / np.max(np.abs(first)))
+    th, e = np.asarray(c["theta_deg"]), np.asarray(c["extension"])
+    mirror = np.interp((360.0 - th) % 360.0, th, e)
+    asym = float(np.max(np.abs(e - mirror)) / np.ptp(e)) if np.ptp(e) > 0 else math.nan
+    return Outcome(_by_parts([share <= NOTICEABLE, asym <= CLOSE]),
+                   f"max|2nd term| / max|1st term| = {_pct(share)}; asymmetry about 180 deg {_pct(asym)} of the range",
+                   f"second term below {_pct(NOTICEABLE)} of the first; symmetric within {_pct(CLOSE)} (ms* = {c['ms']:g})")
+
+
+def _crank_rod_angle(a, theta_deg):
+    """Angle (degrees) between the crank and the (rigid) rod at crank angle theta."""
+    th = math.radians(theta_deg)
+    crank = np.array([math.cos(th), math.sin(th)])
+    rod = np.array([math.sqrt(1 - (a * math.sin(th)) ** 2), -a * math.sin(th)])
+    return math.degrees(math.acos(float(crank @ rod) / float(np.linalg.norm(rod))))
+
+
+def c8b(run, m):
+    xs, d, v = _crossing_claim(run, 8, m, (86.4, 279.0))
+    angles = [_crank_rod_angle(run.cfg.a, x) for x in xs]
+    near90 = bool(angles) and all(abs(x - 90) <= 10 for x in angles)
+    if v == REPRODUCED and not near90:
+        v = PARTLY
+    return Outcome(v, (", ".join(f"{x:.1f}" for x in xs) + " deg; crank-rod angle there "
+                       + ", ".join(f"{x:.0f}" for x in angles) + " deg") if xs else "no common crossing",
+                   f"crossings within {ANGLE:g} deg of the paper's (off by " + ", ".join(f"{x:.1f}" for x in d)
+                   + " deg), angle between crank and rod within 90 +- 10 deg")
+
+
+def k1(run, m):
+    cfg = run.cfg
+    s = {ap: _conv_series(run, m, ap, 0.1) for ap in "ABC"}
+    n = {ap: s[ap]["n"] if s[ap]["kind"] == "converged" else math.inf for ap in "ABC"}
+    fast = n["A"] <= max(n["B"], n["C"])
+    errs = []
+    for ap in "BC":
+        for r in _rows(run, 6, model=m, approach=ap, eps=0.01):
+            if r["omega"] <= 0.2 + 1e-9:
+                errs.append(abs(r["ratio_to_A"] - 1) if math.isfinite(r["ratio_to_A"]) else math.inf)
+    if not errs:
+        raise Missing("Figure 6 has no eps = 0.01 point at or below Omega* = 0.2")
+    err = max(errs)
+    return Outcome(_by_parts([fast, err <= cfg.differ_threshold]),
+                   "converged n at Omega* = 0.1: " + ", ".join(f"{ap} {n[ap]}" for ap in "ABC")
+                   + f"; max |X/A - 1| for Omega* <= 0.2: {_pct(err)}",
+                   f"A needs no more elements than B or C; error within {_pct(cfg.differ_threshold)}")
+
+
+def k2(run, m):
+    cfg = run.cfg
+    thr = cfg.differ_threshold
+    errs = {}
+    for eps in (0.01, 0.1):
+        e = {}
+        for ap in "BC":
+            for r in _rows(run, 6, model=m, approach=ap, eps=eps):
+                if r["omega"] > 0.2 + 1e-9 and math.isfinite(r["ratio_to_A"]):
+                    e.setdefault(r["omega"], []).append(abs(r["ratio_to_A"] - 1))
+        errs[eps] = {o: max(v) for o, v in e.items()}
+    if not errs[0.01]:
+        raise Missing("Figure 6 has no eps = 0.01 point above Omega* = 0.2")
+    noticeable = max(errs[0.01].values()) > thr
+    common = [o for o in errs[0.01] if o in errs[0.1]]
+    larger = bool(common) and np.median([errs[0.01][o] - errs[0.1][o] for o in common]) > 0
+    lo, hi = _conv_series(run, m, "A", 0.1), _conv_series(run, m, "A", 0.8)
+    na = [s["n"] if s["kind"] != "no-result" else None for s in (lo, hi)]
+    more = None not in na and na[1] > na[0]
+    return Outcome(_by_parts([noticeable, larger, more]),
+                   f"max error above 0.2: {_pct(max(errs[0.01].values()))} (eps 0.01); larger for eps 0.01 than 0.1: "
+                   f"{'yes' if larger else 'no'}; A converged n {na[0]} -> {na[1]} (Omega* 0.1 -> 0.8)",
+                   f"errors above {_pct(thr)}, larger at the smaller eps (median over common speeds), "
+                   "A's count growing with speed")
+
+
+def k3(run, m):
+    c7 = min(_ext_curves(run, 7, m), key=lambda c: abs(c["ms"] - run.cfg.ms))
+    c8 = min(_ext_curves(run, 8, m), key=lambda c: abs(c["ms"] - run.cfg.ms))
+    r = float(np.ptp(c7["extension"]) / np.ptp(c8["extension"]))
+    x7, x8 = _crossings(run, 7, m), _crossings(run, 8, m)
+    return Outcome(_by_parts([r >= 2.0, len(x7) == 2, len(x8) == 2]),
+                   f"range of delta* at 0.8 / at 0.1 = {_num(r)}; crossings {len(x7)} (Fig. 7), {len(x8)} (Fig. 8)",
+                   "much larger: at least twice the range; exactly two crossings in each figure")
+
+
+def k4(run, m):
+    s = _limit_speed(run, m, 0.01)
+    rs = {ap: _at_speed(run, 6, m, ap, 0.01, 1.0) for ap in "BC"}
+    if any(r is None for r in rs.values()):
+        raise Missing("Figure 6 has no eps = 0.01 point at Omega* = 1")
+    ratios = [rs[ap]["ratio_to_A"] for ap in "BC"]
+    parts = [s is not None and abs(s - 0.2) <= SPEED, *[_fold(x, 10.0) == REPRODUCED for x in ratios]]
+    return Outcome(_by_parts(parts), f"errors from Omega* = {_num(s) if s is not None else 'never'}; at 1: B/A "
+                   f"{_num(ratios[0])}, C/A {_num(ratios[1])}",
+                   f"onset 0.2 +- {SPEED:g}; ratios within a factor {FACTOR:g} of 10")
