@@ -93,14 +93,17 @@ def build_parser():
                        description="Recompute Figures 2-8 of the source paper for the paper model (paper "
                                    "formulation, paper damping) and the consistent model (lagrange "
                                    "formulation, kelvin-voigt damping, averaged membrane): one PNG and one "
-                                   "CSV per figure, convergence.png/.csv (element-count check) and "
-                                   "findings.md, whose numbers are all computed from the runs.")
+                                   "CSV per figure, convergence.png/.csv (element-count check), the "
+                                   "continuation of approach A over 0.1 <= Omega* <= 1.6 for both models "
+                                   "(bifurcations.csv, drawn over Figure 6), and findings.md: the paper's "
+                                   "claims beside both models, every number computed from the runs. A "
+                                   "rerun keeps what is complete and current (manifest.json).")
     p.add_argument("--out", default="results",
                    help="output folder (created if missing; default ./results); a rerun keeps what is "
                         "complete and current there (manifest.json) and computes the rest")
     p.add_argument("--quick", action="store_true",
                    help="coarse pass: fewer speeds, eps values, slider masses and revolutions, element "
-                        "ladder up to 64")
+                        "ladder up to 64, continuation with 4 elements, 50 steps per revolution, period 2")
     p.add_argument("--force", action="store_true",
                    help="recompute every selected step, and overwrite files of the output names that "
                         "no recorded run made")
