@@ -56,11 +56,12 @@ if _KernelsHashLocator not in caching.CacheImpl._locator_classes:
     caching.CacheImpl._locator_classes.insert(0, _KernelsHashLocator)
 
 
-def jit(fn, parallel=False, name=None, namespace=None):
+def jit(fn, parallel=False, name=None, namespace=None, inline="never"):
     """fn compiled with numba (nopython, cached as above).  name: compile a copy under another name
     (numba's cache is keyed by the qualified name, so a serial and a parallel compilation of one
     function need two); namespace: globals to bind in the copy (e.g. the compiled kernels that a
-    generated dispatch function calls by name)."""
+    generated dispatch function calls by name); inline="always" inlines fn into its callers at
+    numba's IR level (small functions called per element)."""
     if name is not None or namespace is not None:
         glob = dict(fn.__globals__)
         glob.update(namespace or {})
@@ -69,7 +70,7 @@ def jit(fn, parallel=False, name=None, namespace=None):
         copy.__doc__ = fn.__doc__
         copy.__module__ = fn.__module__
         fn = copy
-    return njit(cache=True, parallel=parallel)(fn)
+    return njit(cache=True, parallel=parallel, inline=inline)(fn)
 
 
 def _from_numba_cache(exc):

@@ -51,7 +51,6 @@ def project_last(kin, r, K, C, M):
     project_residual(c, s, r)
 
 
-@jit
 def _gather(dofs, e, d, v, acc, kin, last, q, qd, qdd):
     """Nodal q, qd, qdd of element e; on the last element the slider slot s becomes
     (u, v) = s (cos phi, sin phi) with the rates of that rheonomic map (constraints.expand)."""
@@ -76,6 +75,9 @@ def _gather(dofs, e, d, v, acc, kin, last, q, qd, qdd):
         qd[4] = s * pd + c * phd * p
         qdd[3] = c * pdd - 2.0 * s * phd * pd - (c * phd * phd + s * phdd) * p
         qdd[4] = s * pdd + 2.0 * c * phd * pd + (-s * phd * phd + c * phdd) * p
+
+
+_gather = jit(_gather, inline="always")
 
 
 @jit

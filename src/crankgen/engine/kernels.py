@@ -21,11 +21,11 @@ for _kernel in _dispatch.ELEMENT_KERNELS:
 
 # dispatch over the families of a model (m: variant index per family, -1 absent)
 rod_add = jit(_dispatch.rod_add, namespace=COMPILED_KERNELS)
-rod_residual_add = jit(_dispatch.rod_residual_add, namespace=COMPILED_KERNELS)
-rod_newmark_add = jit(_dispatch.rod_newmark_add, namespace=COMPILED_KERNELS)
+rod_residual_add = jit(_dispatch.rod_residual_add, namespace=COMPILED_KERNELS, inline="always")
+rod_newmark_add = jit(_dispatch.rod_newmark_add, namespace=COMPILED_KERNELS, inline="always")
 end_add = jit(_dispatch.end_add, namespace=COMPILED_KERNELS)
-end_residual_add = jit(_dispatch.end_residual_add, namespace=COMPILED_KERNELS)
-end_newmark_add = jit(_dispatch.end_newmark_add, namespace=COMPILED_KERNELS)
+end_residual_add = jit(_dispatch.end_residual_add, namespace=COMPILED_KERNELS, inline="always")
+end_newmark_add = jit(_dispatch.end_newmark_add, namespace=COMPILED_KERNELS, inline="always")
 
 # kin = (a, theta, thetad, phi, phid, phidd) at time t (derive/guide.py)
 crank_kinematics_into = jit(_guide.crank_kinematics_into)
