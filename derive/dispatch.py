@@ -68,10 +68,6 @@ def _coefficients_source():
     return "\n".join(lines) + "\n"
 
 
-def _literal(value):
-    return repr(value)
-
-
 def _table_source():
     out = []
     out.append("OPTIONS = (")

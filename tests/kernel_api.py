@@ -47,15 +47,6 @@ def _slider_q(qs):
     return q
 
 
-def _cut(outputs):
-    """Slider rows/columns (u, v of the last node) of element outputs."""
-    out = []
-    for x in outputs:
-        out.append(x[..., 3:5] if x.ndim >= 1 and x.shape[-1] == 6 and (x.ndim == 1 or x.shape[-2] != 6)
-                   else x[..., 3:5, 3:5])
-    return tuple(out)
-
-
 def _rod_inertia(kernel):
     def f(q, qd, qdd, l, x0, rhoA, rhoI, a, theta, thetad, phi, phid, phidd):
         return kernel(q, qd, qdd, vec(l, x0), coef(rhoA=rhoA, rhoI=rhoI),
