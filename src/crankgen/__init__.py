@@ -18,6 +18,8 @@ _LAZY = {
     "SweepTable": "sweeps", "sweep": "sweeps",
     "BifurcationDiagram": "bifurcation", "PoincareDiagram": "bifurcation",
     "continuation": "bifurcation", "poincare": "bifurcation",
+    # guides and crank motions (records made from the schema)
+    "Line": "specs", "Circle": "specs", "Constant": "specs", "RunUp": "specs", "Fluctuation": "specs",
 }
 # the choices of the model options (declared in derive/model.py), read from the generated table
 _CHOICE_NAMES = {"FORMULATIONS": "formulation", "APPROACHES": "approach", "DAMPING_MODELS": "damping",

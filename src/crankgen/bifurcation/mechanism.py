@@ -13,12 +13,13 @@ from dataclasses import replace
 
 import numpy as np
 
-from .. import engine
+from .. import engine, schema
 from ..errors import ParameterError
 from ..validation import choice
 from .maps import Map, MapError
 
-PARAMETERS = ("omega", "eps", "ms", "mu", "a", "offset")
+# the parameters a continuation may vary: those the schema declares continuable
+PARAMETERS = schema.CONTINUABLE
 
 
 class MechanismMap(Map):

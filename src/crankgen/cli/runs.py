@@ -5,7 +5,7 @@ import sys
 from pathlib import Path
 
 from ..errors import ConvergenceError
-from .options import MODELS, UsageError, _Outputs, _case, _describe, _say
+from .options import CASE_FIELDS, UsageError, _Outputs, _case, _describe, _say
 
 
 SIM_COLUMNS = ["t", "theta", "v_mid", "u_end", "extension", "status"]
@@ -33,17 +33,15 @@ def _simulate(args, case, revolutions, out):
     from ..progress import Progress
     from ..simulation import simulate
 
-    mech = case.mechanism
-    steps = max(1, int(round(revolutions * case.steps_per_rev)))
+    from ..simulation import run_length
+
+    steps = run_length(case, revolutions)[1]
     _say(args, f"simulate: {_describe(case)}, {revolutions:g} revolutions ({steps} steps)")
     failure = None
     with Progress("simulate", steps, enabled=not args.quiet) as progress:
         try:
-            res = simulate(mech, omega=case.omega, approach=case.approach, formulation=case.formulation,
-                           n_elements=case.n_elements, steps_per_rev=case.steps_per_rev,
-                           revolutions=revolutions, integrator=case.integrator, damping=case.damping,
-                           membrane=case.membrane, rotary_inertia=case.rotary_inertia,
-                           store_nodes=args.nodes, tol=args.tol, progress=progress)
+            res = simulate(case=case, revolutions=revolutions, store_nodes=args.nodes, tol=args.tol,
+                           progress=progress)
         except ConvergenceError as exc:
             if exc.partial is None:
                 raise
@@ -122,39 +120,27 @@ def _steady(args, case, out):
 
 
 # ---- sweep -------------------------------------------------------------------------------------
-GRID_FIELDS = [("a", "a"), ("eps", "eps"), ("ms", "ms"), ("mu", "mu"), ("offset", "offset"),
-               ("omega", "omega"), ("approach", "approach"), ("n_elements", "elements"),
-               ("steps_per_rev", "steps_per_rev"), ("integrator", "integrator")]
-
-
 def _listed(value):
     return value if isinstance(value, list) else [value]
 
 
 def _sweep_cases(args):
-    """The grid: every combination of the listed values (models expanded first), validated."""
+    """The grid: every combination of the listed values of every case field and model, validated."""
     import itertools
 
-    from ..cases import Case
+    from ..cases import make_case
     from ..errors import ParameterError
 
-    models = []
-    for model in _listed(args.model or ["consistent"]):
-        base = dict(MODELS[model])
-        options = [[(name, v) for v in _listed(getattr(args, name))] if getattr(args, name) is not None
-                   else [(name, base[name])] for name in base]
-        options.append([("rotary_inertia", v == "on") for v in _listed(args.rotary_inertia)])
-        for combo in itertools.product(*options):
-            if dict(combo) not in models:
-                models.append(dict(combo))
-    axes = [[(field, v) for v in _listed(getattr(args, attr))] for field, attr in GRID_FIELDS]
+    axes = [[(name, v) for v in _listed(getattr(args, name))] for name in CASE_FIELDS
+            if getattr(args, name, None) is not None]
     cases = []
-    for model in models:
+    for model in _listed(args.model) if args.model else [None]:
         for combo in itertools.product(*axes):
             try:
-                cases.append(Case(**dict(combo), **model, gravity=args.gravity))
+                cases.append(make_case(model=model, **dict(combo)))
             except ParameterError as exc:
-                raise ParameterError(f"{exc} (in the grid: {dict(combo, **model)})") from None
+                where = dict(combo, model=model) if model else dict(combo)
+                raise ParameterError(f"{exc} (in the grid: {where})") from None
     return list(dict.fromkeys(cases))
 
 

@@ -2,7 +2,7 @@
 
 import sys
 
-from .options import UsageError, _Outputs, _add_model_options, _model_options, _say
+from .options import UsageError, _Outputs, _add_model_options, _explicit, _model_options, _say
 
 
 def _cmd_reproduce(args):
@@ -55,15 +55,12 @@ def _add_branch_model_options(p):
 
 
 def _branch_model(args):
-    from ..parameters import Mechanism
+    """The case of the first point, checked (the continued parameter set to the range's start)."""
+    from ..cases import make_case
 
-    base = dict(a=args.a, eps=args.eps, ms=args.ms, mu=args.mu, offset=args.offset, gravity=args.gravity)
-    if args.parameter in base:       # replaced by the range; the other values must be valid
-        base[args.parameter] = args.start
-    mech = Mechanism(**base)
-    model = dict(omega=args.omega, approach=args.approach, n_elements=args.elements,
-                 steps_per_rev=args.steps_per_rev, **_model_options(args))
-    return mech, model
+    fields = _explicit(args)
+    fields[args.parameter] = args.start
+    return make_case(model=args.model, **fields)
 
 
 CONTINUE_NAMES = ("branches.csv", "special_points.csv", "multipliers.csv", "continuation.png")
@@ -73,12 +70,12 @@ POINCARE_NAMES = ("poincare_summary.csv", "poincare_samples.csv", "poincare.png"
 def _cmd_continue(args):
     from ..bifurcation import continuation
 
-    mech, model = _branch_model(args)
+    case = _branch_model(args)
     folder = _Outputs(args.out, CONTINUE_NAMES, args.force)
     try:
         log = None if args.quiet else (lambda text: print(f"continue: {text}", file=sys.stderr, flush=True))
-        d = continuation(mech, args.parameter, args.start, args.stop, max_period=args.max_period,
-                         progress=log, **model)
+        d = continuation(parameter=args.parameter, start=args.start, stop=args.stop, case=case,
+                         max_period=args.max_period, progress=log)
         paths = [folder.wrote(p) for p in d.to_csv(folder.folder)]
         png = folder.wrote(d.plot(folder.path("continuation.png"), title=_title(args, "continuation"),
                                   ylabel="max |v*(1/2)| over the orbit", xlabel=_AXIS[args.parameter]))
@@ -93,16 +90,15 @@ def _cmd_continue(args):
     return 0
 
 
-_AXIS = {"omega": "Omega*", "eps": "eps", "ms": "ms*", "mu": "mu*", "a": "a*", "offset": "offset e/L"}
+_AXIS = {"omega": "Omega*", "eps": "eps", "ms": "ms*", "mu": "mu*", "a": "a*", "offset": "offset e/L",
+         "c": "rocker length c/L", "d": "ground pivot d/L", "fluctuation": "speed fluctuation k"}
 
 
 def _title(args, what):
-    m = _model_options(args)
-    return (f"{what} in {args.parameter}: approach {args.approach}, {m['formulation']} / {m['damping']} "
-            f"damping, {m['membrane']} membrane, n = {args.elements}, eps = {args.eps:g}"
-            if args.parameter != "eps" else
-            f"{what} in eps: approach {args.approach}, {m['formulation']} / {m['damping']} damping, "
-            f"{m['membrane']} membrane, n = {args.elements}, Omega* = {args.omega:g}")
+    c = _branch_model(args)
+    other = f"eps = {c.eps:g}" if args.parameter != "eps" else f"Omega* = {c.omega:g}"
+    return (f"{what} in {args.parameter}: approach {c.approach}, {c.formulation} / {c.damping} damping, "
+            f"{c.membrane} membrane, n = {c.n_elements}, {other}")
 
 
 def _cmd_poincare(args):
@@ -111,7 +107,7 @@ def _cmd_poincare(args):
     from ..bifurcation import continuation, poincare
     from ..progress import Progress
 
-    mech, model = _branch_model(args)
+    case = _branch_model(args)
     if args.values < 2:
         raise UsageError("--values must be >= 2")
     names = POINCARE_NAMES + (CONTINUE_NAMES[:3] if args.with_continuation else ())
@@ -120,14 +116,14 @@ def _cmd_poincare(args):
         values = np.linspace(args.start, args.stop, args.values)
         total = args.values * (2 if args.direction == "both" else 1)
         with Progress("poincare", total, enabled=not args.quiet) as progress:
-            pc = poincare(mech, args.parameter, values, args.direction, transient=args.transient,
-                          samples=args.samples, progress=progress, **model)
+            pc = poincare(parameter=args.parameter, values=values, direction=args.direction, case=case,
+                          transient=args.transient, samples=args.samples, progress=progress)
         diagram = None
         if args.with_continuation:
             log = None if args.quiet else (lambda text: print(f"continue: {text}", file=sys.stderr, flush=True))
-            diagram = continuation(mech, args.parameter, min(args.start, args.stop),
-                                   max(args.start, args.stop), max_period=args.max_period, progress=log,
-                                   **model)
+            diagram = continuation(parameter=args.parameter, start=min(args.start, args.stop),
+                                   stop=max(args.start, args.stop), case=case,
+                                   max_period=args.max_period, progress=log)
             for p in diagram.to_csv(folder.folder):
                 folder.wrote(p)
         paths = [folder.wrote(p) for p in pc.to_csv(folder.folder)]
