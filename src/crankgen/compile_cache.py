@@ -23,7 +23,6 @@ import sys
 from pathlib import Path
 
 _PACKAGE = Path(__file__).resolve().parent
-_WARM_MARK = "compiled.ok"
 
 
 def _kernels_hash():
@@ -77,7 +76,7 @@ def cache_folder():
     shared = _PACKAGE / "__pycache__" / name
     if _writable(shared):
         return shared, False
-    if (shared / _WARM_MARK).exists():
+    if (shared / "kernels" / "entry-march.ok").exists():
         return shared, True
     user = _user_cache()
     if user is not None and _writable(user / name):
@@ -89,12 +88,10 @@ CACHE, READ_ONLY = cache_folder()
 
 
 def is_warm():
-    """True once a run has completed with this code's compiled engine (nothing left to compile)."""
-    return (CACHE / _WARM_MARK).exists()
+    """True once this code's engine (its marching entry point) has been compiled in CACHE."""
+    return kernel_mark("entry-march").exists()
 
 
-COLD_START = ("crankgen: compiling the engine for this machine, once (about 10-20 s on 2 cores; "
-              "later runs load it)")
 READ_ONLY_NOTE = (f"crankgen: the compiled-code cache {CACHE} is read-only: compiling in memory for "
                   "this run (set CRANKGEN_CACHE_DIR to a writable folder, or have the owner of the "
                   "installation run `crankgen compile`, to keep the compiled code)")
@@ -109,19 +106,11 @@ def _say(text):
 
 
 def announce():
-    """Say once per process, on stderr, that the engine is being compiled (if it is not here yet)."""
-    if not _announced and not is_warm():
+    """Say once per process, on stderr, that compiled code cannot be kept (a read-only cache that
+    lacks this code's engine); the compilation itself reports its progress (engine/build.py)."""
+    if not _announced and READ_ONLY and not is_warm():
         _announced.append(True)
-        _say(READ_ONLY_NOTE if READ_ONLY else COLD_START)
-
-
-def mark_warm():
-    if READ_ONLY:
-        return
-    try:
-        (CACHE / _WARM_MARK).touch()
-    except OSError:
-        pass
+        _say(READ_ONLY_NOTE)
 
 
 def kernel_mark(name):

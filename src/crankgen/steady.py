@@ -110,7 +110,7 @@ class _BatchSolver:
     """Steady states of one engine.Batch (cases sharing mesh and steps per revolution)."""
 
     def __init__(self, cases, tol, max_revolutions, warmup, max_shooting, method, parallel=None):
-        self.batch = engine.Batch(cases)
+        self.batch = engine.Batch(cases, entries=("march", "revolution"))
         self.parallel = parallel
         self.cases = list(cases)
         self.tol, self.max_revolutions = tol, max_revolutions

@@ -1,4 +1,4 @@
-"""Command-line interface: `crankgen simulate | steady | sweep | reproduce | audit | continue | poincare`.
+"""Command-line interface: `crankgen simulate | steady | sweep | reproduce | audit | continue | poincare | compile`.
 
 Exit codes: 0 success; 1 a run that failed (simulate: the integration stopped, and what was
 computed up to the failure is written; steady: status "failed"; a file that could not be written);
@@ -14,6 +14,7 @@ from ..errors import ConvergenceError, CrankgenError
 from ..provenance import VERSION
 from .options import (_Parser, _add_mechanism_options, _add_model_options, _add_output_options,
                       _figure_list, _number_list)
+from .compile import _cmd_compile
 from .runs import _cmd_simulate, _cmd_steady, _cmd_sweep
 from .studies import (CONTINUE_NAMES, POINCARE_NAMES, _add_branch_model_options, _cmd_audit,
                       _cmd_continue, _cmd_poincare, _cmd_reproduce)
@@ -112,6 +113,17 @@ def build_parser():
                         "element-count check always runs")
     p.add_argument("--quiet", action="store_true", help="no progress output")
     p.set_defaults(func=_cmd_reproduce)
+
+    p = sub.add_parser("compile", help="compile the engine and every model's kernels into the cache, once",
+                       description="Compile the compiled engine and the kernels of every model (every "
+                                   "formulation, approach, membrane, damping, guide and crank motion) into "
+                                   "the compiled-code cache, on two processes, so that no later run "
+                                   "waits for a compilation. Run by the owner of an installation it fills "
+                                   "the installation's cache, which every user loads (read-only is "
+                                   "fine); otherwise the cache of the user running it (or "
+                                   "$CRANKGEN_CACHE_DIR). Items already compiled are kept.")
+    p.add_argument("--quiet", action="store_true", help="no progress output")
+    p.set_defaults(func=_cmd_compile)
 
     p = sub.add_parser("audit", help="symbolic audit report audit/report.md: what each approach and formulation keeps, and what it weighs",
                        description="Write a Markdown report (LaTeX formulas) that opens with a summary "

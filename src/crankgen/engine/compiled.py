@@ -28,7 +28,7 @@ from numba.core import caching
 from numba.core.errors import NumbaExperimentalFeatureWarning
 
 from .._generated import schema as _table
-from ..compile_cache import CACHE, CODE_HASH, READ_ONLY, announce, is_warm, mark_warm  # noqa: F401
+from ..compile_cache import CACHE, CODE_HASH, READ_ONLY, announce, is_warm  # noqa: F401
 
 KERNELS_HASH = _table.KERNELS_HASH
 _PACKAGE = Path(__file__).resolve().parent.parent

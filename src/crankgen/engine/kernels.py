@@ -13,9 +13,6 @@ motion; a family slot holds the flat index of its selected variant in the part's
 family is absent).
 """
 
-import sys
-import time
-
 import numpy as np
 from numba import types
 
@@ -24,7 +21,6 @@ from .. import schema
 from .._generated import elements as _elements
 from .._generated import kinematics as _kinematics
 from .._generated import schema as _table
-from ..compile_cache import kernel_is_cached, mark_kernel
 from .compiled import jit
 from .records import Kernels
 
@@ -114,19 +110,12 @@ def _source(kind, name):
     return fn
 
 
-def _label(kind, name):
-    return f"{name}{kind}" if kind.startswith("_") else f"{kind}_{name}"
-
-
-def compiled(kind, name, progress=None):
-    """The compiled kernel `name` in calling variant `kind` (compiled on first use, cached on disk)."""
+def compiled(kind, name):
+    """The compiled kernel `name` in calling variant `kind` (compiled on first use, cached on disk;
+    engine/build.py compiles a run's kernels ahead, on two processes)."""
     key = (kind, name)
     if key not in _COMPILED:
-        fn = _source(kind, name)
-        if progress is not None and not kernel_is_cached(_label(kind, name)):
-            progress(_label(kind, name))
-        _COMPILED[key] = jit(fn, signature=SIGNATURES[kind])
-        mark_kernel(_label(kind, name))
+        _COMPILED[key] = jit(_source(kind, name), signature=SIGNATURES[kind])
     return _COMPILED[key]
 
 
@@ -151,31 +140,13 @@ def needed(rows, printed):
     return out
 
 
-class _CompileProgress:
-    """Progress lines on stderr while kernels compile: which, how many, an estimate."""
-
-    def __init__(self, todo):
-        self.todo, self.done, self.start = todo, 0, time.perf_counter()
-
-    def __call__(self, name):
-        elapsed = time.perf_counter() - self.start
-        left = "" if not self.done else f", about {elapsed / self.done * (self.todo - self.done):.0f} s left"
-        self.done += 1
-        try:
-            print(f"crankgen: compiling kernel {self.done}/{self.todo}: {name}{left}", file=sys.stderr, flush=True)
-        except (OSError, ValueError):
-            pass
-
-
 def tables(rows, printed):
     """records.Kernels for cases with these select rows and printed flags (see needed): their
     kernels compiled, no-ops elsewhere."""
     need = needed(rows, printed)
-    missing = [k for k in need if k not in _COMPILED and not kernel_is_cached(_label(*k))]
-    progress = _CompileProgress(len(missing)) if missing else None
 
     def entry(kind, name):
-        return compiled(kind, name, progress) if (kind, name) in need else _noop(kind)
+        return compiled(kind, name) if (kind, name) in need else _noop(kind)
 
     def part_table(part, kind):
         return tuple(entry(kind, name) for _, _, name in VARIANTS[part])
@@ -186,6 +157,37 @@ def tables(rows, printed):
         part_table("end", "_residual_add"),
         tuple(entry("end_map", g) for g in GUIDE_NAMES), tuple(entry("guide", g) for g in GUIDE_NAMES),
         tuple(entry("motion", m) for m in MOTION_NAMES))
+
+
+def noop_tables():
+    """records.Kernels with a no-op in every entry (the engine's types, nothing compiled)."""
+    def part_table(part, kind):
+        return tuple(_noop(kind) for _ in VARIANTS[part])
+    return Kernels(
+        part_table("rod", "_add"), part_table("rod", "_printed_add"), part_table("rod", "_residual_add"),
+        part_table("rod", "_newmark_add"), part_table("end", "_add"), part_table("end", "_printed_add"),
+        part_table("end", "_residual_add"), tuple(_noop("end_map") for _ in GUIDE_NAMES),
+        tuple(_noop("guide") for _ in GUIDE_NAMES), tuple(_noop("motion") for _ in MOTION_NAMES))
+
+
+def build_items(rows, printed):
+    """The build items (engine/build.py) of the kernels these cases call."""
+    return [f"kernel:{kind}:{name}" for kind, name in sorted(needed(rows, printed))]
+
+
+def all_build_items():
+    """The build items of every kernel of every model (crankgen compile)."""
+    items = set()
+    for part in PARTS:
+        for _, _, name in VARIANTS[part]:
+            kinds = ("_add", "_residual_add") + (("_newmark_add",) if part == "rod" else ())
+            items.update((kind, name) for kind in kinds)
+            if hasattr(_elements, name + "_printed_add"):
+                items.add(("_printed_add", name))
+    items.update(("end_map", g) for g in GUIDE_NAMES)
+    items.update(("guide", g) for g in GUIDE_NAMES)
+    items.update(("motion", m) for m in MOTION_NAMES)
+    return [f"kernel:{kind}:{name}" for kind, name in sorted(items)]
 
 
 def select_rows(cases):

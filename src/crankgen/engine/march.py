@@ -15,9 +15,9 @@ import numpy as np
 from .. import kinematics as _kinematics
 from .. import newton
 from .._generated import shape as _shape
-from .compiled import call, jit, mark_warm
+from .compiled import call, jit
 from .elements import kinematics, step_outputs
-from .kernels import select_rows, tables
+from .kernels import build_items, select_rows, tables
 from .records import Cases, MeshData, Scheme, make_work
 from .step import NOT_FINITE, OK, SINGULAR, initial_acceleration, newmark_step
 
@@ -27,8 +27,11 @@ HISTORY = newton.HISTORY
 class Batch:
     """Cases that share a mesh and steps per revolution, packed for the compiled engine."""
 
-    def __init__(self, cases, dt=None):
-        """dt overrides the time step (free vibration, omega ~ 0)."""
+    def __init__(self, cases, dt=None, entries=("march",), kernels_table=None):
+        """dt overrides the time step (free vibration, omega ~ 0).  entries: the engine's entry
+        points the batch will use ("march", "revolution"), compiled ahead with its kernels when
+        this machine has not compiled them yet (engine/build.py).  kernels_table: the kernel
+        tables to use instead of the cases' own (engine/build.py compiles on no-op tables)."""
         from ..assembly import BandedAssembler
         from ..mesh import Mesh
 
@@ -49,7 +52,11 @@ class Batch:
             np.ascontiguousarray(_shape.slope_gram(self.mesh.length), dtype=float))
         select = select_rows(cases)
         printed = np.array([c.selection.printed_iteration and c.integrator == "one-pass" for c in cases])
-        self.kernels = tables(select, printed)
+        if kernels_table is None:
+            from .build import prepare
+            prepare([f"entry:{e}" for e in entries] + build_items(select, printed))
+            kernels_table = tables(select, printed)
+        self.kernels = kernels_table
         self.records = Cases(
             select, np.array([c.coefficients for c in cases], dtype=float),
             np.array([c.kinematic_parameters for c in cases], dtype=float),
@@ -221,7 +228,6 @@ def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False
     parallel_slices(_march_cases, B, parallel, (kern, cases, mesh, scheme),
                     (step0, n_steps, D0, V0, A0, P, n_prev, keep_history, keep_rates, out_y, out_iter,
                      status, fail_step, fail_res, Dh, Vh, Ah, D1, V1, A1))
-    mark_warm()
     return MarchResult(y=out_y, iterations=out_iter, status=status, fail_step=fail_step,
                        fail_residual=fail_res, D=D1, V=V1, A=A1, previous=(P, n_prev),
                        D_history=Dh if keep_history else None, V_history=Vh if keep_rates else None,
