@@ -224,11 +224,11 @@ class _Outputs:
     """The output folder of a command: checked (and created) before computing; if the command
     stops before writing anything, the folders it created are removed again."""
 
-    def __init__(self, folder, names, force):
+    def __init__(self, folder, names, force, subfolders=()):
         from ..compile_cache import announce
         from ..io import prepare_folder
         self.folder = Path(folder)
-        self.created = prepare_folder(self.folder, names, force)
+        self.created = prepare_folder(folder, names, force, subfolders)
         self.written = []
         announce()                  # arguments and folder are fine: computing starts now
 

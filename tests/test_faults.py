@@ -1,0 +1,120 @@
+"""Durability, second battery (issue 20; and issue 18's sweep batches and empty --out): each test
+reproduces one fault as the operator met it.  Everything happens in the test's own temporary
+folder: devices and FIFOs are made there (mknod, mkfifo), never the real /dev/null; a full disk is
+a device made there (/dev/full's numbers) or a file-size limit (RLIMIT_FSIZE) of this process."""
+
+import concurrent.futures as cf
+import contextlib
+import errno
+import importlib
+import json
+import os
+import resource
+import signal
+import stat
+import subprocess
+import sys
+import threading
+import warnings
+
+import pytest
+
+import crankgen
+from crankgen import Case, ParameterError, SteadyState, sweep
+from crankgen.cli import main
+
+sweep_mod = importlib.import_module("crankgen.sweeps")
+TINY = ["--elements", "2", "--steps-per-rev", "20"]
+SMALL = dict(formulation="paper", n_elements=2, eps=0.1, steps_per_rev=24)
+CHILD_TIMEOUT = 300          # seconds: a safety net for a child that hangs, never a wait for it
+
+
+def run(argv):
+    try:
+        return main(argv)
+    except SystemExit as exc:
+        return exc.code
+
+
+def one_line_error(capsys, *words):
+    err = capsys.readouterr().err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in err, err
+    for w in words:
+        assert w in lines[0], lines[0]
+    assert ".tmp" not in lines[0], lines[0]
+    return lines[0]
+
+
+def _fake_states(calls):
+    def fake(cases, tol=1e-8, max_revolutions=400, progress=None, parallel=None):
+        cases = list(cases)
+        calls.extend(cases)
+        return [SteadyState(c, "periodic", 2 * c.omega, c.omega, 3, 0, 1e-9, "", 0.01) for c in cases]
+    return fake
+
+
+def _device(path, major, minor):
+    """A character device node at path (as /dev/null is 1,3 and /dev/full 1,7), or skip."""
+    try:
+        os.mknod(path, stat.S_IFCHR | 0o666, os.makedev(major, minor))
+    except (PermissionError, OSError) as exc:
+        pytest.skip(f"cannot make a device node here: {exc}")
+    return path
+
+
+@contextlib.contextmanager
+def file_size_limit(limit):
+    """Writes beyond `limit` bytes fail with EFBIG in this process, as on a full disk."""
+    soft, hard = resource.getrlimit(resource.RLIMIT_FSIZE)
+    previous = signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+    resource.setrlimit(resource.RLIMIT_FSIZE, (limit, hard))
+    try:
+        yield
+    finally:
+        resource.setrlimit(resource.RLIMIT_FSIZE, (soft, hard))
+        signal.signal(signal.SIGXFSZ, previous)
+
+
+def _env():
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join(p for p in sys.path if p)
+    return env
+
+
+# --- item 15: every message names the user's file, checked before computing ----------------------
+
+def test_messages_name_the_users_file_never_a_temporary_one(tmp_path, capsys):
+    out = tmp_path / "r"
+    (out / "manifest.json").mkdir(parents=True)
+    assert run(["reproduce", "--quick", "--quiet", "--force", "--out", str(out)]) == 2   # before computing
+    one_line_error(capsys, str(out / "manifest.json"), "is a folder")
+    (out / "manifest.json").rmdir()
+    (out / "data").write_text("a file where the data folder goes")
+    assert run(["reproduce", "--quick", "--quiet", "--out", str(out)]) == 2
+    one_line_error(capsys, str(out / "data"), "is a file")
+
+    elsewhere = tmp_path / "elsewhere.csv"
+    elsewhere.write_text("keep me")
+    s = tmp_path / "s"
+    s.mkdir()
+    (s / "simulation.csv").symlink_to(elsewhere)
+    assert run(["simulate", "--revolutions", "1", "--out", str(s), "--force", "--quiet"] + TINY) == 2
+    one_line_error(capsys, str(s / "simulation.csv"), "symbolic link", "outside")
+    assert elsewhere.read_text() == "keep me"
+
+    with file_size_limit(20000):                     # the PNG does not fit: a full disk, mid-run
+        code = run(["simulate", "--revolutions", "1", "--out", str(tmp_path / "f"), "--quiet"] + TINY)
+    assert code == 1
+    one_line_error(capsys, str(tmp_path / "f" / "v_mid.png"), "File too large")
+
+
+# --- issue 18, item 12 (part): an empty --out ---------------------------------------------------
+
+def test_an_empty_out_is_refused(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert run(["simulate", "--out", "", "--quiet"]) == 2
+    one_line_error(capsys, "empty")
+    assert run(["sweep", "--out", " ", "--quiet"]) == 2
+    one_line_error(capsys, "empty")
+    assert list(tmp_path.iterdir()) == []
