@@ -82,6 +82,26 @@ def _env():
     return env
 
 
+# --- item 5: SimulationResult.to_csv on a full disk ----------------------------------------------
+
+def test_simulation_to_csv_on_a_full_disk_keeps_the_old_file(tmp_path):
+    import numpy as np
+    n = 2000
+    t = np.linspace(0.0, 10.0, n)
+    res = crankgen.SimulationResult(t=t, theta=t, v_mid=np.sin(t), u_end=np.cos(t), extension=t,
+                                    iterations=np.ones(n - 1, dtype=np.int32), settings={})
+    path = tmp_path / "run.csv"
+    path.write_text("t,theta,v_mid,u_end,extension\n0.0,0.0,0.0,0.0,0.0\n")
+    old = path.read_text()
+    with file_size_limit(8192), pytest.raises(OSError) as exc:
+        res.to_csv(path)
+    assert path.read_text() == old                                  # not a truncated CSV
+    assert str(path) in str(exc.value) and ".tmp" not in str(exc.value)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run.csv"]
+    res.to_csv(path)
+    assert len(path.read_text().splitlines()) == n + 1
+
+
 # --- item 15: every message names the user's file, checked before computing ----------------------
 
 def test_messages_name_the_users_file_never_a_temporary_one(tmp_path, capsys):

@@ -37,8 +37,9 @@ class SimulationResult(DeclaredOutputs):
     states: Optional[np.ndarray] = field(default=None, repr=False)  # (steps, N) reduced displacements
 
     def to_csv(self, path):
-        """Write t*, theta, v_mid, u_end, extension as CSV (full double precision)."""
-        with open(path, "w", newline="") as fh:
+        """Write t*, theta, v_mid, u_end, extension as CSV (full double precision), atomically."""
+        from .io import atomic_file
+        with atomic_file(path) as fh:
             w = csv.writer(fh)
             w.writerow(["t", "theta", "v_mid", "u_end", "extension"])
             for row in zip(self.t, self.theta, self.v_mid, self.u_end, self.extension):
