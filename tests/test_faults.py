@@ -102,6 +102,38 @@ def test_simulation_to_csv_on_a_full_disk_keeps_the_old_file(tmp_path):
     assert len(path.read_text().splitlines()) == n + 1
 
 
+# --- item 11: progress output is best effort ---------------------------------------------------
+
+class FullDisk:
+    """A text stream on a full disk: every write fails with ENOSPC."""
+
+    def write(self, text):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    def flush(self):
+        pass
+
+    def isatty(self):
+        return False
+
+
+def test_a_full_disk_behind_stdout_and_stderr_never_stops_a_run(tmp_path, monkeypatch):
+    monkeypatch.setattr(sys, "stdout", FullDisk())
+    monkeypatch.setattr(sys, "stderr", FullDisk())
+    assert run(["simulate", "--revolutions", "1", "--out", str(tmp_path / "s")] + TINY) == 0
+    assert (tmp_path / "s" / "simulation.csv").exists() and (tmp_path / "s" / "v_mid.png").exists()
+    assert run(["sweep", "--omega", "0.3,0.4", "--out", str(tmp_path / "w")] + TINY) == 0
+    assert (tmp_path / "w" / "sweep.csv").exists()
+    monkeypatch.undo()
+
+    full = _device(tmp_path / "full", 1, 7)                         # a copy of /dev/full
+    with open(full, "wb") as sink:
+        child = subprocess.run([sys.executable, "-m", "crankgen", "simulate", "--revolutions", "1",
+                                "--out", str(tmp_path / "c")] + TINY, stdout=sink, stderr=sink,
+                               timeout=CHILD_TIMEOUT, env=_env())
+    assert child.returncode == 0 and (tmp_path / "c" / "simulation.csv").exists()
+
+
 # --- item 15: every message names the user's file, checked before computing ----------------------
 
 def test_messages_name_the_users_file_never_a_temporary_one(tmp_path, capsys):

@@ -179,12 +179,45 @@ def _one_line_warning(message, category, filename, lineno, file=None, line=None)
     print(f"crankgen: warning: {message}", file=sys.stderr, flush=True)
 
 
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, handled as an interruption (the run stops cleanly: pool workers ended, temporary
+    files removed), exit code 143."""
+
+
+def _terminate(signum, frame):
+    raise Terminated()
+
+
 def main(argv=None):
+    """Run one command; return its exit code.  Progress, log and result lines are best effort
+    (crankgen.progress.BestEffortStream): a full disk or a closed pipe behind stdout or stderr
+    never stops a computation, nor turns a finished one into a failure."""
+    import signal
+    import threading
+
+    from ..progress import BestEffortStream
+
+    streams = sys.stdout, sys.stderr
+    sys.stdout, sys.stderr = BestEffortStream.wrap(sys.stdout), BestEffortStream.wrap(sys.stderr)
+    previous = warnings.showwarning
+    warnings.showwarning = _one_line_warning
+    handler = None
+    if threading.current_thread() is threading.main_thread() \
+            and signal.getsignal(signal.SIGTERM) == signal.SIG_DFL:
+        handler = signal.signal(signal.SIGTERM, _terminate)
+    try:
+        return _main(argv)
+    finally:
+        if handler is not None:
+            signal.signal(signal.SIGTERM, handler)
+        warnings.showwarning = previous
+        sys.stdout, sys.stderr = streams
+
+
+def _main(argv):
     parser = build_parser()
     args = parser.parse_args(argv)
     name = f"crankgen {args.command}"
-    previous = warnings.showwarning
-    warnings.showwarning = _one_line_warning
     try:
         return args.func(args)
     except ConvergenceError as exc:                          # a run that failed
@@ -193,17 +226,29 @@ def main(argv=None):
     except CrankgenError as exc:                             # parameters, --out, existing outputs
         print(f"{name}: error: {exc}", file=sys.stderr)
         return 2
-    except OSError as exc:                                   # writing an output failed mid-run
-        where = f"{exc.filename}: " if exc.filename else ""
-        print(f"{name}: error: {where}{exc.strerror or exc}", file=sys.stderr)
+    except MemoryError:
+        print(f"{name}: error: out of memory (the run needs more memory than this machine "
+              "gives it; ask for less)", file=sys.stderr)
         return 1
-    except KeyboardInterrupt:
+    except OSError as exc:                                   # writing an output failed mid-run
+        print(f"{name}: error: {_os_error_text(exc)}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt as exc:
         resume = ("; the finished cases are in the checkpoint: the same command resumes"
                   if args.command == "sweep" else "")
-        print(f"{name}: interrupted{resume}", file=sys.stderr)
-        return 130
-    finally:
-        warnings.showwarning = previous
+        print(f"{name}: {'terminated' if isinstance(exc, Terminated) else 'interrupted'}{resume}",
+              file=sys.stderr)
+        return 143 if isinstance(exc, Terminated) else 130
+
+
+def _os_error_text(exc):
+    """FILE: what went wrong (the file crankgen was writing; never a temporary file)."""
+    text = exc.strerror or str(exc)
+    if exc.filename is None:
+        return text
+    if exc.filename2 is not None and str(exc.filename).endswith(".tmp"):
+        return f"{exc.filename2}: {text}"
+    return f"{exc.filename}: {text}"
 
 
 if __name__ == "__main__":
