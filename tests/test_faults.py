@@ -134,6 +134,20 @@ def test_a_full_disk_behind_stdout_and_stderr_never_stops_a_run(tmp_path, monkey
     assert child.returncode == 0 and (tmp_path / "c" / "simulation.csv").exists()
 
 
+# --- item 13: negative values on the command line -----------------------------------------------
+
+def test_negative_numbers_lists_and_ranges_are_option_values():
+    parser = crankgen.cli.build_parser()
+    args = parser.parse_args(["simulate", "--gravity", "-1e-3,0", "--offset", "-5e-2"])
+    assert args.gravity == (-1e-3, 0.0) and args.offset == -5e-2
+    args = parser.parse_args(["sweep", "--offset", "-0.05,0.05", "--omega", "0.5"])
+    assert args.offset == [-0.05, 0.05]
+    assert parser.parse_args(["sweep", "--offset", "-0.1:0:0.05"]).offset == [-0.1, -0.05, 0.0]
+    assert parser.parse_args(["simulate", "--offset", "-.05", "--quiet"]).quiet
+    with pytest.raises(SystemExit):                  # a real option name is still an option
+        parser.parse_args(["simulate", "--offset", "--quiet"])
+
+
 # --- item 15: every message names the user's file, checked before computing ----------------------
 
 def test_messages_name_the_users_file_never_a_temporary_one(tmp_path, capsys):

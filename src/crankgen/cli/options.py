@@ -3,6 +3,7 @@ overrides) and the output folder; argument types; the Case a command line descri
 
 import argparse
 import math
+import re
 import sys
 from pathlib import Path
 
@@ -31,7 +32,18 @@ class UsageError(CrankgenError):
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse with a one-line error message (and exit code 2), pointing to --help."""
+    """argparse with a one-line error message (and exit code 2), pointing to --help.
+
+    A value that starts with a minus sign followed by a digit, a point or inf / nan is a value,
+    not an option: `--offset -0.05`, `--gravity -1e-3,0`, `--offset -0.05,0.05` and ranges
+    `-0.1:0.1:0.05` (argparse alone takes only plain negative numbers such as -1 or -.5 as
+    values).  No option of crankgen looks like that, so real option names keep working."""
+
+    NEGATIVE_VALUE = re.compile(r"^-(\d|\.\d|inf|nan)", re.IGNORECASE)
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = self.NEGATIVE_VALUE
 
     def error(self, message):
         self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
