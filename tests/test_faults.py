@@ -102,6 +102,25 @@ def test_simulation_to_csv_on_a_full_disk_keeps_the_old_file(tmp_path):
     assert len(path.read_text().splitlines()) == n + 1
 
 
+# --- item 10: bounded work and memory, checked before computing ---------------------------------
+
+def test_runs_too_large_for_the_machine_are_refused_before_computing(tmp_path, capsys, monkeypatch):
+    monkeypatch.setenv("CRANKGEN_MEMORY_LIMIT", "64G")
+    out = tmp_path / "o"
+    assert run(["simulate", "--revolutions", "1e12", "--out", str(out)]) == 2
+    one_line_error(capsys, "--revolutions", "PiB", "64 GiB")
+    assert run(["simulate", "--elements", "1000000000", "--out", str(out)]) == 2
+    one_line_error(capsys, "--elements", "3000000000 degrees of freedom", "TiB")
+    assert run(["sweep", "--omega", "0.001:100:0.001", "--eps", "0.001:1:0.001",
+                "--out", str(out)]) == 2                     # 10^8 cases: the grid is never built
+    one_line_error(capsys, "100000000 cases", "--omega (100000)", "--eps (1000)", "GiB")
+    assert not out.exists()
+
+    from crankgen.limits import check_run_size
+    with pytest.raises(ParameterError, match=r"^revolutions x n_elements: .* TiB"):
+        check_run_size(16, 10**12, names={"n_steps": "revolutions"})
+
+
 # --- item 11: progress output is best effort ---------------------------------------------------
 
 class FullDisk:

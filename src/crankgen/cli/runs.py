@@ -1,10 +1,17 @@
-"""`crankgen simulate`, `crankgen steady`, `crankgen sweep`: runs of the mechanism."""
+"""`crankgen simulate`, `crankgen steady`, `crankgen sweep`: runs of the mechanism.
 
+Everything a command can check is checked before anything is computed or created: the
+parameters, the memory the run would need (crankgen.limits: steps x degrees of freedom, elements,
+the size of a sweep's grid before it is built), the output folder and the checkpoint."""
+
+import itertools
 import math
+import os
 import sys
 from pathlib import Path
 
 from ..errors import ConvergenceError
+from ..limits import check_run_size
 from .options import MODELS, UsageError, _Outputs, _case, _describe, _say
 
 
@@ -17,6 +24,9 @@ def _cmd_simulate(args):
     case = _case(args)                                       # validates every parameter ...
     revolutions = in_range("revolutions", args.revolutions, 0, None, True)
     in_range("tol", args.tol, 0, None, True)
+    steps = max(1, int(round(revolutions * case.steps_per_rev)))
+    check_run_size(case.n_elements, steps, stored="nodes" if args.nodes else "states",
+                   names={"n_steps": "--revolutions", "n_elements": "--elements"})
     names = ["simulation.csv", "v_mid.png"] + (["nodes.csv"] if args.nodes else [])
     out = _Outputs(args.out, names, args.force)             # ... and the output folder, first
     try:
@@ -48,10 +58,11 @@ def _simulate(args, case, revolutions, out):
             if exc.partial is None:
                 raise
             failure, res = exc, exc.partial
-    rows = [dict(t=t, theta=th, v_mid=v, u_end=u, extension=e, status="ok")
-            for t, th, v, u, e in zip(res.t, res.theta, res.v_mid, res.u_end, res.extension)]
+    rows = (dict(t=t, theta=th, v_mid=v, u_end=u, extension=e, status="ok")      # streamed
+            for t, th, v, u, e in zip(res.t, res.theta, res.v_mid, res.u_end, res.extension))
     if failure is not None:
-        rows.append(dict(t=failure.time, theta=case.omega * failure.time, status=f"failed: {failure}"))
+        last = dict(t=failure.time, theta=case.omega * failure.time, status=f"failed: {failure}")
+        rows = itertools.chain(rows, [last])
     out.wrote(write_csv(out.path("simulation.csv"), SIM_COLUMNS, rows))
     if args.nodes and res.nodes is not None:
         note = "" if failure is None else f"; run failed at step {failure.step}: history up to the failure"
@@ -81,6 +92,8 @@ def _cmd_steady(args):
     case = _case(args)
     in_range("tol", args.tol, 0, None, True)
     integer("max_revolutions", args.max_revolutions, 1)
+    check_run_size(case.n_elements, case.steps_per_rev, stored="steady",
+                   names={"n_elements": "--elements", "n_steps": "--steps-per-rev"})
     out = _Outputs(args.out, STEADY_NAMES, args.force)
     try:
         return _steady(args, case, out)
@@ -131,13 +144,9 @@ def _listed(value):
     return value if isinstance(value, list) else [value]
 
 
-def _sweep_cases(args):
-    """The grid: every combination of the listed values (models expanded first), validated."""
-    import itertools
-
-    from ..cases import Case
-    from ..errors import ParameterError
-
+def _sweep_grid(args):
+    """(models, axes) of the grid: the model option combinations and the value lists of the other
+    parameters; nothing is built yet."""
     models = []
     for model in _listed(args.model or ["consistent"]):
         base = dict(MODELS[model])
@@ -148,6 +157,14 @@ def _sweep_cases(args):
             if dict(combo) not in models:
                 models.append(dict(combo))
     axes = [[(field, v) for v in _listed(getattr(args, attr))] for field, attr in GRID_FIELDS]
+    return models, axes
+
+
+def _sweep_cases(args, models, axes):
+    """The grid: every combination of the listed values (models expanded first), validated."""
+    from ..cases import Case
+    from ..errors import ParameterError
+
     cases = []
     for model in models:
         for combo in itertools.product(*axes):
@@ -161,11 +178,24 @@ def _sweep_cases(args):
 def _cmd_sweep(args):
     from ..validation import in_range, integer
 
-    cases = _sweep_cases(args)
     in_range("tol", args.tol, 0, None, True)
     integer("max_revolutions", args.max_revolutions, 1)
-    integer("batch_size", args.batch_size, 1)
+    batch_size = integer("batch_size", args.batch_size, 1)
     integer("workers", args.workers, 1)
+    models, axes = _sweep_grid(args)
+    size = len(models) * math.prod(len(axis) for axis in axes)
+    given = [f"--{attr.replace('_', '-')} ({len(axis)})" for (field, attr), axis in zip(GRID_FIELDS, axes)
+             if len(axis) > 1] + ([f"models ({len(models)})"] if len(models) > 1 else [])
+    check_run_size(max(_listed(args.elements)), max(_listed(args.steps_per_rev)), size, "steady",
+                   batch=batch_size * args.workers,
+                   names={"n_cases": "the grid " + " x ".join(given) if given else "the grid",
+                          "n_elements": "--elements (with --batch-size and --workers)",
+                          "n_steps": "--steps-per-rev"})
+    if size > 10000:
+        _say(args, f"sweep: building the grid of {size} cases")
+    cases = _sweep_cases(args, models, axes)
+    if args.checkpoint is not None and not args.checkpoint.strip():
+        raise UsageError("--checkpoint is an empty name; give a file")
     checkpoint = Path(args.checkpoint) if args.checkpoint else Path(args.out) / "sweep.jsonl"
     _check_checkpoint(checkpoint, Path(args.out))
     out = _Outputs(args.out, ["sweep.csv"], args.force)
