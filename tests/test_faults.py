@@ -82,6 +82,116 @@ def _env():
     return env
 
 
+# --- item 1: a checkpoint that is a device, a FIFO, CRLF, another version ------------------------
+
+def test_a_device_or_fifo_checkpoint_is_refused_and_left_alone(tmp_path, capsys):
+    device = _device(tmp_path / "null", 1, 3)                       # a copy of /dev/null
+    assert run(["sweep", "--omega", "0.4", "--out", str(tmp_path / "o"), "--force",
+                "--checkpoint", str(device), "--quiet"] + TINY) == 2
+    one_line_error(capsys, str(device), "character device")
+    assert stat.S_ISCHR(os.lstat(device).st_mode)                   # not deleted, not replaced
+    assert not (tmp_path / "o").exists()
+    with pytest.raises(ParameterError, match="checkpoint .*character device"):
+        sweep([Case(**SMALL)], checkpoint=device)
+    assert stat.S_ISCHR(os.lstat(device).st_mode)
+
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    argv = ["sweep", "--omega", "0.4", "--out", str(tmp_path / "o"), "--checkpoint", str(fifo),
+            "--quiet"] + TINY
+    child = subprocess.run([sys.executable, "-m", "crankgen", *argv], capture_output=True,
+                           text=True, timeout=CHILD_TIMEOUT, env=_env())   # hung before
+    assert child.returncode == 2 and "FIFO" in child.stderr and "Traceback" not in child.stderr
+    assert stat.S_ISFIFO(os.lstat(fifo).st_mode)
+
+
+def test_a_crlf_checkpoint_is_read_and_another_version_refused_in_one_line(tmp_path, capsys,
+                                                                             monkeypatch):
+    calls = []
+    monkeypatch.setattr(sweep_mod, "steady_states", _fake_states(calls))
+    cases = [Case(omega=w, **SMALL) for w in (0.3, 0.4)]
+    ckpt = tmp_path / "sweep.jsonl"
+    sweep(cases, checkpoint=ckpt)
+    crlf = tmp_path / "crlf.jsonl"
+    crlf.write_bytes(ckpt.read_bytes().replace(b"\n", b"\r\n"))      # as an editor on Windows saves it
+    calls.clear()
+    table = sweep(cases + [Case(omega=0.5, **SMALL)], checkpoint=crlf)
+    assert calls == [Case(omega=0.5, **SMALL)] and len(table) == 3  # the CRLF records are reused
+
+    other = tmp_path / "v2.jsonl"
+    other.write_text('{"format": "crankgen-sweep-checkpoint", "version": 2}\n')
+    assert run(["sweep", "--omega", "0.4", "--out", str(tmp_path / "o"), "--checkpoint",
+                str(other), "--quiet"] + TINY) == 2
+    one_line_error(capsys, str(other), "version 2", "reads version 1")
+    with pytest.raises(sweep_mod.CheckpointError, match="version 2"):
+        sweep(cases, checkpoint=other)
+    assert other.read_text() == '{"format": "crankgen-sweep-checkpoint", "version": 2}\n'
+
+
+# --- item 3: a checkpoint removed while its sweep runs -------------------------------------------
+
+def test_a_checkpoint_removed_during_the_sweep_is_recreated_with_its_header(tmp_path, monkeypatch):
+    calls = []
+    monkeypatch.setattr(sweep_mod, "steady_states", _fake_states(calls))
+    cases = [Case(omega=w, **SMALL) for w in (0.3, 0.4, 0.5, 0.6)]
+    ckpt = tmp_path / "sweep.jsonl"
+
+    def remove_after_the_first(done, total):
+        if done == 1:
+            ckpt.unlink()
+    with pytest.warns(RuntimeWarning, match="removed during the sweep"):
+        sweep(cases, checkpoint=ckpt, batch_size=1, progress=remove_after_the_first)
+    lines = ckpt.read_text().splitlines()
+    assert json.loads(lines[0]) == {"format": "crankgen-sweep-checkpoint", "version": 1}
+    assert sorted(json.loads(line)["key"] for line in lines[1:]) == sorted(c.key() for c in cases)
+    calls.clear()
+    assert run(["sweep", "--omega", "0.3,0.4,0.5,0.6", "--eps", "0.1", "--model", "paper",
+                "--steps-per-rev", "24", "--elements", "2", "--out", str(tmp_path / "o"),
+                "--checkpoint", str(ckpt), "--quiet", "--approach", "A"]) == 0   # refused before
+    assert calls == []                                              # everything from the file
+
+
+# --- item 4: a lock on the checkpoint -----------------------------------------------------------
+
+READER = """
+import sys, crankgen
+from crankgen import Case
+for cases in ([], [Case(omega=0.9, formulation="paper", n_elements=2, eps=0.1, steps_per_rev=24)]):
+    try:
+        crankgen.sweep(cases, checkpoint=sys.argv[1])
+        print("opened")
+    except crankgen.sweeps.CheckpointError as exc:
+        print("refused:", exc)
+"""
+
+
+def test_another_process_cannot_repair_or_share_a_checkpoint_being_written(tmp_path, monkeypatch):
+    calls = []
+    monkeypatch.setattr(sweep_mod, "steady_states", _fake_states(calls))
+    ckpt = tmp_path / "sweep.jsonl"
+    seen = {}
+
+    def meanwhile(done, total):
+        if done != 1:
+            return
+        size = ckpt.stat().st_size
+        with open(ckpt, "ab") as fh:                   # a record still being written ...
+            fh.write(b'{"key": "half a rec')
+        child = subprocess.run([sys.executable, "-c", READER, str(ckpt)], capture_output=True,
+                               text=True, timeout=CHILD_TIMEOUT, env=_env())
+        seen["out"], seen["grown"] = child.stdout, ckpt.stat().st_size - size
+        os.truncate(ckpt, size)                        # ... (this test finishes it off)
+    sweep([Case(omega=w, **SMALL) for w in (0.3, 0.4)], checkpoint=ckpt, batch_size=1,
+          progress=meanwhile)
+    lines = seen["out"].splitlines()
+    assert len(lines) == 2, seen["out"]
+    for line in lines:                                 # the reader and the second sweep: refused
+        assert line.startswith("refused:") and f"process {os.getpid()}" in line, line
+    assert seen["grown"] == len('{"key": "half a rec')              # nothing truncated
+    assert not (tmp_path / "sweep.jsonl.lock").exists()
+    assert len(ckpt.read_text().splitlines()) == 3                  # header + both records
+
+
 # --- item 5: SimulationResult.to_csv on a full disk ----------------------------------------------
 
 def test_simulation_to_csv_on_a_full_disk_keeps_the_old_file(tmp_path):
@@ -102,6 +212,56 @@ def test_simulation_to_csv_on_a_full_disk_keeps_the_old_file(tmp_path):
     assert len(path.read_text().splitlines()) == n + 1
 
 
+# --- item 9: pool workers die with their parent ---------------------------------------------------
+
+POOL = """
+import os, signal, sys
+from crankgen import sweeps
+from crankgen.cli import main
+if sys.argv[2] == "watchdog":                       # the portable fallback alone
+    sweeps._set_parent_death_signal = lambda signum: False
+parent = os.getpid()
+
+def hold(cases, *args):                             # a worker: say who it is, then keep working
+    if os.getpid() != parent:
+        os.write(1, f"worker {os.getpid()}\\n".encode())
+        while True:
+            signal.pause()
+    raise AssertionError("no chunk runs in the parent")
+sweeps._run_chunk = hold
+sys.exit(main(["sweep", "--omega", "0.2,0.3,0.4,0.5", "--batch-size", "1", "--workers", "2",
+               "--elements", "2", "--steps-per-rev", "20", "--out", sys.argv[1], "--quiet"]))
+"""
+
+
+@pytest.mark.parametrize("signum, death", [(signal.SIGKILL, "prctl"), (signal.SIGKILL, "watchdog"),
+                                           (signal.SIGTERM, "prctl")])
+def test_pool_workers_die_with_the_sweep(tmp_path, signum, death):
+    proc = subprocess.Popen([sys.executable, "-c", POOL, str(tmp_path / "o"), death],
+                            stdout=subprocess.PIPE, stderr=open(tmp_path / "stderr", "wb"),
+                            start_new_session=True, env=_env())
+    workers = set()
+    try:
+        while len(workers) < 2:
+            line = proc.stdout.readline()
+            assert line.startswith(b"worker "), (line, (tmp_path / "stderr").read_text())
+            workers.add(int(line.split()[1]))
+        os.kill(proc.pid, signum)
+        proc.wait(timeout=CHILD_TIMEOUT)
+        # Every worker holds the pipe's write end: EOF means all of them have exited.
+        reader = threading.Thread(target=proc.stdout.read, daemon=True)
+        reader.start()
+        reader.join(CHILD_TIMEOUT)
+        assert not reader.is_alive(), f"orphaned workers {workers} still alive"
+    finally:
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(proc.pid, signal.SIGKILL)       # this test's process group only
+        proc.stdout.close()
+    assert proc.returncode == (143 if signum == signal.SIGTERM else -signal.SIGKILL)
+    if signum == signal.SIGTERM:
+        assert "terminated" in (tmp_path / "stderr").read_text()
+
+
 # --- item 10: bounded work and memory, checked before computing ---------------------------------
 
 def test_runs_too_large_for_the_machine_are_refused_before_computing(tmp_path, capsys, monkeypatch):
@@ -119,6 +279,11 @@ def test_runs_too_large_for_the_machine_are_refused_before_computing(tmp_path, c
     from crankgen.limits import check_run_size
     with pytest.raises(ParameterError, match=r"^revolutions x n_elements: .* TiB"):
         check_run_size(16, 10**12, names={"n_steps": "revolutions"})
+    calls = []
+    monkeypatch.setattr(sweep_mod, "steady_states", _fake_states(calls))
+    with pytest.raises(ParameterError, match=r"^n_elements .*: 20000 elements .*GiB"):
+        sweep([Case(n_elements=20000)])
+    assert calls == []
 
 
 # --- item 11: progress output is best effort ---------------------------------------------------
@@ -192,6 +357,40 @@ def test_messages_name_the_users_file_never_a_temporary_one(tmp_path, capsys):
         code = run(["simulate", "--revolutions", "1", "--out", str(tmp_path / "f"), "--quiet"] + TINY)
     assert code == 1
     one_line_error(capsys, str(tmp_path / "f" / "v_mid.png"), "File too large")
+
+
+# --- issue 18, item 13: checkpoint per small batch; a true interrupt message; extending ----------
+
+def test_an_interrupted_sweep_keeps_every_finished_batch_and_says_so(tmp_path, capsys, monkeypatch):
+    calls = []
+    fake = _fake_states(calls)
+    monkeypatch.setattr(sweep_mod, "steady_states", fake)
+    grid = ["sweep", "--omega", "0.2:1.1:0.1", "--eps", "0.1", "--out", str(tmp_path / "o"),
+            "--quiet"] + TINY                                          # 10 cases, default batch
+
+    def interrupted(cases, **kwargs):
+        if calls:                                                      # the second batch
+            raise KeyboardInterrupt
+        return fake(cases, **kwargs)
+    monkeypatch.setattr(sweep_mod, "steady_states", interrupted)
+    assert run(grid) == 130
+    err = capsys.readouterr().err
+    assert "8 of 10 cases are recorded" in err and "sweep.jsonl" in err
+    assert len((tmp_path / "o" / "sweep.jsonl").read_text().splitlines()) == 1 + 8
+
+    calls.clear()
+    monkeypatch.setattr(sweep_mod, "steady_states", lambda cases, **kw: (_ for _ in ()).throw(
+        KeyboardInterrupt))
+    assert run(["sweep", "--omega", "0.2:1.1:0.1", "--eps", "0.1", "--out", str(tmp_path / "p"),
+                "--quiet"] + TINY) == 130
+    assert "nothing new was recorded" in capsys.readouterr().err
+
+    monkeypatch.setattr(sweep_mod, "steady_states", fake)
+    assert run(grid) == 0 and len(calls) == 2                        # resumed: the last two
+    calls.clear()
+    more = ["sweep", "--omega", "0.2:1.3:0.1", "--eps", "0.1", "--out", str(tmp_path / "o"),
+            "--quiet", "--force"] + TINY
+    assert run(more) == 0 and sorted(c.omega for c in calls) == [1.2, 1.3]   # extended, reused
 
 
 # --- issue 18, item 12 (part): an empty --out ---------------------------------------------------

@@ -206,49 +206,77 @@ def _cmd_sweep(args):
 
 
 def _check_checkpoint(path, out):
-    if path.is_dir():
-        raise UsageError(f"checkpoint {path} is a folder, not a file")
-    if path.parent != out and not path.parent.is_dir():
-        raise UsageError(f"checkpoint {path}: its folder {path.parent} does not exist")
-    if path.exists():
-        with open(path, "rb") as fh:
-            head = fh.read(40)
-        if head and not head.startswith(b'{"format": "crankgen-sweep-checkpoint"'[:len(head)]):
-            raise UsageError(f"{path} exists and is not a crankgen sweep checkpoint; choose another "
-                             "--checkpoint or --out")
+    """Refuse, before anything is created, a checkpoint that is not a regular file (a folder, a
+    device, a FIFO, a socket, a link out of its folder), has no folder, or is not a crankgen sweep
+    checkpoint of this format version.  Nothing is opened but a regular file."""
+    from ..io import NotRegularFileError, check_target
+    from ..sweeps import check_checkpoint_file
+
+    try:
+        target = check_target(path)
+    except NotRegularFileError as exc:
+        raise UsageError(f"checkpoint {exc}") from None
+    if target.parent != out and not target.parent.is_dir():
+        raise UsageError(f"checkpoint {path}: its folder {target.parent} does not exist")
+    if target.exists():
+        check_checkpoint_file(path)
 
 
 def _sweep(args, cases, checkpoint, out):
     from collections import Counter
 
     from ..progress import Progress
-    from ..sweeps import sweep
+    from ..sweeps import sweep, worker_init
 
-    if args.force and checkpoint.exists():
-        checkpoint.unlink()
-        _say(args, f"sweep: --force: {checkpoint} removed, every case is computed afresh")
+    if args.fresh and checkpoint.exists():
+        _say(args, f"sweep: --fresh: the records of {checkpoint} are discarded, every case is "
+                   "computed again")
     elif checkpoint.exists():
         _say(args, f"sweep: resuming from {checkpoint}: cases recorded there are not recomputed"
                    + ("" if args.retry_failed else " (failed ones included; --retry-failed reruns them)"))
-    _say(args, f"sweep: {len(cases)} cases; checkpoint {checkpoint}")
+    _say(args, f"sweep: {len(cases)} cases in batches of {args.batch_size}; checkpoint {checkpoint}")
     executor = None
     if args.workers > 1:
         import concurrent.futures as cf
-        executor = cf.ProcessPoolExecutor(args.workers)
+        executor = cf.ProcessPoolExecutor(args.workers, initializer=worker_init,
+                                          initargs=(os.getpid(),))
+    recorded, finished = {"done": None}, False
     try:
-        with Progress("sweep (cases)", len(cases), enabled=not args.quiet) as progress:
+        with Progress("sweep (cases)", len(cases), enabled=not args.quiet, interval=30) as bar:
+            def progress(done, total):
+                recorded["done"] = done
+                bar(done, total)
             table = sweep(cases, executor=executor, checkpoint=checkpoint, batch_size=args.batch_size,
                           tol=args.tol, max_revolutions=args.max_revolutions,
-                          retry_failed=args.retry_failed, progress=progress)
+                          retry_failed=args.retry_failed, progress=progress, fresh=args.fresh)
+        finished = True
+    except KeyboardInterrupt as exc:
+        done = recorded["done"]
+        exc.detail = (f"{done} of {len(cases)} cases are recorded in {checkpoint}: the same command "
+                      "resumes from them" if done else
+                      f"no case of this sweep had finished; nothing new was recorded in {checkpoint}")
+        raise
     finally:
         if executor is not None:
-            executor.shutdown(cancel_futures=True)
+            _stop_pool(executor, now=not finished)
     from ..io import write_csv
     out.wrote(write_csv(out.path("sweep.csv"), table.columns, table.rows))
     counts = Counter(row["status"] for row in table.rows)
     print(f"wrote {out.path('sweep.csv')}: {len(table)} cases, "
           + ", ".join(f"{n} {status}" for status, n in sorted(counts.items())))
     return 0
+
+
+def _stop_pool(executor, now):
+    """Shut the pool down; `now` (the sweep stopped: an interruption, an error) without waiting for
+    work nobody will read: what has not started is cancelled and the workers are ended."""
+    if now:
+        for process in list((getattr(executor, "_processes", None) or {}).values()):
+            try:
+                process.kill()
+            except (OSError, AttributeError, ValueError):
+                pass
+    executor.shutdown(wait=True, cancel_futures=True)
 
 
 # ---- reproduce, audit --------------------------------------------------------------------------
