@@ -332,6 +332,36 @@ def test_negative_numbers_lists_and_ranges_are_option_values():
         parser.parse_args(["simulate", "--offset", "--quiet"])
 
 
+# --- item 14: misuse of the Python API ----------------------------------------------------------
+
+def test_api_misuse_gets_a_parameter_error_or_the_documented_fallback(tmp_path, monkeypatch):
+    calls = []
+    monkeypatch.setattr(sweep_mod, "steady_states", _fake_states(calls))
+    cases = [Case(omega=w, **SMALL) for w in (0.3, 0.4)]
+    pool = cf.ProcessPoolExecutor(1)
+    pool.shutdown()
+    with pytest.warns(RuntimeWarning, match=r"2 case\(s\) were not finished.*after shutdown"):
+        assert len(sweep(cases, executor=pool, batch_size=1)) == 2
+    assert calls == cases
+    distributed = pytest.importorskip("distributed")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        client = distributed.Client(processes=False, n_workers=1, threads_per_worker=1,
+                                    dashboard_address=None)
+        executor = client.get_executor()
+        client.close()
+    with pytest.warns(RuntimeWarning, match="not finished by the executor.*ClosedClientError"):
+        assert len(sweep(cases, executor=executor)) == 2
+    with pytest.raises(ParameterError, match="^executor must be"):
+        sweep(cases, executor="dask")
+    with pytest.raises(ParameterError, match="^checkpoint .*is a folder"):
+        sweep(cases, checkpoint=tmp_path)
+    with pytest.raises(ParameterError, match="^values must be a sequence"):
+        crankgen.poincare(values=0.8)
+    with pytest.raises(ParameterError, match="^case must be None or a crankgen.Case"):
+        crankgen.continuation(case="x")
+
+
 # --- item 15: every message names the user's file, checked before computing ----------------------
 
 def test_messages_name_the_users_file_never_a_temporary_one(tmp_path, capsys):

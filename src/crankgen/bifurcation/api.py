@@ -14,12 +14,23 @@ from .mechanism import PARAMETERS, MechanismMap
 
 def make_case(mech, parameter, value, case, **model):
     """The Case of the first point: case (if given) or mech + model options, with parameter = value."""
+    from ..parameters import Mechanism
     choice("parameter", parameter, PARAMETERS)
+    if case is not None and not isinstance(case, Case):
+        raise ParameterError(f"case must be None or a crankgen.Case, got {type(case).__name__} "
+                             f"{case!r}")
+    if mech is not None and not isinstance(mech, Mechanism):
+        raise ParameterError(f"mech must be None or a crankgen.Mechanism, got "
+                             f"{type(mech).__name__} {mech!r}")
     if case is None:
-        from ..parameters import Mechanism
         mech = mech if mech is not None else Mechanism()
         case = Case.from_mechanism(mech, **model)
     return replace(case, **{parameter: float(value)})
+
+
+def _check_progress(progress):
+    if progress is not None and not callable(progress):
+        raise ParameterError(f"progress must be None or a function, got {progress!r}")
 
 
 def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, omega=0.8, approach="A",
@@ -35,6 +46,7 @@ def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, omega=0.8
     given among them is replaced by start.  Steps ds, ds_min, ds_max are arclengths in the metric
     |dy|^2 / dim + dp^2, y the state in v*-like units; no step changes the parameter by more than
     dp_max (default |stop - start| / 50).  progress(text) receives progress lines."""
+    _check_progress(progress)
     start = in_range("start", start)
     stop = in_range("stop", stop)
     if start == stop:
@@ -81,9 +93,15 @@ def poincare(mech=None, parameter="omega", values=None, direction="up", *, omega
     as in steady_state.  progress(done, total) after each value."""
     from .sweeps import sweep_map
 
-    if values is None or len(values) == 0:
+    _check_progress(progress)
+    if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
+        raise ParameterError(f"values must be a sequence of {parameter} values (a list or an "
+                             f"array), got {type(values).__name__} {values!r}")
+    values = list(values)
+    if not values:
         raise ParameterError("values must hold at least one parameter value")
     values = [in_range(f"values ({parameter})", v) for v in values]
+    choice("direction", direction, ("up", "down", "both"))
     c0 = make_case(mech, parameter, min(values), case, omega=omega, approach=approach,
                    formulation=formulation, damping=damping, membrane=membrane,
                    rotary_inertia=rotary_inertia,
