@@ -128,6 +128,29 @@ def test_a_crlf_checkpoint_is_read_and_another_version_refused_in_one_line(tmp_p
     assert other.read_text() == '{"format": "crankgen-sweep-checkpoint", "version": 2}\n'
 
 
+def test_a_checkpoint_link_is_used_inside_its_folder_and_refused_out_of_it(tmp_path, capsys,
+                                                                          monkeypatch):
+    calls = []
+    monkeypatch.setattr(sweep_mod, "steady_states", _fake_states(calls))
+    outside = tmp_path / "outside.jsonl"
+    sweep([Case(omega=0.4, eps=0.1, n_elements=2, steps_per_rev=20, damping="kelvin-voigt",
+                membrane="averaged")], checkpoint=outside)
+    folder = tmp_path / "f"
+    folder.mkdir()
+    (folder / "real.jsonl").write_bytes(outside.read_bytes())
+    (folder / "link.jsonl").symlink_to("real.jsonl")
+    (folder / "out.jsonl").symlink_to(outside)
+    before = outside.read_bytes()
+    calls.clear()
+    argv = ["sweep", "--omega", "0.4,0.5", "--eps", "0.1", "--quiet"] + TINY
+    assert run(argv + ["--out", str(tmp_path / "a"), "--checkpoint", str(folder / "link.jsonl")]) == 0
+    assert [c.omega for c in calls] == [0.5] and (folder / "link.jsonl").is_symlink()
+    assert len((folder / "real.jsonl").read_text().splitlines()) == 3        # written through
+    assert run(argv + ["--out", str(tmp_path / "b"), "--checkpoint", str(folder / "out.jsonl")]) == 2
+    one_line_error(capsys, str(folder / "out.jsonl"), "symbolic link", "outside")
+    assert outside.read_bytes() == before
+
+
 # --- item 3: a checkpoint removed while its sweep runs -------------------------------------------
 
 def test_a_checkpoint_removed_during_the_sweep_is_recreated_with_its_header(tmp_path, monkeypatch):

@@ -156,7 +156,7 @@ def check_checkpoint_file(path, data=None):
     version, from its first bytes (`data`, default: read from path, which must be a regular file);
     an empty file or a torn header is accepted (it is started afresh)."""
     if data is None:
-        data = _read_regular(path, 4096)
+        data = _read_regular(path, 4096)            # path: a regular file, not a link
     first, newline, _ = data.partition(b"\n")
     if not newline:
         if _HEADER.encode().startswith(first.rstrip(b"\r")):
@@ -176,8 +176,9 @@ def check_checkpoint_file(path, data=None):
 def _open_regular(path, flags):
     """os.open of a regular file only (never blocks on a FIFO, never follows a last symlink);
     NotRegularFileError otherwise."""
-    fd = os.open(path, flags | os.O_NONBLOCK | os.O_NOCTTY | getattr(os, "O_NOFOLLOW", 0)
-                 | getattr(os, "O_CLOEXEC", 0), 0o666)
+    for name in ("O_NONBLOCK", "O_NOCTTY", "O_NOFOLLOW", "O_CLOEXEC"):
+        flags |= getattr(os, name, 0)
+    fd = os.open(path, flags, 0o666)
     mode = os.fstat(fd).st_mode
     if not stat.S_ISREG(mode):
         os.close(fd)

@@ -219,7 +219,10 @@ def _check_checkpoint(path, out):
     if target.parent != out and not target.parent.is_dir():
         raise UsageError(f"checkpoint {path}: its folder {target.parent} does not exist")
     if target.exists():
-        check_checkpoint_file(path)
+        try:
+            check_checkpoint_file(target)
+        except NotRegularFileError as exc:          # changed since check_target looked
+            raise UsageError(f"checkpoint {exc}") from None
 
 
 def _sweep(args, cases, checkpoint, out):
