@@ -64,7 +64,7 @@ import numpy as np
 
 from .cases import Case
 from .errors import CrankgenError, ParameterError
-from .io import NotRegularFileError, OutputWriteError, atomic_file, check_target, fsync_dir, kind_of
+from .io import NotRegularFileError, OutputWriteError, atomic_file, check_target, kind_of
 from .limits import check_run_size
 from .provenance import code_version
 from .steady import SteadyState, _check_resolved, steady_states
