@@ -15,7 +15,7 @@ _LAZY = {
     "NewmarkSettings": "newmark", "integrate": "newmark",
     "SimulationResult": "simulation", "simulate": "simulation", "simulate_many": "simulation",
     "SteadyState": "steady", "steady_state": "steady", "steady_states": "steady",
-    "SweepTable": "sweeps", "sweep": "sweeps",
+    "SweepTable": "sweeps", "sweep": "sweeps", "CheckpointError": "sweeps",
     "BifurcationDiagram": "bifurcation", "PoincareDiagram": "bifurcation",
     "continuation": "bifurcation", "poincare": "bifurcation",
     # guides and crank motions (records made from the schema)

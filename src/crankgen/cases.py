@@ -149,7 +149,7 @@ def run_case(mech=None, case=None, *, model=None, omega=None, crank=None, **fiel
             raise ParameterError(f"give either case= or a mechanism and its settings, not both "
                                  f"(got case= and {', '.join(extra)})")
         if not isinstance(case, Case):
-            raise ParameterError(f"case must be a crankgen.Case, got {type(case).__name__}")
+            raise ParameterError(f"case must be None or a crankgen.Case, got {type(case).__name__} {case!r}")
         return case
     if mech is None:
         mech = Mechanism()

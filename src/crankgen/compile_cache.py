@@ -96,6 +96,11 @@ READ_ONLY_NOTE = (f"crankgen: the compiled-code cache {CACHE} is read-only: comp
                   "this run (set CRANKGEN_CACHE_DIR to a writable folder, or have the owner of the "
                   "installation run `crankgen compile`, to keep the compiled code)")
 _announced = []
+QUIET = []                 # set by the command line's --quiet: no compilation progress either
+
+
+def set_quiet(quiet=True):
+    QUIET[:] = [True] if quiet else []
 
 
 def _say(text):

@@ -10,6 +10,7 @@ from . import engine as _engine
 from . import kinematics as _kinematics
 from .cases import Case, run_case
 from .errors import ConvergenceError, ParameterError
+from .limits import check_run_size
 from .model import Model
 from .newmark import NewmarkSettings, integrate
 from .outputs import DeclaredOutputs, StateHistory, end_axial, extension, mid_deflection
@@ -40,8 +41,9 @@ class SimulationResult(DeclaredOutputs):
     accelerations: Optional[np.ndarray] = field(default=None, repr=False)
 
     def to_csv(self, path):
-        """Write t*, theta, v_mid, u_end, extension as CSV (full double precision)."""
-        with open(path, "w", newline="") as fh:
+        """Write t*, theta, v_mid, u_end, extension as CSV (full double precision), atomically."""
+        from .io import atomic_file
+        with atomic_file(path) as fh:
             w = csv.writer(fh)
             w.writerow(["t", "theta", "v_mid", "u_end", "extension"])
             for row in zip(self.t, self.theta, self.v_mid, self.u_end, self.extension):
@@ -78,6 +80,8 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     settings = NewmarkSettings(scheme=case.integrator, tol=tol)
     model = Model.from_case(case)
     dt, n_steps = run_length(case, revolutions)
+    check_run_size(case.n_elements, n_steps, stored="nodes" if store_nodes else "states",
+                   names={"n_steps": "revolutions"})
     N = model.n_dofs
     if initial is None:
         d0, v0 = np.zeros(N), np.zeros(N)
@@ -181,6 +185,9 @@ def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=Fals
     for i, c in enumerate(cases):
         groups.setdefault((c.n_elements, c.steps_per_rev, run_length(c, revolutions)[1]), []).append(i)
     total = sum(n_steps * len(idx) for (_, _, n_steps), idx in groups.items())
+    for (n, _, n_steps), idx in groups.items():
+        check_run_size(n, n_steps, n_cases=len(idx), stored="states" if keep_states else "outputs",
+                       names={"n_steps": "revolutions", "n_cases": "cases"})
     out = [None] * len(cases)
     done_total = 0
     for (n, spr, n_steps), idx in sorted(groups.items()):

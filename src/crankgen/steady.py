@@ -44,6 +44,7 @@ from . import engine
 from . import kinematics as _kinematics
 from .cases import Case, run_case
 from .errors import ParameterError
+from .limits import check_run_size
 from .outputs import DeclaredOutputs
 from .validation import choice, in_range, integer
 
@@ -99,10 +100,13 @@ def _scaled_change(X0, X1, S):
     return num / (1.0 + np.max(np.abs(X1) / S, axis=1))
 
 
-def _failure_text(res, b, dt):
+def _failure_text(res, b, dt, before=0, steps_per_rev=None):
+    """The failure of case b in a march that started `before` steps into the run: the step counted
+    from the start of the run (and its revolution)."""
     code = int(res.status[b])
-    step = int(res.fail_step[b])
-    return (f"{engine.STATUS_TEXT[code]} in step {step} (t* = {step * dt:.6g}), "
+    step = before + int(res.fail_step[b])
+    where = f", revolution {(step - 1) // steps_per_rev + 1}" if steps_per_rev else ""
+    return (f"{engine.STATUS_TEXT[code]} in step {step} of the run{where} (t* = {step * dt:.6g}), "
             f"residual norm {res.fail_residual[b]:.3e}")
 
 
@@ -134,7 +138,7 @@ class _BatchSolver:
         X1 = np.concatenate([res.D, res.V], axis=1)
         for i in np.flatnonzero(active & (res.status != engine.OK)):
             self.status[i] = "failed"
-            self._note(i, _failure_text(res, i, float(b.dt[i])))
+            self._note(i, _failure_text(res, i, float(b.dt[i]), int(self.periods[i]) * spr, spr))
         return X1, res
 
     def run(self):
@@ -330,6 +334,8 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
     done = 0
     for key in sorted(groups):
         idx = groups[key]
+        check_run_size(key[0], key[1], n_cases=len(idx), stored="steady", batch=len(idx),
+                       names={"n_steps": "steps_per_rev", "n_cases": "cases"})
         start = time.perf_counter()
         solver = _BatchSolver([cases[i] for i in idx], tol, max_revolutions,
                               min(warmup, max_revolutions), max_shooting, method, parallel)

@@ -19,6 +19,11 @@ def make_case(mech, parameter, value, case, **fields):
     return replace(run_case(mech, case, **fields), **{parameter: value})
 
 
+def _check_progress(progress):
+    if progress is not None and not callable(progress):
+        raise ParameterError(f"progress must be None or a function, got {progress!r}")
+
+
 def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, model=None, max_period=4, ds=0.05,
                  ds_min=1e-4, ds_max=100.0, dp_max=None, max_points=400, tol=1e-9, switch_step=0.05,
                  case=None, progress=None, **fields):
@@ -31,6 +36,7 @@ def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, model=Non
     case=Case(...)); the value of `parameter` given among them is replaced by start.  Steps ds, ds_min, ds_max are arclengths in the metric
     |dy|^2 / dim + dp^2, y the state in v*-like units; no step changes the parameter by more than
     dp_max (default |stop - start| / 50).  progress(text) receives progress lines."""
+    _check_progress(progress)
     start = in_range("start", start)
     stop = in_range("stop", stop)
     if start == stop:
@@ -73,9 +79,15 @@ def poincare(mech=None, parameter="omega", values=None, direction="up", *, model
     steady_state.  progress(done, total) after each value."""
     from .sweeps import sweep_map
 
-    if values is None or len(values) == 0:
+    _check_progress(progress)
+    if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
+        raise ParameterError(f"values must be a sequence of {parameter} values (a list or an "
+                             f"array), got {type(values).__name__} {values!r}")
+    values = list(values)
+    if not values:
         raise ParameterError("values must hold at least one parameter value")
     values = [in_range(f"values ({parameter})", v) for v in values]
+    choice("direction", direction, ("up", "down", "both"))
     c0 = make_case(mech, parameter, min(values), case, model=model, **fields)
     for v in values:
         make_case(None, parameter, v, c0)                      # validates every value

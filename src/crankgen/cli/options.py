@@ -4,6 +4,7 @@ options), the output folder; argument types; the Case a command line describes."
 
 import argparse
 import math
+import re
 import sys
 from pathlib import Path
 
@@ -23,7 +24,18 @@ class UsageError(CrankgenError):
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse with a one-line error message (and exit code 2), pointing to --help."""
+    """argparse with a one-line error message (and exit code 2), pointing to --help.
+
+    A value that starts with a minus sign followed by a digit, a point or inf / nan is a value,
+    not an option: `--offset -0.05`, `--gravity -1e-3,0`, `--offset -0.05,0.05` and ranges
+    `-0.1:0.1:0.05` (argparse alone takes only plain negative numbers such as -1 or -.5 as
+    values).  No option of crankgen looks like that, so real option names keep working."""
+
+    NEGATIVE_VALUE = re.compile(r"^-(\d|\.\d|inf|nan)", re.IGNORECASE)
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = self.NEGATIVE_VALUE
 
     def error(self, message):
         self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
@@ -193,6 +205,13 @@ _figure_list = _number_list("figure", 2, 8)
 CASE_FIELDS = tuple(schema.PARAMETERS) + tuple(schema.OPTIONS)
 
 
+def _flag(name):
+    """The command-line flag (without --) of a case field."""
+    from .. import schema
+    spec = schema.PARAMETERS.get(name) or schema.OPTIONS.get(name)
+    return spec.cli
+
+
 def _explicit(args):
     """{field: value} of every case field the command line gives (None: not given)."""
     return {name: getattr(args, name) for name in CASE_FIELDS if getattr(args, name, None) is not None}
@@ -235,11 +254,11 @@ class _Outputs:
     """The output folder of a command: checked (and created) before computing; if the command
     stops before writing anything, the folders it created are removed again."""
 
-    def __init__(self, folder, names, force):
+    def __init__(self, folder, names, force, subfolders=()):
         from ..compile_cache import announce
         from ..io import prepare_folder
         self.folder = Path(folder)
-        self.created = prepare_folder(self.folder, names, force)
+        self.created = prepare_folder(folder, names, force, subfolders)
         self.written = []
         announce()                  # arguments and folder are fine: computing starts now
 

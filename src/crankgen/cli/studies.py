@@ -8,8 +8,12 @@ from .options import UsageError, _Outputs, _add_model_options, _explicit, _model
 def _cmd_reproduce(args):
     from ..experiments import ReproduceConfig, reproduce
 
+    from ..experiments.runner import DATA, all_files
+
     config = ReproduceConfig.quick() if args.quick else ReproduceConfig.full()
-    out = _Outputs(args.out, (), True)     # a usable folder, checked first (reproduce keeps its files)
+    # a usable folder and data/ subfolder, and no output name taken by a folder, a device, ...:
+    # checked first (which files are kept or refused is reproduce's decision)
+    out = _Outputs(args.out, all_files(), True, subfolders=(DATA,))
     try:
         res = reproduce(args.out, config=config, force=args.force, quiet=args.quiet,
                         figures=args.figures)
@@ -28,7 +32,7 @@ def _cmd_audit(args):
     from ..audit import SECTIONS, TITLES, write_report
 
     sections = args.sections or list(SECTIONS)
-    out = _Outputs(args.out, (), True)            # report.md is regenerated: replaced, atomically
+    out = _Outputs(args.out, ("report.md",), True)   # regenerated: replaced, atomically
     start = time.perf_counter()
 
     def progress(k):

@@ -172,6 +172,7 @@ def prepare(items, quiet=False):
     from numba.core import config
     if config.DISABLE_JIT:                        # plain Python: nothing to compile
         return
+    quiet = quiet or bool(compile_cache.QUIET)
     todo = [item for item in items if not done(item)]
     if not todo:
         return
