@@ -8,7 +8,6 @@ used by dgbsv.
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.linalg import lapack
 
 from .mesh import Mesh
 from .schema import ELEMENT_DOFS as NDOF
@@ -66,6 +65,7 @@ class BandedAssembler:
 
     def factorize(self, ab):
         """LU factors (LAPACK gbtrf, partial pivoting) of the band matrix ab; None if singular."""
+        from scipy.linalg import lapack          # the NumPy reference only: not on the engine's start-up
         kb = self.bandwidth
         lu, ipiv, info = lapack.dgbtrf(ab, kb, kb)
         if info != 0:
@@ -74,6 +74,7 @@ class BandedAssembler:
 
     def solve_factorized(self, factors, rhs):
         """x with A x = rhs from the factors of factorize (LAPACK gbtrs)."""
+        from scipy.linalg import lapack
         kb = self.bandwidth
         lu, ipiv = factors
         rhs = np.asarray(rhs, dtype=float)
@@ -84,6 +85,7 @@ class BandedAssembler:
 
     def solve(self, ab, rhs):
         """Solve A x = rhs with A in band storage (LU with partial pivoting); None if singular."""
+        from scipy.linalg import lapack
         kb = self.bandwidth
         _, _, x, info = lapack.dgbsv(kb, kb, ab, rhs, overwrite_ab=1, overwrite_b=0)
         if info != 0:

@@ -128,9 +128,19 @@ def _number(text):
         raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
 
 
-def _clean(x):
-    """A grid value without floating-point noise (0.30000000000000004 -> 0.3)."""
-    return float(f"{x:.12g}")
+def _decimals(text):
+    """Decimal places a number is written with ('0.05' -> 2, '1e-3' -> 3, '2' -> 0)."""
+    from decimal import Decimal, InvalidOperation
+    try:
+        return max(0, -Decimal(text.strip()).as_tuple().exponent)
+    except (InvalidOperation, TypeError):
+        return 12
+
+
+def _clean(x, decimals=12):
+    """A grid value without floating-point noise: rounded to the decimal places its range is
+    written with (-0.3 + 3 x 0.1 -> 0.0, not 5.55e-17), one canonical zero."""
+    return round(x, decimals) + 0.0
 
 
 def _float_grid(text):
@@ -151,9 +161,10 @@ def _float_grid(text):
             n = int(math.floor((stop - start) / step + 1e-9))
             if n >= 100000:
                 raise argparse.ArgumentTypeError(f"the range {item!r} has more than 100000 values")
-            values += [_clean(start + k * step) for k in range(n + 1)]
+            places = max(_decimals(parts[0]), _decimals(parts[2]))
+            values += [_clean(start + k * step, places) for k in range(n + 1)]
         else:
-            values.append(_number(item))
+            values.append(_number(item) + 0.0)
     if not values:
         raise argparse.ArgumentTypeError(f"expected a number, a list or a range, got {text!r}")
     return list(dict.fromkeys(values))

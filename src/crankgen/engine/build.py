@@ -11,7 +11,8 @@ items whose lock it gets and leaves the others to whoever holds them, then waits
 process walks the list from the front while a helper process (`python -m crankgen.engine.build
 ITEM ...`) walks it from the back, so a cold start compiles on two cores; two runs started at once
 on a cold cache split the work the same way instead of both compiling everything.  Where the
-cache folder is read-only, everything is compiled here, in memory.
+cache folder is read-only, everything is compiled here, in memory.  $CRANKGEN_BUILD_LOG, when
+set, receives a line per item compiled (by any of the processes).
 """
 
 import contextlib
@@ -122,7 +123,19 @@ def _run(items, progress, start):
                 progress(item, start)
             compile_item(item)
             _mark(item)
+            _log(item)
     return left
+
+
+def _log(item):
+    """Append the item to $CRANKGEN_BUILD_LOG, when set (which process compiled what)."""
+    path = os.environ.get("CRANKGEN_BUILD_LOG")
+    if path:
+        try:
+            with open(path, "a") as fh:
+                fh.write(f"{item}\n")
+        except OSError:
+            pass
 
 
 def _helper(items):
@@ -198,6 +211,7 @@ def prepare(items, quiet=False):
             if not done(item):                    # that process stopped without finishing
                 compile_item(item)
                 _mark(item)
+                _log(item)
     finally:
         if helper is not None:
             try:

@@ -70,7 +70,14 @@ if _KernelsHashLocator not in caching.CacheImpl._locator_classes:
 
 
 class _Cache(caching.FunctionCache):
-    """numba's function cache whose saving never fails a run (read-only folder, full disk)."""
+    """numba's function cache that never fails a run: a folder that cannot be read loads nothing
+    (the code is compiled), one that cannot be written (read-only, a full disk) saves nothing."""
+
+    def load_overload(self, sig, target_context):
+        try:
+            return super().load_overload(sig, target_context)
+        except OSError:
+            return None
 
     def save_overload(self, sig, data):
         if READ_ONLY:
