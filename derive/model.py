@@ -484,6 +484,11 @@ OUTPUTS = (
     Output("end_height", "step", "Y/L of the rod's end", "L", lambda o: end_position()[1]),
     Output("rocker_angle", "step", "the rocker's angle (rad, counter-clockwise from the X axis)", "rad",
            lambda o: s.beta + s_end, guides=("circle",)),
+    Output("transmission_angle", "step",
+           "the four-bar's transmission angle: the angle at the rocker's tip between the coupler's "
+           "chord and the rocker, in [0, pi] (pi/2 transmits the crank's force best)", "rad",
+           lambda o: sp.acos(sp.cos(sp.atan2(q_end[1], 1 + q_end[0]) - s.phi - s.beta - s_end)),
+           guides=("circle",)),
     Output("chord_angle", "step",
            "inertial angle of the rod's chord, the line from the crank pin to the rod's end (rad, "
            "counter-clockwise from the X axis)", "rad", lambda o: sp.atan2(q_end[1], 1 + q_end[0]) - s.phi),
