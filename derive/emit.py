@@ -7,15 +7,19 @@
 - `name_into(..., out1, out2, ...)` (modules in derive/kernels.SCALAR): one element, scalar
   arguments, results written into preallocated arrays (every entry, zeros included).  Plain Python
   with `math`, written so that the runtime can compile it with numba for the hot path.
-Element kernels (outputs r and its tangents K = dr/dq, C = dr/dqd, M = dr/dqdd) get accumulating
-one-element variants instead, the engine's calling convention:
-- `name_add(..., r, K, C, M)`: r += residual, K += K, C += C, M += M;
-- `name_printed_add(..., r, K, C, M)` (kernels with a K_printed output only): the same with K_printed
-  in place of K, the iteration matrix of the printed one-pass scheme, eq. (37);
-- `name_residual_add(..., r)`: r += residual (no tangents, for iterations that reuse a factorization);
-- `name_newmark_add(..., cv, cd, r, S)`: r += residual and S += M + cv C + cd K, the element part of
-  the iteration matrix of eq. (37) (cv = gamma dt, cd = beta dt^2).
-Structural zeros are skipped in the accumulating variants.
+Element kernels (outputs r and its tangents K = dr/dq, C = dr/dqd, M = dr/dqdd) get one accumulating
+one-element function instead, the engine's calling convention,
+`name_element(mode, q, qd, qdd, geo, coef, kin, cv, cd, r, K, C, M, S)`, whose mode (ELEMENT_MODES)
+says what it adds:
+- "full": r += residual, K += K, C += C, M += M;
+- "printed": the same with K_printed in place of K (kernels with a K_printed output; the others
+  add their exact K), the iteration matrix of the printed one-pass scheme, eq. (37);
+- "residual": r += residual (no tangents, for iterations that reuse a factorization);
+- "newmark": r += residual and S += M + cv C + cd K, the element part of the iteration matrix of
+  eq. (37) (cv = gamma dt, cd = beta dt^2).
+One function per kernel keeps the engine's tables and the compilations per model few; each mode's
+branch is the straight-line code of its own common-subexpression elimination.  Structural zeros are
+skipped.
 Every variant comes from the same specification and a common-subexpression elimination with a fixed
 prefix and canonical order, so the same derivation always gives byte-identical source.
 """
@@ -26,8 +30,10 @@ import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 from sympy.printing.pycode import PythonCodePrinter
 
-GENERATOR_VERSION = "4"
-VARIANT_SUFFIXES = ("_into", "_add", "_printed_add", "_residual_add", "_newmark_add")
+GENERATOR_VERSION = "5"
+VARIANT_SUFFIXES = ("_into", "_element")
+ELEMENT_MODES = ("full", "printed", "residual", "newmark")
+ELEMENT_ARGUMENTS = ("mode", "q", "qd", "qdd", "geo", "coef", "kin", "cv", "cd", "r", "K", "C", "M", "S")
 TANGENTS = ("K", "C", "M")   # d r / d q, d r / d qd, d r / d qdd
 CSE_PREFIX = "_c"
 
@@ -282,15 +288,40 @@ def _has_printed(kernel):
     return any(out.name == "K_printed" for out in kernel.outputs)
 
 
+def _body(source):
+    """The statements of a function's source (after its def line and docstring)."""
+    lines = source.rstrip("\n").split("\n")
+    return lines[2:] if lines[1].lstrip().startswith('"""') else lines[1:]
+
+
+def emit_element(kernel):
+    """`<name>_element(mode, ...)`: one function whose branches are the accumulating variants (the
+    module docstring); every argument of ELEMENT_ARGUMENTS is taken, each branch uses its own.  A
+    kernel without a printed stiffness serves "printed" with its "full" branch."""
+    printed = _has_printed(kernel)
+    branches = [("full", emit_add(kernel), (0,) if printed else (0, 1))]
+    if printed:
+        branches.append(("printed", emit_add(kernel, printed=True), (1,)))
+    branches += [("residual", emit_residual_add(kernel), (2,)), ("newmark", emit_newmark_add(kernel), (3,))]
+    lines = [f"def {kernel.name}_element({', '.join(ELEMENT_ARGUMENTS)}):",
+             f'    """{kernel.name} for one element, by mode (ELEMENT_MODES {ELEMENT_MODES}): 0 r, K, C, M '
+             f'+= (exact K); 1 the same with the printed eq. (37) K{"" if printed else " (here: the exact K)"}; '
+             '2 r only; 3 r and S += M + cv C + cd K."""']
+    for k, (label, source, modes) in enumerate(branches):
+        test = f"mode == {modes[0]}" if len(modes) == 1 else f"mode <= {modes[-1]}"
+        keyword = "if" if k == 0 else ("elif" if k < len(branches) - 1 else "else")
+        lines.append(f"    {keyword}{' ' + test if keyword != 'else' else ''}:    # {label}")
+        body = _body(source)
+        lines += ["    " + line for line in body] if body else ["        pass"]
+    return "\n".join(lines) + "\n"
+
+
 def _names(kernel, accumulating, scalar):
     names = [kernel.name]
     if scalar:
         names.append(kernel.name + "_into")
     if accumulating and is_residual_kernel(kernel):
-        names.append(kernel.name + "_add")
-        if _has_printed(kernel):
-            names.append(kernel.name + "_printed_add")
-        names += [kernel.name + "_residual_add", kernel.name + "_newmark_add"]
+        names.append(kernel.name + "_element")
     return names
 
 
@@ -299,8 +330,5 @@ def _sources(kernel, accumulating, scalar):
     if scalar:
         parts.append(emit_scalar_kernel(kernel))
     if accumulating and is_residual_kernel(kernel):
-        parts.append(emit_add(kernel))
-        if _has_printed(kernel):
-            parts.append(emit_add(kernel, printed=True))
-        parts += [emit_residual_add(kernel), emit_newmark_add(kernel)]
+        parts.append(emit_element(kernel))
     return "\n\n".join(parts)

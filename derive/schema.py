@@ -15,6 +15,7 @@ import sympy as sp
 from sympy.printing.pycode import PythonCodePrinter
 
 from . import representation as ir
+from .emit import ELEMENT_MODES
 from .guides import END_MAP_ROWS
 
 
@@ -68,6 +69,8 @@ def _table_source(rep):
     out.append(f"ELEMENT_DOFS = {rep.element_dofs!r}")
     out.append(f"END_SLOTS = {rep.end_slots!r}")
     out.append(f"END_MAP_ROWS = {END_MAP_ROWS!r}")
+    out.append("# what an element kernel's one-element function adds, by its mode argument (derive/emit.py)")
+    out.append(f"ELEMENT_MODES = {ELEMENT_MODES!r}")
     out.append(f"COEFFICIENTS = {tuple(c.name for c in rep.coefficients)!r}")
     out.append(f"SWITCHABLE_GROUPS = {rep.switchable_groups!r}")
     out.append("# crank motions: name, record title, parameters it reads, periodic in the crank angle, the record's")

@@ -22,6 +22,7 @@ KIN = {name: k for k, name in enumerate(KINEMATICS)}         # place of each ent
 ELEMENT_DOFS = _table.ELEMENT_DOFS
 END_SLOTS = _table.END_SLOTS
 END_MAP_ROWS = {name: k for k, name in enumerate(_table.END_MAP_ROWS)}
+ELEMENT_MODES = _table.ELEMENT_MODES          # what an element kernel's one-element function adds
 
 
 def _bracket(low, high, low_open, high_open):

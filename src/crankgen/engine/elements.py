@@ -1,6 +1,6 @@
 """The element loop of the compiled engine: gather each element's nodal state, map the end node
-through the guide's end map, call the case's term families (tables of compiled kernels, indexed by
-the case's `select` row: engine/kernels.py), project the end element's terms on the reduced
+through the guide's end map, call the case's term families (the model's table of compiled kernels,
+one per family slot: engine/kernels.py), project the end element's terms on the reduced
 co-ordinate (the exact constraint elimination of constraints.py), and the per-step outputs.
 
 Three modes: FULL (residual and tangents K, C, M), NEWMARK (residual and the iteration matrix
@@ -11,10 +11,13 @@ a guide or a motion.
 
 from .. import schema
 from .compiled import jit
-from .kernels import GUIDE_SLOT, MOTION_SLOT, N_END, N_ROD
+from .kernels import N_END, N_ROD
 from .records import NDOF
 
-FULL, NEWMARK, RESIDUAL = 0, 1, 2
+FULL, NEWMARK, RESIDUAL = 0, 1, 2          # what the element loop computes
+# what an element kernel adds, by its mode argument (derive/emit.py)
+ADD_FULL, ADD_PRINTED, ADD_RESIDUAL, ADD_NEWMARK = (schema.ELEMENT_MODES.index(m) for m in (
+    "full", "printed", "residual", "newmark"))
 IU, IV = schema.END_SLOTS                      # the end node's (u, v) in the last element's vector
 _R = schema.END_MAP_ROWS
 Q, QD, QDD, G_S, DQD_DS, DQDD_DS, DQDD_DSD, G_SS = (_R[k] for k in (
@@ -25,8 +28,8 @@ PHI = schema.KIN["phi"]
 @jit
 def kinematics(kern, sel, params, t, w):
     """w.kin at time t: the crank motion's (theta, thetad, thetadd), then the guide's closure."""
-    kern.motion[sel[MOTION_SLOT]](t, params, w.crank)
-    kern.guide[sel[GUIDE_SLOT]](w.crank, params, w.kin)
+    kern.motion[0](t, params, w.crank)
+    kern.guide[0](w.crank, params, w.kin)
 
 
 @jit
@@ -35,7 +38,7 @@ def end_map(kern, sel, params, s, sd, sdd, w):
     w.send[0] = s
     w.send[1] = sd
     w.send[2] = sdd
-    kern.end_map[sel[GUIDE_SLOT]](w.send, w.kin, params, w.E)
+    kern.end_map[0](w.send, w.kin, params, w.E)
 
 
 @jit
@@ -115,58 +118,40 @@ def element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv,
     q, qd, qdd, geo, kin = w.q, w.qd, w.qdd, w.geo, w.kin
     rE, KE, CE, ME, SE = w.rE, w.KE, w.CE, w.ME, w.SE
     geo[0] = l
+    full = ADD_PRINTED if printed else ADD_FULL
     for e in range(n):
         last = e == n - 1
         _gather(dofs, e, d, v, acc, q, qd, qdd)
         if last:
             _map_end(kern, sel, params, q, qd, qdd, w)
         geo[1] = e * l
-        r = rE[e]
+        r, K, C, M, S = rE[e], KE[e], CE[e], ME[e], SE[e]
         r[:] = 0.0
         if mode == RESIDUAL:
-            for k in range(N_ROD):
-                i = sel[k]
-                if i >= 0:
-                    kern.rod_residual[i](q, qd, qdd, geo, coef, kin, r)
-            if last:
-                for k in range(N_END):
-                    i = sel[N_ROD + k]
-                    if i >= 0:
-                        kern.end_residual[i](q, qd, qdd, geo, coef, kin, r)
-                project_residual(w.E, r)
-            continue
-        if mode == NEWMARK and not last and not printed:
-            S = SE[e]
+            add = ADD_RESIDUAL
+        elif mode == NEWMARK and not last and not printed:
+            add = ADD_NEWMARK
             S[:, :] = 0.0
-            for k in range(N_ROD):
-                i = sel[k]
-                if i >= 0:
-                    kern.rod_newmark[i](q, qd, qdd, geo, coef, kin, cv, cd, r, S)
-            continue
-        K, C, M = KE[e], CE[e], ME[e]
-        K[:, :] = 0.0
-        C[:, :] = 0.0
-        M[:, :] = 0.0
+        else:
+            add = full
+            K[:, :] = 0.0
+            C[:, :] = 0.0
+            M[:, :] = 0.0
         for k in range(N_ROD):
-            i = sel[k]
-            if i >= 0:
-                if printed:
-                    kern.rod_printed[i](q, qd, qdd, geo, coef, kin, r, K, C, M)
-                else:
-                    kern.rod_add[i](q, qd, qdd, geo, coef, kin, r, K, C, M)
+            if sel[k] >= 0:
+                kern.rod[k](add, q, qd, qdd, geo, coef, kin, cv, cd, r, K, C, M, S)
         if last:
             for k in range(N_END):
-                i = sel[N_ROD + k]
-                if i >= 0:
-                    if printed:
-                        kern.end_printed[i](q, qd, qdd, geo, coef, kin, r, K, C, M)
-                    else:
-                        kern.end_add[i](q, qd, qdd, geo, coef, kin, r, K, C, M)
-            project_last(w.E, r, K, C, M)
-        if mode == NEWMARK:
+                if sel[N_ROD + k] >= 0:
+                    kern.end[k](add, q, qd, qdd, geo, coef, kin, cv, cd, r, K, C, M, S)
+            if add == ADD_RESIDUAL:
+                project_residual(w.E, r)
+            else:
+                project_last(w.E, r, K, C, M)
+        if mode == NEWMARK and add != ADD_NEWMARK:
             for i in range(NDOF):
                 for j in range(NDOF):
-                    SE[e, i, j] = ME[e, i, j] + cv * CE[e, i, j] + cd * KE[e, i, j]
+                    S[i, j] = M[i, j] + cv * C[i, j] + cd * K[i, j]
 
 
 @jit

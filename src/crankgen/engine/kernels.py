@@ -1,9 +1,13 @@
 """The generated kernels, compiled one at a time when a case first needs them, and gathered into the
-tables of first-class functions the engine calls (records.Kernels).
+tables of first-class functions the engine calls (records.Kernels), one table per model: for each
+term family slot the selected variant's one-element function `<name>_element(mode, ...)`
+(derive/emit.py: the mode says whether it adds the residual and tangents, the printed iteration
+matrix, the residual only, or the Newmark iteration matrix), a no-op for an absent family; the
+guide's end map and kinematics; the crank motion.
 
 The engine itself is compiled once for every model: it receives the kernels as arguments (tables
-of compiled functions with one signature per calling variant) and a case's `select` row says which
-entry of each table to call.  A kernel no case of a batch needs is never compiled: its entries
+of compiled functions, one signature per kind); a batch whose cases differ in model runs each
+model's cases with that model's table.  A kernel no case of a batch needs is never compiled: its entries
 hold a no-op of the same signature.  Each compiled kernel is cached on disk like the engine
 (compiled.py), so a model's kernels are compiled once per machine.
 
@@ -28,10 +32,8 @@ _V = types.float64[::1]
 _M = types.float64[:, ::1]
 _F = types.float64
 SIGNATURES = {
-    "_add": types.void(_V, _V, _V, _V, _V, _V, _V, _M, _M, _M),
-    "_printed_add": types.void(_V, _V, _V, _V, _V, _V, _V, _M, _M, _M),
-    "_residual_add": types.void(_V, _V, _V, _V, _V, _V, _V),
-    "_newmark_add": types.void(_V, _V, _V, _V, _V, _V, _F, _F, _V, _M),
+    # name_element(mode, q, qd, qdd, geo, coef, kin, cv, cd, r, K, C, M, S): derive/emit.py
+    "element": types.void(types.int64, _V, _V, _V, _V, _V, _V, _F, _F, _V, _M, _M, _M, _M),
     "end_map": types.void(_V, _V, _V, _M),
     "guide": types.void(_V, _V, _V),
     "motion": types.void(_F, _V, _V),
@@ -61,15 +63,7 @@ def select_row(case):
 
 # ---- no-ops: the entries of kernels no case needs ---------------------------------------------------
 
-def _noop_add(q, qd, qdd, geo, coef, kin, r, K, C, M):
-    pass
-
-
-def _noop_residual(q, qd, qdd, geo, coef, kin, r):
-    pass
-
-
-def _noop_newmark(q, qd, qdd, geo, coef, kin, cv, cd, r, S):
+def _noop_element(mode, q, qd, qdd, geo, coef, kin, cv, cd, r, K, C, M, S):
     pass
 
 
@@ -85,33 +79,26 @@ def _noop_motion(t, params, crank):
     pass
 
 
-_NOOP_SOURCE = {"_add": _noop_add, "_printed_add": _noop_add, "_residual_add": _noop_residual,
-                "_newmark_add": _noop_newmark, "end_map": _noop_end_map, "guide": _noop3,
-                "motion": _noop_motion}
+_NOOP_SOURCE = {"element": _noop_element, "end_map": _noop_end_map, "guide": _noop3, "motion": _noop_motion}
 _COMPILED = {}
 
 
 def _noop(kind):
-    kind = "_add" if kind == "_printed_add" else kind          # one signature
     key = ("noop", kind)
     if key not in _COMPILED:
-        _COMPILED[key] = jit(_NOOP_SOURCE[kind], signature=SIGNATURES[kind],
-                             name=f"noop{kind if kind.startswith('_') else '_' + kind}")
+        _COMPILED[key] = jit(_NOOP_SOURCE[kind], signature=SIGNATURES[kind], name=f"noop_{kind}")
     return _COMPILED[key]
 
 
 def _source(kind, name):
-    """The generated one-element function of a kernel for a calling variant."""
-    if kind in ("end_map", "guide", "motion"):
-        return getattr(_kinematics, f"{kind}_{name}_into")
-    fn = getattr(_elements, name + kind, None)
-    if fn is None and kind == "_printed_add":        # no printed iteration matrix: the exact tangent
-        fn = getattr(_elements, name + "_add")
-    return fn
+    """The generated one-element function of a kernel of this kind."""
+    if kind == "element":
+        return getattr(_elements, f"{name}_element")
+    return getattr(_kinematics, f"{kind}_{name}_into")
 
 
 def compiled(kind, name):
-    """The compiled kernel `name` in calling variant `kind` (compiled on first use, cached on disk;
+    """The compiled kernel `name` of this kind (compiled on first use, cached on disk;
     engine/build.py compiles a run's kernels ahead, on two processes)."""
     key = (kind, name)
     if key not in _COMPILED:
@@ -119,71 +106,46 @@ def compiled(kind, name):
     return _COMPILED[key]
 
 
-def needed(rows, printed):
-    """{(kind, kernel name)} that the cases with these select rows call (printed: per case, whether
-    the one-pass scheme iterates with the printed eq. (37) matrices)."""
+def needed(rows):
+    """{(kind, kernel name)} that the cases with these select rows call."""
     out = set()
-    for row, uses_printed in zip(rows, printed):
+    for row in rows:
         for part, offset, count in (("rod", 0, N_ROD), ("end", N_ROD, N_END)):
             for k in range(count):
                 i = row[offset + k]
-                if i < 0:
-                    continue
-                name = VARIANTS[part][i][2]
-                kinds = ("_add", "_residual_add") + (("_newmark_add",) if part == "rod" else ())
-                out.update((kind, name) for kind in kinds)
-                if uses_printed:
-                    out.add(("_printed_add", name))
+                if i >= 0:
+                    out.add(("element", VARIANTS[part][i][2]))
         out.add(("end_map", GUIDE_NAMES[row[GUIDE_SLOT]]))
         out.add(("guide", GUIDE_NAMES[row[GUIDE_SLOT]]))
         out.add(("motion", MOTION_NAMES[row[MOTION_SLOT]]))
     return out
 
 
-def tables(rows, printed):
-    """records.Kernels for cases with these select rows and printed flags (see needed): their
-    kernels compiled, no-ops elsewhere."""
-    need = needed(rows, printed)
-
-    def entry(kind, name):
-        return compiled(kind, name) if (kind, name) in need else _noop(kind)
-
-    def part_table(part, kind):
-        return tuple(entry(kind, name) for _, _, name in VARIANTS[part])
-
-    return Kernels(
-        part_table("rod", "_add"), part_table("rod", "_printed_add"), part_table("rod", "_residual_add"),
-        part_table("rod", "_newmark_add"), part_table("end", "_add"), part_table("end", "_printed_add"),
-        part_table("end", "_residual_add"),
-        tuple(entry("end_map", g) for g in GUIDE_NAMES), tuple(entry("guide", g) for g in GUIDE_NAMES),
-        tuple(entry("motion", m) for m in MOTION_NAMES))
+def tables(row):
+    """records.Kernels of the cases with this select row: per family slot its variant's compiled
+    element function (a no-op for an absent family), and the case's end map, guide and motion."""
+    def slots(part, offset, count):
+        return tuple(compiled("element", VARIANTS[part][row[offset + k]][2]) if row[offset + k] >= 0
+                     else _noop("element") for k in range(count))
+    guide, motion = GUIDE_NAMES[row[GUIDE_SLOT]], MOTION_NAMES[row[MOTION_SLOT]]
+    return Kernels(slots("rod", 0, N_ROD), slots("end", N_ROD, N_END), (compiled("end_map", guide),),
+                   (compiled("guide", guide),), (compiled("motion", motion),))
 
 
 def noop_tables():
     """records.Kernels with a no-op in every entry (the engine's types, nothing compiled)."""
-    def part_table(part, kind):
-        return tuple(_noop(kind) for _ in VARIANTS[part])
-    return Kernels(
-        part_table("rod", "_add"), part_table("rod", "_printed_add"), part_table("rod", "_residual_add"),
-        part_table("rod", "_newmark_add"), part_table("end", "_add"), part_table("end", "_printed_add"),
-        part_table("end", "_residual_add"), tuple(_noop("end_map") for _ in GUIDE_NAMES),
-        tuple(_noop("guide") for _ in GUIDE_NAMES), tuple(_noop("motion") for _ in MOTION_NAMES))
+    return Kernels(tuple(_noop("element") for _ in range(N_ROD)), tuple(_noop("element") for _ in range(N_END)),
+                   (_noop("end_map"),), (_noop("guide"),), (_noop("motion"),))
 
 
-def build_items(rows, printed):
+def build_items(rows):
     """The build items (engine/build.py) of the kernels these cases call."""
-    return [f"kernel:{kind}:{name}" for kind, name in sorted(needed(rows, printed))]
+    return [f"kernel:{kind}:{name}" for kind, name in sorted(needed(rows))]
 
 
 def all_build_items():
     """The build items of every kernel of every model (crankgen compile)."""
-    items = set()
-    for part in PARTS:
-        for _, _, name in VARIANTS[part]:
-            kinds = ("_add", "_residual_add") + (("_newmark_add",) if part == "rod" else ())
-            items.update((kind, name) for kind in kinds)
-            if hasattr(_elements, name + "_printed_add"):
-                items.add(("_printed_add", name))
+    items = {("element", name) for part in PARTS for _, _, name in VARIANTS[part]}
     items.update(("end_map", g) for g in GUIDE_NAMES)
     items.update(("guide", g) for g in GUIDE_NAMES)
     items.update(("motion", m) for m in MOTION_NAMES)

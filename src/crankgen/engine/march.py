@@ -54,9 +54,12 @@ class Batch:
         printed = np.array([c.selection.printed_iteration and c.integrator == "one-pass" for c in cases])
         if kernels_table is None:
             from .build import prepare
-            prepare([f"entry:{e}" for e in entries] + build_items(select, printed))
-            kernels_table = tables(select, printed)
-        self.kernels = kernels_table
+            prepare([f"entry:{e}" for e in entries] + build_items(select))
+        # runs of consecutive cases of one model, each with its model's kernel table
+        starts = [0] + [b for b in range(1, len(cases)) if not np.array_equal(select[b], select[b - 1])]
+        self.runs = [(kernels_table if kernels_table is not None else tables(select[lo]), lo, hi)
+                     for lo, hi in zip(starts, starts[1:] + [len(cases)])]
+        self.kernels = self.runs[0][0]
         self.records = Cases(
             select, np.array([c.coefficients for c in cases], dtype=float),
             np.array([c.kinematic_parameters for c in cases], dtype=float),
@@ -170,19 +173,24 @@ def threads():
         return max(1, os.cpu_count() or 1)
 
 
-def parallel_slices(fn, B, parallel, *args):
-    """fn(*args[:k], lo, hi, *args[k:]) over slices of the B cases: on threads when parallel (the
-    compiled functions release the GIL), else in one call.  args: (leading, trailing) tuples."""
-    leading, trailing = args
+def parallel_slices(fn, batch, parallel, leading, trailing):
+    """fn(kernels, *leading, lo, hi, *trailing) over slices of the batch's cases, each run of one
+    model with its kernel table: on threads when parallel (the compiled functions release the
+    GIL), else one call per run."""
+    B = len(batch)
     workers = min(threads(), B) if parallel else 1
-    if workers <= 1:
-        call(fn, *leading, 0, B, *trailing)
+    tasks = []
+    for kern, lo, hi in batch.runs:
+        parts = min(workers, hi - lo)
+        bounds = np.linspace(lo, hi, parts + 1).astype(int)
+        tasks += [(kern, int(a), int(b)) for a, b in zip(bounds[:-1], bounds[1:]) if b > a]
+    if workers <= 1 or len(tasks) <= 1:
+        for kern, lo, hi in tasks:
+            call(fn, kern, *leading, lo, hi, *trailing)
         return
-    bounds = np.linspace(0, B, workers + 1).astype(int)
-    call(fn, *leading, 0, 0, *trailing)                       # compile (or load) once, before threading
+    call(fn, tasks[0][0], *leading, 0, 0, *trailing)          # compile (or load) once, before threading
     with ThreadPoolExecutor(workers) as pool:
-        futures = [pool.submit(fn, *leading, int(lo), int(hi), *trailing)
-                   for lo, hi in zip(bounds[:-1], bounds[1:]) if hi > lo]
+        futures = [pool.submit(fn, kern, *leading, lo, hi, *trailing) for kern, lo, hi in tasks]
         for f in futures:
             f.result()
 
@@ -202,12 +210,12 @@ def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False
     D0 = np.zeros((B, N)) if D0 is None else np.ascontiguousarray(D0, dtype=float)
     V0 = np.zeros((B, N)) if V0 is None else np.ascontiguousarray(V0, dtype=float)
     status = np.zeros(B, dtype=np.int64) if status is None else np.array(status, dtype=np.int64)
-    kern, cases, mesh = batch.kernels, batch.records, batch.meshdata
+    cases, mesh = batch.records, batch.meshdata
     if parallel is None:
         parallel = B > 1
     if A0 is None:
         A0 = np.zeros((B, N))
-        parallel_slices(_initial_accelerations, B, parallel, (kern, cases, mesh), (step0, D0, V0, A0, status))
+        parallel_slices(_initial_accelerations, batch, parallel, (cases, mesh), (step0, D0, V0, A0, status))
     else:
         A0 = np.ascontiguousarray(A0, dtype=float)
     if previous is None:
@@ -225,7 +233,7 @@ def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False
     Dh, Vh, Ah = np.zeros(hist_shape), np.zeros(rate_shape), np.zeros(rate_shape)
     D1, V1, A1 = np.zeros((B, N)), np.zeros((B, N)), np.zeros((B, N))
     scheme = Scheme(float(beta), float(gamma), float(tol), int(max_iter))
-    parallel_slices(_march_cases, B, parallel, (kern, cases, mesh, scheme),
+    parallel_slices(_march_cases, batch, parallel, (cases, mesh, scheme),
                     (step0, n_steps, D0, V0, A0, P, n_prev, keep_history, keep_rates, out_y, out_iter,
                      status, fail_step, fail_res, Dh, Vh, Ah, D1, V1, A1))
     return MarchResult(y=out_y, iterations=out_iter, status=status, fail_step=fail_step,

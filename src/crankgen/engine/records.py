@@ -1,10 +1,9 @@
 """Named records the compiled engine passes around in place of positional vectors.
 
-- Kernels: the model's compiled kernels as tables of first-class functions (engine/kernels.py):
-  per part ("rod": every element; "end": the rod's end node), one table per calling variant
-  (accumulating r, K, C, M; the printed iteration matrix; residual only; r and the Newmark
-  iteration matrix), indexed by a case's `select` row; the guides' end maps and kinematics and the
-  crank motions, indexed likewise.
+- Kernels: a model's compiled kernels as tables of first-class functions (engine/kernels.py): per
+  part ("rod": every element; "end": the rod's end node) the one-element function of each family
+  slot's variant (a mode argument says what it adds; a no-op for an absent family), and the
+  guide's end map and kinematics and the crank motion (one-entry tables).
 - Cases: one row per case of a batch: `select` (the table index of each family's variant, -1 when
   absent, then the guide and the motion), `coef` (the element kernels' coefficients), `params`
   (the kinematic parameters), the time step, eps, the Newmark scheme code (newton.SCHEMES), whether
@@ -31,9 +30,8 @@ N_KIN = len(schema.KINEMATICS)
 END_ROWS = len(schema.END_MAP_ROWS)
 
 Kernels = namedtuple("Kernels", [
-    "rod_add", "rod_printed", "rod_residual", "rod_newmark",      # rod families, flat variant tables
-    "end_add", "end_printed", "end_residual",                    # end families
-    "end_map", "guide", "motion",                                # by guide, guide, motion
+    "rod", "end",                       # per family slot acting on every element / on the end node
+    "end_map", "guide", "motion",       # (one entry each)
 ])
 
 Cases = namedtuple("Cases", ["select", "coef", "params", "dt", "eps", "scheme", "printed", "scales"])

@@ -119,6 +119,6 @@ def revolution(batch, X0, step0=0, active=None, parallel=None, beta=0.25, gamma=
     if parallel is None:
         parallel = int(active.sum()) > 1
     scheme = Scheme(float(beta), float(gamma), float(tol), int(max_iter))
-    parallel_slices(_revolution_cases, B, parallel, (batch.kernels, batch.records, batch.meshdata, scheme),
+    parallel_slices(_revolution_cases, batch, parallel, (batch.records, batch.meshdata, scheme),
                     (step0, int(revolutions) * batch.steps_per_rev, X0, active, X1, J, status))
     return X1, J, status
