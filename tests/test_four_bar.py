@@ -317,3 +317,46 @@ def test_compiled_engine_equals_numpy_reference_on_the_four_bar(formulation, int
     mech = crankgen.Mechanism(guide="circle", a=0.2, c=2.0, d=1.5, offset=0.1, eps=0.02, ms=0.7, mu=0.3)
     compare_engines(mech, omega=0.6, formulation=formulation, damping="kelvin-voigt",
                     integrator=integrator, n_elements=3, steps_per_rev=40, revolutions=1.5)
+
+
+def test_kinematic_outputs_are_what_they_say():
+    """slider_position / end_height, rocker_angle, chord_angle and chord_deflection(x) of a
+    vibrating four-bar, against the same quantities computed here from the stored nodal values
+    (the rod's points A + (x + u) e_i + v e_j, Hermite interpolation typed in energy_balance.py)."""
+    from energy_balance import shapes
+    g = dict(guide="circle", a=0.2, c=0.9, d=1.1, offset=0.2, branch=1)
+    mech = crankgen.Mechanism(eps=0.05, **g)
+    r = crankgen.simulate(mech, omega=0.9, n_elements=4, steps_per_rev=50, revolutions=1.5, store_nodes=True)
+    kin = _kinematics.case_state(r.case, r.t)
+    nodes = r.nodes.reshape(len(r.t), -1, 3)                            # (steps, n + 1, (u, v, psi))
+    ei = np.stack([np.cos(kin.phi), -np.sin(kin.phi)], -1)
+    ej = np.stack([np.sin(kin.phi), np.cos(kin.phi)], -1)
+    A = g["a"] * np.stack([np.cos(kin.theta), np.sin(kin.theta)], -1)
+    un, vn = nodes[:, -1, 0], nodes[:, -1, 1]
+    B = A + (1 + un)[:, None] * ei + vn[:, None] * ej
+    np.testing.assert_allclose(r.slider_position, B[:, 0], rtol=0, atol=1e-13)
+    np.testing.assert_allclose(r.end_height, B[:, 1], rtol=0, atol=1e-13)
+    np.testing.assert_allclose(np.hypot(B[:, 0] - g["d"], B[:, 1] - g["offset"]), g["c"], rtol=0, atol=1e-13)
+    np.testing.assert_allclose(_angle(r.rocker_angle - np.arctan2(B[:, 1] - g["offset"], B[:, 0] - g["d"])),
+                               0, atol=1e-13)
+    np.testing.assert_allclose(_angle(r.chord_angle - np.arctan2(*(B - A).T[::-1])), 0, atol=1e-13)
+    assert np.ptp(r.rocker_angle - _rigid_beta(r, g)) > 1e-4              # the rocker does deviate
+    # chord deflection: signed distance from the chord A -> B, counter-clockwise positive
+    l = 0.25
+    chord = np.stack([1 + un, vn], -1)
+    for x in (0.0, 0.3, 0.5, 0.875, 1.0):
+        e = min(int(x / l), 3)
+        z = x / l - e
+        Nu, _, Nv, _, _ = shapes(np.array([z]), l)
+        q = np.concatenate([nodes[:, e], nodes[:, e + 1]], -1)           # (steps, 6)
+        P = np.stack([x + q @ Nu[0], q @ Nv[0]], -1)
+        want = (chord[:, 0] * P[:, 1] - chord[:, 1] * P[:, 0]) / np.hypot(*chord.T)
+        got = r.chord_deflection(x)
+        np.testing.assert_allclose(got, want, rtol=0, atol=1e-13 + 1e-10 * np.max(np.abs(want)))
+    assert np.max(np.abs(r.chord_deflection(0.5))) > 1e-3
+
+
+def _rigid_beta(r, g):
+    k = _kinematics.case_state(r.case, r.t).vector
+    return fb.four_bar(k[:, K["theta"]], k[:, K["thetad"]], k[:, K["thetadd"]], g["a"], g["c"], g["d"],
+                       g["offset"], g["branch"])["beta"]
