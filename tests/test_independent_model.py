@@ -119,6 +119,7 @@ def compare_with_forces(mech, guide, rate_law, window=WINDOW, **kw):
     return np.max(np.abs(out - ref[sample]), axis=0) / scale
 
 
+@pytest.mark.slow
 def test_four_bar_agrees_with_an_independent_model():
     """The rod's end on the rocker's circle, a multiplier constraint non-linear in the co-ordinates
     in the independent model, the end map in crankgen: v*, u*(1), extension, torque, pin force and
@@ -129,6 +130,7 @@ def test_four_bar_agrees_with_an_independent_model():
     assert np.all(err < 1e-7), err
 
 
+@pytest.mark.slow
 def test_fluctuating_crank_on_a_four_bar_agrees_with_an_independent_model():
     mech = crankgen.Mechanism(a=A, eps=EPS, ms=MS, mu=0.2, **FOUR_BAR)
     guide = ("circle", FOUR_BAR["c"], FOUR_BAR["d"], FOUR_BAR["offset"], FOUR_BAR["branch"])
@@ -137,6 +139,7 @@ def test_fluctuating_crank_on_a_four_bar_agrees_with_an_independent_model():
     assert np.all(err < 1e-7), err
 
 
+@pytest.mark.slow
 def test_run_up_of_an_offset_slider_crank_agrees_with_an_independent_model():
     mech = crankgen.Mechanism(a=A, eps=EPS, ms=MS, mu=0.2, offset=0.05)
     err = compare_with_forces(mech, ("line", 0.05), four_bar.RunUp(0.3, 1.0, 1),
