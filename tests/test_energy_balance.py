@@ -20,8 +20,6 @@ engine; the independent parts (T, U, 2 D, the inertial accelerations, the slider
 energy_balance.py.
 """
 
-import math
-
 import numpy as np
 import pytest
 
