@@ -28,8 +28,9 @@ tangent need (engine/elements.py, model.py).
 - circle: a rigid massless rocker of length c pivoted at D = (d, e): the four-bar linkage with a
   flexible coupler; beta is the rocker angle and s its deviation.  Two closures exist; branch +1
   puts B on the counter-clockwise side of the line from A to D.  The crank turns a full
-  revolution iff |L - c| < |D - A| < L + c at every crank angle (Grashof's crank-rocker condition):
-  |D| - a > |L - c| and |D| + a < L + c.
+  revolution iff |L - c| < |D - A| < L + c at every crank angle; |D - A| runs from ||D| - a| to
+  |D| + a, so iff ||D| - a| > |L - c| and |D| + a < L + c: a crank-rocker when |D| > a, a drag
+  link (the rocker turns fully too) when the ground pivot lies inside the crank's circle.
 """
 
 from dataclasses import dataclass
@@ -91,8 +92,8 @@ def circle():
         D + s.c * sp.Matrix([sp.cos(s.beta), sp.sin(s.beta)]),
         2 * s.c * sp.sin(sp_s / 2) * sp.Matrix([-sp.sin(s.beta + sp_s / 2), sp.cos(s.beta + sp_s / 2)]),
         sp.atan2(-chord[1], chord[0]), sp.atan2(end[1] - s.e, end[0] - s.d),
-        ((ground - s.a - sp.Abs(1 - s.c), "|D| - a* > |1 - c| (the rod and the rocker reach each "
-                                          "other when the crank points towards D)"),
+        ((sp.Abs(ground - s.a) - sp.Abs(1 - s.c), "||D| - a*| > |1 - c| (the rod and the rocker "
+                                                  "reach each other when the crank pin is nearest D)"),
          (1 + s.c - ground - s.a, "|D| + a* < 1 + c (they reach each other when the crank points "
                                   "away from D)")),
         s.eps**2 / s.c,

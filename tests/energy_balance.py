@@ -5,10 +5,16 @@ e_i = (cos phi, -sin phi), e_j = (sin phi, cos phi), psi = v_x (eq. 4, ERRATA co
 kinematics of the section is written out here by hand and integrated by Gauss quadrature: this
 module does not use crankgen's energy or damping kernels (eq. 24 is written out from Appendix B).
 It uses crankgen only for the element residuals of the unreduced system (to read the pin
-reaction and the guide reaction) and for the DOF layout (Mesh.gather).
+reaction and the guide reaction), for the DOF layout (Mesh.gather) and for the rigid kinematics
+(theta, its rates and phi with its rates; tests/test_four_bar.py and tests/test_crank_motions.py
+check them against independent ones).  The rod's end is mapped here from its reduced co-ordinate:
+a slider's displacement along the line, or the deviation of a four-bar's rocker angle from the
+rigid one (the rigid rocker from tests/four_bar.py); the crank may accelerate (a run-up, a
+fluctuating crank: the crank pin's tangential acceleration a thetadd enters the accelerations).
 
 Along a solution of the Lagrange equations of T - U (T the inertial kinetic energy) with the
-crank pin and the guide as the only constraints,
+crank pin and the guide as the only constraints (a straight guide or a rocker pivoted on the
+ground: either reaction is normal to the end's path, so it does no work),
 
     d(T + U)/dt = F_pin . V_pin  -  P_diss  +  phid Q_phi,
 
@@ -58,7 +64,7 @@ def _col(x, like):
 
 def point_kinematics(x, u, ud, udd, v, vd, vdd, kin, a):
     """Inertial velocity and acceleration of the centre-line point x on (e_i, e_j); kin arrays
-    of shape (Nt,), fields of shape (Nt, ...)."""
+    of shape (Nt,) (theta, thetad, thetadd, phi, phid, phidd), fields of shape (Nt, ...)."""
     ref = np.broadcast_arrays(u, v)[0]
     ph, phd, phdd = (_col(getattr(kin, k), ref) for k in ("phi", "phid", "phidd"))
     th, thd = _col(kin.theta, ref), _col(kin.thetad, ref)
@@ -67,8 +73,12 @@ def point_kinematics(x, u, ud, udd, v, vd, vdd, kin, a):
     Bj = vdd - ud * phd - (x + u) * phdd - Ai * phd
     # crank pin a e_r: velocity a thd e_theta, acceleration -a thd^2 e_r, resolved on the frame
     # (e_r . e_i = cos(theta + phi), e_r . e_j = sin(theta + phi))
+    # and, when the crank accelerates, a thdd e_theta (e_theta . e_i = -sin(theta + phi),
+    # e_theta . e_j = cos(theta + phi))
+    thdd = _col(kin.thetadd, ref)
     Vci, Vcj = -a * thd * np.sin(th + ph), a * thd * np.cos(th + ph)
-    Aci, Acj = -a * thd**2 * np.cos(th + ph), -a * thd**2 * np.sin(th + ph)
+    Aci = -a * thd**2 * np.cos(th + ph) - a * thdd * np.sin(th + ph)
+    Acj = -a * thd**2 * np.sin(th + ph) + a * thdd * np.cos(th + ph)
     return (Vci + Ai, Vcj + Aj), (Aci + Bi, Acj + Bj)
 
 
@@ -109,12 +119,55 @@ def slider_state(s, sd, sdd, kin):
     return np.stack([u, v], -1), np.stack([ud, vd], -1), np.stack([udd, vdd], -1)
 
 
+def rocker_state(s, sd, sdd, kin, case):
+    """(u, v) of the rod's end on a four-bar's rocker and their rates, from the deviation s of the
+    rocker angle from the rigid one, beta + s (the rigid beta and its rates from the independent
+    position analysis of four_bar.py): W = B(beta + s) - A - e_i on (e_i, e_j), B = D + c (cos,
+    sin)(beta + s), differentiated by hand with de_i/dt = -phid e_j, de_j/dt = phid e_i.  Also the
+    rocker's tangent at the end on the frame, (..., 2)."""
+    import four_bar
+    a, c, d, e = case.a, case.c, case.d, case.offset
+    k = four_bar.four_bar(kin.theta, kin.thetad, kin.thetadd, a, c, d, e, case.branch)
+    ph, phd, phdd = kin.phi, kin.phid, kin.phidd
+    th, thd, thdd = kin.theta, kin.thetad, kin.thetadd
+    ei = np.stack([np.cos(ph), -np.sin(ph)], -1)
+    ej = np.stack([np.sin(ph), np.cos(ph)], -1)
+    b, bd, bdd = k["beta"] + s, k["betad"] + sd, k["betadd"] + sdd
+    ub = np.stack([np.cos(b), np.sin(b)], -1)
+    tb = np.stack([-np.sin(b), np.cos(b)], -1)
+    er = np.stack([np.cos(th), np.sin(th)], -1)
+    et = np.stack([-np.sin(th), np.cos(th)], -1)
+    col = lambda x: np.asarray(x, float)[..., None]                          # noqa: E731
+    W = np.array([d, e]) + c * ub - a * er - ei
+    Wd = c * col(bd) * tb - a * col(thd) * et + col(phd) * ej
+    Wdd = (c * col(bdd) * tb - c * col(bd**2) * ub - a * col(thdd) * et + a * col(thd**2) * er
+           + col(phdd) * ej + col(phd**2) * ei)
+    dot = lambda x, y: np.sum(x * y, -1)                                      # noqa: E731
+    u, v = dot(W, ei), dot(W, ej)
+    ud, vd = dot(Wd, ei) - phd * v, dot(Wd, ej) + phd * u
+    udd = dot(Wdd, ei) - 2 * phd * dot(Wd, ej) - phdd * v - phd**2 * u
+    vdd = dot(Wdd, ej) + 2 * phd * dot(Wd, ei) + phdd * u - phd**2 * v
+    tangent = np.stack([dot(tb, ei), dot(tb, ej)], -1)
+    return np.stack([u, v], -1), np.stack([ud, vd], -1), np.stack([udd, vdd], -1), tangent
+
+
+def end_state(model, kin, s, sd, sdd):
+    """(u, v) of the rod's end and rates from its reduced co-ordinate on the case's guide, and the
+    guide's tangent on the frame at the end."""
+    case = model.case
+    if case.guide == "line":
+        out = slider_state(s, sd, sdd, kin)
+        return out + (np.stack([np.cos(kin.phi), np.sin(kin.phi)], -1),)
+    assert case.guide == "circle", case.guide
+    return rocker_state(s, sd, sdd, kin, case)
+
+
 def nodal_states(model, kin, d, v, a):
-    """Element nodal vectors (Nt, n, 6) of reduced histories (Nt, N), slider end mapped here."""
+    """Element nodal vectors (Nt, n, 6) of reduced histories (Nt, N), the end mapped here."""
     mesh = model.mesh
     q, qd, qdd = mesh.gather(d), mesh.gather(v), mesh.gather(a)
     S = mesh.slider_dof
-    for Q, val in zip((q, qd, qdd), slider_state(d[:, S], v[:, S], a[:, S], kin)):
+    for Q, val in zip((q, qd, qdd), end_state(model, kin, d[:, S], v[:, S], a[:, S])[:3]):
         Q[:, -1, 3:5] = val
     return q, qd, qdd
 
@@ -243,10 +296,12 @@ def power_history(model, t, d, v, a, averaged=False):
     Q_phi = frame_moment(model, kin, q, qd, qdd) - (rs[:, 0] * vs - rs[:, 1] * (1.0 + us))
     T = kinetic_energy(model, kin, q, qd)
     U = strain_energy(model, q, options["approach"], averaged)
+    S = model.mesh.slider_dof
+    tangent = end_state(model, kin, d[:, S], v[:, S], a[:, S])[3]
     return {"E": T + U, "T": T, "U": U,
             "P_pin": np.sum(F_pin * V_pin, -1), "P_diss": P_diss, "P_frame": kin.phid * Q_phi,
             "P_resultant": -np.sum((net_i[:, None] * ei + net_j[:, None] * ej) * V_pin, -1),
-            "guide": rs[:, 0] * np.cos(kin.phi) + rs[:, 1] * np.sin(kin.phi)}
+            "guide": np.sum(rs * tangent, -1)}
 
 
 def cumulative(t, p):

@@ -320,7 +320,7 @@ def test_paper_slider_damping(elems):
 # broadcasting: a leading batch axis behaves like a loop
 # --------------------------------------------------------------------------------------------
 
-VARIANTS = ("_into", "_add", "_printed_add", "_residual_add", "_newmark_add")   # one-element variants
+VARIANTS = ("_into", "_element")   # one-element variants
 GENERATED = (gen_shape, gen_kinematics, gen_elements, gen_energy, gen_fields, gen_groups)
 ALL_KERNELS = [(mod.__name__.rsplit(".", 1)[-1], name, getattr(mod, name))
                for mod in GENERATED for name in mod.__all__ if not name.endswith(VARIANTS)]
@@ -513,21 +513,23 @@ def test_into_variant_matches_vectorized(module, name, kernel):
 # --------------------------------------------------------------------------------------------
 
 RESIDUAL_KERNELS = [(m, n, k) for m, n, k in ALL_KERNELS
-                    if hasattr(sys.modules[k.__module__], n + "_newmark_add")]
+                    if hasattr(sys.modules[k.__module__], n + "_element")]
+MODE = {name: k for k, name in enumerate(dispatch.ELEMENT_MODES)}
 
 
-def test_element_kernels_have_accumulating_variants():
+def test_element_kernels_have_one_element_functions():
     names = {n for m, n, _ in RESIDUAL_KERNELS}
     assert names == set(dispatch.ELEMENT_KERNELS)
 
 
 @pytest.mark.parametrize("module,name,kernel", RESIDUAL_KERNELS,
                          ids=[f"{m}.{n}" for m, n, _ in RESIDUAL_KERNELS])
-def test_accumulating_variants_match_vectorized(module, name, kernel):
-    """`<name>_add` adds r, K, C, M; `<name>_printed_add` the same with K_printed for K;
-    `<name>_residual_add` adds r; `<name>_newmark_add` adds r and M + cv C + cd K (the exact
-    tangents), onto whatever the outputs already hold."""
-    mod = sys.modules[kernel.__module__]
+def test_one_element_function_modes_match_vectorized(module, name, kernel):
+    """`<name>_element(mode, ..., cv, cd, r, K, C, M, S)` adds, onto whatever the outputs already
+    hold: "full" r, K, C, M; "printed" the same with K_printed for K (the exact K for a kernel
+    without one); "residual" r only; "newmark" r and M + cv C + cd K (the exact tangents); and
+    leaves the other outputs alone."""
+    element = getattr(sys.modules[kernel.__module__], name + "_element")
     args = _random_arguments(kernel, f"add.{module}.{name}")
     out = kernel(*args)
     outputs = dict(zip(("r", "K", "C", "M", "K_printed"), out))
@@ -535,22 +537,17 @@ def test_accumulating_variants_match_vectorized(module, name, kernel):
     cv, cd = 0.037, 2.9e-4
     S = outputs["M"] + cv * outputs["C"] + cd * outputs["K"]
     rng = np.random.default_rng(zlib.crc32(name.encode()))
-    r0, S0 = rng.standard_normal(r.shape), rng.standard_normal(S.shape)
-    tol = dict(rtol=1e-11, atol=1e-13 * (1 + np.max(np.abs(r))))
-    got_r = r0.copy()
-    getattr(mod, name + "_residual_add")(*args, got_r)
-    np.testing.assert_allclose(got_r - r0, r, **tol)
-    got_r, got_S = r0.copy(), S0.copy()
-    getattr(mod, name + "_newmark_add")(*args, cv, cd, got_r, got_S)
-    np.testing.assert_allclose(got_r - r0, r, **tol)
-    np.testing.assert_allclose(got_S - S0, S, rtol=1e-11, atol=1e-13 * (1 + np.max(np.abs(S))))
-    for printed in (False, True):
-        if printed and "K_printed" not in outputs:
-            assert not hasattr(mod, name + "_printed_add")
-            continue
-        T0 = [rng.standard_normal(x.shape) for x in (r, S, S, S)]
-        got = [x.copy() for x in T0]
-        getattr(mod, name + ("_printed_add" if printed else "_add"))(*args, *got)
-        want = (r, outputs["K_printed" if printed else "K"], outputs["C"], outputs["M"])
-        for g, x0, w in zip(got, T0, want):
-            np.testing.assert_allclose(g - x0, w, rtol=1e-11, atol=1e-13 * (1 + np.max(np.abs(w))))
+    wants = {"full": (r, outputs["K"], outputs["C"], outputs["M"], None),
+             "printed": (r, outputs.get("K_printed", outputs["K"]), outputs["C"], outputs["M"], None),
+             "residual": (r, None, None, None, None),
+             "newmark": (r, None, None, None, S)}
+    for mode, want in wants.items():
+        start = [rng.standard_normal(x.shape) for x in (r, S, S, S, S)]
+        got = [x.copy() for x in start]
+        element(MODE[mode], *args, cv, cd, *got)
+        for g, x0, w in zip(got, start, want):
+            if w is None:
+                assert np.array_equal(g, x0), mode                 # untouched
+            else:
+                np.testing.assert_allclose(g - x0, w, rtol=1e-11, atol=1e-13 * (1 + np.max(np.abs(w))),
+                                           err_msg=mode)

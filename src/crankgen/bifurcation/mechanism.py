@@ -28,6 +28,10 @@ class MechanismMap(Map):
 
     def __init__(self, case, parameter, dp_step=1e-5):
         choice("parameter", parameter, PARAMETERS)
+        if not case.periodic:
+            raise ParameterError(f"continuation and poincare follow the crank-revolution map, which needs a "
+                                 f"crank motion periodic in the crank angle; the {case.motion!r} motion is "
+                                 f"not (simulate() runs it)")
         if case.integrator != "newton":
             raise ParameterError(f"continuation needs integrator='newton' (the converged step map "
                                  f"is differentiated), got {case.integrator!r}")
