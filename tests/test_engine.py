@@ -117,10 +117,9 @@ def test_iteration_matrix_factorizations_agree_on_a_real_step():
     kb, dofs, l = b.meshdata.kb, b.meshdata.dofs, b.meshdata.l
     w = engine.make_work(n, N, kb)
     sel, cf, params = b.records.select[0], b.records.coef[0], b.records.params[0]
-    engine.kinematics(b.kernels, sel, params, 1.3, w)
 
     def loop(mode, cv, cd):
-        engine.element_loop(mode, b.kernels, sel, cf, params, False, dofs, l, d, v, a, cv, cd, w)
+        engine.element_terms(mode, b.kernels, sel, cf, params, False, dofs, l, d, v, a, 1.3, cv, cd, w)
     loop(engine.NEWMARK, 0.04, 1.5e-3)
     rE, SE = w.rE.copy(), w.SE.copy()
     # the combined element matrices equal M + cv C + cd K of the full terms

@@ -18,9 +18,9 @@ the same numbers and the same iteration counts.
 from .banded import (KB_FIXED, assemble_band, assemble_band_newmark, assemble_fixed, assemble_vector,  # noqa: F401
                      band_factor, band_lu_solve, band_matmul, band_solve, factor_fixed, solve_fixed)
 from .compiled import CACHE, CODE_HASH, KERNELS_HASH, is_warm  # noqa: F401
-from .elements import FULL, NEWMARK, RESIDUAL, element_loop, kinematics  # noqa: F401
+from .elements import FULL, NEWMARK, RESIDUAL, element_terms  # noqa: F401
 from .march import Batch, MarchResult, march  # noqa: F401
-from .records import Work, make_work  # noqa: F401
+from .records import Work, new_work as make_work  # noqa: F401
 from .shooting import revolution  # noqa: F401
 from .step import (DIVERGED, NOT_CONVERGED, NOT_FINITE, OK, SINGULAR, STATUS_TEXT, TOO_LARGE,  # noqa: F401
                    initial_acceleration, newmark_step)

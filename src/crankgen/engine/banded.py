@@ -204,7 +204,7 @@ def solve_fixed(F, N, b):
         b[i] = s / F[i, KB_FIXED]
 
 
-@jit
+@jit(python=False)
 def band_matmul(dofs, kb, XE, X, out):
     """out = A X for A assembled from element matrices XE (no band storage needed), X: (N, m)."""
     out[:, :] = 0.0

@@ -111,12 +111,17 @@ def _with_cache(dispatcher):
     return dispatcher
 
 
-def jit(fn, name=None, namespace=None, inline="never", signature=None):
+def jit(fn=None, name=None, namespace=None, inline="never", signature=None, error_model="python", python=True):
     """fn compiled with numba (nopython, releasing the GIL, cached as above).  name: compile a copy
     under another name (numba's cache is keyed by the qualified name); namespace: globals to bind in
     the copy; inline="always" inlines fn into its callers at numba's IR level (small functions
     called per element); signature: compile now, for exactly this signature (the kernels the engine
-    calls as first-class functions)."""
+    calls by address); error_model: numba's ("numpy": never raise, e.g. x / 0 is inf); python:
+    False for a function only compiled code calls (no Python wrapper is compiled for it: less
+    compile time).  No function is used as a numba first-class function (no cfunc wrapper).  As a
+    decorator: @jit or @jit(python=False)."""
+    if fn is None:
+        return lambda f: jit(f, name, namespace, inline, signature, error_model, python)
     if name is not None or namespace is not None:
         glob = dict(fn.__globals__)
         glob.update(namespace or {})
@@ -125,7 +130,8 @@ def jit(fn, name=None, namespace=None, inline="never", signature=None):
         copy.__doc__ = fn.__doc__
         copy.__module__ = fn.__module__
         fn = copy
-    dispatcher = _with_cache(njit(nogil=True, inline=inline)(fn))
+    dispatcher = _with_cache(njit(nogil=True, inline=inline, error_model=error_model, no_cfunc_wrapper=True,
+                                  no_cpython_wrapper=not python)(fn))
     if signature is not None and hasattr(dispatcher, "compile"):
         dispatcher.compile(signature)
         dispatcher.disable_compile()

@@ -10,6 +10,7 @@ a guide or a motion.
 """
 
 from .. import schema
+from .calls import call
 from .compiled import jit
 from .kernels import N_END, N_ROD
 from .records import NDOF
@@ -25,23 +26,23 @@ Q, QD, QDD, G_S, DQD_DS, DQDD_DS, DQDD_DSD, G_SS = (_R[k] for k in (
 PHI = schema.KIN["phi"]
 
 
-@jit
+@jit(python=False)
 def kinematics(kern, sel, params, t, w):
     """w.kin at time t: the crank motion's (theta, thetad, thetadd), then the guide's closure."""
-    kern.motion[0](t, params, w.crank)
-    kern.guide[0](w.crank, params, w.kin)
+    call(kern.motion, 0, (t, params, w.crank))
+    call(kern.guide, 0, (w.crank, params, w.kin))
 
 
-@jit
+@jit(python=False)
 def end_map(kern, sel, params, s, sd, sdd, w):
     """w.E: the end map at the reduced end co-ordinate (s, sd, sdd) and w.kin."""
     w.send[0] = s
     w.send[1] = sd
     w.send[2] = sdd
-    kern.end_map[0](w.send, w.kin, params, w.E)
+    call(kern.end_map, 0, (w.send, w.kin, params, w.E))
 
 
-@jit
+@jit(python=False)
 def project_residual(E, r):
     """r <- the reduced residual: the end node's rows become g_s . r_end (d'Alembert), in the
     reduced co-ordinate's slot IU; slot IV is unused."""
@@ -49,7 +50,7 @@ def project_residual(E, r):
     r[IV] = 0.0
 
 
-@jit
+@jit(python=False)
 def project_last(E, r, K, C, M):
     """The end element's terms on the reduced co-ordinate s of its end node, (u, v) = g(s, t):
         columns: K' = K dq/ds + C dqd/ds + M dqdd/ds,  C' = C dqd/dsd + M dqdd/dsd,  M' = M g_s;
@@ -93,7 +94,7 @@ def _gather(dofs, e, d, v, acc, q, qd, qdd):
             qdd[k] = 0.0
 
 
-_gather = jit(_gather, inline="always")
+_gather = jit(_gather, inline="always", python=False)
 
 
 def _map_end(kern, sel, params, q, qd, qdd, w):
@@ -106,10 +107,10 @@ def _map_end(kern, sel, params, q, qd, qdd, w):
     qdd[IU], qdd[IV] = E[QDD, 0], E[QDD, 1]
 
 
-_map_end = jit(_map_end, inline="always")
+_map_end = jit(_map_end, inline="always", python=False)
 
 
-@jit
+@jit(python=False)
 def element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv, cd, w):
     """Element terms of one case into w.rE and (by mode) w.KE, w.CE, w.ME / w.SE, at w.kin; the
     end element's terms are projected on the reduced end co-ordinate.  printed: the one-pass
@@ -139,11 +140,11 @@ def element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv,
             M[:, :] = 0.0
         for k in range(N_ROD):
             if sel[k] >= 0:
-                kern.rod[k](add, q, qd, qdd, geo, coef, kin, cv, cd, r, K, C, M, S)
+                call(kern.rod, k, (add, q, qd, qdd, geo, coef, kin, cv, cd, r, K, C, M, S))
         if last:
             for k in range(N_END):
                 if sel[N_ROD + k] >= 0:
-                    kern.end[k](add, q, qd, qdd, geo, coef, kin, cv, cd, r, K, C, M, S)
+                    call(kern.end, k, (add, q, qd, qdd, geo, coef, kin, cv, cd, r, K, C, M, S))
             if add == ADD_RESIDUAL:
                 project_residual(w.E, r)
             else:
@@ -154,7 +155,7 @@ def element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv,
                     S[i, j] = M[i, j] + cv * C[i, j] + cd * K[i, j]
 
 
-@jit
+@jit(python=False)
 def step_outputs(kern, sel, params, dofs, mid_e, Nv_mid, G, eps, d, w, out):
     """out = (v* at x* = 1/2, u*(1), delta* of eq. 40) of the state d at w.kin."""
     n = dofs.shape[0]
@@ -181,3 +182,13 @@ def step_outputs(kern, sel, params, dofs, mid_e, Nv_mid, G, eps, d, w, out):
     out[0] = vmid / eps
     out[1] = u_end / (eps * eps)
     out[2] = u_end + 0.5 * slope
+
+
+def _element_terms(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, t, cv, cd, w):
+    """The kinematics at t, then the element loop (see element_loop): callable from Python, for
+    tests and diagnostics (compiled only when first used)."""
+    kinematics(kern, sel, params, t, w)
+    element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv, cd, w)
+
+
+element_terms = jit(_element_terms)

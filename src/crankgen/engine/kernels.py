@@ -1,13 +1,13 @@
 """The generated kernels, compiled one at a time when a case first needs them, and gathered into the
-tables of first-class functions the engine calls (records.Kernels), one table per model: for each
+tables of native addresses the engine calls (records.Kernels, engine/calls.py), one table per model: for each
 term family slot the selected variant's one-element function `<name>_element(mode, ...)`
 (derive/emit.py: the mode says whether it adds the residual and tangents, the printed iteration
 matrix, the residual only, or the Newmark iteration matrix), a no-op for an absent family; the
 guide's end map and kinematics; the crank motion.
 
 The engine itself is compiled once for every model: it receives the kernels as arguments (tables
-of compiled functions, one signature per kind); a batch whose cases differ in model runs each
-model's cases with that model's table.  A kernel no case of a batch needs is never compiled: its entries
+of the addresses of compiled functions, one signature per kind); a batch whose cases differ in
+model runs each model's cases with that model's table.  A kernel no case of a batch needs is never compiled: its entries
 hold a no-op of the same signature.  Each compiled kernel is cached on disk like the engine
 (compiled.py), so a model's kernels are compiled once per machine.
 
@@ -19,12 +19,14 @@ family is absent).
 
 import numpy as np
 from numba import types
+from numba.core import config
 
 from .. import newton as _newton
 from .. import schema
 from .._generated import elements as _elements
 from .._generated import kinematics as _kinematics
 from .._generated import schema as _table
+from .calls import address
 from .compiled import jit
 from .records import Kernels
 
@@ -86,7 +88,8 @@ _COMPILED = {}
 def _noop(kind):
     key = ("noop", kind)
     if key not in _COMPILED:
-        _COMPILED[key] = jit(_NOOP_SOURCE[kind], signature=SIGNATURES[kind], name=f"noop_{kind}")
+        _COMPILED[key] = jit(_NOOP_SOURCE[kind], signature=SIGNATURES[kind], name=f"noop_{kind}",
+                             error_model="numpy", python=False)
     return _COMPILED[key]
 
 
@@ -102,8 +105,21 @@ def compiled(kind, name):
     engine/build.py compiles a run's kernels ahead, on two processes)."""
     key = (kind, name)
     if key not in _COMPILED:
-        _COMPILED[key] = jit(_source(kind, name), signature=SIGNATURES[kind])
+        _COMPILED[key] = jit(_source(kind, name), signature=SIGNATURES[kind], error_model="numpy", python=False)
     return _COMPILED[key]
+
+
+def _entry(kind, dispatcher):
+    """A table entry: the kernel's native address (calls.py), or the function itself when numba
+    is switched off."""
+    if config.DISABLE_JIT:
+        return dispatcher
+    return address(dispatcher, SIGNATURES[kind])
+
+
+def _addresses(kind, dispatchers):
+    entries = [_entry(kind, d) for d in dispatchers]
+    return tuple(entries) if config.DISABLE_JIT else np.array(entries, dtype=np.int64)
 
 
 def needed(rows):
@@ -125,17 +141,19 @@ def tables(row):
     """records.Kernels of the cases with this select row: per family slot its variant's compiled
     element function (a no-op for an absent family), and the case's end map, guide and motion."""
     def slots(part, offset, count):
-        return tuple(compiled("element", VARIANTS[part][row[offset + k]][2]) if row[offset + k] >= 0
-                     else _noop("element") for k in range(count))
+        return _addresses("element", [compiled("element", VARIANTS[part][row[offset + k]][2])
+                                  if row[offset + k] >= 0 else _noop("element") for k in range(count)])
     guide, motion = GUIDE_NAMES[row[GUIDE_SLOT]], MOTION_NAMES[row[MOTION_SLOT]]
-    return Kernels(slots("rod", 0, N_ROD), slots("end", N_ROD, N_END), (compiled("end_map", guide),),
-                   (compiled("guide", guide),), (compiled("motion", motion),))
+    return Kernels(slots("rod", 0, N_ROD), slots("end", N_ROD, N_END),
+                   _addresses("end_map", [compiled("end_map", guide)]), _addresses("guide", [compiled("guide", guide)]),
+                   _addresses("motion", [compiled("motion", motion)]))
 
 
 def noop_tables():
     """records.Kernels with a no-op in every entry (the engine's types, nothing compiled)."""
-    return Kernels(tuple(_noop("element") for _ in range(N_ROD)), tuple(_noop("element") for _ in range(N_END)),
-                   (_noop("end_map"),), (_noop("guide"),), (_noop("motion"),))
+    return Kernels(_addresses("element", [_noop("element")] * N_ROD), _addresses("element", [_noop("element")] * N_END),
+                   _addresses("end_map", [_noop("end_map")]), _addresses("guide", [_noop("guide")]),
+                   _addresses("motion", [_noop("motion")]))
 
 
 def build_items(rows):
@@ -157,5 +175,5 @@ def select_rows(cases):
 
 
 # Newton-Newmark decisions, the same code as the NumPy reference's (crankgen/newton.py)
-extrapolation_weight = jit(_newton.extrapolation_weight)
-next_iteration = jit(_newton.next_iteration)
+extrapolation_weight = jit(_newton.extrapolation_weight, python=False)
+next_iteration = jit(_newton.next_iteration, python=False)

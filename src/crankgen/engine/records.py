@@ -1,9 +1,9 @@
 """Named records the compiled engine passes around in place of positional vectors.
 
-- Kernels: a model's compiled kernels as tables of first-class functions (engine/kernels.py): per
-  part ("rod": every element; "end": the rod's end node) the one-element function of each family
-  slot's variant (a mode argument says what it adds; a no-op for an absent family), and the
-  guide's end map and kinematics and the crank motion (one-entry tables).
+- Kernels: a model's compiled kernels as tables of native addresses (engine/kernels.py, called by
+  engine/calls.py): per part ("rod": every element; "end": the rod's end node) the one-element
+  function of each family slot's variant (a mode argument says what it adds; a no-op for an
+  absent family), and the guide's end map and kinematics and the crank motion (one-entry tables).
 - Cases: one row per case of a batch: `select` (the table index of each family's variant, -1 when
   absent, then the guide and the motion), `coef` (the element kernels' coefficients), `params`
   (the kinematic parameters), the time step, eps, the Newmark scheme code (newton.SCHEMES), whether
@@ -51,11 +51,14 @@ Work = namedtuple("Work", [
 ])
 
 
-@jit
-def make_work(n, N, kb):
+def _make_work(n, N, kb):
     """Work arrays for n elements, N reduced DOFs, bandwidth kb."""
     return Work(np.zeros((n, NDOF)), np.zeros((n, NDOF, NDOF)), np.zeros((n, NDOF, NDOF)),
                 np.zeros((n, NDOF, NDOF)), np.zeros((n, NDOF, NDOF)), np.zeros(N), np.zeros((N + KB_FIXED, 1)),
                 np.zeros((N, 3 * kb + 1)), np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64),
                 np.zeros((N + KB_FIXED, 2 * KB_FIXED + 1)), np.zeros(N), np.zeros(N_KIN), np.zeros(3),
                 np.zeros(NDOF), np.zeros(NDOF), np.zeros(NDOF), np.zeros(2), np.zeros(3), np.zeros((END_ROWS, 2)))
+
+
+make_work = jit(_make_work, python=False)       # inside compiled code
+new_work = _make_work                           # the same arrays, from Python

@@ -23,7 +23,7 @@ STATUS_TEXT = {OK: "ok", NOT_CONVERGED: "Newton did not converge", SINGULAR: "si
 ONE_PASS = newton.ONE_PASS
 DIVERGED = newton.DIVERGED
 
-@jit
+@jit(python=False)
 def initial_acceleration(kern, cases, b, mesh, t0, d, v, out, w):
     """Solve R(t0, d, v, a) = 0 for a (eq. 34; R is linear in a).  Returns False if singular."""
     N = d.shape[0]
@@ -44,7 +44,7 @@ def initial_acceleration(kern, cases, b, mesh, t0, d, v, out, w):
     return ok
 
 
-@jit
+@jit(python=False)
 def newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, hist, n_prev, d_new, v_new, a_new, w):
     """One Newmark step of case b from (d, v, acc) to (d_new, v_new, a_new) at t_new.
     hist[k]: the displacements k + 1 steps before d, of which the first n_prev (0 to HISTORY) are
