@@ -8,7 +8,7 @@ This is the one place to read every ingredient of the flexible mechanism model:
 - PARAMETERS: every parameter of a case, typed (kind, default, range, units, help, command-line
   flag): the mechanism (a, eps, ms, mu, gravity), its guide (line or circle, with offset, c, d,
   branch), the crank's motion (constant, runup, fluctuation, with omega, omega0, ramp,
-  fluctuation, order) and the run's discretization (n_elements, steps_per_rev, integrator).
+  fluctuation, order, and the start angle theta0) and the run's discretization (n_elements, steps_per_rev, integrator).
 - COEFFICIENTS: the values every element kernel receives, each a formula in the parameters and
   options (rotary_inertia=False is rho*I = 0; a switched-off term group has weight 0).
 - FAMILIES: the term families of the equations of motion, each a set of mutually exclusive
@@ -173,6 +173,10 @@ PARAMETERS = (
     Parameter("order", "count", 1, "order (speed fluctuation order j)",
               "order j of a cyclic speed fluctuation (j per revolution), a positive integer",
               owner="motion:fluctuation", low=1, symbol=s.j_fl),
+    Parameter("theta0", "real", 0.0, "theta0 (crank angle at t = 0, rad)",
+              "the crank angle at t = 0 (rad, counter-clockwise from the X axis); the rod starts in "
+              "the rigid mechanism's position at that angle", owner="run", units="rad",
+              symbol=motions.theta0),
     Parameter("n_elements", "count", 16, "n_elements", "number of rod elements", owner="run", low=1,
               cli="elements"),
     Parameter("steps_per_rev", "count", 100, "steps_per_rev", "Newmark steps per crank revolution",
