@@ -37,7 +37,7 @@ from . import energies as en
 from . import guides, motions
 from . import printed
 from . import symbols as s
-from .euler_lagrange import gradient, kinetic_residual
+from .euler_lagrange import gradient, kinetic_residual, total_time_derivative
 from .groups import ELEMENT_VARS, ROD_AXIAL_ROWS, SLIDER_AXIAL_ROWS, SLIDER_VARS, group_vector
 
 
@@ -418,8 +418,8 @@ class Output:
     u_end, extension), "step" (one value per stored step, from `build(options)`, an expression in the
     inputs it names) or "field" (per stored step at any x* in [0, 1]).  Inputs a build may use:
     q (the nodal vector of the element holding x*), zeta (x / l in it), geo, coef, kin, params (the
-    kinematic parameters), q_end ((u, v) of the rod's end node in the moving frame), s (the end
-    map's reduced co-ordinate), pin ((F_i, F_j): the force the crank pin applies to the rod, in the
+    kinematic parameters), q_end ((u, v) of the rod's end node in the moving frame), qd_end (their
+    time derivatives), s (the end map's reduced co-ordinate), pin ((F_i, F_j): the force the crank pin applies to the rod, in the
     moving frame), end ((F_i, F_j): the force the guide applies to the rod's end, with the end mass
     included), fiber.  units: the unit of the value (SI views multiply by it)."""
 
@@ -434,6 +434,7 @@ class Output:
 
 fiber = sp.Symbol("fiber", real=True)
 q_end = sp.Matrix(sp.symbols("qe0:2", real=True))
+qd_end = sp.Matrix(sp.symbols("qde0:2", real=True))
 pin = sp.Matrix(sp.symbols("pin0:2", real=True))
 end_force = sp.Matrix(sp.symbols("end0:2", real=True))
 s_end = sp.Symbol("s", real=True)
@@ -466,6 +467,24 @@ def end_position():
         sp.Matrix([1 + q_end[0], q_end[1]]))
 
 
+def _rate(expr):
+    """d/dt of an expression in the end node's (u, v) and the rigid kinematics (theta, phi)."""
+    return total_time_derivative(expr, tuple(q_end), tuple(qd_end), ())
+
+
+def chord_angle():
+    """Inertial angle of the chord from the pin A to the rod's end B, counter-clockwise from X: the
+    chord's angle in the moving frame, atan2(v, L + u) at the end (e_j is counter-clockwise of
+    e_i), less phi (the moving frame's e_i is at -phi)."""
+    return sp.atan2(q_end[1], 1 + q_end[0]) - s.phi
+
+
+def chord_elongation():
+    """|B - A| - L (L = 1) without the cancellation of sqrt(...) - 1 for a short end displacement."""
+    stretch = 2 * q_end[0] + q_end[0] ** 2 + q_end[1] ** 2
+    return stretch / (sp.sqrt((1 + q_end[0]) ** 2 + q_end[1] ** 2) + 1)
+
+
 def chord_deflection():
     """Signed distance of the rod's point at x (element zeta) from its chord, the line from the pin to
     the end node, positive on the counter-clockwise side (towards e_j for a straight rod)."""
@@ -490,7 +509,14 @@ OUTPUTS = (
            lambda o: s.beta + s_end, guides=("circle",)),
     Output("chord_angle", "step",
            "inertial angle of the rod's chord, the line from the crank pin to the rod's end (rad, "
-           "counter-clockwise from the X axis)", "rad", lambda o: sp.atan2(q_end[1], 1 + q_end[0]) - s.phi),
+           "counter-clockwise from the X axis)", "rad", lambda o: chord_angle()),
+    Output("chord_rate", "step", "angular velocity of the rod's chord (d/dt chord_angle, counter-clockwise)",
+           "omega_b", lambda o: _rate(chord_angle())),
+    Output("chord_elongation", "step",
+           "change of the chord's length: the distance from the crank pin to the rod's end, less L",
+           "L", lambda o: chord_elongation()),
+    Output("slider_velocity", "step", "X velocity of the rod's end (the slider; the rocker's tip)",
+           "L omega_b", lambda o: _rate(end_position()[0])),
     Output("torque", "step",
            "driving torque the crank needs to hold its prescribed motion (counter-clockwise), "
            "a (e_r x F_pin), units of rho A L^3 omega_b^2", TORQUE,

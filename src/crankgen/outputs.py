@@ -6,7 +6,7 @@ surface_strain, chord_deflection, ...).
 
 Each step or field output is a generated kernel whose inputs the schema names; StateHistory
 supplies them from the stored reduced states: the kinematics, the nodal vector of the element
-holding x*, the end node's (u, v) and reduced co-ordinate, and the reactions at the pin and the
+holding x*, the end node's (u, v), their rates and the reduced co-ordinate, and the reactions at the pin and the
 end (the residual rows of the constrained DOFs, which need the stored velocities and
 accelerations).  Quantities made of element-wise derivatives (u_x is constant in an element, v_xx
 linear) jump at the nodes; at an interior node crankgen returns the mean of the two elements'
@@ -118,6 +118,13 @@ class StateHistory:
             elif name == "q_end":
                 q_all = self.element_vectors() if q_all is None else q_all
                 out[name] = q_all[:, -1, 3:5]
+            elif name == "qd_end":
+                if self.rates is None:
+                    raise ParameterError(f"{spec.name} needs the stored velocities, which this result "
+                                         "does not hold")
+                E = _kinematics.end_map(self.case, self.kinematics().vector,
+                                        self.states[:, self.mesh.slider_dof], self.rates[:, self.mesh.slider_dof])
+                out[name] = E[..., schema.END_MAP_ROWS["qd"], :]
             elif name == "s":
                 out[name] = self.states[:, self.mesh.slider_dof]
             elif name in ("pin", "end"):
