@@ -114,3 +114,20 @@ def test_chord_outputs_against_a_hand_computation_from_nodal_states():
         assert r.chord_deflection(x)[k] == pytest.approx(hand["chord_deflection"], rel=1e-10, abs=1e-15)
     # not trivially zero: the rod is bent and the chord turns off the rigid one
     assert abs(r.chord_deflection(x)[7]) > 1e-3 and abs(r.chord_elongation[19]) > 1e-7
+
+
+def test_history_off_keeps_the_requested_states_bit_for_bit():
+    times = [0.0, 3 * DT, 6.25 * DT, 6.75 * DT]
+    full = crankgen.simulate(MECH, initial=_bent(), times=times, revolutions=0.2, **RUN)
+    calls = []
+    lean = crankgen.simulate(MECH, initial=_bent(), times=times, revolutions=0.2, history=False,
+                             progress=lambda done, total: calls.append(done), **RUN)
+    assert lean.states is None and lean.rates is None and calls[-1] == len(full.t) - 1
+    assert np.array_equal(lean.v_mid, full.v_mid) and np.array_equal(lean.iterations, full.iterations)
+    for name in ("states", "rates", "accelerations", "v_mid"):
+        assert np.array_equal(getattr(lean.at_times, name), getattr(full.at_times, name)), name
+    assert np.array_equal(lean.at_times.chord_angle, full.at_times.chord_angle)
+    with pytest.raises(crankgen.ParameterError, match="holds no states"):
+        lean.chord_angle
+    with pytest.raises(crankgen.ParameterError, match="store_nodes"):
+        crankgen.simulate(MECH, history=False, store_nodes=True, revolutions=0.1, **RUN)

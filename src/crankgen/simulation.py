@@ -114,8 +114,8 @@ def _landing(t_req, dt, n_steps):
 
 
 def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolutions=None, times=None,
-             units="crankgen", store_nodes=False, tol=1e-10, progress=None, initial=None, engine="compiled",
-             **fields):
+             units="crankgen", history=True, store_nodes=False, tol=1e-10, progress=None, initial=None,
+             engine="compiled", **fields):
     """Integrate the mechanism from t = 0 (the crank at its start angle theta0, default 0) for
     `revolutions` crank revolutions.
 
@@ -136,7 +136,9 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     SimulationResult at those times, in the order given).  A time on a step of the run is that
     step; a time between steps k and k + 1 is reached by one Newmark step of the remaining length
     from the state of step k (the run's own steps are not changed).  revolutions: default 10, or,
-    with times, just enough steps to reach the last of them.
+    with times, just enough steps to reach the last of them.  history=False keeps, of the run's
+    steps, only t, theta, v_mid, u_end, extension and iterations (no states: the declared outputs
+    are then given at the requested times only), for long runs asked at a few times.
 
     units: "crankgen" (dimensionless, the default) or "si": then mech is a crankgen.SIMechanism
     (its crank speed is the constant crank speed; omega and crank are not given), times are in
@@ -175,30 +177,42 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
         revolutions = 10.0 if revolutions is None else revolutions
         dt, n_steps = run_length(case, revolutions)
     landing = None if times is None else _landing(t_req, dt, n_steps)
+    if not isinstance(history, bool):
+        raise ParameterError(f"history must be True or False, got {history!r}")
+    if store_nodes and not history:
+        raise ParameterError("store_nodes needs the run's states: leave history=True")
     d0, v0 = initial_state(case, initial, scales)
     info = dict(case.as_dict(), revolutions=revolutions, tol=tol, engine=engine)
+    stops = sorted({k for k, _ in landing}) if landing is not None else []
     if engine == "numpy":
         hist = integrate(model, d0, v0, 0.0, dt, n_steps, settings, progress=progress)
         result = _numpy_result(model, case, hist, info, store_nodes, scales)
         if landing is not None:
-            result = replace(result, at_times=_numpy_at_times(model, case, result, landing, t_req, dt, settings,
-                                                              store_nodes, info, scales))
+            states = {k: (hist.d[k], hist.v[k], hist.a[k]) for k in stops}
+            result = replace(result, at_times=_numpy_at_times(model, case, result, states, landing, t_req,
+                                                              settings, store_nodes, info, scales))
+        if not history:
+            result = replace(result, states=None, rates=None, accelerations=None)
         return result
 
+    captured = {}
     y, iterations, status, fail_step, fail_res, D, V, A = _march_in_chunks(
-        _engine.Batch([case]), d0[None], v0[None], n_steps, tol, True,
-        None if progress is None else (lambda done: progress(done, n_steps)))
-    y, iterations, D, V, A = y[0], iterations[0].astype(np.int32), D[0], V[0], A[0]
+        _engine.Batch([case]), d0[None], v0[None], n_steps, tol, history,
+        None if progress is None else (lambda done: progress(done, n_steps)), stops=stops, captured=captured)
+    y, iterations = y[0], iterations[0].astype(np.int32)
+    if history:
+        D, V, A = D[0], V[0], A[0]
     t = dt * np.arange(n_steps + 1)
     kin = _kinematics.case_state(case, t)
     nodes = model.full_nodal(D, kin) if store_nodes else None
     result = SimulationResult(t=t, theta=kin.theta, v_mid=y[:, 0], u_end=y[:, 1], extension=y[:, 2],
-                              iterations=iterations, settings=info, nodes=nodes, case=case, states=D,
-                              rates=V, accelerations=A, scales=scales)
+                              iterations=iterations, settings=dict(info, history=history), nodes=nodes,
+                              case=case, states=D, rates=V, accelerations=A, scales=scales)
     if status[0] != _engine.OK:
         raise _failure(status[0], fail_step[0], fail_res[0], dt, result)
     if landing is not None:
-        result = replace(result, at_times=_compiled_at_times(model, case, result, landing, t_req, tol,
+        states = {k: tuple(x[0] for x in captured[k]) for k in stops}
+        result = replace(result, at_times=_compiled_at_times(model, case, result, states, landing, t_req, tol,
                                                              store_nodes, info, scales))
     return result
 
@@ -227,32 +241,31 @@ def _at_times_result(model, case, t_req, rows, info, store_nodes, scales):
         accelerations=A, scales=scales)
 
 
-def _numpy_at_times(model, case, result, landing, t_req, dt, settings, store_nodes, info, scales):
+def _numpy_at_times(model, case, result, states, landing, t_req, settings, store_nodes, info, scales):
     rows = []
     for (k, tau), tr in zip(landing, t_req):
         if tau == 0.0:
-            rows.append(((result.v_mid[k], result.u_end[k], result.extension[k]), 0, result.states[k],
-                         result.rates[k], result.accelerations[k]))
+            rows.append(((result.v_mid[k], result.u_end[k], result.extension[k]), 0) + states[k])
             continue
-        hist = integrate(model, result.states[k], result.rates[k], result.t[k], tau, 1, settings,
-                         a0=result.accelerations[k])
+        d, v, a = states[k]
+        hist = integrate(model, d, v, result.t[k], tau, 1, settings, a0=a)
         one = _numpy_result(model, case, hist, info, False, scales)
         rows.append(((one.v_mid[1], one.u_end[1], one.extension[1]), int(hist.iterations[0]), hist.d[1],
                      hist.v[1], hist.a[1]))
     return _at_times_result(model, case, t_req, rows, info, store_nodes, scales)
 
 
-def _compiled_at_times(model, case, result, landing, t_req, tol, store_nodes, info, scales):
+def _compiled_at_times(model, case, result, states, landing, t_req, tol, store_nodes, info, scales):
     """States at the requested times: steps of the run, or one Newmark step of the remaining length
-    from the step before (all such steps in one compiled batch)."""
+    from the step before (all such steps in one compiled batch).  states: {step: (d, v, a)}."""
     between = [j for j, (_, tau) in enumerate(landing) if tau > 0.0]
     stepped = {}
     if between:
         ks = np.array([landing[j][0] for j in between])
         taus = np.array([landing[j][1] for j in between])
         batch = _engine.Batch([case] * len(between), dt=taus)
-        res = _engine.march(batch, 1, D0=result.states[ks], V0=result.rates[ks], A0=result.accelerations[ks],
-                            t0=result.t[ks], tol=tol)
+        D0, V0, A0 = (np.array([states[k][c] for k in ks]) for c in range(3))
+        res = _engine.march(batch, 1, D0=D0, V0=V0, A0=A0, t0=result.t[ks], tol=tol)
         bad = np.nonzero(res.status != _engine.OK)[0]
         if bad.size:
             j = int(bad[0])
@@ -268,26 +281,35 @@ def _compiled_at_times(model, case, result, landing, t_req, tol, store_nodes, in
         if j in stepped:
             rows.append(stepped[j])
         else:
-            rows.append(((result.v_mid[k], result.u_end[k], result.extension[k]), 0, result.states[k],
-                         result.rates[k], result.accelerations[k]))
+            rows.append(((result.v_mid[k], result.u_end[k], result.extension[k]), 0) + states[k])
     return _at_times_result(model, case, t_req, rows, info, store_nodes, scales)
 
 
 def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progress=None,
-                     chunks=20):
+                     chunks=20, stops=(), captured=None):
     """Run the compiled engine from (D0, V0) in a few chunks, so that progress(done_steps) can be
     shown; a case that fails stops alone.  Returns (y, iterations, status, fail_step,
     fail_residual, D, V, A) with y (B, n_steps + 1, 3) and the histories of the reduced
-    displacements, velocities and accelerations (None unless keep_states)."""
+    displacements, velocities and accelerations (None unless keep_states).  stops: step indices
+    whose states (D, V, A), each (B, N), are put in the dict `captured` (chunks end there; the
+    marching is the same as without them)."""
     B = len(batch)
     D, V, A, previous = np.array(D0, dtype=float), np.array(V0, dtype=float), None, None
     status = np.zeros(B, dtype=np.int64)
     fail_step, fail_res = np.zeros(B, dtype=np.int64), np.zeros(B)
     ys, its, hist = [], [], ([], [], [])
     size = max(1, -(-n_steps // chunks)) if progress is not None else n_steps
+    stops = sorted(k for k in set(stops) if 0 <= k <= n_steps)
+    if stops and stops[0] == 0:
+        first = _engine.march(batch, 0, D0=D, V0=V, tol=tol, status=status)
+        A, status = first.A, first.status
+        captured[0] = (D.copy(), V.copy(), A.copy())
     done = 0
     while done < n_steps:
         k = min(size, n_steps - done)
+        later = [s for s in stops if s > done]
+        if later:
+            k = min(k, later[0] - done)
         res = _engine.march(batch, k, D0=D, V0=V, A0=A, step0=done, keep_history=bool(keep_states),
                             tol=tol, status=status, previous=previous)
         new_fail = (res.status != _engine.OK) & (status == _engine.OK)
@@ -300,6 +322,8 @@ def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progr
                 store.append(h if done == 0 else h[:, 1:])
         D, V, A, previous = res.D, res.V, res.A, res.previous
         done += k
+        if done in stops:
+            captured[done] = (D.copy(), V.copy(), A.copy())
         if progress is not None:
             progress(done)
     histories = tuple(np.concatenate(h, axis=1) if keep_states else None for h in hist)
