@@ -208,13 +208,13 @@ def first_axial_frequency():
 
 
 def axial_vibration(t, elongation):
-    """Amplitude of the chord elongation about its running mean over one period of the first axial
+    """(times, part): the chord elongation less its running mean over one period of the first axial
     mode: the rod's undamped axial vibration."""
     period = 2 * math.pi / first_axial_frequency()
     width = max(3, int(round(period / (t[1] - t[0]))))
     mean = np.convolve(elongation, np.ones(width) / width, mode="valid")
     lead = (width - 1) // 2
-    return np.max(np.abs(elongation[lead:lead + mean.size] - mean))
+    return t[lead:lead + mean.size], elongation[lead:lead + mean.size] - mean
 
 
 def richardson(coarse, fine, order=2):
@@ -286,22 +286,28 @@ def plot(path, t, deflection, elongation, t_a, deflection_a, value_at_end, spr, 
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 6.4), sharex=True, constrained_layout=True)
+    fig, (a1, a2, a3) = plt.subplots(3, 1, figsize=(8, 8.4), sharex=True, constrained_layout=True,
+                                     gridspec_kw=dict(height_ratios=(3, 2, 1.4)))
     a1.plot(t, deflection * 1e3, lw=0.9, color="C0", label=f"crankgen, approach C ({n} elements, {spr} steps/rev)")
     a1.plot(t_a, deflection_a * 1e3, lw=0.8, ls="--", color="C3", label="crankgen, approach A (non-linear strain)")
     a1.plot([T_END], [PUBLISHED["midpoint_deflection"] * 1e3], "kx", ms=9, mew=2, label="published q1(0.1 s)")
     a1.plot([T_END], [value_at_end * 1e3], "o", mfc="none", color="C0", ms=8, label="crankgen at 0.1 s")
     a1.axhline(0.0, color="0.6", lw=0.6)
-    a1.set_ylabel("midpoint deflection from the chord (mm)")
-    a1.legend(fontsize=8, loc="upper right")
+    a1.set_ylabel("midpoint deflection\nfrom the chord (mm)")
+    a1.legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, frameon=False)
     a1.grid(alpha=0.3)
-    a1.set_title("Slider crank of the Test Set for IVP Solvers (problem 'crank'): crankgen", fontsize=10)
+    fig.suptitle("Slider crank of the Test Set for IVP Solvers (problem 'crank'): crankgen", fontsize=10)
     a2.plot(t, elongation * 1e6, lw=0.7, color="C2", label="crankgen, approach C")
     a2.plot([T_END], [PUBLISHED["chord_elongation"] * 1e6], "kx", ms=9, mew=2, label="published q4(0.1 s)")
     a2.set_ylabel("chord elongation (um)")
-    a2.set_xlabel("t (s)")
-    a2.legend(fontsize=8, loc="upper right")
+    a2.legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, frameon=False)
     a2.grid(alpha=0.3)
+    tv, vib = axial_vibration(t, elongation)
+    a3.plot(tv, vib * 1e9, lw=0.5, color="C4")
+    a3.set_ylabel("axial vibration (nm)")
+    a3.set_xlabel("t (s)")
+    a3.grid(alpha=0.3)
+    a3.set_title("chord elongation less its running mean over one period of the first axial mode", fontsize=8)
     fig.savefig(path, dpi=120)
     plt.close(fig)
 
@@ -385,7 +391,7 @@ def main(argv=None):
           f"of max |q1|), {np.max(diff[early]):.2e} m over the first 20 ms")
     print(f"\naxial vibration ({n_nl} elements, {spr_nl // 2} steps/rev): the chord elongation oscillates about "
           f"its running mean over one period of the first axial mode ({first_axial_frequency():.0f} rad/s) by up to "
-          f"{axial_vibration(t_c, elong_c):.1e} m")
+          f"{np.max(np.abs(axial_vibration(t_c, elong_c)[1])):.1e} m")
     plot(out / "crank.png", t_c, defl_c, elong_c, t_a, defl_a, at_c, spr_nl // 2, n_nl)
     print(f"\nwrote {out / 'crank.png'} and {out / 'crank.csv'}")
     return 0
