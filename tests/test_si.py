@@ -43,6 +43,8 @@ def test_time_angle_and_rigid_start_in_si(run):
     assert si.slider_position[0] == pytest.approx(A_CRANK + L, rel=1e-12)     # rod straight along X
     assert si.chord_deflection(L / 2)[0] == pytest.approx(5e-4, rel=1e-12)
     assert si.at_times.t[0] == pytest.approx(0.004, rel=1e-12)
+    with pytest.raises(crankgen.ParameterError, match="position along the rod, m"):
+        si.chord_deflection(0.5)                                         # metres: beyond the 0.3 m rod
 
 
 def test_section_forces_in_si_are_e_i_v_xx_and_e_a_u_x_from_the_si_nodes(run):

@@ -250,7 +250,10 @@ class SIView:
         if spec is None:
             raise ParameterError(f"no output {name!r}; the outputs are {', '.join(schema.OUTPUTS)}")
         if x is not None:
-            x = np.asarray(x, dtype=float) / self.scales.L if np.ndim(x) else finite_number("x", x) / self.scales.L
+            for xj in np.atleast_1d(np.asarray(x, dtype=float)):
+                in_range(f"x (position along the rod, m; the rod is {self.scales.L:g} m long)", xj, 0.0,
+                         self.scales.L)
+            x = np.asarray(x, dtype=float) / self.scales.L if np.ndim(x) else float(x) / self.scales.L
         return self.result.quantity(name, x, **arguments) * self.scales.factor(spec.units)
 
     @property
