@@ -70,3 +70,16 @@ def test_step_convergence_on_four_elements_is_monotone(runs):
 def test_mesh_convergence_of_the_deflection_is_monotone(runs):
     values = [runs[(n, STEPS[0])]["midpoint_deflection"] for n in MESHES]
     assert _monotone(values), values
+
+
+def test_no_damping_whichever_damping_model():
+    """damping = 0 s in the SIMechanism is mu* = 0: the Kelvin-Voigt and the printed damping then add
+    nothing, so the two runs are the same to the last bit."""
+    import crankgen
+    si = example.mechanism()
+    assert si.mechanism.mu == 0.0
+    runs = [crankgen.simulate(si, units="si", times=[0.01], initial=example.published_initial_state(),
+                              n_elements=4, steps_per_rev=3200, damping=damping, **example.MODEL)
+            for damping in ("kelvin-voigt", "paper")]
+    assert np.array_equal(runs[0].states, runs[1].states)
+    assert np.array_equal(runs[0].at_times.states, runs[1].at_times.states)
