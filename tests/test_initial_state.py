@@ -158,3 +158,21 @@ def test_a_state_within_the_tolerance_is_accepted():
     reduced_state(case, crankgen.InitialState(u=lambda x: tiny + 0 * x))
     with pytest.raises(crankgen.ParameterError):
         reduced_state(case, crankgen.InitialState(u=lambda x: tiny + 0 * x, tol=1e-12))
+
+
+def test_the_end_on_a_rocker_circle_is_found_and_checked():
+    """Four-bar (circle guide) at theta0 = 0.6: an end displacement and velocity made from the
+    guide's end map at s = 2e-4, s_t = 1e-3 give back those s and s_t; a point off the circle is
+    refused."""
+    from crankgen import kinematics as K
+    from crankgen import schema
+    mech = crankgen.Mechanism(guide=crankgen.Circle(center=(1.0, 0.0), radius=0.8))
+    case = crankgen.Case(**mech.values(), omega=0.8, n_elements=4, theta0=0.6)
+    E = K.end_map(case, K.case_state(case, 0.0).vector, 2e-4, 1e-3)
+    (ue, ve), (ute, vte) = E[schema.END_MAP_ROWS["q"]], E[schema.END_MAP_ROWS["qd"]]
+    ini = crankgen.InitialState(u=lambda x: ue * x, v=lambda x: ve * x + 1e-3 * x * (1 - x),
+                                u_t=lambda x: ute * x, v_t=lambda x: vte * x)
+    d0, v0 = reduced_state(case, ini)
+    assert d0[-2] == pytest.approx(2e-4, rel=1e-12) and v0[-2] == pytest.approx(1e-3, rel=1e-12)
+    with pytest.raises(crankgen.ParameterError, match="off the guide"):
+        reduced_state(case, crankgen.InitialState(u=lambda x: ue * x, v=lambda x: 1.01 * ve * x))
