@@ -419,9 +419,9 @@ class Output:
     inputs it names) or "field" (per stored step at any x* in [0, 1]).  Inputs a build may use:
     q (the nodal vector of the element holding x*), zeta (x / l in it), geo, coef, kin, params (the
     kinematic parameters), q_end ((u, v) of the rod's end node in the moving frame), qd_end (their
-    time derivatives), s (the end map's reduced co-ordinate), pin ((F_i, F_j): the force the crank pin applies to the rod, in the
-    moving frame), end ((F_i, F_j): the force the guide applies to the rod's end, with the end mass
-    included), fiber.  units: the unit of the value (SI views multiply by it)."""
+    time derivatives), s (the end map's reduced co-ordinate), pin ((F_i, F_j): the force the crank
+    pin applies to the rod, in the moving frame), end ((F_i, F_j): the force the guide applies to
+    the rod's end, with the end mass included), fiber.  units: the unit of the value (SI views multiply by it)."""
 
     name: str
     kind: str

@@ -258,7 +258,8 @@ def show_meshes(rows, meshes, steps):
     the step, mesh by mesh, with the change from the previous mesh."""
     by = {(r["n"], r["steps_per_rev"]): r for r in rows}
     for title, value in ((f"{steps[0]} steps/rev", lambda n, k: by[(n, steps[0])][k]),
-                         ("Richardson in the step", lambda n, k: richardson(by[(n, steps[-2])][k], by[(n, steps[-1])][k]))):
+                         ("Richardson in the step",
+                          lambda n, k: richardson(by[(n, steps[-2])][k], by[(n, steps[-1])][k]))):
         print(f"\nmesh convergence, {title}: value (change from the previous mesh)")
         for i, n in enumerate(meshes):
             cells = []
@@ -315,7 +316,8 @@ def plot(path, t, deflection, elongation, t_a, deflection_a, value_at_end, spr, 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--quick", action="store_true", help="coarse ladder (4, 8 elements; 6400-25600 steps/rev)")
-    parser.add_argument("--out", default="ivp_testset", help="folder for crank.png and crank.csv (default ./ivp_testset)")
+    parser.add_argument("--out", default="ivp_testset",
+                        help="folder for crank.png and crank.csv (default ./ivp_testset)")
     args = parser.parse_args(argv)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)

@@ -16,7 +16,8 @@ import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-_spec = importlib.util.spec_from_file_location("ivp_testset_example", ROOT / "examples" / "ivp_testset_slider_crank.py")
+_spec = importlib.util.spec_from_file_location("ivp_testset_example",
+                                               ROOT / "examples" / "ivp_testset_slider_crank.py")
 example = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(example)
 

@@ -284,4 +284,5 @@ class SIView:
         raise AttributeError(f"SIView has no attribute {name!r}")
 
     def __repr__(self):
-        return f"SIView({type(self.result).__name__}, L = {self.scales.L:g} m, omega_b = {self.scales.omega_b:g} rad/s)"
+        return (f"SIView({type(self.result).__name__}, L = {self.scales.L:g} m, "
+                f"omega_b = {self.scales.omega_b:g} rad/s)")

@@ -134,8 +134,8 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
 
     times: times at which to give the state and every output as well (`result.at_times`, a
     SimulationResult at those times, in the order given).  A time on a step of the run (within
-    1e-9 of a step) is that step; a time between steps k and k + 1 is reached by one Newmark step of the remaining length
-    from the state of step k (the run's own steps are not changed).  revolutions: default 10, or,
+    1e-9 of a step) is that step; a time between steps k and k + 1 is reached by one Newmark step
+    of the remaining length from the state of step k (the run's own steps are not changed).  revolutions: default 10, or,
     with times, just enough steps to reach the last of them.  history=False keeps, of the run's
     steps, only t, theta, v_mid, u_end, extension and iterations (no states: the declared outputs
     are then given at the requested times only), for long runs asked at a few times.
