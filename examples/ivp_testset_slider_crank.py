@@ -21,7 +21,7 @@ What it does:
 5. runs the non-linear strain models (approaches A and B) on the same mechanism and reports what
    they change.
 
-    python examples/ivp_testset_slider_crank.py            # full ladder, a few minutes on 2 cores
+    python examples/ivp_testset_slider_crank.py            # full ladder, 2 to 3 minutes on 2 cores
     python examples/ivp_testset_slider_crank.py --quick    # coarse ladder, seconds
     python examples/ivp_testset_slider_crank.py --out DIR  # where the PNG and CSV go (default ./ivp_testset)
 
@@ -320,7 +320,10 @@ def main(argv=None):
                         help="folder for crank.png and crank.csv (default ./ivp_testset)")
     args = parser.parse_args(argv)
     out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        parser.error(f"--out {out}: cannot create the folder ({exc.strerror or exc})")
     check_published_state()
     si = mechanism()
     print(f"mechanism: omega_b = {si.omega_b:.2f} rad/s (first pinned-pinned bending frequency), "
