@@ -8,7 +8,7 @@ This is the one place to read every ingredient of the flexible mechanism model:
 - PARAMETERS: every parameter of a case, typed (kind, default, range, units, help, command-line
   flag): the mechanism (a, eps, ms, mu, gravity), its guide (line or circle, with offset, c, d,
   branch), the crank's motion (constant, runup, fluctuation, with omega, omega0, ramp,
-  fluctuation, order) and the run's discretization (n_elements, steps_per_rev, integrator).
+  fluctuation, order, and the start angle theta0) and the run's discretization (n_elements, steps_per_rev, integrator).
 - COEFFICIENTS: the values every element kernel receives, each a formula in the parameters and
   options (rotary_inertia=False is rho*I = 0; a switched-off term group has weight 0).
 - FAMILIES: the term families of the equations of motion, each a set of mutually exclusive
@@ -37,7 +37,7 @@ from . import energies as en
 from . import guides, motions
 from . import printed
 from . import symbols as s
-from .euler_lagrange import gradient, kinetic_residual
+from .euler_lagrange import gradient, kinetic_residual, total_time_derivative
 from .groups import ELEMENT_VARS, ROD_AXIAL_ROWS, SLIDER_AXIAL_ROWS, SLIDER_VARS, group_vector
 
 
@@ -173,6 +173,10 @@ PARAMETERS = (
     Parameter("order", "count", 1, "order (speed fluctuation order j)",
               "order j of a cyclic speed fluctuation (j per revolution), a positive integer",
               owner="motion:fluctuation", low=1, symbol=s.j_fl),
+    Parameter("theta0", "real", 0.0, "theta0 (crank angle at t = 0, rad)",
+              "the crank angle at t = 0 (rad, counter-clockwise from the X axis); the rod starts in "
+              "the rigid mechanism's position at that angle", owner="run", units="rad",
+              symbol=motions.theta0),
     Parameter("n_elements", "count", 16, "n_elements", "number of rod elements", owner="run", low=1,
               cli="elements"),
     Parameter("steps_per_rev", "count", 100, "steps_per_rev", "Newmark steps per crank revolution",
@@ -414,10 +418,10 @@ class Output:
     u_end, extension), "step" (one value per stored step, from `build(options)`, an expression in the
     inputs it names) or "field" (per stored step at any x* in [0, 1]).  Inputs a build may use:
     q (the nodal vector of the element holding x*), zeta (x / l in it), geo, coef, kin, params (the
-    kinematic parameters), q_end ((u, v) of the rod's end node in the moving frame), s (the end
-    map's reduced co-ordinate), pin ((F_i, F_j): the force the crank pin applies to the rod, in the
-    moving frame), end ((F_i, F_j): the force the guide applies to the rod's end, with the end mass
-    included), fiber.  units: the unit of the value (SI views multiply by it)."""
+    kinematic parameters), q_end ((u, v) of the rod's end node in the moving frame), qd_end (their
+    time derivatives), s (the end map's reduced co-ordinate), pin ((F_i, F_j): the force the crank
+    pin applies to the rod, in the moving frame), end ((F_i, F_j): the force the guide applies to
+    the rod's end, with the end mass included), fiber.  units: the unit of the value (SI views multiply by it)."""
 
     name: str
     kind: str
@@ -430,6 +434,7 @@ class Output:
 
 fiber = sp.Symbol("fiber", real=True)
 q_end = sp.Matrix(sp.symbols("qe0:2", real=True))
+qd_end = sp.Matrix(sp.symbols("qde0:2", real=True))
 pin = sp.Matrix(sp.symbols("pin0:2", real=True))
 end_force = sp.Matrix(sp.symbols("end0:2", real=True))
 s_end = sp.Symbol("s", real=True)
@@ -462,6 +467,24 @@ def end_position():
         sp.Matrix([1 + q_end[0], q_end[1]]))
 
 
+def _rate(expr):
+    """d/dt of an expression in the end node's (u, v) and the rigid kinematics (theta, phi)."""
+    return total_time_derivative(expr, tuple(q_end), tuple(qd_end), ())
+
+
+def chord_angle():
+    """Inertial angle of the chord from the pin A to the rod's end B, counter-clockwise from X: the
+    chord's angle in the moving frame, atan2(v, L + u) at the end (e_j is counter-clockwise of
+    e_i), less phi (the moving frame's e_i is at -phi)."""
+    return sp.atan2(q_end[1], 1 + q_end[0]) - s.phi
+
+
+def chord_elongation():
+    """|B - A| - L (L = 1) without the cancellation of sqrt(...) - 1 for a short end displacement."""
+    stretch = 2 * q_end[0] + q_end[0] ** 2 + q_end[1] ** 2
+    return stretch / (sp.sqrt((1 + q_end[0]) ** 2 + q_end[1] ** 2) + 1)
+
+
 def chord_deflection():
     """Signed distance of the rod's point at x (element zeta) from its chord, the line from the pin to
     the end node, positive on the counter-clockwise side (towards e_j for a straight rod)."""
@@ -491,7 +514,14 @@ OUTPUTS = (
            guides=("circle",)),
     Output("chord_angle", "step",
            "inertial angle of the rod's chord, the line from the crank pin to the rod's end (rad, "
-           "counter-clockwise from the X axis)", "rad", lambda o: sp.atan2(q_end[1], 1 + q_end[0]) - s.phi),
+           "counter-clockwise from the X axis)", "rad", lambda o: chord_angle()),
+    Output("chord_rate", "step", "angular velocity of the rod's chord (d/dt chord_angle, counter-clockwise)",
+           "omega_b", lambda o: _rate(chord_angle())),
+    Output("chord_elongation", "step",
+           "change of the chord's length: the distance from the crank pin to the rod's end, less L",
+           "L", lambda o: chord_elongation()),
+    Output("slider_velocity", "step", "X velocity of the rod's end (the slider; the rocker's tip)",
+           "L omega_b", lambda o: _rate(end_position()[0])),
     Output("torque", "step",
            "driving torque the crank needs to hold its prescribed motion (counter-clockwise), "
            "a (e_r x F_pin), units of rho A L^3 omega_b^2", TORQUE,

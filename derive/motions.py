@@ -5,16 +5,27 @@ thetadd (which may use theta, computed first), and, when the motion is periodic 
 the time of one crank revolution (`period`): then theta(t + period) = theta(t) + 2 pi, the time
 step of a run is period / steps_per_rev and periodic states exist.  `check()` verifies at build
 time that thetad and thetadd are the time derivatives of theta (by differentiation, or numerically
-where the closed form is not differentiated symbolically).
+where the closed form is not differentiated symbolically) and that theta(0) = theta0.
 
-- constant: theta = Omega t (the paper's crank).
+Every motion starts at the crank angle theta0 (the parameter `theta0`, declared in
+derive/model.py; default 0) at t = 0.  It enters only as the constant of integration of theta(t),
+written so that theta0 = 0 evaluates to exactly the floating-point numbers of the motion without
+it (an added 0.0 changes no sum).
+
+- constant: theta = theta0 + Omega t (the paper's crank, theta0 = 0).
 - runup: the speed rises from Omega0 to Omega over `ramp` crank revolutions along the quintic
   smooth step s(x) = 10 x^3 - 15 x^4 + 6 x^5 of x = t / T (speed and acceleration continuous),
-  T = 4 pi ramp / (Omega0 + Omega) so that theta(T) = 2 pi ramp, and stays at Omega afterwards.
+  T = 4 pi ramp / (Omega0 + Omega) so that theta(T) = theta0 + 2 pi ramp, and stays at Omega
+  afterwards (the speed is a law in time, so theta0 only shifts theta).
 - fluctuation: thetad = Omega (1 + k sin(j theta)) (a flywheel's cyclic irregularity of relative
   amplitude k, |k| < 1, and order j, a positive integer).  With m = sqrt(1 - k^2) the rate law
   integrates in closed form, tan(j theta / 2) = m tan(psi) - k with psi = m j Omega t / 2 +
-  atan(k / m); the revolution takes 2 pi / (m Omega).
+  atan(k / m) + D0; the revolution takes 2 pi / (m Omega).  The law is autonomous, so a start at
+  theta0 is the start at 0 shifted in time: D0 is the psi-advance that brings j theta / 2 from 0
+  to chi0 = j theta0 / 2.  With n = round(chi0 / pi) and c = chi0 - n pi in [-pi/2, pi/2] (where
+  cos c >= 0 keeps psi in the branch of chi), the tangent of the difference of the two angles
+  whose tangents are (tan c + k) / m and k / m gives
+      D0 = n pi + atan2(m sin c, cos c + k sin c)            (D0 = 0 exactly at theta0 = 0).
 """
 
 from dataclasses import dataclass
@@ -22,6 +33,9 @@ from dataclasses import dataclass
 import sympy as sp
 
 from . import symbols as s
+
+# The crank angle at t = 0 (the parameter theta0 of derive/model.py).
+theta0 = sp.Symbol("theta0", real=True)
 
 
 @dataclass(frozen=True)
@@ -44,9 +58,9 @@ def _wrap(z):
 
 
 def constant():
-    return Motion("constant", "Constant", ("omega",), s.omega * s.t, s.omega, sp.Integer(0),
+    return Motion("constant", "Constant", ("omega", "theta0"), theta0 + s.omega * s.t, s.omega, sp.Integer(0),
                   2 * sp.pi / s.omega, 2 * sp.pi / s.omega,
-                  "constant crank speed Omega*: theta = Omega* t")
+                  "constant crank speed Omega*: theta = theta0 + Omega* t")
 
 
 def runup():
@@ -56,11 +70,11 @@ def runup():
     step_integral = sp.Rational(5, 2) * x**4 - 3 * x**5 + x**6
     dstep = sp.diff(step, s.t)
     during = s.t < T
-    theta = sp.Piecewise((s.omega0 * s.t + (s.omega - s.omega0) * T * step_integral, during),
-                         (2 * sp.pi * s.ramp + s.omega * (s.t - T), True))
+    theta = theta0 + sp.Piecewise((s.omega0 * s.t + (s.omega - s.omega0) * T * step_integral, during),
+                                  (2 * sp.pi * s.ramp + s.omega * (s.t - T), True))
     thetad = sp.Piecewise((s.omega0 + (s.omega - s.omega0) * step, during), (s.omega, True))
     thetadd = sp.Piecewise(((s.omega - s.omega0) * dstep, during), (0, True))
-    return Motion("runup", "RunUp", ("omega0", "omega", "ramp"), theta, thetad, thetadd, None,
+    return Motion("runup", "RunUp", ("omega0", "omega", "ramp", "theta0"), theta, thetad, thetadd, None,
                   4 * sp.pi / (s.omega0 + s.omega + sp.Abs(s.omega - s.omega0)),   # 2 pi / max
                   "run-up: the crank speed rises smoothly (quintic smooth step in time) from Omega0 "
                   "to Omega* over `ramp` revolutions, then stays at Omega*",
@@ -70,14 +84,19 @@ def runup():
 def fluctuation():
     m = sp.sqrt(1 - s.k_fl**2)
     c0 = sp.atan(s.k_fl / m)
-    psi = m * s.j_fl * s.omega * s.t / 2 + c0
+    chi0 = s.j_fl * theta0 / 2
+    n0 = sp.floor(chi0 / sp.pi + sp.Rational(1, 2))
+    c = chi0 - n0 * sp.pi
+    shift = n0 * sp.pi + sp.atan2(m * sp.sin(c), sp.cos(c) + s.k_fl * sp.sin(c))     # D0 above
+    psi = m * s.j_fl * s.omega * s.t / 2 + c0 + shift
     chi = sp.atan2(m * sp.sin(psi) - s.k_fl * sp.cos(psi), sp.cos(psi))    # j theta / 2 mod 2 pi
     half = (psi - c0) + _wrap(chi - (psi - c0))                           # unwrapped j theta / 2
     theta = 2 * half / s.j_fl
     thetad = s.omega * (1 + s.k_fl * sp.sin(s.j_fl * s.theta))
     thetadd = s.omega * s.k_fl * s.j_fl * sp.cos(s.j_fl * s.theta) * s.thetad
     period = 2 * sp.pi / (m * s.omega)
-    return Motion("fluctuation", "Fluctuation", ("omega", "fluctuation", "order"), theta, thetad, thetadd, period,
+    return Motion("fluctuation", "Fluctuation", ("omega", "fluctuation", "order", "theta0"), theta, thetad,
+                  thetadd, period,
                   period, "cyclic speed fluctuation: thetad = Omega* (1 + k sin(j theta)), |k| < 1, "
                           "j a positive integer", (("amplitude", ("fluctuation",)),))
 
@@ -93,19 +112,23 @@ def rates(motion):
     return theta, thetad, thetadd
 
 
-def check(motion, samples=((0.3, 0.2, 1.1, 3.0, 0.4, 2), (1.7, 1.2, 0.3, 2.0, -0.6, 1),
-                           (40.0, 0.5, 0.9, 5.0, 0.7, 3))):
-    """Verify thetad = d theta / dt and thetadd = d thetad / dt (central differences at a few
-    times and parameter values) and theta(period) = 2 pi; raises AssertionError."""
+def check(motion, samples=((0.3, 0.2, 1.1, 3.0, 0.4, 2, 0.0), (1.7, 1.2, 0.3, 2.0, -0.6, 1, 0.0),
+                           (40.0, 0.5, 0.9, 5.0, 0.7, 3, 0.0), (0.3, 0.2, 1.1, 3.0, 0.4, 2, 1.3),
+                           (1.7, 1.2, 0.3, 2.0, -0.6, 1, -2.9), (40.0, 0.5, 0.9, 5.0, 0.7, 3, 11.0),
+                           (2.1, 0.5, 0.9, 5.0, -0.9, 2, -7.5))):
+    """Verify theta(0) = theta0, thetad = d theta / dt and thetadd = d thetad / dt (central
+    differences at a few times and parameter values) and theta(period) = theta0 + 2 pi; raises
+    AssertionError."""
     theta, thetad, thetadd = rates(motion)
-    for t0, om0, om, ramp, k, j in samples:
-        values = {s.omega0: om0, s.omega: om, s.ramp: ramp, s.k_fl: k, s.j_fl: j}
+    for t0, om0, om, ramp, k, j, start in samples:
+        values = {s.omega0: om0, s.omega: om, s.ramp: ramp, s.k_fl: k, s.j_fl: j, theta0: start}
         f = [sp.lambdify(s.t, e.subs(values), "mpmath") for e in (theta, thetad, thetadd)]
         h = 1e-6
         for lower, upper in ((0, 1), (1, 2)):
             fd = (f[lower](t0 + h) - f[lower](t0 - h)) / (2 * h)
             assert abs(fd - f[upper](t0)) < 1e-5 * (1 + abs(f[upper](t0))), (motion.name, t0, lower)
+        assert abs(float(f[0](0.0)) - start) < 1e-12 * (1 + abs(start)), (motion.name, "theta(0)")
         if motion.period is not None:
             T = float(motion.period.subs(values))
-            assert abs(float(f[0](T)) - 2 * float(sp.pi)) < 1e-9, (motion.name, "period")
+            assert abs(float(f[0](T)) - start - 2 * float(sp.pi)) < 1e-9, (motion.name, "period")
     return True

@@ -308,7 +308,7 @@ def _energies():
 OUTPUT_INPUTS = (
     ("q", tuple(s.q)), ("zeta", (s.zeta,)), ("geo", s.GEOMETRY), ("coef", s.COEFFICIENTS),
     ("kin", s.KINEMATICS), ("params", tuple(x for x in KINEMATIC_SYMBOLS if x != s.a)),
-    ("q_end", tuple(model.q_end)),
+    ("q_end", tuple(model.q_end)), ("qd_end", tuple(model.qd_end)),
     ("s", (model.s_end,)), ("pin", tuple(model.pin)), ("end", tuple(model.end_force)),
     ("fiber", (model.fiber,)),
 )

@@ -84,14 +84,14 @@ def period(case):
 
 
 def time_of_revolutions(case, revolutions):
-    """The time at which the crank has turned `revolutions` revolutions (theta = 2 pi revolutions):
-    exact for a periodic motion, by bisection on the monotone theta(t) otherwise."""
-    target = 2 * np.pi * revolutions
+    """The time at which the crank has turned `revolutions` revolutions (theta = theta0 + 2 pi
+    revolutions): exact for a periodic motion, by bisection on the monotone theta(t) otherwise."""
     T = period(case)
     if T is not None:
         return T * revolutions
     fn = getattr(_kinematics, f"motion_{case.motion}")
     params = case.kinematic_parameters
+    target = fn(0.0, params)[0] + 2 * np.pi * revolutions
     hi = step_period(case) * max(revolutions, 1.0)
     while fn(hi, params)[0] < target:
         hi *= 2.0

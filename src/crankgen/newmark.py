@@ -93,8 +93,9 @@ def initial_acceleration(model, t0, d0, v0):
     return _solve(model, S, -R, 0, t0)
 
 
-def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progress=None):
-    """March n_steps of size dt from (d0, v0) at t0.  progress(step, n_steps) is called per step."""
+def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progress=None, a0=None):
+    """March n_steps of size dt from (d0, v0) at t0 (a0: the accelerations there, by default solved
+    from eq. (34)).  progress(step, n_steps) is called per step."""
     n_steps = integer("number of steps", n_steps, 1)
     dt = in_range("dt", dt, 0, None, True)
     beta, gamma = settings.beta, settings.gamma
@@ -108,7 +109,8 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
     D, V, A = (np.empty((n_steps + 1, N)) for _ in range(3))
     iterations = np.zeros(n_steps, dtype=np.int32)
     D[0], V[0] = d0, v0
-    A[0] = initial_acceleration(model, t0, np.asarray(d0, float), np.asarray(v0, float))
+    A[0] = (initial_acceleration(model, t0, np.asarray(d0, float), np.asarray(v0, float)) if a0 is None
+            else a0)
     c_d, c_v = beta * dt**2, gamma * dt
 
     for m in range(n_steps):

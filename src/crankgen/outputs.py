@@ -6,7 +6,7 @@ surface_strain, chord_deflection, ...).
 
 Each step or field output is a generated kernel whose inputs the schema names; StateHistory
 supplies them from the stored reduced states: the kinematics, the nodal vector of the element
-holding x*, the end node's (u, v) and reduced co-ordinate, and the reactions at the pin and the
+holding x*, the end node's (u, v), their rates and the reduced co-ordinate, and the reactions at the pin and the
 end (the residual rows of the constrained DOFs, which need the stored velocities and
 accelerations).  Quantities made of element-wise derivatives (u_x is constant in an element, v_xx
 linear) jump at the nodes; at an interior node crankgen returns the mean of the two elements'
@@ -118,6 +118,13 @@ class StateHistory:
             elif name == "q_end":
                 q_all = self.element_vectors() if q_all is None else q_all
                 out[name] = q_all[:, -1, 3:5]
+            elif name == "qd_end":
+                if self.rates is None:
+                    raise ParameterError(f"{spec.name} needs the stored velocities, which this result "
+                                         "does not hold")
+                E = _kinematics.end_map(self.case, self.kinematics().vector,
+                                        self.states[:, self.mesh.slider_dof], self.rates[:, self.mesh.slider_dof])
+                out[name] = E[..., schema.END_MAP_ROWS["qd"], :]
             elif name == "s":
                 out[name] = self.states[:, self.mesh.slider_dof]
             elif name in ("pin", "end"):
@@ -209,3 +216,73 @@ class DeclaredOutputs:
         if spec is not None and spec.kind == "step":
             return self.quantity(name)
         raise AttributeError(f"{type(self).__name__} has no attribute {name!r}")
+
+
+class SIView:
+    """A result's quantities in SI: t in s, theta in rad, and every declared output converted with
+    the units it declares in derive/model.py (crankgen.units: "L" -> m, "rad", "omega_b" -> rad/s,
+    "rhoA L^2 omega_b^2" -> N, "rhoA L^3 omega_b^2" -> N m, "EI/L^2" -> N, "EI/L" -> N m, ...).
+
+    Fields take the position x along the rod in metres (0 <= x <= L); their other arguments keep
+    their own meaning (surface_strain's fiber: the distance from the neutral axis in units of the
+    radius of gyration).  `units(name)` names the SI unit of a quantity; `nodes` gives the nodal
+    history with u, v in m (psi, a slope, is dimensionless); `at_times` the SI view of the result at
+    the requested times."""
+
+    # the result's own per-step arrays beside the declared outputs, and their units
+    BASE = {"t": "1/omega_b", "theta": "rad"}
+
+    def __init__(self, result, scales):
+        self.result, self.scales = result, scales
+
+    def units(self, name):
+        """Name of the SI unit of t, theta or a declared output."""
+        if name in self.BASE:
+            return self.scales.si_name(self.BASE[name])
+        spec = schema.OUTPUTS.get(name)
+        if spec is None:
+            raise ParameterError(f"no output {name!r}; the outputs are {', '.join(schema.OUTPUTS)}")
+        return self.scales.si_name(spec.units)
+
+    def quantity(self, name, x=None, **arguments):
+        """The declared output `name` in SI (a field at x in metres)."""
+        spec = schema.OUTPUTS.get(name)
+        if spec is None:
+            raise ParameterError(f"no output {name!r}; the outputs are {', '.join(schema.OUTPUTS)}")
+        if x is not None:
+            for xj in np.atleast_1d(np.asarray(x, dtype=float)):
+                in_range(f"x (position along the rod, m; the rod is {self.scales.L:g} m long)", xj, 0.0,
+                         self.scales.L)
+            x = np.asarray(x, dtype=float) / self.scales.L if np.ndim(x) else float(x) / self.scales.L
+        return self.result.quantity(name, x, **arguments) * self.scales.factor(spec.units)
+
+    @property
+    def nodes(self):
+        nodes = self.result.nodes
+        if nodes is None:
+            return None
+        out = np.array(nodes, dtype=float)
+        out[..., 0::3] *= self.scales.L
+        out[..., 1::3] *= self.scales.L
+        return out
+
+    @property
+    def at_times(self):
+        inner = self.result.at_times
+        return None if inner is None else SIView(inner, self.scales)
+
+    def __getattr__(self, name):
+        if name in ("result", "scales"):
+            raise AttributeError(name)
+        if name in self.BASE:
+            return getattr(self.result, name) * self.scales.factor(self.BASE[name])
+        spec = schema.OUTPUTS.get(name)
+        if spec is not None and spec.kind == "field":
+            return lambda x, **arguments: self.quantity(name, x, **arguments)
+        if spec is not None:
+            return self.quantity(name)
+        raise AttributeError(f"SIView has no attribute {name!r}")
+
+    def __repr__(self):
+        return (f"SIView({type(self.result).__name__}, L = {self.scales.L:g} m, "
+                f"omega_b = {self.scales.omega_b:g} rad/s)")

@@ -22,22 +22,28 @@ def _title(s):
             f"ms* = {s['ms']:g}, mu* = {s['mu']:g}, n = {s['n_elements']}{extra}")
 
 
-def plot_deflection(result, path, failure=None):
+def plot_deflection(result, path, failure=None, si=None):
     """v* at x* = 1/2 against t*, written atomically to path (returned).  failure: the
-    ConvergenceError of a run that stopped, whose time is marked on the plot."""
+    ConvergenceError of a run that stopped, whose time is marked on the plot.  si: the result's SI
+    view (crankgen.outputs.SIView): v in mm against t in s."""
     from .io import save_figure
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(7, 3.8), constrained_layout=True)
-    ax.plot(result.t, result.v_mid, lw=1, color="C0", label="v* (x* = 1/2)")
+    if si is None:
+        t, v, tf, unit = result.t, result.v_mid, None if failure is None else failure.time, "t*"
+    else:
+        t, v, unit = si.t, si.v_mid * 1e3, "t (s)"
+        tf = None if failure is None else failure.time * si.scales.factor("1/omega_b")
+    ax.plot(t, v, lw=1, color="C0", label="v* (x* = 1/2)" if si is None else "v (x = L/2), mm")
     if failure is not None:
-        ax.axvline(failure.time, color="C3", ls="--", lw=1,
-                   label=f"run failed at t* = {failure.time:.4g} (step {failure.step})")
-        if len(result.t):
-            ax.plot(result.t[-1:], result.v_mid[-1:], "x", color="C3", ms=9, mew=2,
+        ax.axvline(tf, color="C3", ls="--", lw=1,
+                   label=f"run failed at {unit.split()[0]} = {tf:.4g} (step {failure.step})")
+        if len(t):
+            ax.plot(t[-1:], v[-1:], "x", color="C3", ms=9, mew=2,
                     label="last computed state")
         ax.legend(fontsize=8, loc="best")
-    ax.set_xlabel("t*")
-    ax.set_ylabel("v* at x* = 1/2")
+    ax.set_xlabel(unit)
+    ax.set_ylabel("v* at x* = 1/2" if si is None else "v at x = L/2 in the moving frame (mm)")
     ax.set_title(_title(result.settings), fontsize=9)
     ax.grid(alpha=0.3)
     return save_figure(fig, path)

@@ -1,7 +1,9 @@
-"""`simulate`: one run of the flexible mechanism, by default from the paper's zero initial conditions."""
+"""`simulate`: one run of the flexible mechanism, by default from the paper's zero initial conditions
+(or from a given elastic state: crankgen.initial), with the state and every output at requested
+times, in crankgen's units or in SI."""
 
 import csv
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Optional
 
 import numpy as np
@@ -12,11 +14,15 @@ from .cases import Case, run_case
 from .errors import ConvergenceError, ParameterError
 from .limits import check_run_size
 from .model import Model
+from .initial import initial_state
 from .newmark import NewmarkSettings, integrate
-from .outputs import DeclaredOutputs, StateHistory, end_axial, extension, mid_deflection
+from .outputs import DeclaredOutputs, SIView, StateHistory, end_axial, extension, mid_deflection
+from .parameters import SIMechanism
+from .units import Scales, scales_of
 from .validation import choice, in_range
 
 ENGINES = ("compiled", "numpy")
+UNITS = ("crankgen", "si")
 
 
 @dataclass(frozen=True)
@@ -25,7 +31,11 @@ class SimulationResult(DeclaredOutputs):
     every declared output by name (crankgen.outputs): step quantities as attributes
     (`slider_position`, `crank_speed`, `chord_angle`, `torque`, `pin_force_x`, ...), fields as
     methods (`axial_force(x)`, `bending_moment(x)`, `surface_strain(x, fiber)`,
-    `chord_deflection(x)`), any of them by `quantity(name, ...)`."""
+    `chord_deflection(x)`), any of them by `quantity(name, ...)`.
+
+    at_times: the same at the times a run was asked for (`simulate(..., times=...)`), else None.
+    si: the SI view (seconds, metres, radians, newtons, N m) of a run given in SI
+    (`simulate(..., units="si")`); `si_view(si_mechanism)` gives it for any run."""
 
     t: np.ndarray
     theta: np.ndarray
@@ -39,6 +49,8 @@ class SimulationResult(DeclaredOutputs):
     states: Optional[np.ndarray] = field(default=None, repr=False)  # (steps, N) reduced displacements
     rates: Optional[np.ndarray] = field(default=None, repr=False)   # (steps, N) reduced velocities
     accelerations: Optional[np.ndarray] = field(default=None, repr=False)
+    at_times: Optional["SimulationResult"] = field(default=None, repr=False)
+    scales: Optional[Scales] = field(default=None, repr=False)      # crankgen's units in SI (units="si")
 
     def to_csv(self, path):
         """Write t*, theta, v_mid, u_end, extension as CSV (full double precision), atomically."""
@@ -49,6 +61,19 @@ class SimulationResult(DeclaredOutputs):
             for row in zip(self.t, self.theta, self.v_mid, self.u_end, self.extension):
                 w.writerow([repr(float(x)) for x in row])
 
+    @property
+    def si(self):
+        """The result in SI (crankgen.outputs.SIView) of a run given in SI (units="si")."""
+        if self.scales is None:
+            raise ParameterError("this run was given in crankgen's units: result.si needs a run made with "
+                                 "units='si' from a crankgen.SIMechanism; result.si_view(si_mechanism) "
+                                 "converts any run")
+        return SIView(self, self.scales)
+
+    def si_view(self, si_mechanism):
+        """The result in SI for the SIMechanism whose dimensionless form this run used."""
+        return SIView(self, scales_of(si_mechanism))
+
 
 def run_length(case, revolutions):
     """(time step, number of steps) of a run of `revolutions` crank revolutions."""
@@ -58,80 +83,237 @@ def run_length(case, revolutions):
     return dt, max(1, int(round(_kinematics.time_of_revolutions(case, revolutions) / dt)))
 
 
-def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolutions=10,
-             store_nodes=False, tol=1e-10, progress=None, initial=None, engine="compiled", **fields):
-    """Integrate the mechanism from theta = 0 (the crank motion's start) for `revolutions` crank
-    revolutions.
+# a requested time closer than this fraction of a step to a step of the run is that step
+ON_STEP = 1e-9
+
+
+def _requested_times(times, factor):
+    """The requested times as a 1-d array in crankgen's units (times / factor), checked."""
+    try:
+        values = np.array(times, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise ParameterError(f"times must be a sequence of numbers, got {times!r}") from None
+    if values.size == 0 or not np.all(np.isfinite(values)) or np.any(values < 0):
+        raise ParameterError(f"times must be one or more finite numbers >= 0, got {times!r}")
+    return values / factor
+
+
+def _landing(t_req, dt, n_steps):
+    """[(step k before the time, remaining time tau)] of each requested time; tau = 0: on step k."""
+    out = []
+    for tr in t_req:
+        k = int(np.floor(tr / dt))
+        tau = tr - k * dt
+        if tau <= ON_STEP * dt:
+            tau = 0.0
+        elif dt - tau <= ON_STEP * dt:
+            k, tau = k + 1, 0.0
+        if k > n_steps or (k == n_steps and tau > 0):
+            raise ParameterError(f"times: t* = {tr:.6g} is beyond the run's end t* = {n_steps * dt:.6g} "
+                                 "(give more revolutions, or leave revolutions out to run up to the last time)")
+        out.append((k, tau))
+    return out
+
+
+def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolutions=None, times=None,
+             units="crankgen", history=True, store_nodes=False, tol=1e-10, progress=None, initial=None,
+             engine="compiled", **fields):
+    """Integrate the mechanism from t = 0 (the crank at its start angle theta0, default 0) for
+    `revolutions` crank revolutions.
 
     The case: a Mechanism `mech` and the run's settings (omega, and any Case field: approach,
-    n_elements, steps_per_rev, integrator, the model options, the crank motion's parameters), or
-    case=Case(...).  model: "consistent" (the default) or "paper"; an option given explicitly
+    n_elements, steps_per_rev, integrator, theta0, the model options, the crank motion's parameters),
+    or case=Case(...).  model: "consistent" (the default) or "paper"; an option given explicitly
     (formulation, damping, membrane, ...) overrides the model's value.  crank: a crank motion,
     crankgen.Constant(omega=...), crankgen.RunUp(start=..., stop=..., revolutions=...) or
     crankgen.Fluctuation(omega=..., amplitude=..., order=...) (default: constant speed omega).
-    initial: optional (d0, v0) reduced displacement and velocity vectors (default: zero, the
-    paper's initial conditions: rod undeformed and at rest in the moving frame).
+
+    initial: the rod's elastic state at t = 0, a crankgen.InitialState (displacement and velocity
+    fields in the rigid moving frame at theta0, projected onto the mesh by nodal interpolation and
+    checked against the pin and the guide: crankgen.initial), a dict of its fields, or a pair (d0,
+    v0) of reduced vectors.  Default: the rigid mechanism with the rod undeformed and at rest in the
+    moving frame (the paper's initial conditions).
+
+    times: times at which to give the state and every output as well (`result.at_times`, a
+    SimulationResult at those times, in the order given).  A time on a step of the run (within
+    1e-9 of a step) is that step; a time between steps k and k + 1 is reached by one Newmark step
+    of the remaining length from the state of step k (the run's own steps are not changed).  revolutions: default 10, or,
+    with times, just enough steps to reach the last of them.  history=False keeps, of the run's
+    steps, only t, theta, v_mid, u_end, extension and iterations (no states: the declared outputs
+    are then given at the requested times only), for long runs asked at a few times.
+
+    units: "crankgen" (dimensionless, the default) or "si": then mech is a crankgen.SIMechanism
+    (its crank speed is the constant crank speed; omega and crank are not given), times are in
+    seconds, the initial state's fields in metres and m/s, and `result.si` gives every output in
+    SI (crankgen.outputs.SIView).
+
     progress(step, n_steps) is called as the run advances.
     engine: "compiled" (numba, crankgen.engine) or "numpy" (model.py + newmark.py, the reference).
     """
-    revolutions = in_range("revolutions", revolutions, 0, None, True)
+    choice("units", units, UNITS)
     choice("engine", engine, ENGINES)
+    scales = None
+    if units == "si":
+        if not isinstance(mech, SIMechanism):
+            raise ParameterError(f"units='si' needs the mechanism as a crankgen.SIMechanism, got "
+                                 f"{type(mech).__name__}")
+        if omega is not None or crank is not None or case is not None:
+            raise ParameterError("with units='si' the crank turns at the SIMechanism's crank_speed: give "
+                                 "neither omega, crank nor case")
+        scales = scales_of(mech)
+        mech, omega = mech.mechanism, mech.omega
+    elif isinstance(mech, SIMechanism):
+        raise ParameterError("a crankgen.SIMechanism needs units='si' (or use its .mechanism and .omega)")
+    if revolutions is not None:
+        revolutions = in_range("revolutions", revolutions, 0, None, True)
     case = run_case(mech, case, model=model, omega=omega, crank=crank, **fields)
     settings = NewmarkSettings(scheme=case.integrator, tol=tol)
     model = Model.from_case(case)
-    dt, n_steps = run_length(case, revolutions)
-    check_run_size(case.n_elements, n_steps, stored="nodes" if store_nodes else "states",
-                   names={"n_steps": "revolutions"})
-    N = model.n_dofs
-    if initial is None:
-        d0, v0 = np.zeros(N), np.zeros(N)
+    if times is not None:
+        t_req = _requested_times(times, 1.0 if scales is None else scales.factor("1/omega_b"))
+    if revolutions is None and times is not None:
+        dt = _kinematics.step_period(case) / case.steps_per_rev
+        n_steps = max(1, int(np.ceil(np.max(t_req) / dt * (1 - ON_STEP))))
+        revolutions = n_steps / case.steps_per_rev        # step periods: revolutions of a periodic crank
     else:
-        d0, v0 = (np.asarray(x, dtype=float) for x in initial)
-        if d0.shape != (N,) or v0.shape != (N,) or not (np.all(np.isfinite(d0)) and np.all(np.isfinite(v0))):
-            raise ParameterError(f"initial must be two finite vectors of length {N} (3 n_elements)")
+        revolutions = 10.0 if revolutions is None else revolutions
+        dt, n_steps = run_length(case, revolutions)
+    check_run_size(case.n_elements, n_steps if history else 0, stored="nodes" if store_nodes else "states",
+                   names={"n_steps": "revolutions"})
+    landing = None if times is None else _landing(t_req, dt, n_steps)
+    if not isinstance(history, bool):
+        raise ParameterError(f"history must be True or False, got {history!r}")
+    if store_nodes and not history:
+        raise ParameterError("store_nodes needs the run's states: leave history=True")
+    d0, v0 = initial_state(case, initial, scales)
     info = dict(case.as_dict(), revolutions=revolutions, tol=tol, engine=engine)
+    stops = sorted({k for k, _ in landing}) if landing is not None else []
     if engine == "numpy":
         hist = integrate(model, d0, v0, 0.0, dt, n_steps, settings, progress=progress)
-        history = StateHistory(case, hist.t, hist.d, hist.v, hist.a)
-        q = history.element_vectors()
-        kin = history.kinematics()
-        return SimulationResult(
-            t=hist.t, theta=kin.theta, v_mid=mid_deflection(model.mesh, q, case.eps),
-            u_end=end_axial(q, case.eps), extension=extension(model.mesh, q),
-            iterations=hist.iterations, settings=info,
-            nodes=model.full_nodal(hist.d, kin) if store_nodes else None, case=case, states=hist.d,
-            rates=hist.v, accelerations=hist.a)
+        result = _numpy_result(model, case, hist, info, store_nodes, scales)
+        if landing is not None:
+            states = {k: (hist.d[k], hist.v[k], hist.a[k]) for k in stops}
+            result = replace(result, at_times=_numpy_at_times(model, case, result, states, landing, t_req,
+                                                              settings, store_nodes, info, scales))
+        if not history:
+            result = replace(result, states=None, rates=None, accelerations=None)
+        return result
 
+    captured = {}
     y, iterations, status, fail_step, fail_res, D, V, A = _march_in_chunks(
-        _engine.Batch([case]), d0[None], v0[None], n_steps, tol, True,
-        None if progress is None else (lambda done: progress(done, n_steps)))
-    y, iterations, D, V, A = y[0], iterations[0].astype(np.int32), D[0], V[0], A[0]
+        _engine.Batch([case]), d0[None], v0[None], n_steps, tol, history,
+        None if progress is None else (lambda done: progress(done, n_steps)), stops=stops, captured=captured)
+    y, iterations = y[0], iterations[0].astype(np.int32)
+    if history:
+        D, V, A = D[0], V[0], A[0]
     t = dt * np.arange(n_steps + 1)
     kin = _kinematics.case_state(case, t)
     nodes = model.full_nodal(D, kin) if store_nodes else None
     result = SimulationResult(t=t, theta=kin.theta, v_mid=y[:, 0], u_end=y[:, 1], extension=y[:, 2],
-                              iterations=iterations, settings=info, nodes=nodes, case=case, states=D,
-                              rates=V, accelerations=A)
+                              iterations=iterations, settings=dict(info, history=history), nodes=nodes,
+                              case=case, states=D, rates=V, accelerations=A, scales=scales)
     if status[0] != _engine.OK:
         raise _failure(status[0], fail_step[0], fail_res[0], dt, result)
+    if landing is not None:
+        states = {k: tuple(x[0] for x in captured[k]) for k in stops}
+        result = replace(result, at_times=_compiled_at_times(model, case, result, states, landing, t_req, tol,
+                                                             store_nodes, info, scales))
     return result
 
 
+def _numpy_result(model, case, hist, info, store_nodes, scales):
+    history = StateHistory(case, hist.t, hist.d, hist.v, hist.a)
+    q = history.element_vectors()
+    kin = history.kinematics()
+    return SimulationResult(
+        t=hist.t, theta=kin.theta, v_mid=mid_deflection(model.mesh, q, case.eps),
+        u_end=end_axial(q, case.eps), extension=extension(model.mesh, q),
+        iterations=hist.iterations, settings=info,
+        nodes=model.full_nodal(hist.d, kin) if store_nodes else None, case=case, states=hist.d,
+        rates=hist.v, accelerations=hist.a, scales=scales)
+
+
+def _at_times_result(model, case, t_req, rows, info, store_nodes, scales):
+    """The SimulationResult at the requested times from rows (y (3,), iterations, d, v, a) each."""
+    y = np.array([r[0] for r in rows], dtype=float).reshape(len(rows), 3)
+    D, V, A = (np.array([r[k] for r in rows], dtype=float) for k in (2, 3, 4))
+    kin = _kinematics.case_state(case, t_req)
+    return SimulationResult(
+        t=np.array(t_req, dtype=float), theta=kin.theta, v_mid=y[:, 0], u_end=y[:, 1], extension=y[:, 2],
+        iterations=np.array([r[1] for r in rows], dtype=np.int32), settings=dict(info, times=True),
+        nodes=model.full_nodal(D, kin) if store_nodes else None, case=case, states=D, rates=V,
+        accelerations=A, scales=scales)
+
+
+def _numpy_at_times(model, case, result, states, landing, t_req, settings, store_nodes, info, scales):
+    rows = []
+    for (k, tau), tr in zip(landing, t_req):
+        if tau == 0.0:
+            rows.append(((result.v_mid[k], result.u_end[k], result.extension[k]), 0) + states[k])
+            continue
+        d, v, a = states[k]
+        hist = integrate(model, d, v, result.t[k], tau, 1, settings, a0=a)
+        one = _numpy_result(model, case, hist, info, False, scales)
+        rows.append(((one.v_mid[1], one.u_end[1], one.extension[1]), int(hist.iterations[0]), hist.d[1],
+                     hist.v[1], hist.a[1]))
+    return _at_times_result(model, case, t_req, rows, info, store_nodes, scales)
+
+
+def _compiled_at_times(model, case, result, states, landing, t_req, tol, store_nodes, info, scales):
+    """States at the requested times: steps of the run, or one Newmark step of the remaining length
+    from the step before (all such steps in one compiled batch).  states: {step: (d, v, a)}."""
+    between = [j for j, (_, tau) in enumerate(landing) if tau > 0.0]
+    stepped = {}
+    if between:
+        ks = np.array([landing[j][0] for j in between])
+        taus = np.array([landing[j][1] for j in between])
+        batch = _engine.Batch([case] * len(between), dt=taus)
+        D0, V0, A0 = (np.array([states[k][c] for k in ks]) for c in range(3))
+        res = _engine.march(batch, 1, D0=D0, V0=V0, A0=A0, t0=result.t[ks], tol=tol)
+        bad = np.nonzero(res.status != _engine.OK)[0]
+        if bad.size:
+            j = int(bad[0])
+            raise ConvergenceError(
+                f"the step to the requested time t* = {t_req[between[j]]:.6g}: "
+                f"{_engine.STATUS_TEXT[int(res.status[j])]} (residual norm {res.fail_residual[j]:.3e})",
+                step=int(ks[j]) + 1, time=float(t_req[between[j]]), residual=float(res.fail_residual[j]),
+                partial=result)
+        for i, j in enumerate(between):
+            stepped[j] = (res.y[i, 1], int(res.iterations[i, 0]), res.D[i], res.V[i], res.A[i])
+    rows = []
+    for j, (k, tau) in enumerate(landing):
+        if j in stepped:
+            rows.append(stepped[j])
+        else:
+            rows.append(((result.v_mid[k], result.u_end[k], result.extension[k]), 0) + states[k])
+    return _at_times_result(model, case, t_req, rows, info, store_nodes, scales)
+
+
 def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progress=None,
-                     chunks=20):
+                     chunks=20, stops=(), captured=None):
     """Run the compiled engine from (D0, V0) in a few chunks, so that progress(done_steps) can be
     shown; a case that fails stops alone.  Returns (y, iterations, status, fail_step,
     fail_residual, D, V, A) with y (B, n_steps + 1, 3) and the histories of the reduced
-    displacements, velocities and accelerations (None unless keep_states)."""
+    displacements, velocities and accelerations (None unless keep_states).  stops: step indices
+    whose states (D, V, A), each (B, N), are put in the dict `captured` (chunks end there; the
+    marching is the same as without them)."""
     B = len(batch)
     D, V, A, previous = np.array(D0, dtype=float), np.array(V0, dtype=float), None, None
     status = np.zeros(B, dtype=np.int64)
     fail_step, fail_res = np.zeros(B, dtype=np.int64), np.zeros(B)
     ys, its, hist = [], [], ([], [], [])
     size = max(1, -(-n_steps // chunks)) if progress is not None else n_steps
+    stops = sorted(k for k in set(stops) if 0 <= k <= n_steps)
+    if stops and stops[0] == 0:
+        first = _engine.march(batch, 0, D0=D, V0=V, tol=tol, status=status)
+        A, status = first.A, first.status
+        captured[0] = (D.copy(), V.copy(), A.copy())
     done = 0
     while done < n_steps:
         k = min(size, n_steps - done)
+        later = [s for s in stops if s > done]
+        if later:
+            k = min(k, later[0] - done)
         res = _engine.march(batch, k, D0=D, V0=V, A0=A, step0=done, keep_history=bool(keep_states),
                             tol=tol, status=status, previous=previous)
         new_fail = (res.status != _engine.OK) & (status == _engine.OK)
@@ -144,6 +326,8 @@ def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progr
                 store.append(h if done == 0 else h[:, 1:])
         D, V, A, previous = res.D, res.V, res.A, res.previous
         done += k
+        if done in stops:
+            captured[done] = (D.copy(), V.copy(), A.copy())
         if progress is not None:
             progress(done)
     histories = tuple(np.concatenate(h, axis=1) if keep_states else None for h in hist)
@@ -168,7 +352,8 @@ def _truncated(result, n_points):
     for name in ("nodes", "states", "rates", "accelerations"):
         value = getattr(result, name)
         cut[name] = None if value is None else value[:n_points]
-    return SimulationResult(settings=dict(result.settings, failed_at_step=n_points), case=result.case, **cut)
+    return SimulationResult(settings=dict(result.settings, failed_at_step=n_points), case=result.case,
+                            scales=result.scales, **cut)
 
 
 def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=False):

@@ -49,6 +49,13 @@ def build_parser():
     g.add_argument("--revolutions", type=float, default=10, help="number of crank revolutions to simulate, > 0 (default 10)")
     g.add_argument("--tol", type=float, default=1e-10, help="Newton tolerance on the scaled displacement increment (default 1e-10)")
     p.add_argument("--nodes", action="store_true", help="also write the nodal history nodes.csv")
+    p.add_argument("--si", metavar="FILE", default=None,
+                   help="the mechanism in SI from a JSON file: {\"L\": m, \"a\": m, \"E\": Pa, \"rho\": "
+                        "kg/m^3, \"A\": m^2, \"I\": m^4, \"slider_mass\": kg, \"crank_speed\": rad/s, "
+                        "\"damping\": s (optional, mu of eq. 24; default 0)}; it replaces the mechanism "
+                        "options and --omega (the crank turns at crank_speed), and simulation.csv is "
+                        "written in SI: t_s, theta_rad, v_mid_m, u_end_m, extension, slider_position_m, "
+                        "chord_angle_rad (nodes.csv: u, v in m), v_mid.png in mm against s")
     _add_output_options(p, "out", "simulation.csv, v_mid.png (and nodes.csv with --nodes)")
     p.set_defaults(func=_cmd_simulate)
 

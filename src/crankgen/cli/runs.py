@@ -12,16 +12,61 @@ from pathlib import Path
 
 from ..errors import ConvergenceError
 from ..limits import check_run_size
-from .options import CASE_FIELDS, UsageError, _Outputs, _case, _describe, _flag, _say
+from .options import CASE_FIELDS, UsageError, _Outputs, _case, _describe, _explicit, _flag, _say
 
 
 SIM_COLUMNS = ["t", "theta", "v_mid", "u_end", "extension", "status"]
 
 
+# the SI file of `simulate --si`: crankgen.SIMechanism's fields
+SI_FIELDS = ("L", "a", "E", "rho", "A", "I", "slider_mass", "crank_speed", "damping")
+SI_REQUIRED = SI_FIELDS[:-1]
+# simulation.csv with --si: the per-step quantities and the declared outputs written, in SI
+SI_QUANTITIES = ("t", "theta", "v_mid", "u_end", "extension", "slider_position", "chord_angle")
+
+
+def _si_mechanism(path):
+    """The crankgen.SIMechanism of a JSON file (UsageError naming what is wrong)."""
+    import json
+
+    from ..parameters import SIMechanism
+    try:
+        with open(path) as fh:
+            data = json.load(fh)
+    except OSError as exc:
+        raise UsageError(f"--si {path}: {exc.strerror or exc}") from None
+    except ValueError as exc:
+        raise UsageError(f"--si {path}: not valid JSON ({exc})") from None
+    if not isinstance(data, dict):
+        raise UsageError(f"--si {path}: expected a JSON object with the fields {', '.join(SI_FIELDS)}")
+    unknown = sorted(set(data) - set(SI_FIELDS))
+    missing = [k for k in SI_REQUIRED if k not in data]
+    if unknown or missing:
+        what = (f"unknown field {unknown[0]!r}" if unknown else f"missing field {missing[0]!r}")
+        raise UsageError(f"--si {path}: {what}; the fields are {', '.join(SI_FIELDS)} (damping optional)")
+    return SIMechanism(**data)
+
+
+def _si_case(args, si):
+    """The Case of `simulate --si`: the SI mechanism's dimensionless form, its crank speed, and the
+    run's options of the command line (mechanism options and --omega refused)."""
+    from .. import schema
+    from ..cases import make_case
+    given = _explicit(args)
+    clash = [n for n in schema.MECHANISM_PARAMETERS + ("omega",) if n in given]
+    if clash:
+        flag = schema.PARAMETERS[clash[0]].cli
+        raise UsageError(f"--si gives the mechanism and its crank speed: leave out --{flag}")
+    if given.get("motion", "constant") != "constant":
+        raise UsageError("--si: the crank turns at the file's constant crank_speed (--crank constant)")
+    return make_case(model=args.model, **si.mechanism.values(), omega=si.omega, **given)
+
+
 def _cmd_simulate(args):
     from ..validation import in_range
 
-    case = _case(args)                                       # validates every parameter ...
+    si = None if args.si is None else _si_mechanism(args.si)
+    case = _case(args) if si is None else _si_case(args, si)    # validates every parameter ...
     revolutions = in_range("revolutions", args.revolutions, 0, None, True)
     in_range("tol", args.tol, 0, None, True)
     from ..simulation import run_length
@@ -32,12 +77,12 @@ def _cmd_simulate(args):
     names = ["simulation.csv", "v_mid.png"] + (["nodes.csv"] if args.nodes else [])
     out = _Outputs(args.out, names, args.force)             # ... and the output folder, first
     try:
-        return _simulate(args, case, revolutions, out)
+        return _simulate(args, case, revolutions, out, si)
     finally:
         out.abandon()
 
 
-def _simulate(args, case, revolutions, out):
+def _simulate(args, case, revolutions, out, si=None):
     import numpy as np
 
     from ..io import atomic_write, write_csv
@@ -58,27 +103,51 @@ def _simulate(args, case, revolutions, out):
             if exc.partial is None:
                 raise
             failure, res = exc, exc.partial
-    rows = (dict(t=t, theta=th, v_mid=v, u_end=u, extension=e, status="ok")      # streamed
-            for t, th, v, u, e in zip(res.t, res.theta, res.v_mid, res.u_end, res.extension))
+    if si is None:
+        rows = (dict(t=t, theta=th, v_mid=v, u_end=u, extension=e, status="ok")      # streamed
+                for t, th, v, u, e in zip(res.t, res.theta, res.v_mid, res.u_end, res.extension))
+        columns, view, nodes_units = SIM_COLUMNS, None, ""
+        fail_time = None if failure is None else failure.time
+    else:
+        view = res.si_view(si)
+        columns = [_si_column(view, name) for name in SI_QUANTITIES] + ["status"]
+        values = [getattr(view, name) for name in SI_QUANTITIES]
+        rows = (dict(zip(columns, row), status="ok") for row in zip(*values))
+        nodes_units = " (u, v in m; psi, a slope, dimensionless)"
+        fail_time = None if failure is None else failure.time * view.scales.factor("1/omega_b")
     if failure is not None:
-        last = dict(t=failure.time, theta=case.omega * failure.time, status=f"failed: {failure}")
+        last = {columns[0]: fail_time, columns[1]: float(_theta_at(case, failure.time)),
+                "status": f"failed: {failure}"}
         rows = itertools.chain(rows, [last])
-    out.wrote(write_csv(out.path("simulation.csv"), SIM_COLUMNS, rows))
+    out.wrote(write_csv(out.path("simulation.csv"), columns, rows))
     if args.nodes and res.nodes is not None:
         note = "" if failure is None else f"; run failed at step {failure.step}: history up to the failure"
+        nodes = res.nodes if view is None else view.nodes
         out.wrote(atomic_write(out.path("nodes.csv"), lambda fh: np.savetxt(
-            fh, res.nodes, delimiter=",", comments="# ",
-            header=f"full nodal vector per step: u, v, psi of nodes 0..n{note}")))
-    out.wrote(plot_deflection(res, out.path("v_mid.png"), failure=failure))
+            fh, nodes, delimiter=",", comments="# ",
+            header=f"full nodal vector per step: u, v, psi of nodes 0..n{nodes_units}{note}")))
+    out.wrote(plot_deflection(res, out.path("v_mid.png"), failure=failure, si=view))
     if failure is not None:
         print(f"crankgen simulate: run failed: {failure}; wrote the history up to the failure "
               f"({len(res.t)} points, marked in the status column) to {out.path('simulation.csv')}",
               file=sys.stderr)
         return 1
-    last = res.v_mid[-case.steps_per_rev:]
+    last = (res.v_mid if view is None else view.v_mid)[-case.steps_per_rev:]
     print(f"wrote {out.path('simulation.csv')} and {out.path('v_mid.png')}; "
-          f"max |v*| over the last revolution {np.max(np.abs(last)):.6g}")
+          f"max |v{'*' if view is None else ''}| over the last revolution {np.max(np.abs(last)):.6g}"
+          + ("" if view is None else " m"))
     return 0
+
+
+def _si_column(view, name):
+    """Column name of a quantity in SI: its name and its SI unit (t_s, v_mid_m; none if dimensionless)."""
+    unit = view.units(name)
+    return name if unit == "1" else f"{name}_{unit.replace('/', '_per_').replace(' ', '_')}"
+
+
+def _theta_at(case, t):
+    from ..kinematics import case_state
+    return case_state(case, t).theta
 
 
 # ---- steady ------------------------------------------------------------------------------------

@@ -28,10 +28,11 @@ class Batch:
     """Cases that share a mesh and steps per revolution, packed for the compiled engine."""
 
     def __init__(self, cases, dt=None, entries=("march",), kernels_table=None):
-        """dt overrides the time step (free vibration, omega ~ 0).  entries: the engine's entry
-        points the batch will use ("march", "revolution"), compiled ahead with its kernels when
-        this machine has not compiled them yet (engine/build.py).  kernels_table: the kernel
-        tables to use instead of the cases' own (engine/build.py compiles on no-op tables)."""
+        """dt overrides the time step: one for every case (free vibration, omega ~ 0) or one per case
+        (the steps of simulate's `times` that land between the steps of a run).  entries: the
+        engine's entry points the batch will use ("march", "revolution"), compiled ahead with its
+        kernels when this machine has not compiled them yet (engine/build.py).  kernels_table: the
+        kernel tables to use instead of the cases' own (engine/build.py compiles on no-op tables)."""
         from ..assembly import BandedAssembler
         from ..mesh import Mesh
 
@@ -63,7 +64,8 @@ class Batch:
         self.records = Cases(
             select, np.array([c.coefficients for c in cases], dtype=float),
             np.array([c.kinematic_parameters for c in cases], dtype=float),
-            np.array([dt if dt is not None else _kinematics.step_period(c) / spr for c in cases], dtype=float),
+            (np.array([_kinematics.step_period(c) / spr for c in cases], dtype=float) if dt is None else
+             np.array(np.broadcast_to(np.asarray(dt, dtype=float), (len(cases),)))),
             np.array([c.eps for c in cases], dtype=float),
             np.array([newton.SCHEMES.index(c.integrator) for c in cases], dtype=np.int64),
             printed.astype(np.bool_),
@@ -90,7 +92,7 @@ class MarchResult:
 
 
 @jit
-def _march_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, D0, V0, A0, P, n_prev, keep_history,
+def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, A0, P, n_prev, keep_history,
                  keep_rates, out_y, out_iter, status, fail_step, fail_res, Dh, Vh, Ah, D1, V1, A1):
     """Advance cases lo..hi-1 of the batch n_steps in lock step (see march)."""
     n = mesh.dofs.shape[0]
@@ -102,7 +104,7 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, D0, V0, A0, 
         d, v, acc = D0[b].copy(), V0[b].copy(), A0[b].copy()
         dn, vn, an = np.zeros(N), np.zeros(N), np.zeros(N)
         y = np.zeros(3)
-        kinematics(kern, sel, params, step0 * dt, w)
+        kinematics(kern, sel, params, t0[b] + step0 * dt, w)
         step_outputs(kern, sel, params, mesh.dofs, mesh.mid_element, mesh.Nv_mid, mesh.G, cases.eps[b], d, w, y)
         for k in range(3):
             out_y[b, 0, k] = y[k]
@@ -116,7 +118,7 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, D0, V0, A0, 
         for m in range(n_steps):
             if status[b] != OK:
                 break
-            t_new = (step0 + m + 1) * dt
+            t_new = t0[b] + (step0 + m + 1) * dt
             st, it, rn = newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, P[b], n_prev[b],
                                       dn, vn, an, w)
             out_iter[b, m] = it
@@ -157,11 +159,11 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, D0, V0, A0, 
 
 
 @jit
-def _initial_accelerations(kern, cases, mesh, lo, hi, step0, D0, V0, A0, status):
+def _initial_accelerations(kern, cases, mesh, lo, hi, t0, step0, D0, V0, A0, status):
     n, N = mesh.dofs.shape[0], D0.shape[1]
     w = make_work(n, N, mesh.kb)
     for b in range(lo, hi):
-        if not initial_acceleration(kern, cases, b, mesh, step0 * cases.dt[b], D0[b], V0[b], A0[b], w):
+        if not initial_acceleration(kern, cases, b, mesh, t0[b] + step0 * cases.dt[b], D0[b], V0[b], A0[b], w):
             status[b] = SINGULAR
 
 
@@ -196,8 +198,9 @@ def parallel_slices(fn, batch, parallel, leading, trailing):
 
 
 def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False, parallel=None,
-          beta=0.25, gamma=0.5, tol=1e-10, max_iter=30, status=None, previous=None):
-    """Advance all cases of the batch from step index step0 (t = step0 dt) by n_steps Newmark steps.
+          beta=0.25, gamma=0.5, tol=1e-10, max_iter=30, status=None, previous=None, t0=None):
+    """Advance all cases of the batch from step index step0 (t = t0 + step0 dt) by n_steps Newmark
+    steps.  t0: (B,) time origins (default 0).
 
     D0, V0: (B, N) initial reduced states (zero by default); A0 the accelerations, by default
     solved from eq. (34).  previous: the `previous` of the MarchResult this run continues (the
@@ -210,12 +213,13 @@ def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False
     D0 = np.zeros((B, N)) if D0 is None else np.ascontiguousarray(D0, dtype=float)
     V0 = np.zeros((B, N)) if V0 is None else np.ascontiguousarray(V0, dtype=float)
     status = np.zeros(B, dtype=np.int64) if status is None else np.array(status, dtype=np.int64)
+    t0 = np.zeros(B) if t0 is None else np.array(np.broadcast_to(np.asarray(t0, dtype=float), (B,)))
     cases, mesh = batch.records, batch.meshdata
     if parallel is None:
         parallel = B > 1
     if A0 is None:
         A0 = np.zeros((B, N))
-        parallel_slices(_initial_accelerations, batch, parallel, (cases, mesh), (step0, D0, V0, A0, status))
+        parallel_slices(_initial_accelerations, batch, parallel, (cases, mesh), (t0, step0, D0, V0, A0, status))
     else:
         A0 = np.ascontiguousarray(A0, dtype=float)
     if previous is None:
@@ -234,7 +238,7 @@ def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False
     D1, V1, A1 = np.zeros((B, N)), np.zeros((B, N)), np.zeros((B, N))
     scheme = Scheme(float(beta), float(gamma), float(tol), int(max_iter))
     parallel_slices(_march_cases, batch, parallel, (cases, mesh, scheme),
-                    (step0, n_steps, D0, V0, A0, P, n_prev, keep_history, keep_rates, out_y, out_iter,
+                    (t0, step0, n_steps, D0, V0, A0, P, n_prev, keep_history, keep_rates, out_y, out_iter,
                      status, fail_step, fail_res, Dh, Vh, Ah, D1, V1, A1))
     return MarchResult(y=out_y, iterations=out_iter, status=status, fail_step=fail_step,
                        fail_residual=fail_res, D=D1, V=V1, A=A1, previous=(P, n_prev),

@@ -1,0 +1,107 @@
+"""crankgen's units in SI: the conversion of every declared quantity, read from its units string.
+
+Inside crankgen: length L (the rod's length), mass rho A L, time 1/omega_b with
+omega_b = (pi/L)^2 sqrt(EI/(rho A)) (the lowest bending frequency of the pinned-pinned rod).  Every
+parameter and output declares its unit in derive/model.py as a product of the base symbols below,
+with integer powers and at most one "/": "r", "r^2/L", "L", "rad", "omega_b", "L omega_b",
+"rhoA L^2 omega_b^2", "rhoA L^3 omega_b^2", "EI/L^2", "EI/L", "1/omega_b", "1".  `Scales` gives
+the SI value of each base symbol for one mechanism; `Scales.factor(units)` the SI value of one unit
+of a quantity, so that  value_SI = value * factor(units), and `Scales.si_name(units)` the name of
+the SI unit (m, s, rad/s, m/s, N, N m, ...), found from the quantity's dimensions.
+
+Base symbols and their SI values:
+    L        the rod's length (m)
+    r        its section's radius of gyration, eps L (m)
+    omega_b  the lowest pinned-pinned bending frequency (rad/s)
+    rhoA     mass per unit length (kg/m)
+    EI, EA   bending and axial stiffness: EI = rhoA L^4 omega_b^2 / pi^4 (N m^2), EA = EI / r^2 (N)
+    rad, 1   dimensionless
+"""
+
+import math
+from dataclasses import dataclass
+
+from .errors import ParameterError
+
+# dimensions (metre, kilogram, second) of each base symbol
+_DIMENSIONS = {
+    "L": (1, 0, 0), "r": (1, 0, 0), "omega_b": (0, 0, -1), "rhoA": (-1, 1, 0),
+    "EI": (3, 1, -2), "EA": (1, 1, -2), "rad": (0, 0, 0), "1": (0, 0, 0),
+}
+_NAMES = {
+    (0, 0, 0): "1", (1, 0, 0): "m", (0, 0, 1): "s", (0, 0, -1): "rad/s", (1, 0, -1): "m/s",
+    (0, 0, -2): "rad/s^2", (1, 0, -2): "m/s^2", (1, 1, -2): "N", (2, 1, -2): "N m",
+    (-1, 1, 0): "kg/m", (0, 1, 0): "kg", (3, 1, -2): "N m^2",
+}
+
+
+def parse(units):
+    """{base symbol: integer power} of a units string ("rhoA L^2 omega_b^2", "r^2/L", "1")."""
+    if not isinstance(units, str) or units.count("/") > 1:
+        raise ValueError(f"units must be a product of base symbols with at most one '/', got {units!r}")
+    powers = {}
+    for sign, part in zip((1, -1), units.split("/")):
+        tokens = part.split()
+        if not tokens:
+            raise ValueError(f"empty numerator or denominator in units {units!r}")
+        for token in tokens:
+            name, _, power = token.partition("^")
+            if name not in _DIMENSIONS:
+                raise ValueError(f"unknown base symbol {name!r} in units {units!r}; the symbols are "
+                                 f"{', '.join(_DIMENSIONS)}")
+            try:
+                p = int(power) if power else 1
+            except ValueError:
+                raise ValueError(f"power {power!r} of {name} in units {units!r} is not an integer") from None
+            if name not in ("1", "rad"):
+                powers[name] = powers.get(name, 0) + sign * p
+    return {k: v for k, v in powers.items() if v != 0}
+
+
+@dataclass(frozen=True)
+class Scales:
+    """crankgen's units in SI for one mechanism: the rod's length L (m), the slenderness eps = r/L,
+    the frequency omega_b (rad/s) and the mass per unit length rhoA (kg/m)."""
+
+    L: float
+    eps: float
+    omega_b: float
+    rhoA: float
+
+    @property
+    def base(self):
+        """SI value of each base symbol."""
+        EI = self.rhoA * self.L ** 4 * self.omega_b ** 2 / math.pi ** 4
+        r = self.eps * self.L
+        return {"L": self.L, "r": r, "omega_b": self.omega_b, "rhoA": self.rhoA, "EI": EI, "EA": EI / r ** 2}
+
+    def factor(self, units):
+        """SI value of one unit `units` of crankgen (value_SI = value * factor)."""
+        base = self.base
+        out = 1.0
+        for name, power in parse(units).items():
+            out *= base[name] ** power
+        return out
+
+    @staticmethod
+    def si_name(units):
+        """Name of the SI unit of a quantity declared in `units` ("m", "N m", "rad/s", "1", ...)."""
+        dims = [0, 0, 0]
+        for name, power in parse(units).items():
+            for k in range(3):
+                dims[k] += power * _DIMENSIONS[name][k]
+        dims = tuple(dims)
+        if dims == (0, 0, 0) and "rad" in units.split():
+            return "rad"
+        if dims in _NAMES:
+            return _NAMES[dims]
+        return " ".join(f"{n}^{p}" if p != 1 else n for n, p in zip(("m", "kg", "s"), dims) if p)
+
+
+def scales_of(si_mechanism):
+    """Scales of a crankgen.SIMechanism."""
+    from .parameters import SIMechanism
+    if not isinstance(si_mechanism, SIMechanism):
+        raise ParameterError(f"expected a crankgen.SIMechanism, got {type(si_mechanism).__name__}")
+    return Scales(L=float(si_mechanism.L), eps=si_mechanism.radius_of_gyration / si_mechanism.L,
+                  omega_b=si_mechanism.omega_b, rhoA=float(si_mechanism.rho * si_mechanism.A))
