@@ -9,6 +9,8 @@ converges fast, extrapolated start) and, for comparison, for "full-newton" (tang
 factorized at every iteration).
   `crankgen reproduce` (both models, all figures)                        < 60 s;  --quick < 10 s
   continuation 0.2 -> 1.6 in Omega*, n = 16, with its period-2 branch   < 60 s
+  start-up of a small simulate from an empty cache                       < 15 s;  warm < 1 s
+  what `crankgen reproduce` compiles                                     < 60 s
 """
 
 import argparse
@@ -208,22 +210,53 @@ def reproduce_times():
     return out
 
 
-def cold_compile_time():
-    """Seconds to compile the engine from an empty numba cache (first use on a new machine)."""
+def _crankgen_command():
+    exe = Path(sys.executable).with_name("crankgen")
+    return [str(exe)] if exe.exists() else [sys.executable, "-m", "crankgen.cli"]
+
+
+def _timed(cmd, env, cwd=None):
+    t = time.perf_counter()
+    proc = subprocess.run(cmd, env=env, cwd=cwd, capture_output=True, text=True)
+    if proc.returncode != 0:
+        raise RuntimeError(f"{' '.join(cmd)} failed: {proc.stderr.strip()[-500:]}")
+    return time.perf_counter() - t
+
+
+def start_times(repeats=3):
+    """Start-up, as a user meets it: the small run `crankgen simulate --elements 4 --revolutions 1`
+    from an empty compiled-code cache (compiling on two processes, and on one for the ratio), then
+    warm (best of `repeats`), `crankgen --version`, and what `crankgen reproduce --quick` spends
+    compiling (its cold run minus its warm run).  Python writes its bytecode as on a user's machine."""
+    cmd = _crankgen_command()
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+    out = {}
     with tempfile.TemporaryDirectory() as tmp:
-        code = ("from crankgen.steady import steady_states; from crankgen.cases import Case; "
-                "steady_states([Case(n_elements=2)])")
-        t = time.perf_counter()
-        subprocess.run([sys.executable, "-c", code], env={**os.environ, "NUMBA_CACHE_DIR": tmp},
-                       check=True)
-        return time.perf_counter() - t
+        small = cmd + ["simulate", "--elements", "4", "--revolutions", "1", "--quiet", "--force"]
+        for label, extra in (("two_processes", {}), ("one_process", {"CRANKGEN_BUILD_PROCESSES": "1"})):
+            cache = Path(tmp) / f"cache-{label}"
+            out[f"cold_small_simulate_{label}_s"] = _timed(small + ["--out", str(Path(tmp) / label)],
+                                                           {**env, **extra, "CRANKGEN_CACHE_DIR": str(cache)})
+        warm_env = {**env, "CRANKGEN_CACHE_DIR": str(Path(tmp) / "cache-two_processes")}
+        out["warm_small_simulate_s"] = min(_timed(small + ["--out", str(Path(tmp) / "warm")], warm_env)
+                                           for _ in range(repeats))
+        out["version_s"] = min(_timed(cmd + ["--version"], warm_env) for _ in range(repeats))
+        quick = cmd + ["reproduce", "--quick", "--quiet"]
+        qenv = {**env, "CRANKGEN_CACHE_DIR": str(Path(tmp) / "cache-reproduce")}
+        cold = _timed(quick + ["--out", str(Path(tmp) / "q1")], qenv)
+        warm = _timed(quick + ["--out", str(Path(tmp) / "q2")], qenv)
+        out.update(reproduce_quick_cold_s=cold, reproduce_quick_warm_s=warm,
+                   reproduce_compile_s=cold - warm)
+    out["ratio_cold_one_over_two_processes"] = (out["cold_small_simulate_one_process_s"]
+                                                / out["cold_small_simulate_two_processes_s"])
+    return out
 
 
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--out", type=Path, default=ROOT / "bench" / "results.json")
     p.add_argument("--skip-reproduce", action="store_true")
-    p.add_argument("--cold", action="store_true", help="also time compilation from an empty cache")
+    p.add_argument("--skip-start", action="store_true", help="do not time the start-up (cold and warm)")
     args = p.parse_args(argv)
 
     results = dict(machine=dict(python=platform.python_version(), cpus=os.cpu_count(),
@@ -242,8 +275,9 @@ def main(argv=None):
     if not args.skip_reproduce:
         print("timing crankgen reproduce ...", flush=True)
         results["reproduce"] = reproduce_times()
-    if args.cold:
-        results["cold_compile_s"] = cold_compile_time()
+    if not args.skip_start:
+        print("timing start-up (cold, from an empty cache, and warm) ...", flush=True)
+        results["start"] = start_times()
 
     single_A16 = {r["integrator"]: r["us_per_step"] for r in results["steps"] if r["n_elements"] == 16
                   and r["approach"] == "A" and r["formulation"] == "lagrange"}
@@ -257,6 +291,11 @@ def main(argv=None):
     if "reproduce" in results:
         targets["reproduce_full_lt_60s"] = results["reproduce"]["reproduce_full_s"] < 60
         targets["reproduce_quick_lt_10s"] = results["reproduce"]["reproduce_quick_s"] < 10
+    if "start" in results:
+        st = results["start"]
+        targets["cold_small_simulate_lt_15s"] = st["cold_small_simulate_two_processes_s"] < 15
+        targets["warm_small_simulate_lt_1s"] = st["warm_small_simulate_s"] < 1
+        targets["reproduce_compile_lt_60s"] = st["reproduce_compile_s"] < 60
     results["targets_met"] = targets
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(json.dumps(results, indent=2) + "\n")
@@ -292,8 +331,15 @@ def main(argv=None):
     if "reproduce" in results:
         r = results["reproduce"]
         print(f"crankgen reproduce: full {r['reproduce_full_s']:.1f} s, --quick {r['reproduce_quick_s']:.1f} s")
-    if "cold_compile_s" in results:
-        print(f"compilation from an empty cache: {results['cold_compile_s']:.1f} s")
+    if "start" in results:
+        st = results["start"]
+        print(f"start-up, `simulate --elements 4 --revolutions 1`: from an empty cache "
+              f"{st['cold_small_simulate_two_processes_s']:.1f} s (one process "
+              f"{st['cold_small_simulate_one_process_s']:.1f} s, ratio "
+              f"{st['ratio_cold_one_over_two_processes']:.2f}), warm {st['warm_small_simulate_s']:.2f} s; "
+              f"crankgen --version {st['version_s']:.2f} s; reproduce --quick compiles for "
+              f"{st['reproduce_compile_s']:.1f} s (cold {st['reproduce_quick_cold_s']:.1f} s, warm "
+              f"{st['reproduce_quick_warm_s']:.1f} s)")
     print("targets:", ", ".join(f"{k}={'met' if v else 'MISSED'}" for k, v in targets.items()))
     print(f"wrote {args.out}")
 

@@ -12,7 +12,8 @@ process walks the list from the front while a helper process (`python -m crankge
 ITEM ...`) walks it from the back, so a cold start compiles on two cores; two runs started at once
 on a cold cache split the work the same way instead of both compiling everything.  Where the
 cache folder is read-only, everything is compiled here, in memory.  $CRANKGEN_BUILD_LOG, when
-set, receives a line per item compiled (by any of the processes).
+set, receives a line per item compiled (by any of the processes); CRANKGEN_BUILD_PROCESSES=1
+compiles in this process only.
 """
 
 import contextlib
@@ -140,7 +141,8 @@ def _log(item):
 
 def _helper(items):
     """Start the helper process on the reversed list (None when it cannot help)."""
-    if READ_ONLY or fcntl is None or len(items) < 2 or (os.cpu_count() or 1) < 2:
+    if READ_ONLY or fcntl is None or len(items) < 2 or (os.cpu_count() or 1) < 2 \
+            or os.environ.get("CRANKGEN_BUILD_PROCESSES") == "1":
         return None
     env = dict(os.environ, CRANKGEN_CACHE_DIR=str(compile_cache.CACHE.parent),
                CRANKGEN_BUILD_PARENT=str(os.getpid()))
