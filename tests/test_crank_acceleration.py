@@ -13,32 +13,26 @@ import pytest
 import reference as ref
 from kernel_api import energy, lagrange
 from reference import APPROACHES, assert_close
+from test_kernel_derivatives import Trajectory
 
 FD_RTOL = 2e-6
 
 
-class AcceleratingTrajectory:
-    """q(t) = c0 + c1 sin(w1 t) + c2 cos(w2 t) per element; the crank at theta = Omega t + c sin(w t)
-    (speed and acceleration vary), the slider-crank's rod angle sin phi = (a / L) sin theta."""
+class AcceleratingTrajectory(Trajectory):
+    """The nodal trajectory of test_kernel_derivatives.Trajectory; the crank at
+    theta = Omega t + c sin(w t) (speed and acceleration vary), the slider-crank's rod angle
+    sin phi = (a / L) sin theta."""
 
     def __init__(self, rng, shape, a, omega, c, w, L=1.0):
-        self.cq = [ref.random_nodal(rng, shape) for _ in range(3)]
-        self.wq = rng.uniform(0.5, 3.0, (2,) + shape + (1,))
-        self.a, self.omega, self.c, self.w, self.L = a, omega, c, w, L
-
-    def q(self, t):
-        c0, c1, c2 = self.cq
-        w1, w2 = self.wq
-        return (c0 + c1 * np.sin(w1 * t) + c2 * np.cos(w2 * t),
-                c1 * w1 * np.cos(w1 * t) - c2 * w2 * np.sin(w2 * t),
-                -c1 * w1**2 * np.sin(w1 * t) - c2 * w2**2 * np.cos(w2 * t))
+        super().__init__(rng, shape, a, omega, L)
+        self.c_crank, self.w_crank = c, w
 
     def kinematics(self, t):
         """(a, theta, thetad, phi, phid, phidd, thetadd) at time t, differentiated by hand."""
-        a, L = self.a / self.L, self.L
-        theta = self.omega * t + self.c * np.sin(self.w * t)
-        thetad = self.omega + self.c * self.w * np.cos(self.w * t)
-        thetadd = -self.c * self.w**2 * np.sin(self.w * t)
+        a, c, w = self.a / self.L, self.c_crank, self.w_crank
+        theta = self.omega * t + c * np.sin(w * t)
+        thetad = self.omega + c * w * np.cos(w * t)
+        thetadd = -c * w**2 * np.sin(w * t)
         phi = np.arcsin(a * np.sin(theta))
         cp = np.cos(phi)
         phid = a * thetad * np.cos(theta) / cp
