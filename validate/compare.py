@@ -70,10 +70,9 @@ def norot_job(eps, omega, a=A, steps_per_rev=NOROT_SPR, revolutions=NOROT_REVS):
     mech = crankgen.Mechanism(a, eps, MS, MU)
     for label, rotary in (("rot", True), ("norot", False)):
         try:
-            r = crankgen.simulate(mech, omega=omega, approach="A", formulation="lagrange",
-                                  n_elements=N_EL, steps_per_rev=steps_per_rev,
-                                  revolutions=revolutions, damping="kelvin-voigt",
-                                  membrane="averaged", rotary_inertia=rotary)
+            r = crankgen.simulate(mech, omega=omega, model="consistent", approach="A", n_elements=N_EL,
+                                  steps_per_rev=steps_per_rev, revolutions=revolutions,
+                                  rotary_inertia=rotary)
             v = r.v_mid
             n = steps_per_rev
             last, prev, prev2 = v[-n - 1:], v[-2 * n - 1:-n], v[-3 * n - 1:-2 * n]
@@ -85,12 +84,10 @@ def norot_job(eps, omega, a=A, steps_per_rev=NOROT_SPR, revolutions=NOROT_REVS):
     return out
 
 
-def crankgen_steady(eps, omega, formulation, a=A):
-    damping, membrane = (("kelvin-voigt", "averaged") if formulation == "lagrange"
-                         else ("paper", "pointwise"))
-    return crankgen.steady_state(omega=omega, approach="A", formulation=formulation,
-                                 damping=damping, membrane=membrane, n_elements=N_EL,
-                                 steps_per_rev=SPR, mech=crankgen.Mechanism(a=a, eps=eps, ms=MS, mu=MU))
+def crankgen_steady(eps, omega, model, a=A):
+    """Approach A of one of crankgen's models ("consistent" or "paper")."""
+    return crankgen.steady_state(crankgen.Mechanism(a=a, eps=eps, ms=MS, mu=MU), omega=omega, model=model,
+                                 approach="A", n_elements=N_EL, steps_per_rev=SPR)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -172,10 +169,10 @@ def main():
         cg, cgp, cg_small = {}, {}, {}
         for eps in EPS:
             for w in SPEEDS:
-                cg[eps, w] = crankgen_steady(eps, w, "lagrange")
+                cg[eps, w] = crankgen_steady(eps, w, "consistent")
                 cgp[eps, w] = crankgen_steady(eps, w, "paper")
             for a in SMALL_A:
-                cg_small[eps, a] = crankgen_steady(eps, 0.8, "lagrange", a=a)
+                cg_small[eps, a] = crankgen_steady(eps, 0.8, "consistent", a=a)
         res = {k: f.result() for k, f in jobs.items()}
     wall = time.perf_counter() - t_start
 
