@@ -110,7 +110,7 @@ def test_cli_help_explains_every_option():
 def test_generated_code_matches_derivation_under_another_hash_seed():
     """`make derive` reproduces generated/ byte for byte (and with another PYTHONHASHSEED)."""
     proc = subprocess.run([sys.executable, "-m", "derive", "--check"], cwd=ROOT, capture_output=True,
-                          text=True, env={"PYTHONHASHSEED": "12345", "PATH": ""})
+                          text=True, env={"PYTHONHASHSEED": "12345", "PATH": "", "PYTHONDONTWRITEBYTECODE": "1"})
     assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
 
 

@@ -10,7 +10,6 @@ import signal
 import stat
 import subprocess
 import sys
-import time
 
 import numpy as np
 import pytest
@@ -286,6 +285,70 @@ _TINY_CLI = ("import sys; from crankgen.experiments import ReproduceConfig as R;
              "R.quick = classmethod(lambda cls: R.tiny()); from crankgen.cli import main; "
              "sys.exit(main(sys.argv[1:]))")
 
+# A child `crankgen reproduce --quick` (tiny preset) that stops at a defined point and waits there
+# for the test: it prints PAUSED on stderr, then reads the pipe whose read end it inherited (file
+# descriptor argv[2]).  The test signals it while it waits; a SIGINT raises KeyboardInterrupt out of
+# the read, and if the signal were handled only after the read returned, the loop (the pipe then
+# at EOF) keeps the child at this point until it is.  No clock is involved anywhere.
+#   argv[1] "figure 4": after the first progress report of Figure 4's transients (in the middle
+#           of the step, inside simulate_many);
+#   argv[1] "fig7.png": when Figure 7's data and CSV are written but its PNG is not.
+PAUSED = "crankgen-test: paused"
+_PAUSING_CLI = f"""
+import os, sys
+from crankgen.experiments import ReproduceConfig as R, figures as F, runner
+R.quick = classmethod(lambda cls: R.tiny())
+where, fd = sys.argv[1], int(sys.argv[2])
+
+def pause():
+    print({PAUSED!r}, file=sys.stderr, flush=True)
+    while True:
+        os.read(fd, 1)
+
+if where == "figure 4":
+    real_figure4, real_simulate_many, state = F.figure4, runner.simulate_many, {{}}
+
+    def figure4(ctx, counts):
+        state["figure 4"] = True
+        return real_figure4(ctx, counts)
+
+    def simulate_many(cases, revolutions, progress=None, **kw):
+        def report(done, total):
+            if progress is not None:
+                progress(done, total)
+            if state.get("figure 4") and done > 0:
+                pause()
+        return real_simulate_many(cases, revolutions, progress=report, **kw)
+    F.figure4, runner.simulate_many = figure4, simulate_many
+elif where == "fig7.png":
+    real_save = runner.save_figure
+
+    def save_figure(fig, path, **kw):
+        if os.path.basename(str(path)) == "fig7.png":
+            pause()
+        return real_save(fig, path, **kw)
+    runner.save_figure = save_figure
+from crankgen.cli import main
+sys.exit(main(sys.argv[3:]))
+"""
+
+
+def _paused_child(where, argv):
+    """Start the pausing child and return (process, write end of its pipe, stderr lines read) once
+    it has reached the pause point (read from its stderr: a blocking read, no clock)."""
+    r, w = os.pipe()
+    proc = subprocess.Popen([sys.executable, "-c", _PAUSING_CLI, where, str(r), *argv],
+                            stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True,
+                            pass_fds=(r,))
+    os.close(r)
+    seen = []
+    for line in proc.stderr:
+        seen.append(line)
+        if line.strip() == PAUSED:
+            return proc, w, seen
+    os.close(w)
+    raise AssertionError(f"the child ended (exit {proc.wait()}) before its pause point:\n" + "".join(seen))
+
 
 def _findings_body(path):
     """findings.md without its last section (Run: date and wall times)."""
@@ -300,17 +363,14 @@ def _tables(out):
 def test_sigint_then_rerun_gives_the_uninterrupted_result(tiny_run, tmp_path):
     _, ref = tiny_run
     out = tmp_path / "r"
-    cmd = [sys.executable, "-c", _TINY_CLI, "reproduce", "--quick", "--out", str(out)]
-    proc = subprocess.Popen(cmd, stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
-    seen = []
-    for line in proc.stderr:                     # interrupt in the middle of Figure 4
-        seen.append(line)
-        if "figure 4 (transients)" in line:
-            time.sleep(0.3)
-            proc.send_signal(signal.SIGINT)
-            break
-    proc.stderr.read()
-    assert proc.wait(timeout=120) == 130, "".join(seen)
+    proc, w, seen = _paused_child("figure 4", ["reproduce", "--quick", "--out", str(out)])
+    proc.send_signal(signal.SIGINT)              # in the middle of Figure 4: the child waits there
+    os.write(w, b"x")                            # then let it go on (it is interrupted at once)
+    os.close(w)
+    seen += proc.stderr.readlines()
+    assert proc.wait() == 130, "".join(seen)
+    assert "figure 4: computing" in "".join(seen) and "interrupted" in seen[-1]
+    assert json.loads((out / "manifest.json").read_text())["steps"]["figure 4"]["state"] == "incomplete"
     assert not (out / "findings.md").exists() and not (out / "fig5.csv").exists()
     (out / ".fig5.csv.x1y2z3.tmp").write_text("left by a killed run")     # as after a kill -9
     stream = io.StringIO()
@@ -346,20 +406,23 @@ def test_output_files_have_the_mode_open_gives(tiny_run):
     assert {stat.S_IMODE(p.stat().st_mode) for p in files} == {0o666 & ~mask}
 
 
-def test_second_command_line_run_recomputes_nothing(tiny_run, capsys):
+def test_second_command_line_run_recomputes_nothing(tiny_run, capsys, monkeypatch):
+    """Nothing is computed: every engine entry point the steps use refuses to run."""
+    from crankgen.experiments import runner
+    from crankgen import bifurcation
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("a kept step was recomputed")
     _, out = tiny_run
-    mp = pytest.MonkeyPatch()
-    mp.setattr(ReproduceConfig, "quick", classmethod(lambda cls: ReproduceConfig.tiny()))
-    try:
-        start = time.perf_counter()
-        assert cli_main(["reproduce", "--quick", "--out", str(out)]) == 0
-        wall = time.perf_counter() - start
-    finally:
-        mp.undo()
+    monkeypatch.setattr(ReproduceConfig, "quick", classmethod(lambda cls: ReproduceConfig.tiny()))
+    monkeypatch.setattr(runner._steady, "steady_states", refuse)
+    monkeypatch.setattr(runner, "simulate_many", refuse)
+    monkeypatch.setattr(bifurcation, "continuation", refuse)
+    monkeypatch.setattr(bifurcation, "poincare", refuse)
+    assert cli_main(["reproduce", "--quick", "--out", str(out)]) == 0
     err = capsys.readouterr().err
     assert "0 step(s) computed, 12 kept" in err and "computing" not in err
     assert "bifurcations: kept (complete and current)" in err
-    assert wall < 5.0
 
 
 def test_figures_subset_in_a_fresh_folder_says_what_is_missing(tmp_path):
@@ -407,20 +470,20 @@ def test_failed_transient_keeps_its_rows_up_to_the_failure(tiny_run):
 
 
 def test_kill_then_rerun_finishes_the_job(tiny_run, tmp_path):
-    """SIGKILL (no clean-up at all) in the middle of Figure 7, then the same command."""
+    """SIGKILL (no clean-up at all) in the middle of Figure 7 (its data and CSV written, its PNG
+    not), then the same command."""
     _, ref = tiny_run
     out = tmp_path / "k"
-    cmd = [sys.executable, "-c", _TINY_CLI, "reproduce", "--quick", "--figures", "7", "--out", str(out)]
-    proc = subprocess.Popen(cmd, stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
-    for line in proc.stderr:
-        if "figure 7 (steady states)" in line:
-            proc.kill()
-            break
-    proc.wait(timeout=120)
+    argv = ["reproduce", "--quick", "--figures", "7", "--out", str(out)]
+    proc, w, _ = _paused_child("fig7.png", argv)
+    proc.kill()
+    proc.wait()
+    os.close(w)
     proc.stderr.close()
+    assert (out / "fig7.csv").exists() and not (out / "fig7.png").exists()
     steps = json.loads((out / "manifest.json").read_text())["steps"]
     assert steps["figure 7"]["state"] == "incomplete"
-    done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    done = subprocess.run([sys.executable, "-c", _TINY_CLI, *argv], capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     assert "figure 7: computing (incomplete" in done.stderr
     assert "convergence check: kept" in done.stderr
