@@ -55,10 +55,13 @@ def step_files(step):
             "findings": ["findings.md"]}[step]
 
 
+STEPS = ("convergence check", "bifurcations", *[f"figure {f}" for f in FIGURES], "refinement check",
+         "convergence files", "findings")
+
+
 def all_files():
     out = [MANIFEST]
-    for step in ["convergence check", "bifurcations", *[f"figure {f}" for f in FIGURES],
-                 "refinement check", "convergence files", "findings"]:
+    for step in STEPS:
         out += step_files(step)
     return out
 
@@ -222,12 +225,18 @@ def _reproduce(out, config, force, quiet, figures, stream):
     if removed:
         ctx.log(f"removed {len(removed)} temporary file(s) left by an interrupted run: "
                 + ", ".join(removed[:4]) + (" ..." if len(removed) > 4 else ""))
-    try:
-        manifest = Manifest.load(out)
-    except CrankgenError:
+    manifest = Manifest.load(out, steps=STEPS, names=all_files())
+    if manifest.entries and manifest.preset not in (None, config.preset):
+        # a full and a quick run never replace each other silently
         if not force:
-            raise
-        manifest = Manifest(out)
+            raise OutputExistsError(
+                f"{out} holds the results of a {manifest.preset} run of crankgen reproduce "
+                f"(manifest.json); this {config.preset} run would replace them: choose another "
+                "--out, or use --force to replace them")
+        deleted = manifest.remove(list(manifest.entries))
+        ctx.log(f"--force: the {manifest.preset} run recorded in {out} is replaced by this "
+                f"{config.preset} run ({len(deleted)} of its files removed)")
+    manifest.preset = config.preset
     # files this run may write that no recorded step made: refuse before computing anything
     selected = ["convergence check", *(["bifurcations"] if 6 in figures else []),
                 *[f"figure {f}" for f in figures], "refinement check", "convergence files", "findings"]
@@ -338,6 +347,11 @@ def _reproduce(out, config, force, quiet, figures, stream):
                           lambda: F.refinement_check(ctx, counts, figure_data(6), figure_data(5)),
                           lambda r: write_json(out / DATA / "refinement.json", r))
         refine = refine if refine is not None else load("refinement.json")
+    elif "refinement check" in manifest.entries:
+        # this configuration has no refinement check: a recorded one is not this run's result
+        deleted = manifest.remove(["refinement check"])
+        ctx.log("refinement check: not part of this configuration; the recorded one is removed "
+                f"({', '.join(deleted) or 'no file left'})")
     inputs = {"convergence check": manifest.fingerprint("convergence check")}
     if refine is not None:
         inputs["refinement check"] = manifest.fingerprint("refinement check")
