@@ -6,6 +6,7 @@ computed up to the failure is written; steady: status "failed"; a file that coul
 --force), reported on one line before anything is computed or created; 130 interrupted.
 """
 
+import argparse
 import sys
 import warnings
 
@@ -179,9 +180,25 @@ def _one_line_warning(message, category, filename, lineno, file=None, line=None)
     print(f"crankgen: warning: {message}", file=sys.stderr, flush=True)
 
 
+def _unrecognized(parser, args, extra):
+    """Options the command does not know: the command's own one-line error (pointing to
+    `crankgen COMMAND --help`), with the nearest option names it has."""
+    import difflib
+
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    command = sub.choices[args.command]
+    known = [o for a in command._actions for o in a.option_strings]
+    near = [m for o in extra if o.startswith("-")
+            for m in difflib.get_close_matches(o.split("=")[0], known, n=1)]
+    hint = f"; did you mean {' or '.join(dict.fromkeys(near))}?" if near else ""
+    command.error(f"unrecognized arguments: {' '.join(extra)}{hint}")
+
+
 def main(argv=None):
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args, extra = parser.parse_known_args(argv)
+    if extra:
+        _unrecognized(parser, args, extra)
     name = f"crankgen {args.command}"
     previous = warnings.showwarning
     warnings.showwarning = _one_line_warning

@@ -75,12 +75,24 @@ STEADY_NAMES = ["steady.csv", "orbit.csv", "orbit.png"]
 ORBIT_COLUMNS = ["theta", "t", "v_mid", "u_end", "extension"]
 
 
+def _resolved(case, where=""):
+    """Steady states need Omega* * steps_per_rev >= 1 (crankgen.steady_states refuses coarser
+    steps); checked here, before any output or progress line, and said in one line."""
+    if case.omega * case.steps_per_rev < 1.0:
+        raise UsageError(
+            f"{where}a steady state at --omega {case.omega:g} needs --steps-per-rev >= "
+            f"{math.ceil(1 / case.omega)} (got {case.steps_per_rev}): a time step longer than the "
+            "rod's first bending period would make the stability verdict depend on the step; "
+            "`crankgen simulate` marches such slow runs")
+
+
 def _cmd_steady(args):
     from ..validation import in_range, integer
 
     case = _case(args)
     in_range("tol", args.tol, 0, None, True)
     integer("max_revolutions", args.max_revolutions, 1)
+    _resolved(case)
     out = _Outputs(args.out, STEADY_NAMES, args.force)
     try:
         return _steady(args, case, out)
@@ -154,7 +166,7 @@ def _sweep_cases(args):
             try:
                 cases.append(Case(**dict(combo), **model, gravity=args.gravity))
             except ParameterError as exc:
-                raise ParameterError(f"{exc} (in the grid: {dict(combo, **model)})") from None
+                raise ParameterError(f"in the grid: {exc}") from None
     return list(dict.fromkeys(cases))
 
 
@@ -166,6 +178,8 @@ def _cmd_sweep(args):
     integer("max_revolutions", args.max_revolutions, 1)
     integer("batch_size", args.batch_size, 1)
     integer("workers", args.workers, 1)
+    for c in cases:
+        _resolved(c, "in the grid: ")
     checkpoint = Path(args.checkpoint) if args.checkpoint else Path(args.out) / "sweep.jsonl"
     _check_checkpoint(checkpoint, Path(args.out))
     out = _Outputs(args.out, ["sweep.csv"], args.force)
