@@ -187,9 +187,9 @@ def test_steady_end_to_end(tmp_path, capsys):
     assert s["status"] == "periodic" and s["formulation"] == "paper" and s["n_elements"] == "2"
     assert 0 < float(s["multiplier"]) < 1
     orbit = read_csv(out / "orbit.csv")
-    theta = np.array([float(r["theta"]) for r in orbit])
+    theta = np.array([float(r["theta_deg"]) for r in orbit])
     v = np.array([float(r["v_mid"]) for r in orbit])
-    assert len(orbit) == 21 and theta[0] == 0 and theta[-1] == pytest.approx(2 * math.pi)
+    assert len(orbit) == 21 and theta[0] == 0 and theta[-1] == pytest.approx(360.0)
     assert v[-1] == pytest.approx(v[0], rel=1e-5, abs=1e-8)              # one period: it closes
     assert float(s["amplitude"]) == pytest.approx(np.max(np.abs(v)))
     assert (out / "orbit.png").stat().st_size > 1000
@@ -197,12 +197,14 @@ def test_steady_end_to_end(tmp_path, capsys):
 
 
 def test_failed_steady_exits_1_and_failed_sweep_case_is_a_row_without_nan(tmp_path, capsys):
-    """Approach B of the exact equations has no steady state at Omega* = 0.8 (it diverges)."""
+    """Approach B of the exact equations (strain energy unbounded below: ill-posed) diverges from
+    rest at Omega* = 0.8: no steady state is found, and the message says why."""
     diverging = ["--approach", "B", "--omega", "0.8"] + TINY
     assert run(["steady", "--out", str(tmp_path / "st")] + diverging) == 1
     one_line_error(capsys, "run failed")
     row = read_csv(tmp_path / "st" / "steady.csv")[0]
     assert row["status"] == "failed" and row["amplitude"] == "" and row["message"]
+    assert "unbounded below" in row["message"] and row["strain_energy"] == "unbounded below (ill-posed)"
     assert not (tmp_path / "st" / "orbit.csv").exists()
     assert run(["sweep", "--out", str(tmp_path / "sw")] + diverging) == 0
     text = (tmp_path / "sw" / "sweep.csv").read_text()

@@ -206,6 +206,15 @@ def test_tiny_run_writes_every_file(tiny_run):
         assert {r["model"] for r in rows} == {"paper", "consistent"}
 
 
+def test_every_table_parses_into_numbers_words_and_empty_fields(tiny_run):
+    from helpers import check_csv
+    _, out = tiny_run
+    tables = sorted(out.glob("*.csv"))
+    assert len(tables) == 11
+    for path in tables:
+        check_csv(path)
+
+
 def test_tiny_run_reports_failed_cases_in_table_and_findings(tiny_run):
     _, out = tiny_run
     rows = list(csv.DictReader(open(out / "fig6.csv")))

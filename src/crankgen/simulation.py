@@ -37,11 +37,11 @@ class SimulationResult(DeclaredOutputs):
     states: Optional[np.ndarray] = field(default=None, repr=False)  # (steps, N) reduced displacements
 
     def to_csv(self, path):
-        """Write t*, theta, v_mid, u_end, extension as CSV (full double precision)."""
+        """Write t*, theta (degrees), v_mid, u_end, extension as CSV (full double precision)."""
         with open(path, "w", newline="") as fh:
             w = csv.writer(fh)
-            w.writerow(["t", "theta", "v_mid", "u_end", "extension"])
-            for row in zip(self.t, self.theta, self.v_mid, self.u_end, self.extension):
+            w.writerow(["t", "theta_deg", "v_mid", "u_end", "extension"])
+            for row in zip(self.t, np.degrees(self.theta), self.v_mid, self.u_end, self.extension):
                 w.writerow([repr(float(x)) for x in row])
 
 

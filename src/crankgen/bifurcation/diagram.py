@@ -11,6 +11,14 @@ from ..io import atomic_file, save_figure
 LABELS = {"fold": "F", "period-doubling": "PD", "neimark-sacker": "NS"}
 
 
+def _num(x):
+    """CSV cell of a number: full precision, empty when it does not exist (NaN, inf, None)."""
+    if x is None:
+        return ""
+    x = float(x)
+    return repr(x) if np.isfinite(x) else ""
+
+
 @dataclass
 class Branch:
     """One branch of period-`period` orbits, point by point (special points included)."""
@@ -49,38 +57,56 @@ class BifurcationDiagram:
     special_points: list
     info: dict = field(default_factory=dict)   # the model and settings it was computed for
 
+    def eps_at(self, p):
+        """Slenderness of the mechanism at parameter value p (None: not a mechanism diagram)."""
+        if self.parameter_name == "eps":
+            return float(p)
+        eps = self.info.get("eps")
+        return None if eps is None else float(eps)
+
     def to_csv(self, folder):
-        """branches.csv (one row per point), special_points.csv and multipliers.csv (every
-        multiplier of every point, long format) in folder; returns the paths."""
+        """branches.csv (one row per point; for the mechanism with deflection_over_L = eps
+        amplitude and beyond_theory, crankgen.theory), special_points.csv and multipliers.csv
+        (every multiplier of every point, long format) in folder; returns the paths.  A number
+        that does not exist is an empty field."""
+        from ..theory import DEFLECTION_LIMIT
+
         folder = Path(folder)
         folder.mkdir(parents=True, exist_ok=True)
         name = self.parameter_name
         paths = [folder / "branches.csv", folder / "special_points.csv", folder / "multipliers.csv"]
+        flags = self.eps_at(self.branches[0].parameter[0]) is not None if self.branches else False
+
+        def theory(p, amplitude):
+            x = abs(self.eps_at(p) * float(amplitude))
+            return [_num(x), "" if not np.isfinite(x) else ("yes" if x > DEFLECTION_LIMIT else "no")]
         with atomic_file(paths[0]) as fh:
             w = csv.writer(fh)
             w.writerow(["branch", "period", "point", name, "amplitude", "stable",
-                        "max_abs_multiplier", "origin"])
+                        "max_abs_multiplier", "origin"]
+                       + (["deflection_over_L", "beyond_theory"] if flags else []))
             for b, br in enumerate(self.branches):
                 for i in range(len(br)):
-                    w.writerow([b, br.period, i, repr(float(br.parameter[i])),
-                                repr(float(br.amplitude[i])), int(br.stable[i]),
-                                repr(float(np.abs(br.multipliers[i]).max())), br.origin])
+                    w.writerow([b, br.period, i, _num(br.parameter[i]), _num(br.amplitude[i]),
+                                int(br.stable[i]), _num(np.abs(br.multipliers[i]).max()), br.origin]
+                               + (theory(br.parameter[i], br.amplitude[i]) if flags else []))
         with atomic_file(paths[1]) as fh:
             w = csv.writer(fh)
             w.writerow(["kind", name, "amplitude", "period", "branch", "multiplier_re",
-                        "multiplier_im", "multiplier_abs"])
+                        "multiplier_im", "multiplier_abs"]
+                       + (["deflection_over_L", "beyond_theory"] if flags else []))
             for s in self.special_points:
-                w.writerow([s.kind, repr(float(s.parameter)), repr(float(s.amplitude)), s.period,
-                            s.branch, repr(s.multiplier.real), repr(s.multiplier.imag),
-                            repr(abs(s.multiplier))])
+                w.writerow([s.kind, _num(s.parameter), _num(s.amplitude), s.period, s.branch,
+                            _num(s.multiplier.real), _num(s.multiplier.imag), _num(abs(s.multiplier))]
+                           + (theory(s.parameter, s.amplitude) if flags else []))
         with atomic_file(paths[2]) as fh:
             w = csv.writer(fh)
             w.writerow(["branch", "point", name, "index", "re", "im", "abs"])
             for b, br in enumerate(self.branches):
                 for i in range(len(br)):
                     for j, m in enumerate(br.multipliers[i]):
-                        w.writerow([b, i, repr(float(br.parameter[i])), j, repr(float(m.real)),
-                                    repr(float(m.imag)), repr(float(abs(m)))])
+                        w.writerow([b, i, _num(br.parameter[i]), j, _num(m.real), _num(m.imag),
+                                    _num(abs(m))])
         return paths
 
     def plot(self, path, ax=None, title=None, ylabel="amplitude", xlabel=None):

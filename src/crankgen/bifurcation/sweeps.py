@@ -28,6 +28,7 @@ from ._blas import single_thread
 from .maps import MapError
 
 from ..io import atomic_file, save_figure
+from .diagram import _num
 
 DIRECTIONS = ("up", "down", "both")
 
@@ -63,14 +64,14 @@ class PoincareDiagram:
             w.writerow(["direction", name, "classification", "period", "repeat_residual",
                         "lyapunov", "distinct", "message"])
             for q in self.points:
-                w.writerow([q.direction, repr(q.parameter), q.classification, q.period,
-                            repr(q.repeat_residual), repr(q.lyapunov), q.distinct, q.message])
+                w.writerow([q.direction, _num(q.parameter), q.classification, q.period,
+                            _num(q.repeat_residual), _num(q.lyapunov), q.distinct, q.message])
         with atomic_file(paths[1]) as fh:
             w = csv.writer(fh)
             w.writerow(["direction", name, "sample", "value"])
             for q in self.points:
                 for j, v in enumerate(q.samples):
-                    w.writerow([q.direction, repr(q.parameter), j, repr(float(v))])
+                    w.writerow([q.direction, _num(q.parameter), j, _num(v)])
         return paths
 
     def plot(self, path, diagram=None, title=None, ylabel="section sample", xlabel=None):

@@ -8,7 +8,27 @@ from ..errors import ConvergenceError
 from .options import MODELS, UsageError, _Outputs, _case, _describe, _say
 
 
-SIM_COLUMNS = ["t", "theta", "v_mid", "u_end", "extension", "status"]
+SIM_COLUMNS = ["t", "theta_deg", "v_mid", "u_end", "extension", "deflection_over_L", "axial_strain",
+               "beyond_theory", "status"]
+
+
+def _failure_text(failure, approach):
+    """A failed run's reason; for an ill-posed approach, what that means (not an instability)."""
+    from ..theory import UNBOUNDED_BELOW, ill_posed
+
+    text = str(failure)
+    if ill_posed(approach):
+        text += (f" ({UNBOUNDED_BELOW[approach]}: the equations are ill-posed and a run can diverge; "
+                 "this is not an instability of a periodic state)")
+    return text
+
+
+def _theory_note(deflection, strain):
+    """'; beyond the theory (...)' when a response leaves the range of the theory."""
+    from ..theory import CRITERION, reasons
+
+    why = reasons(deflection, strain)
+    return f"; BEYOND THE THEORY ({why}; criterion {CRITERION})" if why else ""
 
 
 def _cmd_simulate(args):
@@ -48,31 +68,44 @@ def _simulate(args, case, revolutions, out):
             if exc.partial is None:
                 raise
             failure, res = exc, exc.partial
-    rows = [dict(t=t, theta=th, v_mid=v, u_end=u, extension=e, status="ok")
-            for t, th, v, u, e in zip(res.t, res.theta, res.v_mid, res.u_end, res.extension)]
+    from .. import theory
+
+    strain = theory.axial_strain(res, per_step=True)
+    rows = [dict(t=t, theta_deg=math.degrees(th), v_mid=v, u_end=u, extension=e,
+                 deflection_over_L=theory.deflection_over_L(case.eps, v), axial_strain=st,
+                 beyond_theory=theory.beyond(theory.deflection_over_L(case.eps, v), st), status="ok")
+            for t, th, v, u, e, st in zip(res.t, res.theta, res.v_mid, res.u_end, res.extension, strain)]
     if failure is not None:
-        rows.append(dict(t=failure.time, theta=case.omega * failure.time, status=f"failed: {failure}"))
+        rows.append(dict(t=failure.time, theta_deg=math.degrees(case.omega * failure.time),
+                         status=f"failed: {_failure_text(failure, case.approach)}"))
     out.wrote(write_csv(out.path("simulation.csv"), SIM_COLUMNS, rows))
     if args.nodes and res.nodes is not None:
-        note = "" if failure is None else f"; run failed at step {failure.step}: history up to the failure"
-        out.wrote(atomic_write(out.path("nodes.csv"), lambda fh: np.savetxt(
-            fh, res.nodes, delimiter=",", comments="# ",
-            header=f"full nodal vector per step: u, v, psi of nodes 0..n{note}")))
+        n = res.nodes.shape[1] // 3
+        # node i at x* = i / n: u, v (units of L, along and across the rigid rod) and the slope
+        # psi = dv/dx (rad)
+        columns = ["t", "theta_deg"] + [f"{q}{i}_{unit}" for i in range(n)
+                                        for q, unit in (("u", "L"), ("v", "L"), ("psi", "rad"))]
+        node_rows = [dict(zip(columns, (t, math.degrees(th), *values)))
+                     for t, th, values in zip(res.t, res.theta, res.nodes)]
+        out.wrote(write_csv(out.path("nodes.csv"), columns, node_rows))
     out.wrote(plot_deflection(res, out.path("v_mid.png"), failure=failure))
+    defl = max((r["deflection_over_L"] for r in rows[:len(res.t)]), default=math.nan)
+    note = _theory_note(defl, float(np.max(strain)) if len(strain) else math.nan)
     if failure is not None:
-        print(f"crankgen simulate: run failed: {failure}; wrote the history up to the failure "
-              f"({len(res.t)} points, marked in the status column) to {out.path('simulation.csv')}",
-              file=sys.stderr)
+        print(f"crankgen simulate: run failed: {_failure_text(failure, case.approach)}; wrote the "
+              f"history up to the failure ({len(res.t)} points, marked in the status column) to "
+              f"{out.path('simulation.csv')}", file=sys.stderr)
         return 1
     last = res.v_mid[-case.steps_per_rev:]
-    print(f"wrote {out.path('simulation.csv')} and {out.path('v_mid.png')}; "
-          f"max |v*| over the last revolution {np.max(np.abs(last)):.6g}")
+    print(f"wrote {', '.join(str(p) for p in out.written)}; max |v*| over the last revolution "
+          f"{np.max(np.abs(last)):.6g}{note}")
     return 0
 
 
 # ---- steady ------------------------------------------------------------------------------------
 STEADY_NAMES = ["steady.csv", "orbit.csv", "orbit.png"]
-ORBIT_COLUMNS = ["theta", "t", "v_mid", "u_end", "extension"]
+ORBIT_COLUMNS = ["theta_deg", "t", "v_mid", "u_end", "extension", "deflection_over_L", "axial_strain"]
+THEORY_COLUMNS = ["deflection_over_L", "axial_strain", "beyond_theory", "strain_energy"]
 
 
 def _resolved(case, where=""):
@@ -100,19 +133,41 @@ def _cmd_steady(args):
         out.abandon()
 
 
+def _method_text(args, case):
+    """How the periodic state is sought: shooting differentiates the converged Newton step map,
+    so any other integrator marches."""
+    if args.method == "shooting" and case.integrator == "newton":
+        return f"shooting (Newton on the revolution map), tolerance {args.tol:g}"
+    why = "" if args.method == "march" else \
+        f" (shooting needs --integrator newton; the {case.integrator} step map is not differentiated)"
+    return (f"marching revolution by revolution until the state changes by less than {args.tol:g} "
+            f"per revolution{why}")
+
+
 def _steady(args, case, out):
+    import numpy as np
+
+    from .. import theory
     from ..io import write_csv
     from ..plotting import plot_orbit
     from ..steady import steady_states
+    from ..tables import flat_table
 
-    _say(args, f"steady: {_describe(case)}; {args.method}, tolerance {args.tol:g}")
+    _say(args, f"steady: {_describe(case)}; {_method_text(args, case)}")
     st = steady_states([case], tol=args.tol, max_revolutions=args.max_revolutions,
                        method=args.method)[0]
     row = st.row()
-    out.wrote(write_csv(out.path("steady.csv"), list(row), [row]))
+    defl = theory.deflection_over_L(case.eps, st.amplitude)
+    strain = theory.axial_strain(st) if st.v_mid is not None else math.nan
+    row.update(deflection_over_L=defl, axial_strain=strain, beyond_theory=theory.beyond(defl, strain),
+               strain_energy=theory.strain_energy(case.approach))
+    if st.status == "failed":
+        row["message"] = _failure_text(st.message, case.approach)
+    out.wrote(write_csv(out.path("steady.csv"), *flat_table(list(row), [row])))
     if st.v_mid is not None:
-        rows = [dict(zip(ORBIT_COLUMNS, values))
-                for values in zip(st.theta, st.t, st.v_mid, st.u_end, st.extension)]
+        steps = theory.axial_strain(st, per_step=True)
+        rows = [dict(zip(ORBIT_COLUMNS, (np.degrees(th), t, v, u, e, theory.deflection_over_L(case.eps, v), a)))
+                for th, t, v, u, e, a in zip(st.theta, st.t, st.v_mid, st.u_end, st.extension, steps)]
         out.wrote(write_csv(out.path("orbit.csv"), ORBIT_COLUMNS, rows))
         out.wrote(plot_orbit(st, out.path("orbit.png")))
     else:                                    # no orbit: leave no orbit of an earlier run beside it
@@ -125,10 +180,10 @@ def _steady(args, case, out):
           f"{num(st.half_peak_to_peak, '{:.6g}')}; largest |Floquet multiplier| "
           f"{num(st.multiplier, '{:.4f}')}; {st.iterations} shooting iterations, {st.periods} "
           f"revolutions marched, residual {num(st.residual, '{:.2e}')}"
-          + (f"; {st.message}" if st.message else ""))
+          + (f"; {row['message']}" if row["message"] else "") + _theory_note(defl, strain))
     print(f"wrote {', '.join(str(p) for p in out.written)}")
     if st.status == "failed":
-        print(f"crankgen steady: run failed: {st.message}", file=sys.stderr)
+        print(f"crankgen steady: run failed: {row['message']}", file=sys.stderr)
         return 1
     return 0
 
@@ -228,7 +283,8 @@ def _sweep(args, cases, checkpoint, out):
         if executor is not None:
             executor.shutdown(cancel_futures=True)
     from ..io import write_csv
-    out.wrote(write_csv(out.path("sweep.csv"), table.columns, table.rows))
+    from ..tables import flat_table
+    out.wrote(write_csv(out.path("sweep.csv"), *flat_table(table.columns, table.rows)))
     counts = Counter(row["status"] for row in table.rows)
     print(f"wrote {out.path('sweep.csv')}: {len(table)} cases, "
           + ", ".join(f"{n} {status}" for status, n in sorted(counts.items())))
