@@ -218,13 +218,21 @@ def test_every_table_parses_into_numbers_words_and_empty_fields(tiny_run):
 def test_tiny_run_reports_failed_cases_in_table_and_findings(tiny_run):
     _, out = tiny_run
     rows = list(csv.DictReader(open(out / "fig6.csv")))
-    failed = [r for r in rows if r["status"] == "failed"]
-    # the consistent model with approach B has no quartic term and diverges at high speed
+    failed = [r for r in rows if r["status"] not in ("periodic", "unstable", "not-periodic")]
+    # the consistent model's approach B has no quartic term (its strain energy is unbounded below:
+    # ill-posed) and diverges from rest at high speed: status "diverged", never "failed" or a
+    # stability result, no amplitude, and the CSV says why in words
     assert failed and all(r["model"] == "consistent" and r["approach"] == "B" for r in failed)
-    assert all(r["message"] and r["amplitude"] == "" for r in failed)
+    assert {r["status"] for r in failed} == {"diverged"}
+    assert all(r["message"] and r["amplitude"] == "" and r["orbit_amplitude"] == "" for r in failed)
+    assert all(r["strain_energy"] == "unbounded below (ill-posed)" for r in failed)
+    assert {r["strain_energy"] for r in rows if r["approach"] != "B"} == {"bounded below"}
     text = (out / "findings.md").read_text()
     assert "## Cases without a stable periodic steady state" in text
     assert "| 6 | consistent | B |" in text and "Newton did not converge" in text
+    assert "## Approach B is ill-posed (its strain energy is unbounded below)" in text
+    assert "| 6 | consistent | B | 0.01 | 0.5 | diverged (ill-posed) |" in text
+    assert "no stable periodic state (while A does)" not in text
 
 
 def test_tiny_findings_numbers_come_from_the_runs(tiny_run):
@@ -429,9 +437,11 @@ def test_second_command_line_run_recomputes_nothing(tiny_run, capsys, monkeypatc
     monkeypatch.setattr(bifurcation, "continuation", refuse)
     monkeypatch.setattr(bifurcation, "poincare", refuse)
     assert cli_main(["reproduce", "--quick", "--out", str(out)]) == 0
-    err = capsys.readouterr().err
-    assert "0 step(s) computed, 12 kept" in err and "computing" not in err
-    assert "bifurcations: kept (complete and current)" in err
+    captured = capsys.readouterr()
+    err = captured.err
+    assert "0 step(s) computed, 12 kept" in captured.out and "computing" not in err
+    assert "step(s) computed" not in err                   # the summary once, on stdout
+    assert "bifurcations: kept (complete and current)" in err and "starting the compiled engine" not in err
 
 
 def test_figures_subset_in_a_fresh_folder_says_what_is_missing(tmp_path):
@@ -463,8 +473,9 @@ def test_claims_table_is_complete(tiny_run):
 def test_failed_transient_keeps_its_rows_up_to_the_failure(tiny_run):
     _, out = tiny_run
     rows = list(csv.DictReader(open(out / "fig4.csv")))
-    failed = [r for r in rows if r["status"] == "failed"]
+    failed = [r for r in rows if r["status"] == "diverged"]
     assert failed                                # the consistent model's B diverges at Omega* = 0.8
+    assert not [r for r in rows if r["status"] == "failed"]      # A and C never fail here
     key = lambda r: (r["model"], r["approach"], r["ms"])
     for k in {key(r) for r in failed}:
         rr = [r for r in failed if key(r) == k]
@@ -512,25 +523,33 @@ def test_output_folder_that_cannot_be_made_is_refused_before_computing(tmp_path,
     assert "cannot write to" in err or "cannot create" in err
 
 
-def test_theory_flag_matches_the_deflection(tiny_run):
+def test_theory_flag_matches_the_deflection_and_the_strain(tiny_run):
+    """beyond_theory: |v|/L of the row's response (the orbit when periodic or unstable, the
+    settled transient otherwise) above 0.1, or its axial strain above 0.01."""
     _, out = tiny_run
     rows = list(csv.DictReader(open(out / "fig6.csv")))
+    key = {"periodic": "amplitude", "unstable": "orbit_amplitude"}
     for r in rows:
-        vals = [float(r[k]) for k in ("amplitude", "orbit_amplitude", "envelope") if r[k] != ""]
-        if not vals:
-            assert r["beyond_theory"] == ""
+        v = r[key.get(r["status"], "envelope")]
+        strain = float(r["axial_strain"]) if r["axial_strain"] else math.nan
+        if v == "" and not math.isfinite(strain):
+            assert r["beyond_theory"] == "" and r["deflection_over_L"] == ""
             continue
-        assert float(r["deflection_over_L"]) == pytest.approx(float(r["eps"]) * max(vals))
-        assert r["beyond_theory"] == ("yes" if float(r["eps"]) * max(vals) > 0.1 else "no")
+        x = float(r["eps"]) * float(v) if v else math.nan
+        if v:
+            assert float(r["deflection_over_L"]) == pytest.approx(x)
+        expect = (x > 0.1) or (strain > 0.01)
+        assert r["beyond_theory"] == ("yes" if expect else "no"), r
+    assert any(r["beyond_theory"] == "yes" and float(r["deflection_over_L"]) <= 0.1 for r in rows), \
+        "no case flagged for its strain alone"
     text = (out / "findings.md").read_text()
     assert "## Results beyond the range of the theory" in text
     flagged = {(r["model"], r["approach"]) for r in rows if r["beyond_theory"] == "yes"}
     section = text[text.index("## Results beyond"):text.index("## Settings")]
     for m, ap in flagged:
         assert f"| 6 | {m} | {ap} |" in section
+    assert "axial strain of the neutral axis > 0.01" in section
 
-
-# ----------------------------------------------------------------------------- bifurcations step
 
 def _section(text):
     return text[text.index("## Bifurcations of approach A"):text.index("## Slope of log v*")]

@@ -66,8 +66,9 @@ def axial_strain(result, per_step=False):
         t = getattr(result, "t", None)
         return np.full(0 if t is None else len(t), math.nan) if per_step else math.nan
     xs = np.linspace(0.0, 1.0, 2 * result.case.n_elements + 1)
-    e = np.abs(np.atleast_2d(result.quantity("surface_strain", xs, fiber=0.0)))
-    e = np.where(np.isfinite(e), e, 0.0)
+    with np.errstate(over="ignore", invalid="ignore"):     # the history of a run that diverged
+        e = np.abs(np.atleast_2d(result.quantity("surface_strain", xs, fiber=0.0)))
+    e = np.where(np.isnan(e), np.inf, e)
     values = e.max(axis=1)
     return values if per_step else (float(values.max()) if values.size else math.nan)
 
