@@ -48,7 +48,7 @@ def _cmd_simulate(args):
 def _simulate(args, case, revolutions, out):
     import numpy as np
 
-    from ..io import atomic_write, write_csv
+    from ..io import write_csv
     from ..plotting import plot_deflection
     from ..progress import Progress
     from ..simulation import simulate
