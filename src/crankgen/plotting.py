@@ -25,35 +25,61 @@ def _title(s):
             f"ms* = {s['ms']:g}, mu* = {s['mu']:g}, n = {s['n_elements']}{extra}")
 
 
+def _beyond_theory(ax, eps, v, strain):
+    """Shade |v*| beyond the theory's deflection limit where the data reach it; returns the note
+    for the title ('' when the response stays in the range of the theory)."""
+    from . import theory
+
+    v = np.asarray(v, dtype=float)
+    v = v[np.isfinite(v)]
+    vmax = float(np.max(np.abs(v))) if v.size else float("nan")
+    smax = float(np.nanmax(strain)) if strain is not None and np.size(strain) and np.any(np.isfinite(strain)) else float("nan")
+    lim = theory.DEFLECTION_LIMIT / eps
+    if np.isfinite(vmax) and vmax > lim:
+        lo, hi = ax.get_ylim()
+        for a, b in ((lim, max(hi, lim)), (min(lo, -lim), -lim)):
+            if b > a:
+                ax.axhspan(a, b, color="0.88", zorder=0, lw=0)
+        ax.set_ylim(lo, hi)
+    why = theory.reasons(eps * vmax, smax)
+    return f"\nBEYOND THE THEORY: {why} (shaded: |v|/L > {theory.DEFLECTION_LIMIT:g})" if why else ""
+
+
 def plot_deflection(result, path, failure=None):
     """v* at x* = 1/2 against t*, written atomically to path (returned).  failure: the
-    ConvergenceError of a run that stopped, whose time is marked on the plot."""
+    ConvergenceError of a run that stopped, whose time is marked on the plot; a response beyond
+    the range of the theory (crankgen.theory) is shaded and named in the title."""
+    from . import theory
     from .io import save_figure
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(7, 3.8), constrained_layout=True)
     ax.plot(result.t, result.v_mid, lw=1, color="C0", label="v* (x* = 1/2)")
     if failure is not None:
+        approach = result.settings.get("approach")
+        word = (f"run diverged (approach {approach} is ill-posed: strain energy unbounded below)"
+                if theory.ill_posed(approach) else "run failed")
         ax.axvline(failure.time, color="C3", ls="--", lw=1,
-                   label=f"run failed at t* = {failure.time:.4g} (step {failure.step})")
+                   label=f"{word} at t* = {failure.time:.4g} (step {failure.step})")
         if len(result.t):
             ax.plot(result.t[-1:], result.v_mid[-1:], "x", color="C3", ms=9, mew=2,
                     label="last computed state")
         ax.legend(fontsize=8, loc="best")
     ax.set_xlabel("t*")
     ax.set_ylabel("v* at x* = 1/2")
-    ax.set_title(_title(result.settings), fontsize=9)
+    note = _beyond_theory(ax, result.settings["eps"], result.v_mid, theory.axial_strain(result, per_step=True))
+    ax.set_title(_title(result.settings) + note, fontsize=9)
     ax.grid(alpha=0.3)
     return save_figure(fig, path)
 
 
 def plot_orbit(state, path):
     """A steady revolution (crankgen.SteadyState): v* at x* = 1/2 and the extension delta*
-    against the crank angle, written atomically to path (returned)."""
-    import numpy as np
-
+    against the crank angle, written atomically to path (returned); beyond the range of the
+    theory: shaded and named in the title."""
+    from . import theory
     from .io import save_figure
     plt = _pyplot()
-    fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 5.2), sharex=True, constrained_layout=True)
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 5.4), sharex=True, constrained_layout=True)
     deg = np.degrees(state.theta)
     a1.plot(deg, state.v_mid, lw=1.2, color="C0")
     a1.set_ylabel("v* at x* = 1/2")
@@ -66,7 +92,8 @@ def plot_orbit(state, path):
     s = dict(state.case.as_dict())
     mult = (f", largest |multiplier| {state.multiplier:.4f}"
             if state.multiplier is not None and np.isfinite(state.multiplier) else "")
-    a1.set_title(f"steady state: {state.status}{mult}\n" + _title(s), fontsize=9)
+    note = _beyond_theory(a1, state.case.eps, state.v_mid, theory.axial_strain(state, per_step=True))
+    a1.set_title(f"steady state: {state.status}{mult}\n" + _title(s) + note, fontsize=9)
     return save_figure(fig, path)
 
 

@@ -14,12 +14,12 @@ SIM_COLUMNS = ["t", "theta_deg", "v_mid", "u_end", "extension", "deflection_over
 
 def _failure_text(failure, approach):
     """A failed run's reason; for an ill-posed approach, what that means (not an instability)."""
-    from ..theory import UNBOUNDED_BELOW, ill_posed
+    from ..theory import ill_posed
 
     text = str(failure)
     if ill_posed(approach):
-        text += (f" ({UNBOUNDED_BELOW[approach]}: the equations are ill-posed and a run can diverge; "
-                 "this is not an instability of a periodic state)")
+        text += (f" (approach {approach} is ill-posed: its strain energy is unbounded below, so a "
+                 "run can diverge; this is not an instability)")
     return text
 
 
