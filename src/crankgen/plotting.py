@@ -155,6 +155,12 @@ def fit_panels(fig, pad=0.12):
     rows, cols = axes.shape
     renderer = fig.canvas.get_renderer()
     dpi = fig.dpi
+    for ax in axes.flat:        # a legend below its panel starts just under the x axis' labels
+        leg = ax.get_legend()
+        if leg is not None and getattr(leg, "_crankgen_outside", False):
+            box, below = ax.get_window_extent(renderer), ax.xaxis.get_tightbbox(renderer)
+            y = (below.y0 - box.y0 - 0.06 * dpi) / box.height
+            leg.set_bbox_to_anchor((0.5, y), transform=ax.transAxes)
     ax_w, ax_h = grid["axes_w"], grid["axes_h"]
     ext = np.zeros((rows, cols, 4))             # inches beyond the axes: left, right, below, above
     for i in range(rows):
@@ -223,12 +229,12 @@ def layout_problems(fig):
         for t in a.texts:
             if getattr(t, "_crankgen_label", False):
                 points = drawn_points(a) if points is None else points
-                bb = t.get_window_extent(r)
+                bb = _text_box(t, r)
                 hits = np.sum((points[:, 0] >= bb.x0) & (points[:, 0] <= bb.x1)
                               & (points[:, 1] >= bb.y0) & (points[:, 1] <= bb.y1)) if points.size else 0
                 if hits:
                     out.append(f"label {t.get_text()!r} covers {hits} drawn point(s) of {a.get_title()!r}")
-        boxes = [t.get_window_extent(r) for t in a.texts if t.get_visible() and t.get_text()]
+        boxes = [_text_box(t, r) for t in a.texts if t.get_visible() and t.get_text()]
         abox = a.get_window_extent(r)
         for k, b in enumerate(boxes):
             if b.x0 < abox.x0 - 1 or b.x1 > abox.x1 + 1 or b.y0 < abox.y0 - 1 or b.y1 > abox.y1 + 1:
@@ -236,6 +242,15 @@ def layout_problems(fig):
             out += [f"annotations {a.texts[k].get_text()!r} and {a.texts[m].get_text()!r} overlap"
                     for m in range(k + 1, len(boxes)) if b.overlaps(boxes[m])]
     return out
+
+
+def _text_box(text, renderer):
+    """Display box of a text or annotation's text alone (an annotation's own extent includes its
+    leader line, which runs to the point it labels)."""
+    from matplotlib.text import Text
+    if hasattr(text, "update_positions"):
+        text.update_positions(renderer)
+    return Text.get_window_extent(text, renderer)
 
 
 def _legend_outside(ax):
@@ -270,10 +285,11 @@ def drawn_points(ax, spacing=2.0):
     return np.concatenate(out) if out else np.zeros((0, 2))
 
 
-# offsets (points) tried for a label, nearest first: right / left of the point, above / below
-LABEL_OFFSETS = [(6, 5), (-6, 5), (6, -13), (-6, -13), (8, 16), (-8, 16), (8, -24), (-8, -24),
-                 (10, 28), (-10, 28), (10, -36), (-10, -36), (14, 40), (-14, 40), (14, -48),
-                 (-14, -48)]
+# offsets (points) tried for a label, nearest first: right / left of the point, above / below,
+# then rings further out (a leader line joins a label placed away from its point)
+LABEL_OFFSETS = [(6, 5), (-6, 5), (6, -13), (-6, -13), (8, 16), (-8, 16), (8, -24), (-8, -24)] + [
+    (round(r * np.cos(a)) or 4, round(r * np.sin(a)))
+    for r in (30, 45, 60, 80, 100) for a in np.radians(np.arange(15, 360, 30))]
 
 
 def place_labels(ax, items, fontsize=8, margin=4.0):
@@ -289,13 +305,13 @@ def place_labels(ax, items, fontsize=8, margin=4.0):
     for x, y, text, color in items:
         best, best_cost = None, None
         for dx, dy in LABEL_OFFSETS:
-            far = abs(dy) > 20
+            far = abs(dy) > 20 or abs(dx) > 20
             a = ax.annotate(text, (x, y), textcoords="offset points", xytext=(dx, dy),
                             ha="left" if dx > 0 else "right", va="center", fontsize=fontsize,
                             zorder=7, color=color,
                             arrowprops=dict(arrowstyle="-", color=color, lw=0.6, shrinkA=0, shrinkB=3)
                             if far else None)
-            bb = a.get_window_extent(renderer).expanded(1.0, 1.0)
+            bb = _text_box(a, renderer)        # the text, not its leader line
             bb = bb.from_extents(bb.x0 - margin, bb.y0 - margin, bb.x1 + margin, bb.y1 + margin)
             inside = box.contains(bb.x0, bb.y0) and box.contains(bb.x1, bb.y1)
             hits = int(np.sum((obstacles[:, 0] >= bb.x0) & (obstacles[:, 0] <= bb.x1)

@@ -507,8 +507,8 @@ def c6d(run, m):
                                                        for r in rows):
             # the largest stable point is the last one before the runs diverge: not a peak
             parts.append(None)
-            texts.append(f"{ap}: no peak can be read (it diverges from Omega* = {min(div):g}: "
-                         f"{theory.ILL_POSED})")
+            texts.append(f"{ap}: no peak can be read (its runs from rest diverge from Omega* = "
+                         f"{min(div):g}; {ap} is {theory.ILL_POSED})")
             continue
         hi = max(r["omega"] for r in rows)
         parts.append(abs(top["omega"] - 1.0) <= 2 * SPEED and top["omega"] < hi)

@@ -16,7 +16,7 @@ from ..plotting import APPROACH_COLORS, fit_panels, mark_at_axis, panels
 from . import findings as fd
 
 from .config import APPROACHES, MODELS
-from .figures import DIVERGED, THEORY_LIMIT
+from .figures import DIVERGED, STRAIN_LIMIT, THEORY_LIMIT
 
 FONT = 8                                   # legends, insets, annotations (pt)
 # per approach: line style and marker, so that coinciding curves stay visible
@@ -78,7 +78,12 @@ def _legend(ax, handles=None, labels=None, ncol=1, extra=()):
     w_in = ax.get_position().width * fig.get_figwidth()
     # characters per column (8 pt text is about 0.5 em wide; handle and spacing take 3.8 em)
     width = max(20, int((w_in * 72 / ncol - 3.8 * FONT) / (0.52 * FONT)))
-    labels = [textwrap.fill(str(t), width) for t in labels]
+    def wrap(text):
+        lines = textwrap.wrap(str(text), width, break_on_hyphens=False)
+        if len(lines) > 1 and len(lines[-1]) < 6:          # no orphan word on a line of its own
+            lines = textwrap.wrap(str(text), width + 6, break_on_hyphens=False)
+        return "\n".join(lines)
+    labels = [wrap(t) for t in labels]
     leg = ax.legend(handles, labels, fontsize=FONT, loc="upper center", ncol=ncol, frameon=False,
                     bbox_to_anchor=(0.5, -0.55 / h_in), handlelength=2.6, columnspacing=1.2)
     leg._crankgen_outside = True
@@ -318,7 +323,8 @@ def plot_extension(data, cfg, counts):
                 extra.append(Line2D([], [], ls="none", label="all ms* coincide to 1 %"))
         flagged = [c for c in cs if c.get("beyond_theory") == "yes"]
         if flagged:
-            extra.append(Line2D([], [], ls="none", label="beyond the theory (|v|/L > 0.1): ms* = "
+            extra.append(Line2D([], [], ls="none", label=f"beyond the theory (|v|/L > {THEORY_LIMIT:g} or axial "
+                                f"strain > {STRAIN_LIMIT:g}): ms* = "
                                 + ", ".join(f"{c['ms']:g}" for c in flagged)))
         n = cs[0]["n_elements"] if cs else "?"
         _title(ax, m, f"\napproach A, n = {n}, Omega* = {data['omega']:g}")

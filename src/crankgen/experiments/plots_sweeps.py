@@ -96,6 +96,12 @@ def _limit_to_steady(ax, rows, xkey, margin=1.25, extra=()):
     if not vals:
         return
     top = margin * max(vals)
+    # a response just above the top would be cut by the frame: raise the top over it, so that
+    # every hollow marker is either whole inside or well outside (then a filled one at the top)
+    env = sorted(r["envelope"] for r in rows if math.isfinite(r.get("envelope", math.nan)))
+    for v in env:
+        if 0.95 * top < v <= 1.15 * top:
+            top = 1.08 * v
     ax.set_ylim(0.0, top)
     _off_scale(ax, rows, top, xkey)
 

@@ -267,7 +267,7 @@ def _summary(cfg, conv, data):
     if parts:
         out.append("- Crank angles (degrees) where the extension does not depend on ms*: " + "; ".join(parts) + ".")
     if 6 in data:
-        worst, mism = None, 0
+        worst, mism, mism_div = None, 0, 0
         p, c = MODELS[0].key, MODELS[1].key
         for ap in APPROACHES:
             for eps in cfg.fig6_eps:
@@ -276,12 +276,18 @@ def _summary(cfg, conv, data):
                 d = fd.max_relative_difference(x, b, a)
                 if d and (worst is None or d["value"] > worst[0]["value"]):
                     worst = (d, ap, eps)
-                mism += int(np.sum(np.isfinite(a) != np.isfinite(b)))
+                rows_p, rows_c = (_rows(data[6], model=k, approach=ap, eps=eps) for k in (p, c))
+                div = {r["omega"] for r in rows_p + rows_c if r["status"] == F.DIVERGED}
+                one = [xx for xx, aa, bb in zip(x, a, b) if np.isfinite(aa) != np.isfinite(bb)]
+                mism += len(one)
+                mism_div += sum(xx in div for xx in one)
         if worst:
             d, ap, eps = worst
             out.append(f"- Paper model against consistent model (Figure 6): largest amplitude difference "
                        f"{pct(d['value'])} (approach {ap}, eps = {eps:g}, Omega* = {d['at']:g}); "
-                       f"{mism} of the sweep's cases have a stable periodic state in one model only.")
+                       f"{mism} of the sweep's cases have a stable periodic state in one model only"
+                       + (f" ({mism_div} of them where the other model's run diverged: approach B, "
+                          "ill-posed)." if mism_div else "."))
     div = _divergence_summary(conv, data)
     if div:
         out.append(f"- Approach B is ill-posed (its strain energy is unbounded below); its runs from rest "
@@ -294,7 +300,9 @@ def _divergence_summary(conv, data):
     for m in MODELS:
         n = sum(r["status"] == F.DIVERGED for r in conv["rows"] if r["model"] == m.key)
         for f in (5, 6):
-            n += sum(r["status"] == F.DIVERGED for r in data.get(f, {}).get("rows", []) if r["model"] == m.key)
+            n += sum(r["status"] == F.DIVERGED or (theory.ill_posed(r["approach"]) and r.get(
+                "envelope_note", "").startswith("the transient from rest diverged"))
+                for r in data.get(f, {}).get("rows", []) if r["model"] == m.key)
         for f in (2, 3, 4):
             n += sum(c.diverged for c in data.get(f, {}).get("curves", []) if c.spec.model == m.key)
         if n:
@@ -347,9 +355,13 @@ def _theory(cfg, data):
                 diverged.append(f"Figure {f} {c.spec.model} {c.spec.approach} (ms* = {c.spec.ms:g})")
                 continue
             x = c.spec.eps * c.max_abs
+            k = c.spec.steps_per_rev
+            growing = (c.has_history and len(c.v_mid) > 2 * k and np.max(np.abs(c.v_mid[-k:]))
+                       > 1.05 * np.max(np.abs(c.v_mid[-2 * k:-k])))
             if theory.beyond(x, c.max_strain) == "yes":
                 rows.append([f, c.spec.model, c.spec.approach, f"n = {c.spec.n_elements}, ms* = {c.spec.ms:g}, "
-                             f"{c.spec.steps_per_rev} steps/rev", "transient from rest (largest over the run)",
+                             f"{c.spec.steps_per_rev} steps/rev", "transient from rest (largest over the run"
+                             + ("; still growing at its end)" if growing else ")"),
                              num(c.max_abs), num(x, 3), strain_cell(c.max_strain)])
     kinds = {STABLE: "periodic orbit", "unstable": "unstable periodic orbit",
              "not-periodic": "no periodic orbit: settled transient from rest"}

@@ -80,9 +80,10 @@ def _convergence(cfg, conv, refine):
                   "recomputed with twice the count used.", "",
                   table(["model", "approach", "eps", "Omega*", "n", "max |v*|", "2 n", "max |v*| (2 n)", "change"],
                         [[r["model"], r["approach"], f"{r['eps']:g}", f"{r['omega']:g}", r["n_elements"],
-                          num(r["amplitude"], 6) if math.isfinite(r["amplitude"]) else r["status"],
+                          num(r["amplitude"], 6) if math.isfinite(r["amplitude"]) else _status_word(r["status"]),
                           r["n_refined"],
-                          num(r["amplitude_refined"], 6) if math.isfinite(r["amplitude_refined"]) else r["status_refined"],
+                          num(r["amplitude_refined"], 6) if math.isfinite(r["amplitude_refined"])
+                          else _status_word(r["status_refined"]),
                           pct(r["change"])] for r in rr]), ""]
         for m in MODELS:
             ch = [(r["change"], r) for r in rr if r["model"] == m.key and math.isfinite(r["change"])]
@@ -96,7 +97,7 @@ def _convergence(cfg, conv, refine):
             else:
                 lines.append(f"- {m.key} model: no refinement pair with two periodic states.")
             if mism:
-                lines.append(f"  Status changes on doubling n: " + "; ".join(
+                lines.append("  Status changes on doubling n: " + "; ".join(
                     f"{r['approach']} eps = {r['eps']:g} Omega* = {r['omega']:g}: {r['status']} -> {r['status_refined']}"
                     for r in mism) + ".")
         lines.append("")
