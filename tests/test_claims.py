@@ -137,7 +137,7 @@ def _fig6(b_status_from, b_peak_at=None):
 def test_the_last_point_before_a_divergence_is_not_a_peak():
     run = _run({6: _fig6(b_status_from=0.35)})
     out = C.evaluate(_claim("C6d"), run, "consistent")
-    assert "B: no peak can be read (it diverges from Omega* = 0.4" in out.value
+    assert "B: no peak can be read (its runs from rest diverge from Omega* = 0.4" in out.value
     assert "B max at" not in out.value
     assert out.verdict == C.PARTLY              # C peaks at 1 and A rises; B's part is unknown
     k4 = C.evaluate(_claim("K4"), run, "consistent")
