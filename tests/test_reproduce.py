@@ -449,6 +449,10 @@ def test_figures_subset_in_a_fresh_folder_says_what_is_missing(tmp_path):
     reproduce(out, config=ReproduceConfig.tiny(), quiet=True, figures=[8])
     text = (out / "findings.md").read_text()
     assert "Figures in this report: 8." in text
+    assert text.startswith("# Findings: Figure 8 recomputed (Figures 2, 3, 4, 5, 6 and 7 are not in "
+                           "this report)\n")
+    run = text[text.index("## Run"):]
+    assert "| engine start-up in this run: " in run and "| total of the steps |" in run
     assert "**Not in this report:** Figure 2 (not computed in this folder" in text
     rows = {line.split("|")[1].strip(): line for line in text.splitlines() if line.startswith("| C")}
     assert "| not computable |" in rows["C5b"] and "Figure 5 not computed" in rows["C5b"]
