@@ -106,8 +106,9 @@ def build_parser():
                    help="coarse pass: fewer speeds, eps values, slider masses and revolutions, element "
                         "ladder up to 64, continuation with 4 elements, 50 steps per revolution, period 2")
     p.add_argument("--force", action="store_true",
-                   help="recompute every selected step, and overwrite files of the output names that "
-                        "no recorded run made")
+                   help="recompute every selected step, overwrite files of the output names that no "
+                        "recorded run made, and replace a run of the other preset (a folder holds one "
+                        "run: --quick into a full run's folder, or the reverse, is refused without it)")
     p.add_argument("--figures", type=_figure_list, default=[2, 3, 4, 5, 6, 7, 8], metavar="LIST",
                    help="comma-separated figures to compute, e.g. 5,6 (default: all, 2-8); the "
                         "element-count check always runs")
