@@ -10,9 +10,9 @@ import difflib
 import sys
 from pathlib import Path
 
-from .dispatch import emit_dispatch
 from .emit import emit_module, spec_hash
 from .kernels import ACCUMULATING, MODULES, SCALAR, element_kernels
+from .schema import emit_schema
 
 COMMAND = "python -m derive"
 ROOT = Path(__file__).resolve().parent.parent
@@ -26,10 +26,13 @@ PACKAGE_DOC = (
 def render():
     """{file name: source} of every generated file, in a fixed order."""
     files = {"__init__.py": PACKAGE_DOC}
+    every = []
     for name, (title, build) in MODULES.items():
-        files[f"{name}.py"] = emit_module(title, build(), COMMAND, accumulating=name in ACCUMULATING,
+        kernels = build()
+        every.extend(kernels)
+        files[f"{name}.py"] = emit_module(title, kernels, COMMAND, accumulating=name in ACCUMULATING,
                                           scalar=name in SCALAR)
-    files["dispatch.py"] = emit_dispatch(COMMAND, spec_hash(element_kernels()))
+    files["schema.py"] = emit_schema(COMMAND, spec_hash(every), [k.name for k in element_kernels()])
     return files
 
 

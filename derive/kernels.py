@@ -1,17 +1,22 @@
-"""Stage 4: kernel specifications (name, ordered inputs, outputs, expressions), made from the
-declaration in derive/model.py, grouped by generated module.
+"""Stage 7: kernel specifications (name, ordered inputs, outputs, expressions), made from the model
+representation (derive/representation.py) alone, grouped by generated module.
 
 One calling convention per kernel kind:
 - element kernels (one per family variant, module `elements`):
       name(q, qd, qdd, geo, coef, kin) -> r, K, C, M [, K_printed]
   q, qd, qdd: the element's nodal vector and rates (eq. 14); geo = (l, x0); coef = the coefficients
-  of derive/model.py (rho A, rho I, E A, E I, mu, m_s, gX, gY, the term weights); kin = (a, theta,
-  thetad, phi, phid, phidd).  r is the element residual, K, C, M its exact derivatives with respect
-  to q, qd, qdd; K_printed, where a variant declares one, is the stiffness the printed one-pass
-  scheme of eq. (37) iterates with.
+  (rho A, rho I, E A, E I, mu, m_s, gX, gY, the term weights); kin = the kinematics vector (a,
+  theta, thetad, phi, phid, phidd, thetadd, beta, betad, betadd).  r is the element residual, K, C,
+  M its exact derivatives with respect to q, qd, qdd; K_printed, where a variant declares one, is
+  the stiffness the printed one-pass scheme of eq. (37) iterates with.
 - energy kernels (module `energy`): name(q, qd, geo, coef, kin) -> scalar.
-- field kernels (module `fields`): name(q, zeta, geo, coef[, fiber]) -> value at zeta = x / l.
-- the kinematics kernel (module `guide`): crank_kinematics(t, omega, a, e) -> kin.
+- output kernels (module `fields`): step_<name>(inputs) and field_<name>[_<case>](inputs) -> value,
+  the inputs being those the output's record names (representation.OUTPUT_INPUTS order).
+- kinematics kernels (module `kinematics`): motion_<m>(t, params) -> crank = (theta, thetad,
+  thetadd); guide_<g>(crank, params) -> kin; end_map_<g>(send, kin, params) -> E (8, 2) with
+  send = (s, sd, sdd) (rows: guides.END_MAP_ROWS); rigid_end_<g>(kin, params) -> (X, Y);
+  margins_<g>(params); end_scale_<g>(eps, params); period_<m>(params), step_period_<m>(params).
+  params is the kinematic parameter vector (representation.kinematic_parameters).
 - shape kernels (module `shape`): shape functions and the slope Gram matrix.
 - audit group kernels (module `groups`): the consistent model's element forces split by kind, in
   the element convention (used by the audit to weigh each group along trajectories).
@@ -22,13 +27,9 @@ from functools import lru_cache
 
 import sympy as sp
 
-from . import energies as en
-from . import guide
-from . import model
+from . import representation as ir
 from . import symbols as s
-from .euler_lagrange import gradient, jacobian, kinetic_residual
-from .groups import ELEMENT_VARS, ROD_AXIAL_ROWS, SLIDER_AXIAL_ROWS, SLIDER_VARS, group_vector
-from .shape_functions import B_V, N_PSI, N_U, N_V, integrate_element
+from .euler_lagrange import jacobian
 
 
 @dataclass(frozen=True)
@@ -64,7 +65,16 @@ Q, QD, QDD = vector("q", s.q), vector("qd", s.qd), vector("qdd", s.qdd)
 GEO = vector("geo", s.GEOMETRY)
 COEF = vector("coef", s.COEFFICIENTS)
 KIN = vector("kin", s.KINEMATICS)
+PARAMS = vector("params", ir.KINEMATIC_SYMBOLS)
+# the same vector beside kin, which already carries a: its slot holds an unused stand-in
+PARAMS_BESIDE_KIN = vector("params", tuple(sp.Symbol("a_param") if sym == s.a else sym
+                                           for sym in ir.KINEMATIC_SYMBOLS))
+CRANK = vector("crank", ir.CRANK_SYMBOLS)
+SEND = vector("send", ir.END_COORDINATES)
 ELEMENT_INPUTS = (Q, QD, QDD, GEO, COEF, KIN)
+OUTPUT_INPUT = {name: (vector(name, syms) if len(syms) > 1 else scalar(syms[0]))
+                for name, syms in ir.OUTPUT_INPUTS}
+OUTPUT_INPUT["params"] = PARAMS_BESIDE_KIN
 
 
 def _residual_outputs(r, printed_stiffness="exact"):
@@ -77,140 +87,92 @@ def _residual_outputs(r, printed_stiffness="exact"):
     return tuple(outs)
 
 
-def element_kernel_name(family, variant):
-    return f"{family.name}_{variant.name}"
-
-
 @lru_cache(maxsize=None)
 def element_kernels():
     kernels = []
-    for family in model.FAMILIES:
+    for family in ir.representation().families:
         for variant in family.variants:
-            term = variant.build()
-            kernels.append(Kernel(
-                element_kernel_name(family, variant),
-                f"{family.doc}: {variant.doc}.",
-                ELEMENT_INPUTS, _residual_outputs(sp.Matrix(term.residual), term.printed_stiffness)))
+            kernels.append(Kernel(variant.kernel, f"{family.doc}: {variant.doc}.", ELEMENT_INPUTS,
+                                  _residual_outputs(variant.residual, variant.printed_stiffness)))
     return tuple(kernels)
 
 
 def energy_kernels():
-    element = (Q, QD, GEO, COEF, KIN)
-    kernels = [
-        Kernel("rod_kinetic_energy", "Element kinetic energy T_i of the rod, eqs. (4)-(5).", element,
-               (Output("T", sp.Matrix([en.rod_kinetic_energy()]), "kinetic energy"),)),
-        Kernel("slider_kinetic_energy", "Kinetic energy T_s of the slider, eqs. (6)-(7), on the last element.",
-               element, (Output("T", sp.Matrix([en.slider_kinetic_energy().subs(model._ON_LAST_ELEMENT)]),
-                                "kinetic energy"),)),
-        Kernel("rod_gravity_potential", "Element potential of gravity V_i.", element,
-               (Output("V", sp.Matrix([en.rod_gravity_potential()]), "potential energy"),)),
-        Kernel("slider_gravity_potential", "Potential of gravity on the slider, on the last element.",
-               element, (Output("V", sp.Matrix([en.slider_gravity_potential().subs(model._ON_LAST_ELEMENT)]),
-                                "potential energy"),)),
-    ]
-    for ap in en.APPROACHES:
-        for averaged in ((False, True) if ap != "C" else (False,)):
-            suffix = "_averaged" if averaged else ""
-            U = (en.strain_energy_averaged if averaged else en.strain_energy)(ap)
-            D = (en.kelvin_voigt_dissipation_averaged if averaged else en.kelvin_voigt_dissipation)(ap)
-            kernels.append(Kernel(f"strain_energy_{ap}{suffix}",
-                                  f"Element strain energy U_i of approach {ap}{', element-mean membrane strain' if averaged else ''}.",
-                                  element, (Output("U", sp.Matrix([U]), "strain energy"),)))
-            kernels.append(Kernel(f"dissipation_{ap}{suffix}",
-                                  f"Kelvin-Voigt Rayleigh dissipation function D of approach {ap}"
-                                  f"{', element-mean membrane strain rate' if averaged else ''}.",
-                                  element, (Output("D", sp.Matrix([D]), "dissipation function"),)))
-    return tuple(kernels)
+    inputs = (Q, QD, GEO, COEF, KIN)
+    name_of = {"rod_kinetic_energy": "T", "slider_kinetic_energy": "T"}
+    out = []
+    for e in ir.representation().energies:
+        label = name_of.get(e.name) or ("V" if "potential" in e.name else "U" if "strain" in e.name else "D")
+        out.append(Kernel(e.name, e.doc, inputs, (Output(label, sp.Matrix([e.expr]), e.doc),)))
+    return tuple(out)
 
 
-def field_kernel_name(output, options):
-    """Name of the field kernel of an output for the option values (equal expressions share one)."""
-    if output.name == "bending_moment":
-        return "field_bending_moment"
-    if options["approach"] == "C":
-        key = "linear"
-    else:
-        key = "averaged" if options["membrane"] == "averaged" else "pointwise"
-    return f"field_{output.name}_{key}"
-
-
-FIELD_OPTION_CASES = ({"approach": "A", "membrane": "pointwise"}, {"approach": "A", "membrane": "averaged"},
-                      {"approach": "C", "membrane": "pointwise"})
-
-
-def field_kernels():
+def output_kernels():
     kernels = {}
-    for out in model.OUTPUTS:
-        if out.kind != "field":
-            continue
-        extra = tuple(scalar(model.fiber) for a in out.arguments if a == "fiber")
-        for options in FIELD_OPTION_CASES:
-            name = field_kernel_name(out, options)
-            if name in kernels:
-                continue
-            expr = sp.expand(out.build(options))
-            kernels[name] = Kernel(name, f"{out.doc} (at zeta = x / l of the element).",
-                                   (Q, scalar(s.zeta), GEO, COEF) + extra,
-                                   (Output("value", sp.Matrix([expr]), out.name),))
+    for o in ir.representation().outputs:
+        inputs = tuple(OUTPUT_INPUT[name] for name in o.inputs)
+        for v in o.variants:
+            if v.kernel not in kernels:
+                where = " (at zeta = x / l of the element)" if o.kind == "field" else ""
+                kernels[v.kernel] = Kernel(v.kernel, f"{o.doc}{where}.", inputs,
+                                           (Output("value", sp.Matrix([v.expr]), o.name),))
     return tuple(kernels.values())
 
 
-def guide_kernels():
-    theta, thetad, phi, phid, phidd, x_slider = guide.kinematics()
-    inputs = (scalar(guide.t), scalar(guide.omega), scalar(s.a), scalar(s.e))
-    return (
-        Kernel("crank_kinematics", "Rigid kinematics kin = (a, theta, thetad, phi, phid, phidd) at time t "
-               "(constant crank speed omega, guide Y = e; derive/guide.py).", inputs,
-               (Output("kin", sp.Matrix([s.a, theta, thetad, phi, phid, phidd]), "kinematics"),)),
-        Kernel("slider_rigid_position", "X / L of the slider of the rigid mechanism at time t.", inputs,
-               (Output("X", sp.Matrix([x_slider]), "slider abscissa"),)),
-    )
+def kinematics_kernels():
+    rep = ir.representation()
+    t = scalar(s.t)
+    out = []
+    for m in rep.motions:
+        out.append(Kernel(f"motion_{m.name}", f"Crank angle, speed and acceleration at time t: {m.doc}.",
+                          (t, PARAMS), (Output("crank", m.crank, "(theta, thetad, thetadd)"),)))
+        period = m.period if m.period is not None else sp.Integer(0)
+        out.append(Kernel(f"period_{m.name}", "Time of one crank revolution (0: not periodic).", (PARAMS,),
+                          (Output("T", sp.Matrix([period]), "period"),)))
+        out.append(Kernel(f"step_period_{m.name}", "The time steps_per_rev steps divide.", (PARAMS,),
+                          (Output("T", sp.Matrix([m.step_period]), "step period"),)))
+    for g in rep.guides:
+        out.append(Kernel(f"guide_{g.name}", f"Rigid kinematics kin of the {g.name} guide: {g.doc}.",
+                          (CRANK, PARAMS), (Output("kin", g.kinematics, "kinematics vector"),)))
+        out.append(Kernel(f"end_map_{g.name}", f"End map of the {g.name} guide: (u, v) of the rod's end "
+                          "and its rates and derivatives in (s, sd, sdd) (rows guides.END_MAP_ROWS).",
+                          (SEND, KIN, PARAMS_BESIDE_KIN), (Output("E", g.end_map, "end map"),)))
+        out.append(Kernel(f"rigid_end_{g.name}", f"(X, Y) of the rigid end point on the {g.name} guide.",
+                          (KIN, PARAMS_BESIDE_KIN), (Output("X", g.rigid_end, "rigid end point"),)))
+        out.append(Kernel(f"margins_{g.name}", "Full-turn margins (each > 0 iff the crank turns a full "
+                          "revolution): " + "; ".join(g.margin_texts) + ".", (PARAMS,),
+                          (Output("m", g.margins, "margins"),)))
+        out.append(Kernel(f"end_scale_{g.name}", "Natural size of the end map's reduced co-ordinate.",
+                          (scalar(s.eps), PARAMS), (Output("scale", sp.Matrix([g.end_scale]), "scale"),)))
+    return tuple(out)
 
 
 def shape_kernels():
+    shapes = ir.SHAPES
     return (
         Kernel("shape_functions", "Shape functions N_u, N_v, N_psi of Appendix A at zeta = x / l.",
                (scalar(s.zeta), scalar(s.l)),
-               (Output("N_u", N_U, "eq. (11)"), Output("N_v", N_V, "eq. (12)"),
-                Output("N_psi", N_PSI, "eq. (13)"))),
+               (Output("N_u", shapes["N_u"], "eq. (11)"), Output("N_v", shapes["N_v"], "eq. (12)"),
+                Output("N_psi", shapes["N_psi"], "eq. (13)"))),
         Kernel("slope_gram", "int_0^l {B_v}{B_v}^T dx, so that int v_x^2 dx = q^T G q (eq. 40).",
-               (scalar(s.l),),
-               (Output("G", (B_V * B_V.T).applyfunc(integrate_element), "slope Gram matrix"),)),
+               (scalar(s.l),), (Output("G", shapes["slope_gram"], "slope Gram matrix"),)),
     )
 
 
 def group_kernels():
-    """The consistent model's element forces (approach A: lagrange inertia, elastic force and
-    Kelvin-Voigt damping, pointwise and averaged membrane) split by kind (derive/groups.py), in the
-    element convention; the slider's inertia groups act on the last element."""
-    sources = [
-        ("rod_inertia", kinetic_residual(en.rod_kinetic_energy(), s.q, s.qd, s.qdd), False),
-        ("slider_inertia", kinetic_residual(en.slider_kinetic_energy(), s.qs, s.qsd, s.qsdd), True),
-        ("rod_elastic_A", gradient(en.strain_energy("A"), s.q), False),
-        ("rod_elastic_A_averaged", gradient(en.strain_energy_averaged("A"), s.q), False),
-        ("kelvin_voigt_A", gradient(en.kelvin_voigt_dissipation("A"), s.qd), False),
-        ("kelvin_voigt_A_averaged", gradient(en.kelvin_voigt_dissipation_averaged("A"), s.qd), False),
-    ]
-    kernels = []
-    for name, residual, slider in sources:
-        variables, rows = (SLIDER_VARS, SLIDER_AXIAL_ROWS) if slider else (ELEMENT_VARS, ROD_AXIAL_ROWS)
-        for group, part in group_vector(sp.Matrix(residual), variables, rows).items():
-            r = model.on_last_element(part) if slider else sp.Matrix(part)
-            kernels.append(Kernel(
-                f"{name}__{group}", f"The '{group}' part of {name} (consistent model, approach A).",
-                ELEMENT_INPUTS, _residual_outputs(r)))
-    return tuple(kernels)
+    return tuple(Kernel(g.name, f"The '{g.group}' part of {g.source} (consistent model, approach A).",
+                        ELEMENT_INPUTS, _residual_outputs(g.residual)) for g in ir.audit_groups())
 
 
 MODULES = {
     "shape": ("Shape functions of Appendix A.", shape_kernels),
-    "guide": ("Rigid kinematics of the crank, the rod's chord and the slider on its guide.", guide_kernels),
+    "kinematics": ("Rigid kinematics: the crank motions, the guides' closures and end maps.", kinematics_kernels),
     "elements": ("Element kernels of every term family variant declared in derive/model.py.", element_kernels),
     "energy": ("Element energies T_i, T_s, U_i, V_i and the Kelvin-Voigt dissipation function.", energy_kernels),
-    "fields": ("Section quantities along the rod (the field outputs of derive/model.py).", field_kernels),
+    "fields": ("The declared outputs: step quantities and fields along the rod.", output_kernels),
     "groups": ("Element forces of the consistent model split by kind (symbolic audit).", group_kernels),
 }
 # modules whose element kernels also get the accumulating one-element variants (emit.py)
 ACCUMULATING = ("elements",)
 # modules whose kernels also get a one-element `_into` variant (compiled by the engine)
-SCALAR = ("guide", "shape")
+SCALAR = ("kinematics", "shape")

@@ -1,24 +1,31 @@
 """The model's ingredients, declared once as data: what crankgen can combine, and how each is built.
 
-This is the one place to read every ingredient of the flexible slider-crank model:
+This is the one place to read every ingredient of the flexible mechanism model:
 
-- OPTIONS: the model options a case chooses (formulation, approach, membrane, damping,
-  rotary_inertia), with their choices and defaults.
-- PARAMETERS: the mechanism's physical parameters (a, eps, ms, mu, gravity, offset) and
-  COEFFICIENTS: the values every element kernel receives, each a formula in the parameters and
+- OPTIONS and PRESETS: the model options a case chooses (formulation, approach, membrane,
+  damping, rotary_inertia) with their choices, and the named models `consistent` (the default)
+  and `paper`, each a set of option values.
+- PARAMETERS: every parameter of a case, typed (kind, default, range, units, help, command-line
+  flag): the mechanism (a, eps, ms, mu, gravity), its guide (line or circle, with offset, c, d,
+  branch), the crank's motion (constant, runup, fluctuation, with omega, omega0, ramp,
+  fluctuation, order) and the run's discretization (n_elements, steps_per_rev, integrator).
+- COEFFICIENTS: the values every element kernel receives, each a formula in the parameters and
   options (rotary_inertia=False is rho*I = 0; a switched-off term group has weight 0).
 - FAMILIES: the term families of the equations of motion, each a set of mutually exclusive
   variants selected by option values (`when`); a variant builds its element residual from the
   energies (derive/energies.py) or the printed form (derive/printed.py).  `part` says where it
-  acts: "rod" on every element, "end" on the last element (the slider, rows 3-4: u, v of the last
-  node).  The residual convention is  r = d/dt dT/dqd - dT/dq + dU/dq + dV/dq + dD/dqd.
-- GUIDE: the end constraint, a straight guide Y = e; derive/guide.py derives the kinematics.
-- OUTPUTS: the quantities a result can give, per step or as fields of x*.
+  acts: "rod" on every element, "end" on the rod's end node (the end mass: the slider, the
+  rocker's tip; rows 3-4 of the last element).  The residual convention is
+  r = d/dt dT/dqd - dT/dq + dU/dq + dV/dq + dD/dqd.
+- GUIDES and MOTIONS: the curve the rod's end travels on and the crank's prescribed motion
+  (derive/guides.py, derive/motions.py: closures, end maps and rates derived there).
+- OUTPUTS: the quantities a result can give, per step or as fields of x*, with their units.
 
-From this declaration derive/kernels.py makes the kernel specifications (one calling convention
-per kernel kind), derive/dispatch.py the generated dispatch table, and the runtime reads that table:
-it never names a kernel or a family.  To add an ingredient, declare it here (a Family variant, an
-Option, a Parameter/Coefficient or an Output) with its builder, then `make derive`.
+derive/representation.py turns this declaration into typed immutable records (the model
+representation); derive/kernels.py, emit.py and schema.py read only those records, and the
+runtime reads the generated schema: it never names a kernel, a family, a parameter or a guide.  To
+add an ingredient, declare it here (a Family variant, an Option, a Parameter and the derivation
+that uses it, a Guide, a Motion or an Output), then `make derive`.
 """
 
 from dataclasses import dataclass, field
@@ -27,6 +34,7 @@ from typing import Callable
 import sympy as sp
 
 from . import energies as en
+from . import guides, motions
 from . import printed
 from . import symbols as s
 from .euler_lagrange import gradient, kinetic_residual
@@ -34,55 +42,153 @@ from .groups import ELEMENT_VARS, ROD_AXIAL_ROWS, SLIDER_AXIAL_ROWS, SLIDER_VARS
 
 
 # ----------------------------------------------------------------------------------------------
-# Options, parameters, coefficients
+# Options and presets
 # ----------------------------------------------------------------------------------------------
 
 @dataclass(frozen=True)
 class Option:
     name: str
     choices: tuple
-    default: object
+    default: object              # None: the default preset's value (DEFAULT_PRESET)
     doc: str
+    cli: str = None              # command-line flag (default: --<name>); its values: the choices' text
 
 
 OPTIONS = (
-    Option("formulation", ("lagrange", "paper"), "lagrange",
+    Option("formulation", ("lagrange", "paper"), None,
            "lagrange: the exact Euler-Lagrange equations of T_c + T_s - U_c; paper: the printed "
            "matrix form, eqs. (17)-(29) and Appendix B with its transcription problems corrected"),
     Option("approach", ("A", "B", "C"), "A",
            "strain energy: A full non-linear (eq. 2), B without the quartic v_x^4 term, C linear strain"),
-    Option("membrane", ("pointwise", "averaged"), "pointwise",
+    Option("membrane", ("pointwise", "averaged"), None,
            "membrane strain of approaches A and B: pointwise (eq. 1) or its element mean "
            "(u_x + <v_x^2>/2, no membrane locking); no effect on approach C or on printed matrices"),
-    Option("damping", ("paper", "kelvin-voigt"), "paper",
+    Option("damping", ("paper", "kelvin-voigt"), None,
            "paper: C = mu (K_lin + K_non), eq. (24) as printed; kelvin-voigt: strain-rate damping "
            "from the Rayleigh function of the approach's strain"),
     Option("rotary_inertia", (True, False), True,
-           "keep the rho*I (section rotation) terms of the kinetic energy, eq. (5)"),
+           "keep the rho*I (section rotation) terms of the kinetic energy, eq. (5)", "rotary-inertia"),
 )
 
 
 @dataclass(frozen=True)
-class Parameter:
+class Preset:
+    """A named set of option values: a model.  Options a preset does not set keep their default;
+    an option given explicitly overrides the preset's value."""
+
     name: str
+    options: dict
     doc: str
+
+
+PRESETS = (
+    Preset("consistent", {"formulation": "lagrange", "damping": "kelvin-voigt", "membrane": "averaged"},
+           "the exact Lagrange equations, strain-rate (Kelvin-Voigt) damping, averaged membrane strain "
+           "(free of membrane locking)"),
+    Preset("paper", {"formulation": "paper", "damping": "paper", "membrane": "pointwise"},
+           "the printed matrix form (eqs. 17-29, Appendix B, transcription problems corrected), the "
+           "printed damping of eq. (24), the element as derived from eq. (2)"),
+)
+DEFAULT_PRESET = "consistent"
+
+# ----------------------------------------------------------------------------------------------
+# Parameters of a case: the mechanism, its guide, the crank's motion, the run's discretization
+# ----------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One parameter of a case.  kind: "real" (a finite number in the range low..high, open ends
+    where low_open / high_open), "pair" (two finite numbers), "sign" (+1 or -1), "count" (an integer
+    >= low), "choice" (one of `choices`).  owner: "mechanism" (a Mechanism field), "guide:<name>",
+    "motion:<name>" (read by those guides or motions only; at its default otherwise), "run" (a
+    setting of the run).  units: the unit of the value (crankgen's units: L, rho A L, 1/omega_b).
+    continuable: a continuation may vary it."""
+
+    name: str
+    kind: str
     default: object
-    low: float = None            # allowed range (open ends) of each component
+    label: str                   # how messages name it
+    doc: str
+    owner: str = "mechanism"
+    low: float = None
     high: float = None
+    low_open: bool = False
+    high_open: bool = False
+    units: str = "1"
+    cli: str = None              # command-line flag (default: --<name>)
+    metavar: str = None
+    choices: tuple = ()
+    continuable: bool = False
+    symbol: sp.Symbol = None     # its symbol in the derivation (kinematic parameters)
 
 
 PARAMETERS = (
-    Parameter("a", "crank length over rod length a* = a/L", 0.1, 0.0, 1.0),
-    Parameter("eps", "slenderness eps = r/L (r: radius of gyration)", 0.01, 0.0, None),
-    Parameter("ms", "slider mass ms* = m_s/(rho A L)", 0.5, None, None),
-    Parameter("mu", "damping mu* = omega_b mu", 0.5, None, None),
-    Parameter("gravity", "gravity (gX, gY) in the inertial frame, units of L omega_b^2", (0.0, 0.0)),
-    Parameter("offset", "guide offset e: the slider moves on the line Y = e (units of L)", 0.0),
+    Parameter("a", "real", 0.1, "a (crank length a* = a/L)", "crank length over rod length a* = a/L",
+              low=0.0, high=1.0, low_open=True, high_open=True, units="L", continuable=True, symbol=s.a),
+    Parameter("eps", "real", 0.01, "eps (slenderness r/L)",
+              "slenderness eps = r/L, r the radius of gyration of the rod's section",
+              low=0.0, low_open=True, continuable=True),
+    Parameter("ms", "real", 0.5, "ms (end mass ms* = m_s/(rho A L))",
+              "mass at the rod's end (the slider; the rocker's tip) ms* = m_s/(rho A L)",
+              low=0.0, continuable=True),
+    Parameter("mu", "real", 0.5, "mu (damping mu* = omega_b mu)", "damping mu* = omega_b mu",
+              low=0.0, continuable=True),
+    Parameter("gravity", "pair", (0.0, 0.0), "gravity",
+              "gravity (gX, gY) in the inertial frame (X along the guide, the crank pin at "
+              "a* (cos theta, sin theta)), units of L omega_b^2", units="L omega_b^2", metavar="GX,GY"),
+    Parameter("guide", "choice", "line", "guide",
+              "the curve the rod's end travels on: line (a slider on the line Y = offset) or circle "
+              "(the tip of a rigid massless rocker of length c pivoted at (d, offset): a four-bar "
+              "linkage with a flexible coupler)", choices=("line", "circle")),
+    Parameter("offset", "real", 0.0, "offset (guide offset e/L)",
+              "guide offset e/L: the line Y = e, or the ordinate of the rocker's pivot",
+              owner="guide:line,circle", units="L", continuable=True, symbol=s.e),
+    Parameter("c", "real", 0.8, "c (rocker length c/L)", "rocker length c/L",
+              owner="guide:circle", low=0.0, low_open=True, units="L", cli="rocker", continuable=True,
+              symbol=s.c),
+    Parameter("d", "real", 1.0, "d (ground pivot abscissa d/L)",
+              "abscissa d/L of the rocker's ground pivot D = (d, offset)",
+              owner="guide:circle", units="L", cli="ground", continuable=True, symbol=s.d),
+    Parameter("branch", "sign", 1, "branch",
+              "closure of the four-bar: +1 puts the rocker's tip on the counter-clockwise side of the "
+              "line from the crank pin to the ground pivot, -1 on the other",
+              owner="guide:circle", symbol=s.branch),
+    Parameter("motion", "choice", "constant", "motion",
+              "the crank's prescribed motion: constant speed, a run-up from omega0 to omega over "
+              "`ramp` revolutions, or a cyclic fluctuation omega (1 + k sin(j theta))", owner="run",
+              cli="crank", choices=("constant", "runup", "fluctuation")),
+    Parameter("omega", "real", 0.8, "omega (crank speed Omega*)",
+              "crank speed Omega* = Omega/omega_b (constant speed; a run-up's final speed; a "
+              "fluctuating crank's nominal speed; 0: a crank at rest)", owner="run", low=0.0,
+              units="omega_b", continuable=True, symbol=s.omega),
+    Parameter("omega0", "real", 0.2, "omega0 (run-up start speed)", "a run-up's start speed Omega0*",
+              owner="motion:runup", low=0.0, low_open=True, units="omega_b", symbol=s.omega0),
+    Parameter("ramp", "real", 20.0, "ramp (run-up revolutions)",
+              "crank revolutions over which a run-up's speed rises", owner="motion:runup", low=0.0,
+              low_open=True, symbol=s.ramp),
+    Parameter("fluctuation", "real", 0.1, "fluctuation (speed fluctuation k)",
+              "relative amplitude k of a cyclic speed fluctuation, |k| < 1", owner="motion:fluctuation",
+              low=-1.0, high=1.0, low_open=True, high_open=True, continuable=True, symbol=s.k_fl),
+    Parameter("order", "count", 1, "order (speed fluctuation order j)",
+              "order j of a cyclic speed fluctuation (j per revolution), a positive integer",
+              owner="motion:fluctuation", low=1, symbol=s.j_fl),
+    Parameter("n_elements", "count", 16, "n_elements", "number of rod elements", owner="run", low=1,
+              cli="elements"),
+    Parameter("steps_per_rev", "count", 100, "steps_per_rev", "Newmark steps per crank revolution",
+              owner="run", low=4),
+    Parameter("integrator", "choice", "newton", "integrator",
+              "newton: Newton iterations on the exact tangent, its factorization reused while they "
+              "converge fast; full-newton: the tangent refreshed at every iteration; one-pass: the "
+              "paper's eqs. (34)-(39)", owner="run", choices=("newton", "full-newton", "one-pass")),
 )
+
+# The kinematic parameters: the vector the kinematics and end map kernels receive, in this order.
+KINEMATIC_PARAMETERS = tuple(p.name for p in PARAMETERS if p.symbol is not None)
 
 # indicator of an option value, usable in coefficient formulas
 with_rotary_inertia = sp.Symbol("with_rotary_inertia")
-eps = sp.Symbol("eps", positive=True)
+eps = s.eps
 switched_off = {g: sp.Symbol(f"off_{g}") for g in s.SWITCHABLE_GROUPS}
 
 # crankgen's units: length L, mass rho A L, time 1/omega_b with omega_b = (pi/L)^2 sqrt(EI/(rho A)),
@@ -296,21 +402,37 @@ PRINTED_ITERATION = {"formulation": "paper"}
 # The end constraint (guide) and the outputs
 # ----------------------------------------------------------------------------------------------
 
-GUIDE = ("straight guide Y = e: the slider end of the rod is (u, v)_{n+1} = s (cos phi, sin phi), s the "
-         "slider's displacement along the guide (eq. 26 holds identically); the crank pin removes "
-         "u_1 = v_1 = 0.  Kinematics: derive/guide.py.")
+# The curves the rod's end may travel on (derive/guides.py) and the crank's prescribed motions
+# (derive/motions.py).
+GUIDES = guides.GUIDES
+MOTIONS = motions.MOTIONS
 
 
 @dataclass(frozen=True)
 class Output:
+    """A quantity a result can give.  kind: "engine" (computed by the engine at every step: v_mid,
+    u_end, extension), "step" (one value per stored step, from `build(options)`, an expression in the
+    inputs it names) or "field" (per stored step at any x* in [0, 1]).  Inputs a build may use:
+    q (the nodal vector of the element holding x*), zeta (x / l in it), geo, coef, kin, params (the
+    kinematic parameters), q_end ((u, v) of the rod's end node in the moving frame), s (the end
+    map's reduced co-ordinate), pin ((F_i, F_j): the force the crank pin applies to the rod, in the
+    moving frame), end ((F_i, F_j): the force the guide applies to the rod's end, with the end mass
+    included), fiber.  units: the unit of the value (SI views multiply by it)."""
+
     name: str
-    kind: str                    # "step": one value per stored step; "field": per step at any x* in [0, 1]
+    kind: str
     doc: str
-    build: Callable = None       # field: (options) -> expression in q, zeta, l, coefficients [, fiber]
+    units: str
+    build: Callable = None
     arguments: tuple = ()        # extra arguments of a field, e.g. ("fiber",)
+    guides: tuple = None         # the guides it exists for (None: every guide)
 
 
 fiber = sp.Symbol("fiber", real=True)
+q_end = sp.Matrix(sp.symbols("qe0:2", real=True))
+pin = sp.Matrix(sp.symbols("pin0:2", real=True))
+end_force = sp.Matrix(sp.symbols("end0:2", real=True))
+s_end = sp.Symbol("s", real=True)
 
 
 def membrane_strain(options, q=s.q):
@@ -328,19 +450,72 @@ def _curvature(q=s.q):
     return en.fields(q, q)["v_xx"]
 
 
-# N* = N L^2/EI = EA e / EI = e / eps^2 = e EA/EI;  M* = M L / EI = v_xx (L = 1).
+def _inertial(vector):
+    """Inertial (X, Y) of a vector given by its moving-frame components (e_i, e_j)."""
+    return sp.Matrix([vector[0] * sp.cos(s.phi) + vector[1] * sp.sin(s.phi),
+                      -vector[0] * sp.sin(s.phi) + vector[1] * sp.cos(s.phi)])
+
+
+def end_position():
+    """Inertial position of the rod's end B = A + (L + u) e_i + v e_j (L = 1)."""
+    return sp.Matrix([s.a * sp.cos(s.theta), s.a * sp.sin(s.theta)]) + _inertial(
+        sp.Matrix([1 + q_end[0], q_end[1]]))
+
+
+def chord_deflection():
+    """Signed distance of the rod's point at x (element zeta) from its chord, the line from the pin to
+    the end node, positive on the counter-clockwise side (towards e_j for a straight rod)."""
+    f = en.fields(s.q, s.q)
+    x = s.x0 + s.l * s.zeta
+    length = sp.sqrt((1 + q_end[0]) ** 2 + q_end[1] ** 2)
+    return ((1 + q_end[0]) * f["v"] - q_end[1] * (x + f["u"])) / length
+
+
+# N* = N L^2/EI = EA e / EI = e / eps^2 = e EA/EI;  M* = M L / EI = v_xx (L = 1).  Forces in rho A L^2
+# omega_b^2 and torques in rho A L^3 omega_b^2 are crankgen's units (rho A = L = omega_b = 1).
+FORCE, TORQUE = "rhoA L^2 omega_b^2", "rhoA L^3 omega_b^2"
 OUTPUTS = (
-    Output("v_mid", "step", "v* = v/r at x* = 1/2 (shape-function interpolation)"),
-    Output("u_end", "step", "u*(1) = L u(L) / r^2"),
-    Output("extension", "step", "delta* = u(L)/L + (1/2) int (dv/dx)^2 dx / L, eq. (40)"),
-    Output("slider_position", "step", "X/L of the slider: rigid a cos theta + cos phi plus s"),
-    Output("axial_force", "field", "N* = N L^2 / EI, N = EA times the approach's membrane strain",
+    Output("v_mid", "engine", "v* = v/r at x* = 1/2 (shape-function interpolation)", "r"),
+    Output("u_end", "engine", "u*(1) = L u(L) / r^2", "r^2/L"),
+    Output("extension", "engine", "delta* = u(L)/L + (1/2) int (dv/dx)^2 dx / L, eq. (40)", "1"),
+    Output("crank_speed", "step", "crank speed theta' (units of omega_b)", "omega_b", lambda o: s.thetad),
+    Output("slider_position", "step", "X/L of the rod's end (the slider; the rocker's tip)", "L",
+           lambda o: end_position()[0]),
+    Output("end_height", "step", "Y/L of the rod's end", "L", lambda o: end_position()[1]),
+    Output("rocker_angle", "step", "the rocker's angle (rad, counter-clockwise from the X axis)", "rad",
+           lambda o: s.beta + s_end, guides=("circle",)),
+    Output("transmission_angle", "step",
+           "the four-bar's transmission angle: the angle at the rocker's tip between the coupler's "
+           "chord and the rocker, in [0, pi] (pi/2 transmits the crank's force best)", "rad",
+           lambda o: sp.acos(sp.cos(sp.atan2(q_end[1], 1 + q_end[0]) - s.phi - s.beta - s_end)),
+           guides=("circle",)),
+    Output("chord_angle", "step",
+           "inertial angle of the rod's chord, the line from the crank pin to the rod's end (rad, "
+           "counter-clockwise from the X axis)", "rad", lambda o: sp.atan2(q_end[1], 1 + q_end[0]) - s.phi),
+    Output("torque", "step",
+           "driving torque the crank needs to hold its prescribed motion (counter-clockwise), "
+           "a (e_r x F_pin), units of rho A L^3 omega_b^2", TORQUE,
+           lambda o: s.a * (sp.cos(s.theta) * _inertial(pin)[1] - sp.sin(s.theta) * _inertial(pin)[0])),
+    Output("pin_force_x", "step", "X component of the force the crank pin applies to the rod", FORCE,
+           lambda o: _inertial(pin)[0]),
+    Output("pin_force_y", "step", "Y component of the force the crank pin applies to the rod", FORCE,
+           lambda o: _inertial(pin)[1]),
+    Output("end_force_x", "step",
+           "X component of the end reaction: the force the guide (the slider's guide normal force; the "
+           "rocker) applies at the rod's end, the end mass's inertia included", FORCE,
+           lambda o: _inertial(end_force)[0]),
+    Output("end_force_y", "step", "Y component of the end reaction (see end_force_x)", FORCE,
+           lambda o: _inertial(end_force)[1]),
+    Output("axial_force", "field", "N* = N L^2 / EI, N = EA times the approach's membrane strain", "EI/L^2",
            lambda o: membrane_strain(o) * s.EA / s.EI),
-    Output("bending_moment", "field", "M* = M L / EI = v_xx (M = EI v_xx)",
+    Output("bending_moment", "field", "M* = M L / EI = v_xx (M = EI v_xx)", "EI/L",
            lambda o: _curvature()),
     Output("surface_strain", "field",
            "axial strain of the fibre at distance fiber*r from the neutral axis (towards e_j), "
-           "e_m - fiber r v_xx (eq. 1 with y = fiber r)",
+           "e_m - fiber r v_xx (eq. 1 with y = fiber r)", "1",
            lambda o: membrane_strain(o) - fiber * sp.sqrt(s.EI / s.EA) * _curvature(),
            ("fiber",)),
+    Output("chord_deflection", "field",
+           "signed distance of the rod's point at x* from its chord (the line from the crank pin to "
+           "the rod's end), positive counter-clockwise", "L", lambda o: chord_deflection()),
 )

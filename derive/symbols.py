@@ -22,10 +22,14 @@ mu = sp.Symbol("mu", nonnegative=True)
 ms = sp.Symbol("ms", nonnegative=True)
 L = sp.Symbol("L", positive=True)
 
-# Rigid-body kinematics: crank length a, crank angle theta and rate thetad (constant speed, so
-# thetadd = 0 is built in), rod angle phi with its first and second time derivatives.
+# Rigid-body kinematics: crank length a, crank angle theta with its rate and angular acceleration
+# (prescribed: derive/motions.py), rod (chord) angle phi with its first and second time
+# derivatives, and the guide co-ordinate beta of the rigid end point (derive/guides.py: the
+# slider's abscissa on a straight guide, the rocker angle on a circle) with its rates.
 a = sp.Symbol("a", positive=True)
 theta, thetad, phi, phid, phidd = sp.symbols("theta thetad phi phid phidd", real=True)
+thetadd = sp.Symbol("thetadd", real=True)
+beta, betad, betadd = sp.symbols("beta betad betadd", real=True)
 
 # Element nodal vector {q}_i = {u_i, v_i, psi_i, u_i+1, v_i+1, psi_i+1} (eq. 14) and its rates.
 q = sp.Matrix(sp.symbols("q0:6", real=True))
@@ -37,16 +41,33 @@ qs = sp.Matrix(sp.symbols("qs0:2", real=True))
 qsd = sp.Matrix(sp.symbols("qsd0:2", real=True))
 qsdd = sp.Matrix(sp.symbols("qsdd0:2", real=True))
 
-KINEMATICS = (a, theta, thetad, phi, phid, phidd)
+# The kinematics vector every kernel receives (one layout for every guide and crank motion; the
+# first six entries keep the order of the constant-speed slider-crank).
+KINEMATICS = (a, theta, thetad, phi, phid, phidd, thetadd, beta, betad, betadd)
 
-# Time derivatives of the time-dependent symbols (constant crank speed: thetadd = 0).
-# phidd has no entry: no quantity differentiated in time by the derivation depends on it.
-TIME_DERIVATIVE = {theta: thetad, thetad: sp.Integer(0), phi: phid, phid: phidd}
+# Time derivatives of the time-dependent symbols.  phidd, thetadd and betadd have no entry: no
+# quantity differentiated in time by the derivation depends on them.
+TIME_DERIVATIVE = {theta: thetad, thetad: thetadd, phi: phid, phid: phidd, beta: betad, betad: betadd}
 
 # Gravity in the inertial frame (X along the guide towards the slider, Y perpendicular), in units of
-# L omega_b^2, and the guide's offset e: the slider moves on the line Y = e (units of L).
+# L omega_b^2, and the guides' geometry (units of L): the offset e (the line Y = e; the ordinate of
+# a circle's centre), a circle's radius c (the rocker of a four-bar), the abscissa d of its centre
+# (the rocker's ground pivot) and its branch (+1 or -1: which of the two closures).
 gX, gY = sp.symbols("gX gY", real=True)
 e = sp.Symbol("e", real=True)
+c, d = sp.symbols("c d", real=True)
+branch = sp.Symbol("branch", real=True)
+
+# Time and the crank motion's parameters (derive/motions.py): the crank speed Omega* (the constant
+# speed; the final speed of a run-up; the nominal speed of a fluctuating crank), the start speed
+# omega0 and the revolutions of a run-up, the relative amplitude k and order j of a fluctuation.
+t = sp.Symbol("t", real=True)
+omega, omega0 = sp.symbols("omega omega0", positive=True)
+ramp = sp.Symbol("ramp", positive=True)
+# slenderness eps = r / L (r the radius of gyration): coefficients and natural sizes are formulas in it
+eps = sp.Symbol("eps", positive=True)
+k_fl = sp.Symbol("k", real=True)
+j_fl = sp.Symbol("j", positive=True, integer=True)
 
 # Term weights: each switchable group of terms (derive/groups.py) enters the kernels multiplied by
 # its weight, 1 in every model; the audit switches a group off by setting its weight to 0.
@@ -56,4 +77,3 @@ WEIGHT = {g: sp.Symbol(f"w_{g}", real=True) for g in SWITCHABLE_GROUPS}
 # The three vector arguments every element kernel takes besides q, qd, qdd (one calling convention):
 GEOMETRY = (l, x0)                                   # element length and first-node abscissa
 COEFFICIENTS = (rhoA, rhoI, EA, EI, mu, ms, gX, gY) + tuple(WEIGHT.values())
-KINEMATICS_ALL = KINEMATICS                          # (a, theta, thetad, phi, phid, phidd)

@@ -1,8 +1,8 @@
 """The element kernels under their physical argument lists, for the kernel tests.
 
 Generated element kernels share one calling convention, (q, qd, qdd, geo, coef, kin) with
-geo = (l, x0), coef = the coefficient vector (crankgen.ingredients.COEFFICIENTS) and kin = (a,
-theta, thetad, phi, phid, phidd).  The tests compare them with independent quadrature and finite
+geo = (l, x0), coef = the coefficient vector (crankgen.ingredients.COEFFICIENTS) and kin = the
+kinematics vector of crankgen.schema.KINEMATICS (a, theta, thetad, phi, phid, phidd, thetadd, ...).  The tests compare them with independent quadrature and finite
 differences written with physical arguments (l, x0, rhoA, ..., a, theta, ...); these wrappers pack
 those arguments into the convention (and cut slider terms to the last node's (u, v)), nothing else.
 """
@@ -11,7 +11,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from crankgen import ingredients
+from crankgen import ingredients, schema
 from crankgen._generated import elements as E
 from crankgen._generated import energy as _energy
 
@@ -32,8 +32,10 @@ def vec(*parts):
     return np.stack([np.broadcast_to(a, shape) for a in arrays], axis=-1)
 
 
-def _kin(a=0.0, theta=0.0, thetad=0.0, phi=0.0, phid=0.0, phidd=0.0):
-    return vec(a, theta, thetad, phi, phid, phidd)
+def _kin(a=0.0, theta=0.0, thetad=0.0, phi=0.0, phid=0.0, phidd=0.0, thetadd=0.0):
+    """The kinematics vector in the schema's layout (guide co-ordinates beta, ... zero)."""
+    values = dict(a=a, theta=theta, thetad=thetad, phi=phi, phid=phid, phidd=phidd, thetadd=thetadd)
+    return vec(*(values.get(name, 0.0) for name in schema.KINEMATICS))
 
 
 def _zeros_like_q(q):
@@ -48,16 +50,16 @@ def _slider_q(qs):
 
 
 def _rod_inertia(kernel):
-    def f(q, qd, qdd, l, x0, rhoA, rhoI, a, theta, thetad, phi, phid, phidd):
+    def f(q, qd, qdd, l, x0, rhoA, rhoI, a, theta, thetad, phi, phid, phidd, thetadd=0.0):
         return kernel(q, qd, qdd, vec(l, x0), coef(rhoA=rhoA, rhoI=rhoI),
-                      _kin(a, theta, thetad, phi, phid, phidd))[:4]
+                      _kin(a, theta, thetad, phi, phid, phidd, thetadd))[:4]
     return f
 
 
 def _slider_inertia(kernel):
-    def f(qs, qsd, qsdd, ms, L, a, theta, thetad, phi, phid, phidd):
+    def f(qs, qsd, qsdd, ms, L, a, theta, thetad, phi, phid, phidd, thetadd=0.0):
         out = kernel(_slider_q(qs), _slider_q(qsd), _slider_q(qsdd), vec(L, 0.0), coef(ms=ms),
-                     _kin(a, theta, thetad, phi, phid, phidd))
+                     _kin(a, theta, thetad, phi, phid, phidd, thetadd))
         r, K, C, M = out[:4]
         return r[..., 3:5], K[..., 3:5, 3:5], C[..., 3:5, 3:5], M[..., 3:5, 3:5]
     return f

@@ -75,7 +75,8 @@ def exact_rod_inertia():
 def time_powers(expr):
     """Powers of lam in expr after the change of time unit t -> t / lam (rates scale by lam)."""
     lam = sp.Symbol("lam", positive=True)
-    scale = {s.thetad: lam * s.thetad, s.phid: lam * s.phid, s.phidd: lam**2 * s.phidd}
+    scale = {s.thetad: lam * s.thetad, s.phid: lam * s.phid, s.phidd: lam**2 * s.phidd,
+             s.thetadd: lam**2 * s.thetadd}
     scale.update({r: lam * r for r in tuple(s.qd) + tuple(s.qsd)})
     scale.update({r: lam**2 * r for r in tuple(s.qdd) + tuple(s.qsdd)})
     scaled = sp.expand(sp.sympify(expr).xreplace(scale))

@@ -251,7 +251,9 @@ def test_sweep_grid_and_resume_after_an_interruption(tmp_path, capsys, monkeypat
     assert _without_wall_time(read_csv(part / "sweep.csv")) == _without_wall_time(rows)
     calls.clear()
     assert run(SWEEP + ["--out", str(part)]) == 2                     # finished: kept
-    assert run(SWEEP + ["--out", str(part), "--force"]) == 0          # --force: everything afresh
+    assert run(SWEEP + ["--out", str(part), "--force"]) == 0          # --force: sweep.csv replaced,
+    assert calls == []                                                # the records reused
+    assert run(SWEEP + ["--out", str(part), "--force", "--fresh"]) == 0   # --fresh: recomputed
     assert len(calls) == 3
 
 

@@ -11,7 +11,7 @@ from crankgen import compile_cache
 
 
 def test_the_cache_folder_changes_with_the_kernels_and_the_engine_code(monkeypatch):
-    """`make derive` changes KERNELS_HASH in generated/dispatch.py; an edit of the engine changes
+    """`make derive` changes KERNELS_HASH in generated/schema.py; an edit of the engine changes
     its source: either gives another CODE_HASH, hence another cache folder and source stamp, so a
     regenerated kernel is never run from a stale compilation."""
     base = compile_cache._code_hash()
@@ -51,7 +51,7 @@ def test_an_unreadable_cache_file_is_removed_and_recompiled_once(tmp_path):
     shutil.copytree(compile_cache.CACHE, tmp_path / compile_cache.CACHE.name)         # its copy
     warm = subprocess.run([sys.executable, "-c", RUN], env=env, capture_output=True, text=True)
     assert warm.returncode == 0, warm.stderr
-    files = sorted((tmp_path / f"numba-{compile_cache.CODE_HASH}").rglob("*_march_serial*.nb[ic]"))
+    files = sorted((tmp_path / f"numba-{compile_cache.CODE_HASH}").rglob("*_march_cases*.nb[ic]"))
     assert files, "the run left no cache files of the marching loop"
     for path in files:
         path.write_bytes(path.read_bytes()[: max(1, path.stat().st_size // 3)])

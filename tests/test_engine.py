@@ -109,42 +109,46 @@ def test_fixed_bandwidth_solver_matches_dense_solve_and_refuses_small_pivots():
 
 def test_iteration_matrix_factorizations_agree_on_a_real_step():
     """The iteration matrix of a 16-element case: fixed-bandwidth LU = pivoted band LU = dense."""
-    case = Case(omega=0.8, n_elements=16, damping="kelvin-voigt")
+    case = Case(omega=0.8, n_elements=16, damping="kelvin-voigt", membrane="pointwise")
     b = engine.Batch([case])
     n, N = 16, b.N
     rng = np.random.default_rng(5)
     d, v, a = (1e-4 * rng.standard_normal(N) for _ in range(3))
-    w = engine.make_work(n, N, b.kb)
-    engine.kinematics(b.runs[0], 1.3, w.kin)
-    fam, cf = b.families[0], b.coef[0]
-    engine.element_loop(engine.NEWMARK, fam, cf, False, b.dofs, b.l, d, v, a, w.kin, 0.04, 1.5e-3, w)
+    kb, dofs, l = b.meshdata.kb, b.meshdata.dofs, b.meshdata.l
+    w = engine.make_work(n, N, kb)
+    sel, cf, params = b.records.select[0], b.records.coef[0], b.records.params[0]
+    engine.kinematics(b.kernels, sel, params, 1.3, w)
+
+    def loop(mode, cv, cd):
+        engine.element_loop(mode, b.kernels, sel, cf, params, False, dofs, l, d, v, a, cv, cd, w)
+    loop(engine.NEWMARK, 0.04, 1.5e-3)
     rE, SE = w.rE.copy(), w.SE.copy()
     # the combined element matrices equal M + cv C + cd K of the full terms
-    engine.element_loop(engine.FULL, fam, cf, False, b.dofs, b.l, d, v, a, w.kin, 0.0, 0.0, w)
+    loop(engine.FULL, 0.0, 0.0)
     r2, K2, C2, M2 = w.rE.copy(), w.KE.copy(), w.CE.copy(), w.ME.copy()
     np.testing.assert_allclose(SE, M2 + 0.04 * C2 + 1.5e-3 * K2, rtol=1e-12, atol=1e-12 * np.abs(SE).max())
     np.testing.assert_allclose(rE, r2, rtol=1e-12, atol=1e-12 * np.abs(r2).max())
-    engine.element_loop(engine.RESIDUAL, fam, cf, False, b.dofs, b.l, d, v, a, w.kin, 0.0, 0.0, w)
+    loop(engine.RESIDUAL, 0.0, 0.0)
     res = w.rE.copy()
     np.testing.assert_allclose(res, r2, rtol=1e-12, atol=1e-12 * np.abs(r2).max())
     A = np.zeros((N, N))
     for e in range(n):
         for i in range(6):
             for j in range(6):
-                if b.dofs[e, i] < N and b.dofs[e, j] < N:
-                    A[b.dofs[e, i], b.dofs[e, j]] += SE[e, i, j]
+                if dofs[e, i] < N and dofs[e, j] < N:
+                    A[dofs[e, i], dofs[e, j]] += SE[e, i, j]
     rhs = rng.standard_normal(N)
     F, diag = np.zeros((N + 5, 11)), np.zeros(N)
-    engine.assemble_fixed(b.dofs, SE, F, N)
+    engine.assemble_fixed(dofs, SE, F, N)
     assert engine.factor_fixed(F, N, diag)
     x = np.concatenate([rhs, np.zeros(5)])
     engine.solve_fixed(F, N, x)
-    W = np.zeros((N, 3 * b.kb + 1))
-    engine.assemble_band_newmark(b.dofs, b.kb, SE, W)
+    W = np.zeros((N, 3 * kb + 1))
+    engine.assemble_band_newmark(dofs, kb, SE, W)
     piv, ext = np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64)
-    assert engine.band_factor(W, b.kb, piv, ext)
+    assert engine.band_factor(W, kb, piv, ext)
     y = rhs[:, None].copy()
-    engine.band_lu_solve(W, b.kb, piv, ext, y)
+    engine.band_lu_solve(W, kb, piv, ext, y)
     exact = scipy.linalg.solve(A, rhs)
     np.testing.assert_allclose(x[:N], exact, rtol=1e-10, atol=1e-12 * np.abs(exact).max())
     np.testing.assert_allclose(y[:, 0], exact, rtol=1e-10, atol=1e-12 * np.abs(exact).max())
@@ -183,7 +187,7 @@ def test_compiled_engine_equals_numpy_reference_with_the_new_ingredients(formula
     mech_kw = {k: v for k, v in options.items() if k in ("gravity", "offset")}
     mech = crankgen.Mechanism(a=0.2, eps=0.02, ms=0.7, mu=0.3, **mech_kw)
     kw = dict(omega=0.6, approach="A", formulation=formulation, damping="kelvin-voigt",
-              n_elements=3, steps_per_rev=40, revolutions=1.5,
+              membrane="pointwise", n_elements=3, steps_per_rev=40, revolutions=1.5,
               rotary_inertia=options.get("rotary_inertia", True))
     ref = crankgen.simulate(mech, engine="numpy", **kw)
     fast = crankgen.simulate(mech, engine="compiled", **kw)
@@ -219,7 +223,7 @@ def test_lock_step_batch_equals_single_runs_and_isolates_failures():
 
 
 def test_revolution_jacobian_matches_finite_differences():
-    case = Case(omega=0.8, n_elements=3, steps_per_rev=30, mu=0.2)
+    case = Case(omega=0.8, n_elements=3, steps_per_rev=30, mu=0.2, damping="paper", membrane="pointwise")
     b = engine.Batch([case])
     N = b.N
     warm = engine.march(b, 60)

@@ -29,7 +29,8 @@ def crankgen_extrapolated(omega, approach, mu, spr0=SPR, **extra):
     for spr in (spr0, 2 * spr0):
         r = crankgen.simulate(crankgen.Mechanism(a=A, eps=EPS, ms=MS, mu=mu), omega=omega,
                               approach=approach, formulation="lagrange", damping="kelvin-voigt",
-                              n_elements=N_EL, steps_per_rev=spr, revolutions=revs, **extra)
+                              membrane="pointwise", n_elements=N_EL, steps_per_rev=spr, revolutions=revs,
+                              **extra)
         runs.append(np.stack([r.v_mid, r.u_end, r.extension], -1))
     coarse, fine = runs[0], runs[1][::2]
     t = np.arange(len(coarse)) * (2 * math.pi / omega / spr0)

@@ -13,13 +13,13 @@ import zlib
 import numpy as np
 import pytest
 
-from crankgen import ingredients
-from crankgen._generated import dispatch
+from crankgen import ingredients, schema
 from crankgen._generated import elements as gen_elements
 from crankgen._generated import energy as gen_energy
 from crankgen._generated import fields as gen_fields
 from crankgen._generated import groups as gen_groups
-from crankgen._generated import guide as gen_guide
+from crankgen._generated import kinematics as gen_kinematics
+from crankgen._generated import schema as dispatch
 from crankgen._generated import shape
 from crankgen._generated import shape as gen_shape
 from kernel_api import damping, energy, lagrange, paper
@@ -321,7 +321,7 @@ def test_paper_slider_damping(elems):
 # --------------------------------------------------------------------------------------------
 
 VARIANTS = ("_into", "_add", "_printed_add", "_residual_add", "_newmark_add")   # one-element variants
-GENERATED = (gen_shape, gen_guide, gen_elements, gen_energy, gen_fields, gen_groups)
+GENERATED = (gen_shape, gen_kinematics, gen_elements, gen_energy, gen_fields, gen_groups)
 ALL_KERNELS = [(mod.__name__.rsplit(".", 1)[-1], name, getattr(mod, name))
                for mod in GENERATED for name in mod.__all__ if not name.endswith(VARIANTS)]
 
@@ -330,9 +330,16 @@ ELEMENT_RANGES = {"l": (0.05, 0.5), "x0": (0.0, 0.9)}          # geo = (l, x0)
 COEF_RANGES = {"rhoA": (0.5, 2.0), "rhoI": (0.01, 0.1), "EA": (10.0, 1000.0), "EI": (0.005, 0.05),
                "mu": (0.01, 0.5), "ms": (0.1, 1.0), "gX": (-1.0, 1.0), "gY": (-1.0, 1.0)}
 KIN_RANGES = {"a": (0.05, 0.3), "theta": (0.0, 6.3), "thetad": (0.2, 3.0), "phi": (-0.3, 0.3),
-              "phid": (-1.0, 1.0), "phidd": (-2.0, 2.0)}
-SCALAR_RANGE = {"zeta": (0.0, 1.0), "l": (0.05, 0.5), "t": (0.0, 10.0), "omega": (0.2, 3.0),
-                "a": (0.05, 0.3), "e": (-0.3, 0.3), "fiber": (-2.0, 2.0)}
+              "phid": (-1.0, 1.0), "phidd": (-2.0, 2.0), "thetadd": (-1.0, 1.0), "beta": (0.5, 2.5),
+              "betad": (-1.0, 1.0), "betadd": (-2.0, 2.0)}
+# the kinematic parameters, in ranges where every guide closes and every motion is defined
+PARAM_RANGES = {"a": (0.05, 0.3), "offset": (-0.1, 0.1), "c": (0.7, 0.9), "d": (0.9, 1.1),
+                "branch": (1.0, 1.0), "omega": (0.2, 3.0), "omega0": (0.2, 3.0), "ramp": (1.0, 5.0),
+                "fluctuation": (-0.5, 0.5), "order": (2.0, 2.0)}
+OTHER_VECTORS = {"crank": [(0.0, 6.3), (0.2, 3.0), (-1.0, 1.0)], "send": [(-1e-3, 1e-3), (-0.1, 0.1), (-1.0, 1.0)],
+                 "q_end": [(-1e-3, 1e-3)] * 2, "pin": [(-5.0, 5.0)] * 2, "end": [(-5.0, 5.0)] * 2}
+SCALAR_RANGE = {"zeta": (0.0, 1.0), "l": (0.05, 0.5), "t": (0.0, 10.0), "eps": (0.005, 0.1),
+                "s": (-1e-3, 1e-3), "fiber": (-2.0, 2.0)}
 
 
 def _coef(rng, shape):
@@ -342,7 +349,25 @@ def _coef(rng, shape):
 
 
 def _kin(rng, shape):
-    return np.stack([rng.uniform(*KIN_RANGES[n], shape) for n in KIN_RANGES], axis=-1)
+    return np.stack([rng.uniform(*KIN_RANGES[n], shape) for n in schema.KINEMATICS], axis=-1)
+
+
+def _params(rng, shape, size):
+    """The kinematic parameter vector, or (size one less) the same without a (beside kin)."""
+    names = [n for n in schema.KINEMATIC_PARAMETERS if size == len(schema.KINEMATIC_PARAMETERS) or n != "a"]
+    return np.stack([rng.uniform(*PARAM_RANGES[n], shape) for n in names], axis=-1)
+
+
+def _vector(rng, name, kernel, shape):
+    if name == "params":
+        return _params(rng, shape, _input_size(kernel, name))
+    return np.stack([rng.uniform(lo, hi, shape) for lo, hi in OTHER_VECTORS[name]], axis=-1)
+
+
+def _input_size(kernel, name):
+    """Length of a vector input, read from the kernel's docstring ("params (..., 10)")."""
+    import re
+    return int(re.search(rf"\b{name} \(\.\.\., (\d+)\)", kernel.__doc__).group(1))
 
 
 def _geo(rng, shape):
@@ -353,10 +378,13 @@ def test_every_kernel_is_covered():
     """The generic tests below reach every generated kernel, in particular every element kernel the
     dispatch table declares."""
     names = {f"{m}.{n}" for m, n, _ in ALL_KERNELS}
-    expected = {"shape.shape_functions", "shape.slope_gram", "guide.crank_kinematics",
-                "guide.slider_rigid_position", "energy.rod_kinetic_energy",
+    expected = {"shape.shape_functions", "shape.slope_gram", "energy.rod_kinetic_energy",
                 "energy.slider_kinetic_energy", "energy.rod_gravity_potential",
                 "energy.slider_gravity_potential"}
+    for g in schema.GUIDES:
+        expected |= {f"kinematics.{k}_{g}" for k in ("guide", "end_map", "rigid_end", "margins", "end_scale")}
+    for m in schema.MOTIONS:
+        expected |= {f"kinematics.{k}_{m}" for k in ("motion", "period", "step_period")}
     expected |= {f"elements.{k}" for k in dispatch.ELEMENT_KERNELS}
     for ap in APPROACHES:
         expected |= {f"energy.strain_energy_{ap}", f"energy.dissipation_{ap}"}
@@ -392,6 +420,11 @@ def test_batch_axis_matches_loop(module, name, kernel, element_data):
             batched.append(v)
         elif arg in ("coef", "kin"):
             v = (_coef if arg == "coef" else _kin)(rng, (B, 1))
+            batched.append(v)
+            per_b.append(lambda b, v=v: v[b, 0])
+            has_batch = True
+        elif arg in ("params",) + tuple(OTHER_VECTORS):
+            v = _vector(rng, arg, kernel, (B, 1))
             batched.append(v)
             per_b.append(lambda b, v=v: v[b, 0])
             has_batch = True
@@ -446,6 +479,8 @@ def _random_arguments(kernel, seed_text):
             args.append(_coef(rng, ()))
         elif arg == "kin":
             args.append(_kin(rng, ()))
+        elif arg in ("params",) + tuple(OTHER_VECTORS):
+            args.append(_vector(rng, arg, kernel, ()))
         else:
             args.append(float(rng.uniform(*SCALAR_RANGE[arg])))
     return args
@@ -455,7 +490,7 @@ INTO_KERNELS = [(m, n, k) for m, n, k in ALL_KERNELS if hasattr(sys.modules[k.__
 
 
 def test_the_engine_kernels_have_one_element_variants():
-    assert {m for m, _, _ in INTO_KERNELS} == {"shape", "guide"}
+    assert {m for m, _, _ in INTO_KERNELS} == {"shape", "kinematics"}
 
 
 @pytest.mark.parametrize("module,name,kernel", INTO_KERNELS, ids=[f"{m}.{n}" for m, n, _ in INTO_KERNELS])

@@ -10,7 +10,7 @@ from crankgen import ingredients
 from crankgen._generated import elements as E
 from crankgen._generated import groups
 from crankgen.ingredients import SWITCHABLE_GROUPS
-from kernel_api import coef, vec
+from kernel_api import _kin, coef, vec
 from crankgen.audit.backbone import backbone
 from crankgen.cases import Case
 from crankgen.errors import ParameterError
@@ -26,8 +26,8 @@ def _parts(prefix):
 def data():
     rng = np.random.default_rng(5)
     n = 5
-    kin = vec(0.2, rng.uniform(0, 6, n), 0.8, rng.uniform(-0.2, 0.2, n), rng.uniform(-0.3, 0.3, n),
-              rng.uniform(-0.3, 0.3, n))
+    kin = _kin(0.2, rng.uniform(0, 6, n), 0.8, rng.uniform(-0.2, 0.2, n), rng.uniform(-0.3, 0.3, n),
+               rng.uniform(-0.3, 0.3, n))
     return dict(q=ref.random_nodal(rng, (n,)), qd=ref.random_nodal(rng, (n,)),
                 qdd=ref.random_nodal(rng, (n,)), geo=vec(rng.uniform(0.05, 0.5, n), rng.uniform(0, 0.9, n)),
                 coef=coef(rhoA=1.0, rhoI=1e-3, EA=100.0, EI=0.01, mu=0.3, ms=0.7), kin=kin)

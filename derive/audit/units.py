@@ -14,7 +14,7 @@ DIMENSIONS = {
     s.l: _LEN, s.x0: _LEN, s.L: _LEN, s.a: _LEN, x: _LEN, y: _LEN, s.zeta: _ONE,
     s.rhoA: (1, -1, 0), s.rhoI: (1, 1, 0), s.EA: (1, 1, -2), s.EI: (1, 3, -2), s.mu: (0, 0, 1),
     s.ms: (1, 0, 0), P: (1, 1, -2), s.theta: _ONE, s.phi: _ONE, s.thetad: (0, 0, -1),
-    s.phid: (0, 0, -1), s.phidd: (0, 0, -2),
+    s.phid: (0, 0, -1), s.phidd: (0, 0, -2), s.thetadd: (0, 0, -2),
     u: _LEN, v: _LEN, psi: _ONE, u_x: _ONE, v_x: _ONE, v_xx: (0, -1, 0), v_xxx: (0, -2, 0),
 }
 for _base, _rate, _accel in zip(COORDS, RATES, ACCELS):

@@ -15,9 +15,11 @@ _LAZY = {
     "NewmarkSettings": "newmark", "integrate": "newmark",
     "SimulationResult": "simulation", "simulate": "simulation", "simulate_many": "simulation",
     "SteadyState": "steady", "steady_state": "steady", "steady_states": "steady",
-    "SweepTable": "sweeps", "sweep": "sweeps",
+    "SweepTable": "sweeps", "sweep": "sweeps", "CheckpointError": "sweeps",
     "BifurcationDiagram": "bifurcation", "PoincareDiagram": "bifurcation",
     "continuation": "bifurcation", "poincare": "bifurcation",
+    # guides and crank motions (records made from the schema)
+    "Line": "specs", "Circle": "specs", "Constant": "specs", "RunUp": "specs", "Fluctuation": "specs",
 }
 # the choices of the model options (declared in derive/model.py), read from the generated table
 _CHOICE_NAMES = {"FORMULATIONS": "formulation", "APPROACHES": "approach", "DAMPING_MODELS": "damping",

@@ -8,9 +8,9 @@ used by dgbsv.
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.linalg import lapack
 
 from .mesh import Mesh
+from .schema import ELEMENT_DOFS as NDOF
 
 
 @dataclass(frozen=True)
@@ -25,8 +25,8 @@ class BandedAssembler:
     def __post_init__(self):
         dofs = self.mesh.element_dofs
         valid = dofs != self.mesh.dummy
-        rows = np.broadcast_to(dofs[:, :, None], dofs.shape + (6,))
-        cols = np.broadcast_to(dofs[:, None, :], dofs.shape + (6,))
+        rows = np.broadcast_to(dofs[:, :, None], dofs.shape + (NDOF,))
+        cols = np.broadcast_to(dofs[:, None, :], dofs.shape + (NDOF,))
         mvalid = valid[:, :, None] & valid[:, None, :]
         kb = int(np.max(np.abs(rows[mvalid] - cols[mvalid])))
         n = self.mesh.n_dofs
@@ -43,12 +43,12 @@ class BandedAssembler:
         return (3 * self.bandwidth + 1, self.mesh.n_dofs)
 
     def vector(self, element_vectors):
-        """Sum (n, 6) element vectors into the reduced vector (N,)."""
+        """Sum (n, NDOF) element vectors into the reduced vector (N,)."""
         w = element_vectors.reshape(-1)[self._vec_valid]
         return np.bincount(self._vec_index, weights=w, minlength=self.mesh.n_dofs)
 
     def banded(self, element_matrices):
-        """Sum (n, 6, 6) element matrices into LAPACK band storage."""
+        """Sum (n, NDOF, NDOF) element matrices into LAPACK band storage."""
         w = element_matrices.reshape(-1)[self._mat_valid]
         size = self.band_shape[0] * self.band_shape[1]
         return np.bincount(self._mat_index, weights=w, minlength=size).reshape(self.band_shape)
@@ -65,6 +65,7 @@ class BandedAssembler:
 
     def factorize(self, ab):
         """LU factors (LAPACK gbtrf, partial pivoting) of the band matrix ab; None if singular."""
+        from scipy.linalg import lapack          # the NumPy reference only: not on the engine's start-up
         kb = self.bandwidth
         lu, ipiv, info = lapack.dgbtrf(ab, kb, kb)
         if info != 0:
@@ -73,6 +74,7 @@ class BandedAssembler:
 
     def solve_factorized(self, factors, rhs):
         """x with A x = rhs from the factors of factorize (LAPACK gbtrs)."""
+        from scipy.linalg import lapack
         kb = self.bandwidth
         lu, ipiv = factors
         rhs = np.asarray(rhs, dtype=float)
@@ -83,6 +85,7 @@ class BandedAssembler:
 
     def solve(self, ab, rhs):
         """Solve A x = rhs with A in band storage (LU with partial pivoting); None if singular."""
+        from scipy.linalg import lapack
         kb = self.bandwidth
         _, _, x, info = lapack.dgbsv(kb, kb, ab, rhs, overwrite_ab=1, overwrite_b=0)
         if info != 0:

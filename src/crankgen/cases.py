@@ -1,73 +1,68 @@
 """A case: every parameter of one run, as one frozen record (the unit of sweeps and checkpoints).
 
-Its model options (formulation, approach, membrane, damping, rotary_inertia) are those declared in
-derive/model.py and are checked against the generated table (crankgen.ingredients) when the case
-is built: an unknown or incompatible option raises ParameterError naming it.
+Its fields come from the schema (derive/model.py): the mechanism's and its guide's parameters, the
+run's (the crank motion and its parameters, n_elements, steps_per_rev, integrator), the model
+options (formulation, approach, membrane, damping, rotary_inertia) and the audit's switched-off
+term groups.  The model is chosen by preset and options, checked once: `Case(model="paper")`, or
+the default model (`consistent`); an option given explicitly overrides the preset's value.  Every
+value is stored in canonical form (crankgen.schema), so that equal cases compare equal and share
+one key however their values were typed; an unknown or incompatible option, or a parameter out of
+range, raises ParameterError naming it when the case is built.
 """
 
-from dataclasses import asdict, dataclass, fields
+from dataclasses import asdict, field, fields, make_dataclass
 
-from . import ingredients
+from . import ingredients, schema
 from .errors import ParameterError
-from .newmark import NewmarkSettings
-from .parameters import Mechanism
-from .validation import in_range, integer
+from .parameters import Mechanism, check_full_turn, kinematic_parameters, settle
+
+PARAMETER_FIELDS = tuple(schema.PARAMETERS)
+OPTION_FIELDS = tuple(schema.OPTIONS)
+_NOT_KEYED = ("model",)
 
 
-@dataclass(frozen=True)
-class Case:
-    a: float = 0.1
-    eps: float = 0.01
-    ms: float = 0.5
-    mu: float = 0.5
-    omega: float = 0.8
-    approach: str = "A"
-    formulation: str = "lagrange"
-    damping: str = "paper"
-    n_elements: int = 16
-    steps_per_rev: int = 100
-    integrator: str = "newton"
-    membrane: str = "pointwise"
-    groups_off: str = ""          # audit: comma-separated term groups switched off (weights set to 0)
-    rotary_inertia: bool = True
-    gravity: tuple = (0.0, 0.0)
-    offset: float = 0.0
-
+class _CaseBase:
     def __post_init__(self):
-        """Validate every field and store it in canonical form (Python float / int / str / bool,
-        gravity a pair of floats), so that equal cases compare equal and share one key however
-        their values were typed."""
-        mech = Mechanism(self.a, self.eps, self.ms, self.mu, self.gravity, self.offset)   # validates
-        for name in ("a", "eps", "ms", "mu", "gravity", "offset"):
-            object.__setattr__(self, name, getattr(mech, name))
-        object.__setattr__(self, "omega", in_range("omega (crank speed Omega*)", self.omega, 0, None, True))
-        for name in ("integrator", "groups_off"):
-            value = getattr(self, name)
-            if not isinstance(value, str):
-                raise ParameterError(f"{name} must be a string, got {value!r}")
-            object.__setattr__(self, name, str(value))
-        options = ingredients.check_options({name: getattr(self, name) for name in ingredients.OPTION_NAMES})
+        settle(self, PARAMETER_FIELDS)
+        check_full_turn(self.parameters())
+        options = schema.resolve_options(self.model, **{n: getattr(self, n) for n in OPTION_FIELDS})
         for name, value in options.items():
             object.__setattr__(self, name, value)
-        object.__setattr__(self, "n_elements", integer("n_elements", self.n_elements, 1))
-        object.__setattr__(self, "steps_per_rev", integer("steps_per_rev", self.steps_per_rev, 4))
-        NewmarkSettings(scheme=self.integrator)
+        object.__setattr__(self, "model", schema.preset_of(options))
+        if not isinstance(self.groups_off, str):
+            raise ParameterError(f"groups_off must be a string, got {self.groups_off!r}")
         off = ingredients.check_switched_off(self.groups_off, self.selection)
         object.__setattr__(self, "groups_off", ",".join(sorted(off)))
 
     @classmethod
     def from_mechanism(cls, mech, **settings):
-        """The case of a Mechanism (every one of its fields) with the given run settings."""
-        return cls(**{f.name: getattr(mech, f.name) for f in fields(mech)}, **settings)
+        """The case of a Mechanism (every one of its fields) with the given run settings and model."""
+        if not isinstance(mech, Mechanism):
+            raise ParameterError(f"mech must be a crankgen.Mechanism, got {type(mech).__name__}")
+        return make_case(**mech.values(), **settings)
 
     @property
     def mechanism(self):
-        return Mechanism(self.a, self.eps, self.ms, self.mu, self.gravity, self.offset)
+        return Mechanism(**{n: getattr(self, n) for n in schema.MECHANISM_PARAMETERS})
+
+    def parameters(self):
+        """{name: value} of every schema parameter."""
+        return {n: getattr(self, n) for n in PARAMETER_FIELDS}
+
+    @property
+    def kinematic_parameters(self):
+        """The kinematic parameter vector (schema.KINEMATIC_PARAMETERS order)."""
+        return kinematic_parameters(self.parameters())
 
     @property
     def options(self):
-        """The model options, {name: value} (ingredients.OPTION_NAMES)."""
-        return {name: getattr(self, name) for name in ingredients.OPTION_NAMES}
+        """The model options, {name: value}."""
+        return {name: getattr(self, name) for name in OPTION_FIELDS}
+
+    @property
+    def periodic(self):
+        """True when the crank motion is periodic in the crank angle (periodic states exist)."""
+        return schema.MOTIONS[self.motion].periodic
 
     @property
     def selection(self):
@@ -82,34 +77,84 @@ class Case:
         return ingredients.coefficients(self.mechanism, self.options, off)
 
     def as_dict(self):
-        """The fields as plain JSON-able values (gravity as a list)."""
-        return {k: list(v) if isinstance(v, tuple) else v for k, v in asdict(self).items()}
+        """The fields as plain JSON-able values (pairs as lists)."""
+        return {k: list(v) if isinstance(v, tuple) else v for k, v in asdict(self).items()
+                if k not in _NOT_KEYED}
 
     @classmethod
     def from_dict(cls, data):
-        """Case from a mapping (extra keys ignored).  Numeric strings (from CSV) are converted;
-        anything else is validated and normalised by the constructor."""
+        """Case from a mapping (extra keys ignored).  Text (from CSV) is converted by each
+        parameter's kind: numbers, pairs "x,y", booleans "true"/"false"; anything else is validated
+        and normalised by the constructor, which names the field."""
         kwargs = {}
         for f in fields(cls):
-            if f.name in data:
-                value = data[f.name]
-                if isinstance(value, str) and f.type in ("float", float, "int", int):
-                    try:
-                        value = float(value)
-                    except ValueError:
-                        pass                      # the constructor names the field
-                elif f.type in ("bool", bool) and isinstance(value, str):
-                    value = {"true": True, "false": False}.get(value.strip().lower(), value)
-                elif f.type in ("tuple", tuple) and value is not None:
-                    if isinstance(value, str):
-                        value = [x for x in value.strip("()[] ").split(",") if x.strip()]
-                    try:
-                        value = tuple(float(x) for x in value)
-                    except (TypeError, ValueError):
-                        pass                      # the constructor names the field
-                kwargs[f.name] = value
-        return cls(**kwargs)
+            if f.name not in data or f.name in _NOT_KEYED:
+                continue
+            value = data[f.name]
+            kind = schema.PARAMETERS[f.name].kind if f.name in schema.PARAMETERS else None
+            if isinstance(value, str) and kind in ("real", "count", "sign"):
+                try:
+                    value = float(value)
+                except ValueError:
+                    pass                      # the constructor names the field
+            elif kind == "pair" and isinstance(value, str):
+                parts = [x for x in value.strip("()[] ").split(",") if x.strip()]
+                try:
+                    value = tuple(float(x) for x in parts)
+                except ValueError:
+                    pass
+            elif kind == "pair" and isinstance(value, list):
+                value = tuple(value)
+            elif f.name in schema.OPTIONS and isinstance(value, str) and isinstance(schema.OPTIONS[f.name].default, bool):
+                value = {"true": True, "false": False}.get(value.strip().lower(), value)
+            kwargs[f.name] = value
+        return make_case(**kwargs)
 
     def key(self):
         """Stable text key of the case (checkpoint identity), from the canonical field values."""
         return ";".join(f"{k}={v!r}" for k, v in sorted(self.as_dict().items()))
+
+
+Case = make_dataclass(
+    "Case",
+    [(name, object, field(default=None)) for name in PARAMETER_FIELDS + OPTION_FIELDS]
+    + [("groups_off", str, field(default="")),
+       ("model", object, field(default=None, compare=False, repr=False))],
+    bases=(_CaseBase,), frozen=True,
+    namespace={"__doc__": __doc__.split("\n\n")[0] + "\n\n" + "Fields: " + ", ".join(
+        PARAMETER_FIELDS + OPTION_FIELDS) + ", groups_off (audit: term groups switched off), model "
+        "(the preset; resolved into the options, then the name of the preset they match or None).",
+               "__module__": __name__})
+
+
+def make_case(**kwargs):
+    """Case(**kwargs) with an unknown keyword refused as a ParameterError naming it."""
+    names = {f.name for f in fields(Case)}
+    unknown = sorted(set(kwargs) - names)
+    if unknown:
+        raise ParameterError(f"unknown case parameter {unknown[0]!r}; the parameters are "
+                             f"{', '.join(PARAMETER_FIELDS)}, the options {', '.join(OPTION_FIELDS)}, "
+                             "model and groups_off")
+    return Case(**kwargs)
+
+
+def run_case(mech=None, case=None, *, model=None, omega=None, crank=None, **fields):
+    """The Case of a run, checked once: `case` as given, or a Mechanism (default Mechanism()) with
+    the run's fields (omega, the crank motion `crank` as a record, any Case field) and the model
+    (a preset name; explicit options override it)."""
+    if case is not None:
+        extra = [name for name, value in (("mech", mech), ("model", model), ("omega", omega),
+                                          ("crank", crank)) if value is not None] + sorted(fields)
+        if extra:
+            raise ParameterError(f"give either case= or a mechanism and its settings, not both "
+                                 f"(got case= and {', '.join(extra)})")
+        if not isinstance(case, Case):
+            raise ParameterError(f"case must be None or a crankgen.Case, got {type(case).__name__} {case!r}")
+        return case
+    if mech is None:
+        mech = Mechanism()
+    if crank is not None:
+        fields["motion"] = crank
+    if omega is not None:
+        fields["omega"] = omega
+    return Case.from_mechanism(mech, model=model, **fields)

@@ -1,11 +1,19 @@
 """Where the compiled engine is cached, keyed by a hash of the code it compiles (no numba import).
 
-CODE_HASH covers the generated kernels' specification (generated/dispatch.py KERNELS_HASH) and the
+CODE_HASH covers the generated kernels' specification (generated/schema.py KERNELS_HASH) and the
 source of every module the engine compiles (crankgen/engine/*.py, crankgen/newton.py): after
-`make derive` or an edit of the engine, the cache folder changes and nothing stale runs.  The
-folder is, in order of preference, $CRANKGEN_CACHE_DIR/numba-<hash>, `__pycache__/numba-<hash>`
-inside the installed package, or ~/.cache/crankgen/numba-<hash> when the package is read-only.
-`is_warm()` tells, without importing numba, whether this code has been compiled here already.
+`make derive` or an edit of the engine, the cache folder changes and nothing stale runs.
+
+The folder (`CACHE`, named numba-<CODE_HASH>) is the first usable of:
+1. $CRANKGEN_CACHE_DIR/numba-<hash>, when that variable is set;
+2. `__pycache__/numba-<hash>` inside the installed package: one cache for every user of an
+   install, written by whoever may write there (an administrator's `crankgen compile` fills it);
+3. the user's own cache, $XDG_CACHE_HOME/crankgen or ~/.cache/crankgen (when 2 is read-only and
+   was not filled, and a home exists);
+4. folder 2 again, read-only: what was compiled there is loaded, the rest is compiled in memory
+   for this run only (`READ_ONLY`; a note says how to make it permanent).
+No step needs a home directory or a writable one.  `is_warm()` tells, without importing numba,
+whether this code's engine has been compiled in CACHE already.
 """
 
 import hashlib
@@ -15,13 +23,12 @@ import sys
 from pathlib import Path
 
 _PACKAGE = Path(__file__).resolve().parent
-_WARM_MARK = "compiled.ok"
 
 
 def _kernels_hash():
-    """KERNELS_HASH of generated/dispatch.py, read from its text (the module itself is large)."""
+    """KERNELS_HASH of generated/schema.py, read from its text."""
     from importlib import resources
-    text = resources.files("crankgen._generated").joinpath("dispatch.py").read_text()
+    text = resources.files("crankgen._generated").joinpath("schema.py").read_text()
     return re.search(r"^KERNELS_HASH = '([0-9a-f]+)'", text, re.M).group(1)
 
 
@@ -47,39 +54,85 @@ def _writable(folder):
         return False
 
 
+def _user_cache():
+    """The user's cache root, or None without a usable home."""
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    if xdg:
+        return Path(xdg) / "crankgen"
+    try:
+        home = Path.home()
+    except (RuntimeError, KeyError, OSError):
+        return None
+    return home / ".cache" / "crankgen" if str(home) not in ("", "/") else None
+
+
 def cache_folder():
-    """Folder of this code's compiled engine (see the module docstring)."""
+    """(folder, read_only) of this code's compiled engine (see the module docstring)."""
+    name = f"numba-{CODE_HASH}"
     env = os.environ.get("CRANKGEN_CACHE_DIR")
     if env:
-        return Path(env) / f"numba-{CODE_HASH}"
-    inside = _PACKAGE / "__pycache__" / f"numba-{CODE_HASH}"
-    if _writable(inside):
-        return inside
-    return Path.home() / ".cache" / "crankgen" / f"numba-{CODE_HASH}"
+        folder = Path(env) / name
+        return folder, not _writable(folder)
+    shared = _PACKAGE / "__pycache__" / name
+    if _writable(shared):
+        return shared, False
+    if (shared / "kernels" / "entry-march.ok").exists():
+        return shared, True
+    user = _user_cache()
+    if user is not None and _writable(user / name):
+        return user / name, False
+    return shared, True
 
 
-CACHE = cache_folder()
+CACHE, READ_ONLY = cache_folder()
 
 
 def is_warm():
-    """True once a run has completed with this code's compiled engine (nothing left to compile)."""
-    return (CACHE / _WARM_MARK).exists()
+    """True once this code's engine (its marching entry point) has been compiled in CACHE."""
+    return kernel_mark("entry-march").exists()
 
 
-COLD_START = ("crankgen: compiling the engine for this machine, once (about 1-3 minutes on 2 cores; "
-              "later runs start at once)")
+READ_ONLY_NOTE = (f"crankgen: the compiled-code cache {CACHE} is read-only: compiling in memory for "
+                  "this run (set CRANKGEN_CACHE_DIR to a writable folder, or have the owner of the "
+                  "installation run `crankgen compile`, to keep the compiled code)")
 _announced = []
+QUIET = []                 # set by the command line's --quiet: no compilation progress either
+
+
+def set_quiet(quiet=True):
+    QUIET[:] = [True] if quiet else []
+
+
+def _say(text):
+    try:
+        print(text, file=sys.stderr, flush=True)
+    except (OSError, ValueError):
+        pass
 
 
 def announce():
-    """Print COLD_START to stderr, once per process, if the engine is not compiled here yet."""
-    if not _announced and not is_warm():
+    """Say once per process, on stderr, that compiled code cannot be kept (a read-only cache that
+    lacks this code's engine); the compilation itself reports its progress (engine/build.py)."""
+    if not _announced and READ_ONLY and not is_warm():
         _announced.append(True)
-        print(COLD_START, file=sys.stderr, flush=True)
+        _say(READ_ONLY_NOTE)
 
 
-def mark_warm():
+def kernel_mark(name):
+    """Marker file of a kernel compiled into CACHE (no numba needed to ask whether it is there)."""
+    return CACHE / "kernels" / f"{name}.ok"
+
+
+def kernel_is_cached(name):
+    return kernel_mark(name).exists()
+
+
+def mark_kernel(name):
+    if READ_ONLY:
+        return
     try:
-        (CACHE / _WARM_MARK).touch()
+        path = kernel_mark(name)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.touch()
     except OSError:
         pass

@@ -11,41 +11,30 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._generated import dispatch as _table
+from . import schema
 from ._generated import elements as _elements
 from ._generated import energy as _energy
 from ._generated import fields as _fields
+from ._generated import schema as _table
 from .errors import ParameterError
 
-OPTION_NAMES = tuple(name for name, *_ in _table.OPTIONS)
-CHOICES = {name: choices for name, choices, _, _ in _table.OPTIONS}
-DEFAULTS = {name: default for name, _, default, _ in _table.OPTIONS}
-OPTION_DOCS = {name: doc for name, _, _, doc in _table.OPTIONS}
+OPTION_NAMES = tuple(schema.OPTIONS)
+CHOICES = {name: o.choices for name, o in schema.OPTIONS.items()}
+DEFAULTS = schema.resolve_options()
+OPTION_DOCS = {name: o.doc for name, o in schema.OPTIONS.items()}
 COEFFICIENTS = _table.COEFFICIENTS
 SWITCHABLE_GROUPS = _table.SWITCHABLE_GROUPS
 FAMILIES = tuple(name for name, *_ in _table.FAMILIES)
 PARTS = {name: part for name, part, *_ in _table.FAMILIES}
 ENERGY_KINDS = {name: kind for name, _, _, kind, _, _ in _table.FAMILIES}
-OUTPUTS = {name: dict(kind=kind, doc=doc, arguments=args, kernels=kernels)
-           for name, kind, doc, args, kernels in _table.OUTPUTS}
+OUTPUTS = schema.OUTPUTS
 KERNELS_HASH = _table.KERNELS_HASH
 
 
 def check_options(options):
-    """The options (dict) completed with defaults and checked: an unknown option or value raises
-    ParameterError naming it and its choices."""
-    unknown = sorted(set(options) - set(OPTION_NAMES))
-    if unknown:
-        raise ParameterError(f"unknown model option {unknown[0]!r}; the options are {', '.join(OPTION_NAMES)}")
-    out = dict(DEFAULTS)
-    for name, value in options.items():
-        if isinstance(value, np.generic):
-            value = value.item()
-        if value not in CHOICES[name] or type(value) is not type(CHOICES[name][0]):
-            allowed = ", ".join(repr(c) for c in CHOICES[name])
-            raise ParameterError(f"{name} must be one of {allowed}, got {value!r}")
-        out[name] = value
-    return out
+    """The options (dict) completed with the default model's values and checked: an unknown option
+    or value raises ParameterError naming it and its choices."""
+    return schema.resolve_options(**{k: v for k, v in options.items()})
 
 
 def _matches(when, options):
@@ -128,13 +117,22 @@ def coefficients(mechanism, options, switched_off=()):
     return np.array(values, dtype=float)
 
 
-def field_kernel(output, options):
-    """The vectorized field kernel of a declared field output for the options."""
+def output_kernel(output, options):
+    """The vectorized kernel of a declared step or field output for the options."""
     spec = OUTPUTS.get(output)
-    if spec is None or spec["kind"] != "field":
-        fields = ", ".join(n for n, o in OUTPUTS.items() if o["kind"] == "field")
-        raise ParameterError(f"no field output {output!r}; the field outputs are {fields}")
-    for when, kernel in spec["kernels"]:
+    if spec is None or spec.kind == "engine":
+        names = ", ".join(n for n, o in OUTPUTS.items() if o.kind != "engine")
+        raise ParameterError(f"no output {output!r} with a kernel; those outputs are {names}")
+    for when, kernel in spec.kernels:
         if _matches(when, options):
             return getattr(_fields, kernel)
     raise ParameterError(f"output {output!r} is not declared for options {options}")
+
+
+def field_kernel(output, options):
+    """The vectorized field kernel of a declared field output for the options."""
+    spec = OUTPUTS.get(output)
+    if spec is None or spec.kind != "field":
+        fields = ", ".join(n for n, o in OUTPUTS.items() if o.kind == "field")
+        raise ParameterError(f"no field output {output!r}; the field outputs are {fields}")
+    return output_kernel(output, options)

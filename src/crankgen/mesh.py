@@ -1,8 +1,9 @@
 """Mesh of the connecting rod and the map from element DOFs to the reduced (free) DOFs.
 
 Full nodal vector: 3 DOFs per node, (u, v, psi) (eq. 14), nodes 0..n along the rod.  The pin
-removes u_0 = v_0 = 0; the slider constraint (eq. 26) replaces (u_n, v_n) by the single slider
-co-ordinate s with (u_n, v_n) = s (cos phi, sin phi) (see constraints.py).  The reduced vector is
+removes u_0 = v_0 = 0; the end constraint replaces (u_n, v_n) by the single reduced co-ordinate s
+of the guide's end map, (u_n, v_n) = g(s, t) (a slider: s (cos phi, sin phi), eq. 26; see
+constraints.py).  The reduced vector is
 
     [psi_0,  u_1, v_1, psi_1,  ...,  u_{n-1}, v_{n-1}, psi_{n-1},  s, psi_n]     (3 n entries).
 """
@@ -11,9 +12,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .schema import ELEMENT_DOFS as NDOF
 from .validation import integer
 
 U, V, PSI = 0, 1, 2
+NODE_DOFS = NDOF // 2            # (u, v, psi) at each of an element's two nodes
 
 
 @dataclass(frozen=True)
@@ -61,28 +64,31 @@ class Mesh:
         return 1 + 3 * (node - 1) + component
 
     def _element_dofs(self):
-        """(n, 6) reduced index of each element DOF; the last element's u_n slot holds s."""
-        dofs = np.empty((self.n_elements, 6), dtype=np.intp)
+        """(n, NDOF) reduced index of each element DOF; the last element's u_n slot holds s."""
+        dofs = np.empty((self.n_elements, NDOF), dtype=np.intp)
         for e in range(self.n_elements):
-            for k in range(6):
-                idx = self.reduced_index(e + k // 3, k % 3)
+            for k in range(NDOF):
+                idx = self.reduced_index(e + k // NODE_DOFS, k % NODE_DOFS)
                 dofs[e, k] = self.dummy if idx is None else idx
         return dofs
 
     def gather(self, reduced):
-        """Element view (..., n, 6) of reduced vectors (..., N); constrained slots are 0 (the last
+        """Element view (..., n, NDOF) of reduced vectors (..., N); constrained slots are 0 (the last
         element's u slot holds s, mapped to (u, v) by constraints.py)."""
         reduced = np.asarray(reduced)
         padded = np.concatenate([reduced, np.zeros(reduced.shape[:-1] + (1,))], axis=-1)
         return padded[..., self.element_dofs]
 
-    def dof_scales(self, eps):
+    def dof_scales(self, eps, end=None):
         """Natural size of each reduced DOF in units of L: eps^2 for axial (u* = u / eps^2),
-        eps for transverse deflection and slope (v* = v / eps)."""
+        eps for transverse deflection and slope (v* = v / eps); the end's reduced co-ordinate
+        (slider_dof) takes `end` (its guide's natural size; default eps^2, a slider)."""
         scales = np.full(self.n_dofs, eps)
         for node in range(1, self.n_elements + 1):
             idx = self.reduced_index(node, U)
             scales[idx] = eps**2
+        if end is not None:
+            scales[self.slider_dof] = end
         return scales
 
     def locate(self, x):

@@ -1,23 +1,27 @@
 """The discrete model in plain NumPy (the reference the compiled engine is tested against): mesh +
-the generated element kernels of the selected term families + slider constraint + assembly.
+the generated element kernels of the selected term families + the guide's end map + assembly.
 
 For reduced displacements d, velocities v and accelerations a at time t the model gives the
 reduced residual R(t, d, v, a) of eq. (30) (exact Lagrange or printed form) and the Newmark
-iteration matrix  S = dR/da + c_v dR/dv + c_d dR/dd  in band storage.  The families, their kernels
-and the coefficient vector come from the declared model (crankgen.ingredients); this module loops
-over them and never names one.
+iteration matrix  S = dR/da + c_v dR/dv + c_d dR/dd  in band storage.  Everything that depends on
+the case (families, kernels, coefficients, guide, crank motion) comes from the Case and the
+declared model (crankgen.ingredients, crankgen.kinematics); this module loops over them and never
+names one.
 """
 
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import ingredients
+from . import kinematics as _kinematics
 from .assembly import BandedAssembler
-from .constraints import expand, project, slider_map
-from .kinematics import crank_state
+from .cases import Case
+from .constraints import expand, project
 from .mesh import Mesh
-from .parameters import Mechanism
+from .schema import ELEMENT_DOFS as NDOF
+
+# positional model options of Model.build, in the order its callers pass them
+_BUILD_POSITIONAL = ("formulation", "approach", "damping", "membrane")
 
 
 @dataclass(frozen=True)
@@ -32,30 +36,46 @@ class ElementTerms:
 
 @dataclass(frozen=True)
 class Model:
-    mechanism: Mechanism
-    omega: float
-    mesh: Mesh
-    selection: ingredients.Selection
-    coefficients: np.ndarray
+    case: Case
     assembler: BandedAssembler = field(init=False, repr=False)
+    mesh: Mesh = field(init=False, repr=False)
 
     def __post_init__(self):
-        object.__setattr__(self, "assembler", BandedAssembler(self.mesh))
+        mesh = Mesh(self.case.n_elements)
+        object.__setattr__(self, "mesh", mesh)
+        object.__setattr__(self, "assembler", BandedAssembler(mesh))
+        object.__setattr__(self, "_selection", self.case.selection)
+        object.__setattr__(self, "_coefficients", self.case.coefficients)
 
     @classmethod
-    def build(cls, mechanism, omega, n_elements, formulation="lagrange", approach="A", damping="paper",
-              membrane="pointwise", rotary_inertia=True, groups_off=()):
-        options = ingredients.check_options(dict(formulation=formulation, approach=approach,
-                                                 damping=damping, membrane=membrane,
-                                                 rotary_inertia=rotary_inertia))
-        off = ingredients.check_switched_off(groups_off, ingredients.select(options))
-        coefficients = ingredients.coefficients(mechanism, options, off)
-        return cls(mechanism, float(omega), Mesh(n_elements), ingredients.select(options, coefficients),
-                   coefficients)
+    def build(cls, mechanism, omega, n_elements, *options, **settings):
+        """The model of a mechanism at crank speed omega with n_elements; options: formulation,
+        approach, damping, membrane (positional, in this order) or any Case field by keyword
+        (model= a preset; the default model is `consistent`)."""
+        settings.update(zip(_BUILD_POSITIONAL, options))
+        if "groups_off" in settings and not isinstance(settings["groups_off"], str):
+            settings["groups_off"] = ",".join(settings["groups_off"])
+        return cls(Case.from_mechanism(mechanism, omega=omega, n_elements=n_elements, **settings))
 
     @classmethod
     def from_case(cls, case):
-        return cls(case.mechanism, case.omega, Mesh(case.n_elements), case.selection, case.coefficients)
+        return cls(case)
+
+    @property
+    def mechanism(self):
+        return self.case.mechanism
+
+    @property
+    def omega(self):
+        return self.case.omega
+
+    @property
+    def selection(self):
+        return self._selection
+
+    @property
+    def coefficients(self):
+        return self._coefficients
 
     @property
     def options(self):
@@ -66,7 +86,7 @@ class Model:
         return self.mesh.n_dofs
 
     def kinematics(self, t):
-        return crank_state(self.mechanism.a, self.omega, t, self.mechanism.offset)
+        return _kinematics.case_state(self.case, t)
 
     @property
     def geometry(self):
@@ -75,31 +95,51 @@ class Model:
         return np.stack([np.full(mesh.n_elements, mesh.length), mesh.x0], axis=-1)
 
     def nodal_state(self, kin, d, v, a):
-        """Element nodal vectors q, qd, qdd (n, 6) and the slider map of the last element."""
+        """Element nodal vectors q, qd, qdd (..., n, 6) with the end node mapped by the guide's end
+        map, and the end map's values E (..., 8, 2)."""
         p, pd, pdd = self.mesh.gather(d), self.mesh.gather(v), self.mesh.gather(a)
-        tmaps = slider_map(kin.phi, kin.phid, kin.phidd)
-        q_end, qd_end, qdd_end = expand(*tmaps, p[-1], pd[-1], pdd[-1])
-        p[-1], pd[-1], pdd[-1] = q_end, qd_end, qdd_end
-        return p, pd, pdd, tmaps
+        S = self.mesh.slider_dof
+        E = _kinematics.end_map(self.case, kin.vector, np.asarray(d)[..., S], np.asarray(v)[..., S],
+                                np.asarray(a)[..., S])
+        p[..., -1, :], pd[..., -1, :], pdd[..., -1, :] = expand(E, p[..., -1, :], pd[..., -1, :], pdd[..., -1, :])
+        return p, pd, pdd, E
 
-    def element_terms(self, kin, d, v, a, secant=False):
-        """Residual and tangents per element.  secant=True gives the printed iteration matrices of
-        eq. (37) where the selected variants declare one (K_printed), for the one-pass scheme."""
-        q, qd, qdd, tmaps = self.nodal_state(kin, d, v, a)
+    def unprojected_terms(self, kin, d, v, a, secant=False):
+        """(q, E, r, K, C, M): the element terms before the end map's projection (the last
+        element's end node rows are the force the guide must apply, the end mass included)."""
+        q, qd, qdd, E = self.nodal_state(kin, d, v, a)
         geo, coef, kv = self.geometry, self.coefficients, kin.vector
-        n = self.mesh.n_elements
-        r, K, C, M = np.zeros((n, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6))
-        parts = [("rod", slice(None), (q, qd, qdd, geo)),
-                 ("end", n - 1, (q[-1], qd[-1], qdd[-1], geo[-1]))]
-        for part, where, args in parts:
+        shape = q.shape[:-1]
+        n = NDOF
+        r, K, C, M = np.zeros(shape + (n,)), np.zeros(shape + (n, n)), np.zeros(shape + (n, n)), np.zeros(shape + (n, n))
+        lead = (slice(None),) * (q.ndim - 2)
+        kb = kv[..., None, :] if kv.ndim > 1 else kv
+        parts = [("rod", lead + (slice(None),), (q, qd, qdd, geo), kb),
+                 ("end", lead + (-1,), (q[..., -1, :], qd[..., -1, :], qdd[..., -1, :], geo[-1]), kv)]
+        for part, where, args, kin_arg in parts:
             for _name, kernel in self.selection.vectorized(part):
-                out = kernel(*args, coef, kv)
+                out = kernel(*args, coef, kin_arg)
                 r[where] += out[0]
                 K[where] += out[4] if secant and len(out) > 4 else out[1]
                 C[where] += out[2]
                 M[where] += out[3]
-        r[-1], K[-1], C[-1], M[-1] = project(*tmaps, r[-1], K[-1], C[-1], M[-1])
+        return q, E, r, K, C, M
+
+    def element_terms(self, kin, d, v, a, secant=False):
+        """Residual and tangents per element.  secant=True gives the printed iteration matrices of
+        eq. (37) where the selected variants declare one (K_printed), for the one-pass scheme."""
+        _, E, r, K, C, M = self.unprojected_terms(kin, d, v, a, secant)
+        r[..., -1, :], K[..., -1, :, :], C[..., -1, :, :], M[..., -1, :, :] = project(
+            E, r[..., -1, :], K[..., -1, :, :], C[..., -1, :, :], M[..., -1, :, :])
         return ElementTerms(r, K, C, M)
+
+    def reactions(self, t, d, v, a):
+        """(pin, end), each (..., 2): the forces the crank pin and the guide apply to the rod, in
+        the moving frame (e_i, e_j), at time(s) t for reduced states d, v, a (..., N): the residual
+        rows of the constrained DOFs (the pin's u_0, v_0; the end node's u_n, v_n, whose reaction
+        is normal to the guide: g_s . end = 0 at a solution)."""
+        _, _, r, _, _, _ = self.unprojected_terms(self.kinematics(t), d, v, a)
+        return r[..., 0, 0:2].copy(), r[..., -1, 3:5].copy()
 
     def residual(self, t, d, v, a):
         """Reduced residual R(t, d, v, a)."""
@@ -130,15 +170,17 @@ class Model:
         """(kinetic T_c + T_s, potential U_c + V) of the model at time t for reduced d, v."""
         return self.energy("kinetic", t, d, v), self.energy("potential", t, d, v)
 
-    def full_nodal(self, d, phi):
-        """Full nodal vectors (..., 3 (n+1)) [u_0, v_0, psi_0, ...] from reduced d (..., N)."""
+    def full_nodal(self, d, kin):
+        """Full nodal vectors (..., 3 (n+1)) [u_0, v_0, psi_0, ...] from reduced d (..., N) at the
+        kinematics kin (a CrankState of the same leading shape)."""
         d = np.asarray(d)
         n = self.mesh.n_elements
-        out = np.zeros(d.shape[:-1] + (3 * (n + 1),))
+        k = NDOF // 2                                   # DOFs per node
+        out = np.zeros(d.shape[:-1] + (k * (n + 1),))
         out[..., 2] = d[..., 0]
-        out[..., 3:3 * n] = d[..., 1:3 * n - 2]
-        s = d[..., self.mesh.slider_dof]
-        out[..., 3 * n] = s * np.cos(phi)
-        out[..., 3 * n + 1] = s * np.sin(phi)
-        out[..., 3 * n + 2] = d[..., -1]
+        out[..., k:k * n] = d[..., 1:k * n - 2]
+        E = _kinematics.end_map(self.case, kin.vector, d[..., self.mesh.slider_dof])
+        out[..., k * n] = E[..., 0, 0]
+        out[..., k * n + 1] = E[..., 0, 1]
+        out[..., k * n + 2] = d[..., -1]
         return out

@@ -165,6 +165,9 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
         if not (np.all(np.isfinite(D[m + 1])) and np.all(np.isfinite(V[m + 1]))):
             raise ConvergenceError(f"non-finite state in step {m + 1} (t* = {t[m + 1]:.6g})",
                                    step=m + 1, time=t[m + 1], residual=float("nan"))
+        if not np.max(np.abs(D[m + 1])) < newton.DIVERGED:
+            raise ConvergenceError(f"{newton.DIVERGED_TEXT} in step {m + 1} (t* = {t[m + 1]:.6g})",
+                                   step=m + 1, time=t[m + 1], residual=float(np.linalg.norm(R)))
         if progress is not None:
             progress(m + 1, n_steps)
     return NewmarkHistory(t, D, V, A, iterations)

@@ -24,6 +24,10 @@ NEWTON, ONE_PASS, FULL_NEWTON = 0, 1, 2
 REFRESH_RATE = 0.1          # "newton" refreshes the iteration matrix when theta_k exceeds this
 ESTIMATE_FRACTION = 0.1     # ... and stops when its error estimate is below this fraction of tol
 HISTORY = 4                 # displacements kept for the starting guess (quartic extrapolation)
+# A converged step whose displacements (units of L; rotations in rad) exceed this has diverged,
+# whatever the scheme: the models are built for deflections of a fraction of the rod length.
+DIVERGED = 10.0
+DIVERGED_TEXT = "diverged: a displacement beyond 10 rod lengths (or a rotation beyond 10 rad)"
 
 
 def extrapolation_weight(n_prev, k):

@@ -1,19 +1,24 @@
-"""The outputs a result can give, declared in derive/model.py (OUTPUTS) and read from the generated
-table: step quantities (one value per stored step: v_mid, u_end, extension, slider_position) and
-fields (per step, at any x* in [0, 1]: axial_force, bending_moment, surface_strain, ...).
+"""The outputs a result can give, declared in derive/model.py (OUTPUTS) and read from the schema:
+quantities the engine computes at every step (v_mid, u_end, extension), step quantities (one value
+per stored step: the crank speed, the end's position, the chord angle, the driving torque, the pin
+and end reactions, ...) and fields (per step, at any x* in [0, 1]: axial_force, bending_moment,
+surface_strain, chord_deflection, ...).
 
-Fields are evaluated from the stored reduced states with the generated field kernels.  Quantities
-made of element-wise derivatives (u_x is constant in an element, v_xx linear) jump at the nodes;
-at an interior node crankgen returns the mean of the two elements' values (the average of the
-one-sided limits), inside an element the element's own value.
+Each step or field output is a generated kernel whose inputs the schema names; StateHistory
+supplies them from the stored reduced states: the kinematics, the nodal vector of the element
+holding x*, the end node's (u, v) and reduced co-ordinate, and the reactions at the pin and the
+end (the residual rows of the constrained DOFs, which need the stored velocities and
+accelerations).  Quantities made of element-wise derivatives (u_x is constant in an element, v_xx
+linear) jump at the nodes; at an interior node crankgen returns the mean of the two elements'
+values (the average of the one-sided limits), inside an element the element's own value.
 """
 
 import numpy as np
 
-from . import ingredients
+from . import ingredients, schema
+from . import kinematics as _kinematics
 from ._generated.shape import shape_functions, slope_gram
 from .errors import ParameterError
-from .kinematics import crank_state, slider_position as rigid_slider_position
 from .mesh import Mesh
 from .validation import finite_number, in_range
 
@@ -21,7 +26,8 @@ NODE_TOLERANCE = 1e-12      # x* closer than this (relative to an element) to a 
 
 
 def element_history(mesh, d, phi):
-    """Element nodal vectors (steps, n, 6) with the slider constraint applied."""
+    """Element nodal vectors (steps, n, 6) of a slider on a straight guide, (u, v) = s (cos phi,
+    sin phi) at the end (a case's own end map: StateHistory.element_vectors)."""
     q = mesh.gather(d)
     s = q[..., -1, 3].copy()
     q[..., -1, 3] = s * np.cos(phi)
@@ -63,69 +69,133 @@ def _sides(mesh, x):
     return [(e, min(max(zeta, 0.0), 1.0))]
 
 
-class StateHistory:
-    """What the declared outputs need of a run: its case and the reduced states at the stored times."""
+_PARAMS_BESIDE_KIN = [k for k, n in enumerate(schema.KINEMATIC_PARAMETERS) if n != "a"]
 
-    def __init__(self, case, t, states):
-        self.case, self.t, self.states = case, np.asarray(t, dtype=float), states
+
+class StateHistory:
+    """What the declared outputs need of a run: its case and the reduced states at the stored times
+    (velocities and accelerations too for the reactions)."""
+
+    def __init__(self, case, t, states, rates=None, accelerations=None):
+        self.case, self.t, self.states = case, np.asarray(t, dtype=float), np.asarray(states)
+        self.rates, self.accelerations = rates, accelerations
         self.mesh = Mesh(case.n_elements)
+        self._kin = None
+
+    def kinematics(self):
+        if self._kin is None:
+            self._kin = _kinematics.case_state(self.case, self.t)
+        return self._kin
 
     def element_vectors(self):
-        phi = crank_state(self.case.a, self.case.omega, self.t, self.case.offset).phi
-        return element_history(self.mesh, self.states, phi)
+        """(steps, n, 6) nodal vectors, the end node through the guide's end map."""
+        q = self.mesh.gather(self.states)
+        E = _kinematics.end_map(self.case, self.kinematics().vector, self.states[:, self.mesh.slider_dof])
+        q[..., -1, 3] = E[..., 0, 0]
+        q[..., -1, 4] = E[..., 0, 1]
+        return q
+
+    def _reactions(self):
+        if self.rates is None or self.accelerations is None:
+            raise ParameterError("the reactions need the stored velocities and accelerations, which "
+                                 "this result does not hold")
+        from .model import Model
+        return Model(self.case).reactions(self.t, self.states, self.rates, self.accelerations)
+
+    def _inputs(self, spec, element=None):
+        """{input name: array} for an output kernel (element: (q, zeta, geo) of a field)."""
+        out = {}
+        q_all = None
+        for name in spec.inputs:
+            if name in ("q", "zeta", "geo", "fiber"):
+                continue
+            if name == "coef":
+                out[name] = self.case.coefficients
+            elif name == "kin":
+                out[name] = self.kinematics().vector
+            elif name == "params":
+                out[name] = self.case.kinematic_parameters[_PARAMS_BESIDE_KIN]
+            elif name == "q_end":
+                q_all = self.element_vectors() if q_all is None else q_all
+                out[name] = q_all[:, -1, 3:5]
+            elif name == "s":
+                out[name] = self.states[:, self.mesh.slider_dof]
+            elif name in ("pin", "end"):
+                pin, end = self._reactions()
+                out["pin"], out["end"] = pin, end
+        return out
+
+    def _call(self, kernel, spec, values, element=None, extra=()):
+        args = []
+        for name in spec.inputs:
+            if name in ("q", "zeta", "geo"):
+                args.append(element[("q", "zeta", "geo").index(name)])
+            elif name == "fiber":
+                args.append(extra[0])
+            else:
+                args.append(values[name])
+        return kernel(*args)
+
+    def step(self, name):
+        """Values of the step output `name` per stored step."""
+        spec = schema.OUTPUTS[name]
+        kernel = ingredients.output_kernel(name, self.case.options)
+        return np.broadcast_to(self._call(kernel, spec, self._inputs(spec)), self.t.shape).copy()
 
     def field(self, name, x, **arguments):
         """Values of the field output `name` at x* (scalar: (steps,); array: (steps, len(x)))."""
-        spec = ingredients.OUTPUTS.get(name)
+        spec = schema.OUTPUTS.get(name)
         kernel = ingredients.field_kernel(name, self.case.options)
         extra = []
-        for arg in spec["arguments"]:
+        for arg in spec.arguments:
             if arg not in arguments:
                 raise ParameterError(f"{name} needs the argument {arg!r}")
             extra.append(finite_number(arg, arguments.pop(arg)))
         if arguments:
             raise ParameterError(f"{name} takes no argument {next(iter(arguments))!r}")
         xs = np.atleast_1d(np.asarray(x, dtype=float))
+        for xj in xs:
+            in_range("x (position x* along the rod)", xj, 0.0, 1.0)
         q = self.element_vectors()
-        coef, l = self.case.coefficients, self.mesh.length
+        values = self._inputs(spec)
+        l = self.mesh.length
         out = np.empty((q.shape[0], xs.size))
         for j, xj in enumerate(xs):
-            in_range("x (position x* along the rod)", xj, 0.0, 1.0)
-            values = [kernel(q[:, e, :], zeta, np.array([l, e * l]), coef, *extra)
-                      for e, zeta in _sides(self.mesh, float(xj))]
-            out[:, j] = np.mean(values, axis=0)
+            parts = [self._call(kernel, spec, values, (q[:, e, :], zeta, np.array([l, e * l])), extra)
+                     for e, zeta in _sides(self.mesh, float(xj))]
+            out[:, j] = np.mean(np.broadcast_arrays(*parts), axis=0)
         return out[:, 0] if np.ndim(x) == 0 else out
-
-    def slider_position(self):
-        """X / L of the slider per stored step: the rigid position plus s, its displacement along
-        the guide."""
-        c = self.case
-        theta = c.omega * self.t
-        return rigid_slider_position(c.a, theta, c.offset) + self.states[:, self.mesh.slider_dof]
 
 
 class DeclaredOutputs:
     """Mixin of results that store their states: every declared output by name.
 
-    `result.quantity(name, x=None, **arguments)` gives any declared output; each field output is
-    also a method of its name (`result.axial_force(0.5)`, `result.surface_strain(0.5, fiber=3**0.5)`),
-    and `result.slider_position` the slider's X / L per stored step."""
+    `result.quantity(name, x=None, **arguments)` gives any declared output; each step output is also
+    an attribute of its name (`result.torque`, `result.slider_position`, `result.chord_angle`) and
+    each field output a method (`result.axial_force(0.5)`, `result.surface_strain(0.5, fiber=3**0.5)`)."""
 
     def _history(self):
         if getattr(self, "states", None) is None:
             raise ParameterError("this result holds no states (a failed or state-less result)")
-        return StateHistory(self.case, self.t, self.states)
+        return StateHistory(self.case, self.t, self.states, getattr(self, "rates", None),
+                            getattr(self, "accelerations", None))
 
     def quantity(self, name, x=None, **arguments):
-        spec = ingredients.OUTPUTS.get(name)
+        spec = schema.OUTPUTS.get(name)
         if spec is None:
-            raise ParameterError(f"no output {name!r}; the outputs are {', '.join(ingredients.OUTPUTS)}")
-        if spec["kind"] == "field":
+            raise ParameterError(f"no output {name!r}; the outputs are {', '.join(schema.OUTPUTS)}")
+        if self.case.guide not in spec.guides:
+            raise ParameterError(f"{name} exists for the {' and '.join(spec.guides)} guide only "
+                                 f"(this case's guide is {self.case.guide!r})")
+        if spec.kind == "field":
             if x is None:
                 raise ParameterError(f"{name} is a field: give x (x* in [0, 1])")
             return self._history().field(name, x, **arguments)
-        if name == "slider_position":
-            return self._history().slider_position()
+        if x is not None or arguments:
+            raise ParameterError(f"{name} is a step output (one value per stored step): it takes no "
+                                 f"position or argument")
+        if spec.kind == "step":
+            return self._history().step(name)
         return getattr(self, name)
 
     @property
@@ -133,7 +203,9 @@ class DeclaredOutputs:
         return self.quantity("slider_position")
 
     def __getattr__(self, name):
-        spec = ingredients.OUTPUTS.get(name)
-        if spec is not None and spec["kind"] == "field":
+        spec = schema.OUTPUTS.get(name)
+        if spec is not None and spec.kind == "field":
             return lambda x, **arguments: self.quantity(name, x, **arguments)
+        if spec is not None and spec.kind == "step":
+            return self.quantity(name)
         raise AttributeError(f"{type(self).__name__} has no attribute {name!r}")

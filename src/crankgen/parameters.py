@@ -1,66 +1,133 @@
-"""Dimensionless parameters of the mechanism (section 5 of the paper) and their SI origin.
+"""The mechanism: its dimensionless parameters as the schema declares them, and their SI origin.
 
 Units used inside crankgen: length L (rod length), mass rho*A*L, time 1/omega_b with
 omega_b = (pi/L)^2 sqrt(EI / (rho A)) the lowest bending frequency of the pinned-pinned rod.
 In these units rho*A = 1, E*I = 1/pi^4, E*A = 1/(pi^4 eps^2), rho*I = eps^2 (I = A r^2), and the
 paper's scaled outputs are  v* = v / eps,  u* = u / eps^2  (v, u in units of L).
+
+`Mechanism`'s fields are the schema's mechanism and guide parameters (derive/model.py PARAMETERS):
+a, eps, ms, mu, gravity, the guide (line or circle) and the guide's parameters (offset; c, d,
+branch).  `settle` gives every parameter its canonical form (crankgen.schema.Parameter.canonical),
+expands a guide or motion record (crankgen.Line, crankgen.Circle, crankgen.RunUp, ...) into its
+parameters, refuses a parameter that the chosen guide or motion does not read unless it keeps its
+default, and refuses a geometry whose crank cannot turn a full revolution (the guide's declared
+margins).
 """
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field, fields, make_dataclass
 
+import numpy as np
+
+from . import schema, specs
+from ._generated import kinematics as _kinematics
 from .errors import ParameterError
-from .validation import finite_number, in_range
+
+_RECORDS = {"guide": specs.GUIDES, "motion": specs.MOTIONS}
 
 
-@dataclass(frozen=True)
-class Mechanism:
-    """Dimensionless slider-crank: a* = a/L, eps = r/L, ms* = m_s/(rho A L), mu* = omega_b mu,
-    gravity = (gX, gY) in units of L omega_b^2 (inertial frame: X along the guide towards the
-    slider, Y so that the crank pin is at a* (cos theta, sin theta)), and the guide's offset e: the
-    slider moves on the line Y = e (units of L).  The crank turns a full revolution only if
-    a* + |e| < 1."""
+def _expand_record(obj, key):
+    """A guide or motion record given as obj.<key>: its name in obj.<key>, its values in the fields."""
+    value = getattr(obj, key)
+    if isinstance(value, type) and issubclass(value, specs.Spec):
+        value = value()
+    if not isinstance(value, specs.Spec):
+        return
+    if value.kind != key:
+        raise ParameterError(f"{key} must be a {key} ({', '.join(c.__name__ for c in _RECORDS[key].values())}) "
+                             f"or its name, got {value!r}")
+    for name, given in value.values.items():
+        current = getattr(obj, name)
+        if current is not None and current != given:
+            raise ParameterError(f"{name} is given twice: {current!r} and {given!r} in {value!r}")
+        object.__setattr__(obj, name, given)
+    object.__setattr__(obj, key, value.name)
 
-    a: float = 0.1
-    eps: float = 0.01
-    ms: float = 0.5
-    mu: float = 0.5
-    gravity: tuple = (0.0, 0.0)
-    offset: float = 0.0
+
+def settle(obj, names):
+    """Give obj's parameter fields `names` their canonical values (None: the default)."""
+    for key in ("guide", "motion"):
+        if key in names:
+            _expand_record(obj, key)
+    for name in names:
+        p = schema.PARAMETERS[name]
+        value = getattr(obj, name)
+        object.__setattr__(obj, name, p.default if value is None else p.canonical(value))
+    guide = getattr(obj, "guide", schema.PARAMETERS["guide"].default)
+    motion = getattr(obj, "motion", schema.PARAMETERS["motion"].default)
+    for name in names:
+        p = schema.PARAMETERS[name]
+        if not p.read_by(guide, motion) and getattr(obj, name) != p.default:
+            current = guide if p.owner == "guide" else motion
+            raise ParameterError(f"{p.label} applies to the {' and '.join(p.readers)} {p.owner} only "
+                                 f"(the {p.owner} is {current!r}); leave it at its default {p.default!r}")
+
+
+def kinematic_parameters(values):
+    """The kinematic parameter vector (schema.KINEMATIC_PARAMETERS order) of a mapping of parameter
+    values; absent ones take their default."""
+    return np.array([float(values.get(n, schema.PARAMETERS[n].default)) for n in schema.KINEMATIC_PARAMETERS])
+
+
+def check_full_turn(values):
+    """Refuse a geometry whose crank cannot turn a full revolution (the guide's margins)."""
+    guide = values.get("guide", schema.PARAMETERS["guide"].default)
+    margins = np.atleast_1d(getattr(_kinematics, f"margins_{guide}")(kinematic_parameters(values)))
+    failed = [text for m, text in zip(margins, schema.GUIDES[guide].margins) if not m > 0]
+    if failed:
+        shown = ", ".join(f"{n} = {values.get(n, schema.PARAMETERS[n].default):g}"
+                          for n in ("a",) + schema.GUIDES[guide].parameters if n != "branch")
+        raise ParameterError(f"the crank cannot turn a full revolution: the {guide} guide needs "
+                             f"{'; '.join(failed)}; got {shown}")
+
+
+class _MechanismBase:
+    """Dimensionless mechanism: a* = a/L, eps = r/L, ms* = m_s/(rho A L), mu* = omega_b mu,
+    gravity = (gX, gY) in units of L omega_b^2 (inertial frame: X along the guide, Y so that the
+    crank pin is at a* (cos theta, sin theta)), and the guide the rod's end travels on: the line
+    Y = offset (a slider; the default) or a circle of radius c about (d, offset) (a rigid massless
+    rocker: a four-bar linkage with a flexible coupler).  guide may be given as a record,
+    crankgen.Line(offset=e) or crankgen.Circle(center=(d, e), radius=c, branch=+1)."""
 
     def __post_init__(self):
-        object.__setattr__(self, "a", in_range("a (crank length a* = a/L)", self.a, 0, 1, True, True))
-        object.__setattr__(self, "eps", in_range("eps (slenderness r/L)", self.eps, 0, None, True))
-        object.__setattr__(self, "ms", in_range("ms (slider mass ms* = m_s/(rho A L))", self.ms, 0))
-        object.__setattr__(self, "mu", in_range("mu (damping mu* = omega_b mu)", self.mu, 0))
-        g = self.gravity
-        if isinstance(g, (str, bytes)) or not hasattr(g, "__len__") or len(g) != 2:
-            raise ParameterError(f"gravity must be a pair (gX, gY) of numbers, got {g!r}")
-        object.__setattr__(self, "gravity", tuple(finite_number(f"gravity[{k}]", x) for k, x in enumerate(g)))
-        e = finite_number("offset (guide offset e/L)", self.offset)
-        if self.a + abs(e) >= 1.0:
-            raise ParameterError(
-                f"the crank cannot turn a full revolution: a* + |offset| must be below 1 (the rod "
-                f"must reach the guide Y = offset at every crank angle), got a* = {self.a:g}, "
-                f"offset = {e:g}")
-        object.__setattr__(self, "offset", e)
+        settle(self, schema.MECHANISM_PARAMETERS)
+        check_full_turn(self.values())
 
-    # Section constants in crankgen's units.
+    def values(self):
+        """{parameter: value} of every field."""
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+    @property
+    def guide_record(self):
+        """The guide as a record (crankgen.Line(...), crankgen.Circle(...))."""
+        cls = specs.GUIDES[self.guide]
+        record = cls.__new__(cls)
+        record.values = {n: getattr(self, n) for n in cls.declaration.parameters}
+        return record
+
+    @property
+    def section(self):
+        """The section constants of the rod in crankgen's units (rho A, rho I, E A, E I), from the
+        coefficients' formulas of the schema (with the rod's rotary inertia)."""
+        from . import ingredients
+        coef = ingredients.coefficients(self, {"rotary_inertia": True})
+        return {name: float(coef[ingredients.COEFFICIENTS.index(name)]) for name in ("rhoA", "rhoI", "EA", "EI")}
+
     @property
     def rhoA(self):
-        return 1.0
+        return self.section["rhoA"]
 
     @property
     def rhoI(self):
-        return self.eps**2
+        return self.section["rhoI"]
 
     @property
     def EA(self):
-        return 1.0 / (math.pi**4 * self.eps**2)
+        return self.section["EA"]
 
     @property
     def EI(self):
-        return 1.0 / math.pi**4
+        return self.section["EI"]
 
     @classmethod
     def from_si(cls, *, L, a, E, rho, A, I, slider_mass, crank_speed, damping=0.0):
@@ -72,6 +139,13 @@ class Mechanism:
         si = SIMechanism(L=L, a=a, E=E, rho=rho, A=A, I=I, slider_mass=slider_mass,
                          crank_speed=crank_speed, damping=damping)
         return si.mechanism, si.omega
+
+
+Mechanism = make_dataclass(
+    "Mechanism", [(name, object, field(default=None)) for name in schema.MECHANISM_PARAMETERS],
+    bases=(_MechanismBase,), frozen=True, namespace={"__doc__": _MechanismBase.__doc__,
+                                                     "__module__": __name__})
+Mechanism.__module__ = __name__
 
 
 @dataclass(frozen=True)
@@ -89,6 +163,7 @@ class SIMechanism:
     damping: float = 0.0
 
     def __post_init__(self):
+        from .validation import in_range
         for name in ("L", "a", "E", "rho", "A", "I"):
             in_range(f"{name} (SI)", getattr(self, name), 0, None, True)
         in_range("slider_mass (kg)", self.slider_mass, 0)

@@ -41,8 +41,10 @@ from typing import Optional
 import numpy as np
 
 from . import engine
-from .cases import Case
+from . import kinematics as _kinematics
+from .cases import Case, run_case
 from .errors import ParameterError
+from .limits import check_run_size
 from .outputs import DeclaredOutputs
 from .validation import choice, in_range, integer
 
@@ -75,6 +77,8 @@ class SteadyState(DeclaredOutputs):
     extension: np.ndarray = field(default=None, repr=False)
     state: np.ndarray = field(default=None, repr=False)   # reduced (d, v) at theta = 0, (2 N,)
     states: np.ndarray = field(default=None, repr=False)  # reduced displacements over the revolution
+    rates: np.ndarray = field(default=None, repr=False)   # reduced velocities over the revolution
+    accelerations: np.ndarray = field(default=None, repr=False)
 
     @property
     def ok(self):
@@ -96,10 +100,13 @@ def _scaled_change(X0, X1, S):
     return num / (1.0 + np.max(np.abs(X1) / S, axis=1))
 
 
-def _failure_text(res, b, dt):
+def _failure_text(res, b, dt, before=0, steps_per_rev=None):
+    """The failure of case b in a march that started `before` steps into the run: the step counted
+    from the start of the run (and its revolution)."""
     code = int(res.status[b])
-    step = int(res.fail_step[b])
-    return (f"{engine.STATUS_TEXT[code]} in step {step} (t* = {step * dt:.6g}), "
+    step = before + int(res.fail_step[b])
+    where = f", revolution {(step - 1) // steps_per_rev + 1}" if steps_per_rev else ""
+    return (f"{engine.STATUS_TEXT[code]} in step {step} of the run{where} (t* = {step * dt:.6g}), "
             f"residual norm {res.fail_residual[b]:.3e}")
 
 
@@ -107,7 +114,7 @@ class _BatchSolver:
     """Steady states of one engine.Batch (cases sharing mesh and steps per revolution)."""
 
     def __init__(self, cases, tol, max_revolutions, warmup, max_shooting, method, parallel=None):
-        self.batch = engine.Batch(cases)
+        self.batch = engine.Batch(cases, entries=("march", "revolution"))
         self.parallel = parallel
         self.cases = list(cases)
         self.tol, self.max_revolutions = tol, max_revolutions
@@ -131,7 +138,7 @@ class _BatchSolver:
         X1 = np.concatenate([res.D, res.V], axis=1)
         for i in np.flatnonzero(active & (res.status != engine.OK)):
             self.status[i] = "failed"
-            self.message[i] = _failure_text(res, i, float(b.dt[i]))
+            self._note(i, _failure_text(res, i, float(b.dt[i]), int(self.periods[i]) * spr, spr))
         return X1, res
 
     def run(self):
@@ -140,9 +147,17 @@ class _BatchSolver:
         # warm-up from the paper's zero initial conditions
         X1, _ = self._march(self.warmup, active)
         self.periods[:] = self.warmup
+        can_shoot = np.array([c.integrator == "newton" for c in self.cases]) & (self.method == "shooting")
+        # a warm-up that diverged still leaves its last state before the failure: a periodic orbit
+        # (stable or not) may be found by shooting from there; the message keeps the failure
+        rescued = (self.status == "failed") & can_shoot
+        for i in np.flatnonzero(rescued):
+            self.status[i] = "pending"
+            self.message[i] = (f"the transient from rest failed ({self.message[i]}); shooting from its "
+                               "last state before the failure")
         active &= self.status == "pending"
         self.X[active] = X1[active]
-        shoot = active & np.array([c.integrator == "newton" for c in self.cases]) & (self.method == "shooting")
+        shoot = active & can_shoot
         if shoot.any():
             self._shoot(shoot)
         rest = self.status == "pending"
@@ -186,7 +201,7 @@ class _BatchSolver:
                 if st[i] != engine.OK or not np.isfinite(change[i]) or change[i] > 1e3 * min(best[i], 1.0):
                     active[i] = False           # shooting diverged: fall back to marching
                     self.X[i] = start[i]
-                    self.message[i] = "shooting did not converge; marched instead"
+                    self._note(i, "shooting did not converge; marched instead")
                     continue
                 best[i] = min(best[i], change[i])
                 self.iterations[i] = it
@@ -199,8 +214,8 @@ class _BatchSolver:
                         self.status[i] = "periodic"
                     else:
                         self.status[i] = "unstable"
-                        self.message[i] = (f"periodic orbit with the crank period is unstable "
-                                           f"(largest Floquet multiplier {rho:.4f})")
+                        self._note(i, f"periodic orbit with the crank period is unstable "
+                                      f"(largest Floquet multiplier {rho:.4f})")
                     active[i] = False
             if not active.any():
                 return
@@ -214,7 +229,7 @@ class _BatchSolver:
             self.X[idx] = self.X[idx] + delta
         for i in np.flatnonzero(active):
             self.X[i] = start[i]
-            self.message[i] = f"shooting did not converge in {self.max_shooting} iterations; marched instead"
+            self._note(i, f"shooting did not converge in {self.max_shooting} iterations; marched instead")
 
     def _march_until_periodic(self, active):
         """March revolution by revolution until the state repeats every revolution (periodic),
@@ -250,19 +265,20 @@ class _BatchSolver:
         show = np.array([s in ("periodic", "unstable") for s in self.status])
         pre = np.where(show, engine.OK, engine.NOT_CONVERGED)
         res = engine.march(b, spr, D0=self.X[:, :N], V0=self.X[:, N:], status=pre,
-                           parallel=self.parallel, keep_history="displacements")
-        theta = 2 * math.pi * np.arange(spr + 1) / spr
+                           parallel=self.parallel, keep_history=True)
         out = []
         for i, case in enumerate(self.cases):
             if show[i] and res.status[i] == engine.OK:
                 y = res.y[i]
                 v = y[:, 0]
+                t = float(b.dt[i]) * np.arange(spr + 1)
                 out.append(SteadyState(
                     case, self.status[i], float(np.max(np.abs(v))), float((v.max() - v.min()) / 2),
                     int(self.periods[i]), int(self.iterations[i]), self.residual[i],
-                    self.message[i], multiplier=self.multiplier[i], theta=theta,
-                    t=theta / case.omega, v_mid=v, u_end=y[:, 1], extension=y[:, 2],
-                    state=self.X[i].copy(), states=res.D_history[i]))
+                    self.message[i], multiplier=self.multiplier[i],
+                    theta=_kinematics.case_state(case, t).theta, t=t, v_mid=v, u_end=y[:, 1],
+                    extension=y[:, 2], state=self.X[i].copy(), states=res.D_history[i],
+                    rates=res.V_history[i], accelerations=res.A_history[i]))
             else:
                 status = self.status[i] if self.status[i] != "pending" else "failed"
                 message = self.message[i]
@@ -278,11 +294,18 @@ class _BatchSolver:
 
 
 def _check_resolved(case, where=""):
-    """Refuse a time step longer than the rod's first bending period (see the module docstring)."""
-    if case.omega * case.steps_per_rev < 1.0:
-        dt = 2 * math.pi / (case.omega * case.steps_per_rev)
+    """Refuse a crank motion that is not periodic in the crank angle (a run-up), and a time step
+    longer than the rod's first bending period (see the module docstring)."""
+    if not case.periodic:
         raise ParameterError(
-            f"{where}steps_per_rev must be at least 1/Omega* = {math.ceil(1 / case.omega):d} for a "
+            f"{where}a steady state needs a crank motion periodic in the crank angle; the "
+            f"{case.motion!r} motion is not (simulate() runs it)")
+    T = _kinematics.period(case)
+    dt = T / case.steps_per_rev
+    if dt > 2 * math.pi:
+        raise ParameterError(
+            f"{where}steps_per_rev must be at least {'1/Omega* = ' if case.motion == 'constant' else ''}"
+            f"{math.ceil(T / (2 * math.pi) * (1 - 1e-12)):d} for a "
             f"steady state at Omega* = {case.omega:g} (got {case.steps_per_rev}): the time step "
             f"dt* = {dt:.3g} would exceed the period 2 pi of the rod's first bending mode, and with "
             f"such steps the Floquet multipliers, hence the stability verdict, are set by the time "
@@ -311,6 +334,8 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
     done = 0
     for key in sorted(groups):
         idx = groups[key]
+        check_run_size(key[0], key[1], n_cases=len(idx), stored="steady", batch=len(idx),
+                       names={"n_steps": "steps_per_rev", "n_cases": "cases"})
         start = time.perf_counter()
         solver = _BatchSolver([cases[i] for i in idx], tol, max_revolutions,
                               min(warmup, max_revolutions), max_shooting, method, parallel)
@@ -324,16 +349,10 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
     return results
 
 
-def steady_state(mech=None, omega=0.8, approach="A", formulation="lagrange", damping="paper",
-                 n_elements=16, steps_per_rev=100, integrator="newton", tol=1e-8,
-                 max_revolutions=400, method="shooting", membrane="pointwise", case=None,
-                 rotary_inertia=True):
-    """Periodic response over one crank revolution of one case (see module docstring)."""
-    if case is None:
-        from .parameters import Mechanism
-        mech = mech if mech is not None else Mechanism()
-        case = Case.from_mechanism(mech, omega=omega, approach=approach, formulation=formulation,
-                                   damping=damping, n_elements=n_elements,
-                                   steps_per_rev=steps_per_rev, integrator=integrator,
-                                   membrane=membrane, rotary_inertia=rotary_inertia)
+def steady_state(mech=None, omega=None, *, model=None, case=None, crank=None, tol=1e-8,
+                 max_revolutions=400, method="shooting", **fields):
+    """Periodic response over one crank revolution of one case (see module docstring): a Mechanism
+    with the run's settings (omega, any Case field, the model `model` with explicit options
+    overriding it, a periodic crank motion `crank`), or case=Case(...)."""
+    case = run_case(mech, case, model=model, omega=omega, crank=crank, **fields)
     return steady_states([case], tol=tol, max_revolutions=max_revolutions, method=method)[0]

@@ -17,43 +17,64 @@ arbitrary executor, e.g. a Dask client's, and the caller's executor may be broke
 No row holds NaN or inf: a missing number is None in the table, an empty field in the CSV and
 null in the checkpoint, with the row's status and message saying why.
 
-Checkpoint format (one strict JSON document per line; missing numbers are null):
+Checkpoint format (one strict JSON document per line; missing numbers are null; CRLF line
+endings are read as well):
 
     {"format": "crankgen-sweep-checkpoint", "version": 1}                      <- header
     {"key": Case.key(), "settings": {"tol": ..., "max_revolutions": ...},
      "code": provenance.code_version(), "row": {...}}
 
-Lines are only ever appended, a whole chunk in one write followed by flush and fsync, so a crash
-can tear at most the last line; on resume a torn last line is dropped (with a warning) and the
-file is truncated back to its last complete line before anything is appended.  The last record of
-a key wins.  Records made with other settings (tol, max_revolutions) are not reused; records made
-by other code (another crankgen version or other generated kernels, or records without "code")
-are recomputed with a warning unless sweep(keep_other_versions=True).  One sweep at a time may
-write a given checkpoint.
+A file whose first line is not this header is refused (CheckpointError), as is a header of another
+format version.  Lines are only ever appended, a whole chunk in one write followed by fsync, so a
+crash can tear at most the last line; on opening, a torn last line is dropped (with a warning) and
+the file is truncated back to its last complete line before anything is appended.  The last record
+of a key wins.  Records made with other settings (tol, max_revolutions) are not reused; records
+made by other code (another crankgen version or other generated kernels, or records without
+"code") are recomputed with a warning unless sweep(keep_other_versions=True).
+
+One sweep at a time uses a checkpoint: it holds an exclusive lock (flock) on the sidecar file
+`CHECKPOINT.lock`, which holds its process id, from opening (and repairing) the checkpoint to its
+last append; another sweep on the same checkpoint is refused at once, naming that process.  The
+lock file is removed at the end (a killed sweep leaves it behind, unlocked: the next sweep takes
+it over).  The checkpoint must be a regular file (or absent): a folder, a device, a FIFO or a
+socket is refused, and so is a symbolic link out of the checkpoint's folder.  If the checkpoint is
+removed while the sweep runs, the next append creates it again, header first, with every record of
+this sweep.
 """
 
 import concurrent.futures as cf
 import csv
+import errno
 import json
 import math
 import os
+import stat
+import threading
 import warnings
 from collections import Counter
 from collections.abc import Mapping
 from pathlib import Path
 
+try:
+    import fcntl
+except ImportError:           # not on Windows: checkpoints are used unlocked there
+    fcntl = None
+
 import numpy as np
 
 from .cases import Case
-from .errors import ParameterError
-from .io import atomic_file, fsync_dir
+from .errors import CrankgenError, ParameterError
+from .io import NotRegularFileError, OutputWriteError, atomic_file, check_target, kind_of
+from .limits import check_run_size
 from .provenance import code_version
 from .steady import SteadyState, _check_resolved, steady_states
 from .validation import in_range, integer
 
-__all__ = ["SweepTable", "sweep"]
+__all__ = ["CheckpointError", "SweepTable", "sweep"]
 
-_HEADER = json.dumps({"format": "crankgen-sweep-checkpoint", "version": 1}) + "\n"
+FORMAT, VERSION = "crankgen-sweep-checkpoint", 1
+_HEADER = json.dumps({"format": FORMAT, "version": VERSION}) + "\n"
+BATCH_SIZE = 8           # default cases per batch: each finished batch is checkpointed and reported
 # Fields that fix the shape of a case's equations; chunks group cases alike in these so that a
 # lock-step batch engine gets compatible cases together (the order of the table is unaffected).
 _STRUCTURE = ("formulation", "approach", "damping", "integrator", "n_elements", "steps_per_rev")
@@ -113,41 +134,191 @@ def _as_cases(cases):
     return out
 
 
+class CheckpointError(CrankgenError, ValueError):
+    """A checkpoint that cannot be used: not a crankgen sweep checkpoint, another format version,
+    or in use by another sweep.  The message names the file."""
+
+
+def checkpoint_header(first_line):
+    """The format version of a checkpoint whose first line (bytes, CRLF or LF) is first_line, or
+    None when it is not the header of a crankgen sweep checkpoint."""
+    try:
+        header = json.loads(first_line.decode("utf-8").strip())
+    except (UnicodeDecodeError, ValueError):
+        return None
+    if not isinstance(header, dict) or header.get("format") != FORMAT:
+        return None
+    return header.get("version")
+
+
+def check_checkpoint_file(path, data=None):
+    """Refuse (CheckpointError) a file that is not a crankgen sweep checkpoint of this format
+    version, from its first bytes (`data`, default: read from path, which must be a regular file);
+    an empty file or a torn header is accepted (it is started afresh)."""
+    if data is None:
+        data = _read_regular(path, 4096)            # path: a regular file, not a link
+    first, newline, _ = data.partition(b"\n")
+    if not newline:
+        if _HEADER.encode().startswith(first.rstrip(b"\r")):
+            return                                          # empty, or a torn header
+        raise CheckpointError(f"{path} exists and is not a crankgen sweep checkpoint; choose "
+                              "another checkpoint")
+    version = checkpoint_header(first)
+    if version is None:
+        raise CheckpointError(f"{path} exists and is not a crankgen sweep checkpoint; choose "
+                              "another checkpoint")
+    if version != VERSION:
+        raise CheckpointError(f"{path} is a crankgen sweep checkpoint of format version "
+                              f"{version!r}; this crankgen reads version {VERSION} only (use "
+                              "another checkpoint, or the crankgen that wrote it)")
+
+
+def _open_regular(path, flags):
+    """os.open of a regular file only (never blocks on a FIFO, never follows a last symlink);
+    NotRegularFileError otherwise."""
+    for name in ("O_NONBLOCK", "O_NOCTTY", "O_NOFOLLOW", "O_CLOEXEC"):
+        flags |= getattr(os, name, 0)
+    fd = os.open(path, flags, 0o666)
+    mode = os.fstat(fd).st_mode
+    if not stat.S_ISREG(mode):
+        os.close(fd)
+        raise NotRegularFileError(errno.EINVAL, f"is {kind_of(mode)}, not a regular file",
+                                  str(path))
+    return fd
+
+
+def _read_regular(path, limit=None):
+    fd = _open_regular(path, os.O_RDONLY)
+    try:
+        with os.fdopen(fd, "rb") as fh:
+            fd = None
+            return fh.read() if limit is None else fh.read(limit)
+    finally:
+        if fd is not None:
+            os.close(fd)
+
+
+# file descriptors of the checkpoints and locks this process holds; a forked pool worker closes
+# its copies (sweeps.worker_init), so that no worker keeps a lock alive
+_HELD = set()
+
+
+class _Lock:
+    """Exclusive flock on the sidecar file PATH.lock holding the owner's pid."""
+
+    def __init__(self, checkpoint):
+        self.checkpoint = checkpoint
+        self.path = checkpoint.with_name(checkpoint.name + ".lock")
+        self.fd = None
+
+    def acquire(self):
+        for _ in range(20):
+            fd = _open_regular(check_target(self.path), os.O_RDWR | os.O_CREAT)
+            try:
+                if fcntl is None:
+                    raise OSError(errno.ENOTSUP, "no flock")
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except BlockingIOError:
+                try:
+                    owner = os.pread(fd, 64, 0).decode(errors="replace").strip() or "unknown"
+                finally:
+                    os.close(fd)
+                raise CheckpointError(
+                    f"checkpoint {self.checkpoint} is in use by another sweep (process {owner}, "
+                    f"lock {self.path}); wait for it to finish, or choose another checkpoint"
+                ) from None
+            except OSError:                     # a file system without flock: run unlocked
+                pass
+            try:
+                same = os.path.samestat(os.stat(self.path), os.fstat(fd))
+            except FileNotFoundError:
+                same = False
+            if not same:                        # removed by its owner as we locked it: again
+                os.close(fd)
+                continue
+            os.ftruncate(fd, 0)
+            os.pwrite(fd, f"{os.getpid()}\n".encode(), 0)
+            self.fd = fd
+            _HELD.add(fd)
+            return self
+        raise CheckpointError(f"could not lock checkpoint {self.checkpoint} ({self.path} keeps "
+                              "changing)")
+
+    def release(self):
+        if self.fd is None:
+            return
+        try:
+            if os.path.samestat(os.stat(self.path), os.fstat(self.fd)):
+                os.unlink(self.path)
+        except OSError:
+            pass
+        _HELD.discard(self.fd)
+        os.close(self.fd)
+        self.fd = None
+
+
 class _Checkpoint:
-    """Append-only JSON Lines record of finished cases (see the module docstring)."""
+    """Append-only JSON Lines record of finished cases (see the module docstring).  open() takes
+    the lock and returns the reusable records; close() releases it."""
 
     def __init__(self, path, settings, keep_other_versions=False):
-        self.path = Path(path)
+        if not isinstance(path, (str, os.PathLike)) or not str(path).strip():
+            raise ParameterError(f"checkpoint must be the path of a file, got {path!r}")
+        self.given = Path(path)
+        try:
+            self.path = check_target(self.given)
+        except NotRegularFileError as exc:
+            raise ParameterError(f"checkpoint {exc}") from None
+        if not self.path.parent.is_dir():
+            raise ParameterError(f"checkpoint {self.given}: its folder {self.path.parent} does not "
+                                 "exist" + (" (it is a file)" if self.path.parent.exists() else ""))
         self.settings = settings
         self.code = code_version()
         self.keep_other_versions = keep_other_versions
+        self.lock = _Lock(self.path)
+        self.fd = None
+        self.kept = []               # records of this sweep: written again if the file disappears
+        self.recreated = False
 
-    def open(self):
-        """Create the file or repair its tail; return {key: row} of reusable records."""
+    def open(self, keys=(), fresh=False):
+        """Lock, create the file or repair its tail; return {key: row} of reusable records (of
+        the given keys).  fresh=True discards every record (the file restarts with its header)."""
+        self.lock.acquire()
         try:
-            data = self.path.read_bytes()
+            return self._open(set(keys), fresh)
+        except BaseException:
+            self.close()
+            raise
+
+    def _open(self, keys, fresh):
+        try:
+            data = _read_regular(self.path)
         except FileNotFoundError:
             data = b""
-        header = _HEADER.encode()
-        if not data.startswith(header):
-            if not header.startswith(data):
-                raise ValueError(f"{self.path} exists and is not a crankgen sweep checkpoint")
-            if data:
-                warnings.warn(f"checkpoint {self.path}: torn header ignored, starting afresh",
-                              RuntimeWarning, stacklevel=3)
-            self._rewrite(header)
+        except NotRegularFileError as exc:
+            raise ParameterError(f"checkpoint {exc}") from None
+        if data:
+            check_checkpoint_file(self.given, data)
+        first, newline, _ = data.partition(b"\n")
+        if fresh or not newline:
+            if data and not fresh:
+                warnings.warn(f"checkpoint {self.given}: torn header ignored, starting afresh",
+                              RuntimeWarning, stacklevel=4)
+            self._create()
             return {}
+        header_end = len(first) + 1
         end = data.rfind(b"\n") + 1
+        self._attach()
         if end < len(data):
-            warnings.warn(f"checkpoint {self.path}: ignoring a torn last line "
+            warnings.warn(f"checkpoint {self.given}: ignoring a torn last line "
                           f"({len(data) - end} bytes, an interrupted write); its case is recomputed",
-                          RuntimeWarning, stacklevel=3)
-            with open(self.path, "r+b") as fh:
-                fh.truncate(end)
-                fh.flush()
-                os.fsync(fh.fileno())
-        rows, bad, stale, other = {}, 0, 0, {}
-        for line in data[len(header):end].splitlines():
+                          RuntimeWarning, stacklevel=4)
+            os.ftruncate(self.fd, end)
+            os.fsync(self.fd)
+        rows, lines, bad, stale, other = {}, {}, 0, 0, {}
+        for line in data[header_end:end].splitlines():
+            if not line.strip():
+                continue
             try:          # NaN / Infinity written by older versions are read as missing (None)
                 record = json.loads(line, parse_constant=lambda name: None)
                 key, settings, row = record["key"], record["settings"], record["row"]
@@ -164,60 +335,122 @@ class _Checkpoint:
                 other[key] = code
                 continue
             rows[key] = row
+            if key in keys:
+                lines[key] = line.rstrip(b"\r") + b"\n"
+        self.kept = list(lines.values())
         other = {key: code for key, code in other.items() if key not in rows}
         if other:
             made_by = sorted({json.dumps(code, sort_keys=True) for code in other.values()})
-            warnings.warn(f"checkpoint {self.path}: {len(other)} record(s) made by other code "
+            warnings.warn(f"checkpoint {self.given}: {len(other)} record(s) made by other code "
                           f"({'; '.join(made_by)}, this is {json.dumps(self.code, sort_keys=True)}) "
                           "are recomputed; pass keep_other_versions=True to reuse them",
-                          RuntimeWarning, stacklevel=3)
+                          RuntimeWarning, stacklevel=4)
         if bad:
-            warnings.warn(f"checkpoint {self.path}: {bad} unreadable line(s) ignored; "
-                          "their cases are recomputed", RuntimeWarning, stacklevel=3)
+            warnings.warn(f"checkpoint {self.given}: {bad} unreadable line(s) ignored; "
+                          "their cases are recomputed", RuntimeWarning, stacklevel=4)
         if stale:
-            warnings.warn(f"checkpoint {self.path}: {stale} record(s) made with other settings "
-                          f"than {self.settings} are not reused", RuntimeWarning, stacklevel=3)
+            warnings.warn(f"checkpoint {self.given}: {stale} record(s) made with other settings "
+                          f"than {self.settings} are not reused", RuntimeWarning, stacklevel=4)
         return rows
 
-    def _rewrite(self, content):
-        with open(self.path, "wb") as fh:
-            fh.write(content)
-            fh.flush()
-            os.fsync(fh.fileno())
-        fsync_dir(self.path.parent)
+    def _create(self):
+        """(Re)write the file atomically: the header and the records kept so far."""
+        content = _HEADER.encode() + b"".join(self.kept)
+        if self.fd is not None:
+            self._detach()
+        atomic_file_write(self.path, content)
+        self._attach()
+
+    def _attach(self):
+        self.fd = _open_regular(self.path, os.O_WRONLY | os.O_APPEND)
+        self.identity = os.fstat(self.fd)
+        _HELD.add(self.fd)
+
+    def _detach(self):
+        _HELD.discard(self.fd)
+        os.close(self.fd)
+        self.fd = None
 
     def append(self, pairs):
-        """Append (key, row) records in one write, then flush and fsync."""
+        """Append (key, row) records in one write, then fsync; a checkpoint removed meanwhile is
+        created again (header and every record of this sweep)."""
         payload = "".join(json.dumps({"key": key, "settings": self.settings, "code": self.code,
                                       "row": row}, allow_nan=False) + "\n"
-                          for key, row in pairs)
-        with open(self.path, "ab") as fh:
-            fh.write(payload.encode())
-            fh.flush()
-            os.fsync(fh.fileno())
+                          for key, row in pairs).encode()
+        if self.fd is None:
+            return
+        try:
+            current = os.stat(self.path)
+        except FileNotFoundError:
+            current = None
+        try:
+            if current is None:
+                warnings.warn(f"checkpoint {self.given} was removed during the sweep; it is "
+                              f"created again with the {len(self.kept)} record(s) of this sweep "
+                              "so far", RuntimeWarning, stacklevel=3)
+                self._create()
+            elif not os.path.samestat(current, self.identity):
+                warnings.warn(f"checkpoint {self.given} was replaced by another file during the "
+                              "sweep; this sweep no longer records to it", RuntimeWarning,
+                              stacklevel=3)
+                self._detach()
+                return
+            view = memoryview(payload)
+            while view:
+                view = view[os.write(self.fd, view):]
+            os.fsync(self.fd)
+        except NotRegularFileError as exc:
+            raise ParameterError(f"checkpoint {exc}") from None
+        except OSError as exc:
+            raise OutputWriteError(exc.errno, f"cannot append to the checkpoint: "
+                                   f"{exc.strerror or exc}", str(self.given)) from None
+        self.kept.append(payload)
+
+    def close(self):
+        if self.fd is not None:
+            self._detach()
+        self.lock.release()
 
 
-def sweep(cases, executor=None, checkpoint=None, batch_size=64, tol=1e-8, progress=None, *,
-          max_revolutions=400, retry_failed=False, keep_other_versions=False):
+def atomic_file_write(path, content):
+    """Write bytes to path atomically (crankgen.io.atomic_file)."""
+    with atomic_file(path, "wb") as fh:
+        fh.write(content)
+
+
+def sweep(cases, executor=None, checkpoint=None, batch_size=BATCH_SIZE, tol=1e-8, progress=None, *,
+          max_revolutions=400, retry_failed=False, keep_other_versions=False, fresh=False):
     """Periodic steady states of many cases, as a SweepTable (one row per case, input order).
 
     cases: iterable of `Case` or mappings (`Case.from_dict`); all are validated before any work
-        (a bad one raises ParameterError naming its index).  Duplicates are computed once.
+        (a bad one raises ParameterError naming its index).  Duplicates are computed once.  A
+        sweep whose memory (crankgen.limits) would exceed the machine's is refused before any work.
     executor: None runs in this process; otherwise any `concurrent.futures.Executor`, e.g.
         `ProcessPoolExecutor()` or `distributed.Client(...).get_executor()`.  The executor is
         the caller's: it is used, not shut down.  Chunks it does not finish (a worker died, the
-        pool broke) are never recorded as results; they are run again in this process after the
-        others, with a RuntimeWarning.
+        pool broke, or it refused the task: shut down, a closed Dask client) are never recorded
+        as results; they are run again in this process after the others, with a RuntimeWarning.
     checkpoint: path of a JSON Lines file; finished cases are appended after every chunk and, on
         a later call, cases already in it (same `Case.key()`, tol and max_revolutions, same
-        `provenance.code_version()`) are taken from it instead of being recomputed.  Failed
-        cases are recorded too and are not retried unless retry_failed=True.  Records made by
-        other code are recomputed, with a warning, unless keep_other_versions=True.
-    batch_size: cases per call of `steady_states` (per task with an executor).
+        `provenance.code_version()`) are taken from it instead of being recomputed, so a sweep
+        can be resumed, or extended with more cases.  Failed cases are recorded too and are not
+        retried unless retry_failed=True.  Records made by other code are recomputed, with a
+        warning, unless keep_other_versions=True.  fresh=True discards its records first.  The
+        sweep holds a lock on it (CHECKPOINT.lock) while it runs: a second sweep on the same
+        checkpoint raises CheckpointError at once.
+    batch_size: cases per call of `steady_states` (per task with an executor); every finished
+        batch is checkpointed and reported, so a small batch loses little to an interruption.
     tol, max_revolutions: passed to `steady_states`.
     progress: progress(done, total) after each finished chunk, counting cases in the input
         (cases taken from the checkpoint count as done from the start).
     """
+    if executor is not None and not callable(getattr(executor, "submit", None)):
+        raise ParameterError("executor must be None or a concurrent.futures.Executor (e.g. "
+                             "ProcessPoolExecutor() or a Dask client's get_executor()), got "
+                             f"{executor!r}")
+    if progress is not None and not callable(progress):
+        raise ParameterError(f"progress must be None or a function progress(done, total), got "
+                             f"{progress!r}")
     cases = _as_cases(cases)
     batch_size = integer("batch_size", batch_size, 1)
     tol = in_range("tol", tol, 0, None, low_open=True)
@@ -225,15 +458,29 @@ def sweep(cases, executor=None, checkpoint=None, batch_size=64, tol=1e-8, progre
 
     keys = [case.key() for case in cases]
     multiplicity = Counter(keys)
-    total = len(cases)
-    results = {}
+    if cases:
+        heaviest = max(cases, key=lambda c: c.n_elements)
+        check_run_size(heaviest.n_elements, heaviest.steps_per_rev, len(multiplicity), "steady",
+                       batch=batch_size, names={"n_cases": "cases", "n_steps": "steps_per_rev",
+                                                "n_elements": "n_elements (with batch_size)"})
     store = None
     if checkpoint is not None:
         store = _Checkpoint(checkpoint, {"tol": tol, "max_revolutions": max_revolutions},
                             keep_other_versions)
-        results = {key: row for key, row in store.open().items()
-                   if key in multiplicity and not (retry_failed and row.get("status") == "failed")}
+        recorded = store.open(multiplicity, fresh=fresh)
+    try:
+        return _sweep(cases, keys, multiplicity, store, recorded if store else {}, executor,
+                      batch_size, tol, max_revolutions, retry_failed, progress)
+    finally:
+        if store is not None:
+            store.close()
 
+
+def _sweep(cases, keys, multiplicity, store, recorded, executor, batch_size, tol, max_revolutions,
+           retry_failed, progress):
+    total = len(cases)
+    results = {key: row for key, row in recorded.items()
+               if key in multiplicity and not (retry_failed and row.get("status") == "failed")}
     todo, seen = [], set(results)
     for key, case in zip(keys, cases):
         if key not in seen:
@@ -271,7 +518,7 @@ def _run_on(executor, chunks, finish, tol, max_revolutions):
         for i, chunk in enumerate(chunks):
             try:
                 futures[executor.submit(_run_chunk, chunk, tol, max_revolutions, False)] = i
-            except cf.BrokenExecutor as exc:      # broken before every chunk was sent
+            except Exception as exc:   # broken, shut down, closed (a Dask client): not sent
                 unfinished.update(range(i, len(chunks)))
                 reason = f"{type(exc).__name__}: {exc}"
                 break
@@ -291,8 +538,74 @@ def _run_on(executor, chunks, finish, tol, max_revolutions):
     if left:
         warnings.warn(f"{sum(map(len, left))} case(s) were not finished by the executor ({reason}); "
                       "nothing was recorded for them and they are run again in this process",
-                      RuntimeWarning, stacklevel=3)
+                      RuntimeWarning, stacklevel=4)
     return left
+
+
+# ---- process pools whose workers die with the sweep -------------------------------------------
+
+PR_SET_PDEATHSIG = 1
+
+
+def worker_init(parent, interval=0.5):
+    """Initializer of the command line's pool workers: the worker dies with the process that
+    made the pool (`parent`, its pid), even if that one is killed with SIGKILL.  On Linux the
+    kernel sends the worker SIGKILL when its parent dies (prctl PR_SET_PDEATHSIG); everywhere, a
+    watchdog thread checks every `interval` seconds that the parent is still there and ends the
+    worker when it is not.  Ctrl-C is left to the parent (which shuts the pool down), and the
+    checkpoint and lock files the parent held when it forked the worker are closed in it."""
+    import signal
+
+    for fd in list(_HELD):
+        try:
+            os.close(fd)
+        except OSError:
+            pass
+    _HELD.clear()
+    try:                                    # Ctrl-C is the parent's; SIGTERM kills (a forked
+        signal.signal(signal.SIGINT, signal.SIG_IGN)        # worker inherits the command
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)       # line's SIGTERM handler)
+    except ValueError:                      # not the main thread of the worker
+        pass
+    _set_parent_death_signal(signal.SIGKILL)
+    if not _alive(parent):                  # the parent died before the worker could ask
+        os._exit(1)
+    threading.Thread(target=_watch_parent, args=(parent, interval), daemon=True,
+                     name="crankgen-parent-watchdog").start()
+
+
+def _set_parent_death_signal(signum):
+    """prctl(PR_SET_PDEATHSIG, signum) on Linux; False where it is not available."""
+    import sys
+    if not sys.platform.startswith("linux"):
+        return False
+    try:
+        import ctypes
+        libc = ctypes.CDLL(None, use_errno=True)
+        return libc.prctl(PR_SET_PDEATHSIG, int(signum), 0, 0, 0) == 0
+    except (OSError, AttributeError):
+        return False
+
+
+def _alive(pid):
+    if os.getppid() == 1 and pid != 1:      # re-parented to init: the parent is gone
+        return False
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def _watch_parent(parent, interval):
+    import time
+    first = os.getppid()
+    while True:
+        time.sleep(interval)
+        if os.getppid() != first or not _alive(parent):
+            os._exit(1)
 
 
 def _standard_columns():

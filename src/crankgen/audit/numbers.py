@@ -118,9 +118,8 @@ def section5(titles, facts=None):
            "eq. 24 damping, 16 elements) and the consistent model (lagrange, Kelvin-Voigt, "
            f"element-mean membrane strain, {N_AUDIT} elements); ratio B/A of the steady amplitude "
            "of $v^*(x^*=1/2)$, or the status of B when it has no periodic state.\n"]
-    models = {"paper": dict(formulation="paper", damping="paper", n_elements=16),
-              "consistent": dict(formulation="lagrange", damping="kelvin-voigt", membrane="averaged",
-                                 n_elements=N_AUDIT)}
+    models = {"paper": dict(model="paper", n_elements=16),
+              "consistent": dict(model="consistent", n_elements=N_AUDIT)}
     cases = [Case(eps=e, omega=w, approach=ap, **kw)
              for kw in models.values() for e in EPS for w in OMEGAS for ap in "AB"]
     res = iter(steady_states(cases))

@@ -15,6 +15,7 @@ import numpy as np
 from .. import engine, ingredients
 from .._generated import groups as _groups
 from ..cases import Case
+from ..constraints import project_residual
 from ..mesh import U
 from ..model import Model
 from ..steady import steady_states
@@ -27,8 +28,7 @@ ALL_GROUPS = KINETIC_GROUPS + ELASTIC_GROUPS + DAMPING_GROUPS
 
 def consistent_case(eps, omega, n_elements=8, **kw):
     """The consistent model of the audit: lagrange, A, Kelvin-Voigt, element-mean membrane strain."""
-    return Case(eps=eps, omega=omega, approach="A", formulation="lagrange", damping="kelvin-voigt",
-                membrane="averaged", n_elements=n_elements, **kw)
+    return Case(eps=eps, omega=omega, approach="A", model="consistent", n_elements=n_elements, **kw)
 
 
 @dataclass(frozen=True)
@@ -63,8 +63,8 @@ def group_weights(case, steady):
     for k in range(steps):             # one revolution (the last point repeats the first)
         t = k * float(batch.dt[0])
         kin = model.kinematics(t)
-        q, qd, qdd, tmaps = model.nodal_state(kin, res.D_history[0, k], res.V_history[0, k],
-                                              res.A_history[0, k])
+        q, qd, qdd, E = model.nodal_state(kin, res.D_history[0, k], res.V_history[0, k],
+                                          res.A_history[0, k])
         element = (q, qd, qdd, geo, coef, kin.vector)
         last = (q[-1], qd[-1], qdd[-1], geo[-1], coef, kin.vector)
         vectors = {}
@@ -79,8 +79,7 @@ def group_weights(case, steady):
                 r += _kernel("rod_elastic_A", g, averaged)(*element)[0]
             else:
                 r += _kernel("kelvin_voigt_A", g, averaged)(*element)[0]
-            T = tmaps[0]
-            r[-1] = T.T @ r[-1]
+            r[-1] = project_residual(E, r[-1])
             vectors[g] = model.assembler.vector(r)
         elastic = sum(vectors[g] for g in ELASTIC_GROUPS)
         total = sum(vectors.values())

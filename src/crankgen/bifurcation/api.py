@@ -5,43 +5,43 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..cases import Case
+from ..cases import run_case
 from ..errors import CrankgenError, ParameterError
 from ..validation import choice, in_range, integer
 from .core import Continuer, Settings
 from .mechanism import PARAMETERS, MechanismMap
 
 
-def make_case(mech, parameter, value, case, **model):
-    """The Case of the first point: case (if given) or mech + model options, with parameter = value."""
+def make_case(mech, parameter, value, case, **fields):
+    """The Case of the first point: case (if given) or mech + the run's fields and model, with
+    parameter = value."""
     choice("parameter", parameter, PARAMETERS)
-    if case is None:
-        from ..parameters import Mechanism
-        mech = mech if mech is not None else Mechanism()
-        case = Case.from_mechanism(mech, **model)
-    return replace(case, **{parameter: float(value)})
+    return replace(run_case(mech, case, **fields), **{parameter: value})
 
 
-def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, omega=0.8, approach="A",
-                 formulation="lagrange", damping="paper", membrane="pointwise", rotary_inertia=True,
-                 n_elements=16, steps_per_rev=100, max_period=4, ds=0.05, ds_min=1e-4, ds_max=100.0, dp_max=None, max_points=400,
-                 tol=1e-9, switch_step=0.05, case=None, progress=None):
+def _check_progress(progress):
+    if progress is not None and not callable(progress):
+        raise ParameterError(f"progress must be None or a function, got {progress!r}")
+
+
+def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, model=None, max_period=4, ds=0.05,
+                 ds_min=1e-4, ds_max=100.0, dp_max=None, max_points=400, tol=1e-9, switch_step=0.05,
+                 case=None, progress=None, **fields):
     """Follow the periodic response of the mechanism as `parameter` (omega, eps, ms, mu, a or offset) goes
     from start to stop, by pseudo-arclength continuation of the fixed points of the crank-revolution
     map, and return a BifurcationDiagram: branches (period, parameter, amplitude = max |v*(1/2)|
     over the orbit, stable, Floquet multipliers, states) and special points (fold, period-doubling,
     neimark-sacker), with the period-2 (then 4, ... up to max_period) branches born at period
-    doublings.  Model options as in steady_state (or case=Case(...)); the value of `parameter`
-    given among them is replaced by start.  Steps ds, ds_min, ds_max are arclengths in the metric
+    doublings.  The case as in steady_state (a Mechanism with the run's fields and model=, or
+    case=Case(...)); the value of `parameter` given among them is replaced by start.  Steps ds, ds_min, ds_max are arclengths in the metric
     |dy|^2 / dim + dp^2, y the state in v*-like units; no step changes the parameter by more than
     dp_max (default |stop - start| / 50).  progress(text) receives progress lines."""
+    _check_progress(progress)
     start = in_range("start", start)
     stop = in_range("stop", stop)
     if start == stop:
         raise ParameterError(f"start and stop must differ, got {start:g}")
-    c0 = make_case(mech, parameter, start, case, omega=omega, approach=approach,
-                   formulation=formulation, damping=damping, membrane=membrane,
-                   rotary_inertia=rotary_inertia, n_elements=n_elements, steps_per_rev=steps_per_rev)
+    c0 = make_case(mech, parameter, start, case, model=model, **fields)
     make_case(None, parameter, stop, c0)                       # validates stop for the parameter
     settings = Settings(ds=in_range("ds", ds, 0, None, True), ds_min=in_range("ds_min", ds_min, 0, None, True),
                         ds_max=in_range("ds_max", ds_max, 0, None, True),
@@ -68,26 +68,27 @@ def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, omega=0.8
     return diagram
 
 
-def poincare(mech=None, parameter="omega", values=None, direction="up", *, omega=0.8, approach="A",
-             formulation="lagrange", damping="paper", membrane="pointwise", rotary_inertia=True,
-             n_elements=16, steps_per_rev=100, transient=100, samples=64, max_period=8, tol=1e-8,
-             lyapunov_tol=0.01, case=None, progress=None):
+def poincare(mech=None, parameter="omega", values=None, direction="up", *, model=None, transient=100,
+             samples=64, max_period=8, tol=1e-8, lyapunov_tol=0.01, case=None, progress=None, **fields):
     """Brute-force bifurcation diagram (a PoincareDiagram): for each value of `parameter` in
     `values`, swept "up", "down" or "both" (up, then down from where up ended), march `transient`
     crank revolutions from the last state of the previous value (the first from rest), then sample
     v*(1/2) at theta = 0 once per revolution for `samples` revolutions and classify the response:
     period-k (k <= max_period), quasi-periodic, irregular or unsettled, with the evidence (repeat
-    residual, largest Lyapunov exponent of the revolution map, distinct samples).  Model options
-    as in steady_state.  progress(done, total) after each value."""
+    residual, largest Lyapunov exponent of the revolution map, distinct samples).  The case as in
+    steady_state.  progress(done, total) after each value."""
     from .sweeps import sweep_map
 
-    if values is None or len(values) == 0:
+    _check_progress(progress)
+    if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
+        raise ParameterError(f"values must be a sequence of {parameter} values (a list or an "
+                             f"array), got {type(values).__name__} {values!r}")
+    values = list(values)
+    if not values:
         raise ParameterError("values must hold at least one parameter value")
     values = [in_range(f"values ({parameter})", v) for v in values]
-    c0 = make_case(mech, parameter, min(values), case, omega=omega, approach=approach,
-                   formulation=formulation, damping=damping, membrane=membrane,
-                   rotary_inertia=rotary_inertia,
-                   n_elements=n_elements, steps_per_rev=steps_per_rev)
+    choice("direction", direction, ("up", "down", "both"))
+    c0 = make_case(mech, parameter, min(values), case, model=model, **fields)
     for v in values:
         make_case(None, parameter, v, c0)                      # validates every value
     transient = integer("transient", transient, 0)

@@ -13,12 +13,13 @@ from dataclasses import replace
 
 import numpy as np
 
-from .. import engine
+from .. import engine, schema
 from ..errors import ParameterError
 from ..validation import choice
 from .maps import Map, MapError
 
-PARAMETERS = ("omega", "eps", "ms", "mu", "a", "offset")
+# the parameters a continuation may vary: those the schema declares continuable
+PARAMETERS = schema.CONTINUABLE
 
 
 class MechanismMap(Map):
@@ -31,7 +32,7 @@ class MechanismMap(Map):
             raise ParameterError(f"continuation needs integrator='newton' (the converged step map "
                                  f"is differentiated), got {case.integrator!r}")
         self.case, self.parameter, self.dp_step = case, parameter, dp_step
-        b = engine.Batch([case])
+        b = engine.Batch([case], entries=("march", "revolution"))
         self.N, self.spr = b.N, b.steps_per_rev
         self.s = np.concatenate([b.scales[0], b.scales[0]])
         self.dim = 2 * self.N

@@ -1,9 +1,10 @@
-"""Command-line interface: `crankgen simulate | steady | sweep | reproduce | audit | continue | poincare`.
+"""Command-line interface: `crankgen simulate | steady | sweep | reproduce | audit | continue | poincare | compile`.
 
 Exit codes: 0 success; 1 a run that failed (simulate: the integration stopped, and what was
 computed up to the failure is written; steady: status "failed"; a file that could not be written);
 2 a usage error (a bad option or parameter, an unusable --out, outputs already there without
---force), reported on one line before anything is computed or created; 130 interrupted.
+--force, a run too large for the machine's memory, a checkpoint in use), reported on one line
+before anything is computed or created; 130 interrupted (Ctrl-C), 143 terminated (SIGTERM).
 """
 
 import argparse
@@ -15,6 +16,7 @@ from ..errors import ConvergenceError, CrankgenError
 from ..provenance import VERSION
 from .options import (_Parser, _add_mechanism_options, _add_model_options, _add_output_options,
                       _figure_list, _number_list)
+from .compile import _cmd_compile
 from .runs import _cmd_simulate, _cmd_steady, _cmd_sweep
 from .studies import (CONTINUE_NAMES, POINCARE_NAMES, _add_branch_model_options, _cmd_audit,
                       _cmd_continue, _cmd_poincare, _cmd_reproduce)
@@ -30,7 +32,8 @@ def build_parser():
                     "flexible finite-element connecting rod, slider on a straight guide).",
         epilog="Exit codes: 0 success; 1 a run that failed (what it computed before failing is "
                "written); 2 a usage error (bad option or parameter, unusable --out, outputs already "
-               "there without --force); 130 interrupted.")
+               "there without --force, a run too large for this machine's memory); 130 interrupted, "
+               "143 terminated.")
     parser.add_argument("--version", action="version",
                         version=f"crankgen {VERSION} (generated kernels {kernels_hash()})")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
@@ -71,23 +74,31 @@ def build_parser():
                        description="Steady states (as `crankgen steady`) of every combination of the "
                                    "values given, e.g. --omega 0.2:1.6:0.05 --eps 0.01,0.1 --model "
                                    "paper,consistent. Finished cases are appended to a checkpoint "
-                                   "(default OUT/sweep.jsonl) as they complete; running the same command "
-                                   "again after an interruption resumes from it. sweep.csv (one row per "
+                                   "(default OUT/sweep.jsonl) batch by batch; running the same command "
+                                   "again after an interruption resumes from it, and a command with more "
+                                   "values (--force to replace sweep.csv) reuses it. sweep.csv (one row per "
                                    "case, in grid order; missing numbers are empty fields) is written at "
                                    "the end. Cases that fail or have no periodic state are rows with their "
                                    "status and message; the exit code is 0 once every case has a row.")
     _add_mechanism_options(p, grid=True)
     g = _add_model_options(p, grid=True)
     _add_steady_options(g)
-    g.add_argument("--batch-size", type=int, default=64, help="cases per batch (per task with --workers) (default 64)")
+    g.add_argument("--batch-size", type=int, default=8,
+                   help="cases per batch (per task with --workers); each finished batch is added to the "
+                        "checkpoint and reported (default 8)")
     g.add_argument("--workers", type=int, default=1,
                    help="processes (a process pool) when > 1; default 1: this process, whose compiled "
                         "batches already use every core")
     p.add_argument("--checkpoint", default=None,
                    help="checkpoint file (JSON Lines; default OUT/sweep.jsonl); cases recorded there "
-                        "with the same tolerances are reused. --force starts it afresh")
+                        "with the same tolerances are reused, so a sweep resumes, or is extended with "
+                        "more values, without recomputing them. One sweep at a time uses it "
+                        "(lock file CHECKPOINT.lock)")
+    p.add_argument("--fresh", action="store_true",
+                   help="discard the checkpoint's records and compute every case again")
     p.add_argument("--retry-failed", action="store_true", help="recompute cases recorded as failed in the checkpoint")
-    _add_output_options(p, "out", "sweep.csv and the checkpoint sweep.jsonl")
+    _add_output_options(p, "out", "sweep.csv and the checkpoint sweep.jsonl (--force replaces "
+                        "sweep.csv and keeps the checkpoint's records)")
     p.set_defaults(func=_cmd_sweep)
 
     p = sub.add_parser("reproduce", help="recompute the paper's Figures 2-8 and findings.md (paper and consistent models)",
@@ -114,6 +125,17 @@ def build_parser():
                         "element-count check always runs")
     p.add_argument("--quiet", action="store_true", help="no progress output")
     p.set_defaults(func=_cmd_reproduce)
+
+    p = sub.add_parser("compile", help="compile the engine and every model's kernels into the cache, once",
+                       description="Compile the compiled engine and the kernels of every model (every "
+                                   "formulation, approach, membrane, damping, guide and crank motion) into "
+                                   "the compiled-code cache, on two processes, so that no later run "
+                                   "waits for a compilation. Run by the owner of an installation it fills "
+                                   "the installation's cache, which every user loads (read-only is "
+                                   "fine); otherwise the cache of the user running it (or "
+                                   "$CRANKGEN_CACHE_DIR). Items already compiled are kept.")
+    p.add_argument("--quiet", action="store_true", help="no progress output")
+    p.set_defaults(func=_cmd_compile)
 
     p = sub.add_parser("audit", help="symbolic audit report audit/report.md: what each approach and formulation keeps, and what it weighs",
                        description="Write a Markdown report (LaTeX formulas) that opens with a summary "
@@ -195,14 +217,49 @@ def _unrecognized(parser, args, extra):
     command.error(f"unrecognized arguments: {' '.join(extra)}{hint}")
 
 
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, handled as an interruption (the run stops cleanly: pool workers ended, temporary
+    files removed), exit code 143."""
+
+
+def _terminate(signum, frame):
+    raise Terminated()
+
+
 def main(argv=None):
+    """Run one command; return its exit code.  Progress, log and result lines are best effort
+    (crankgen.progress.BestEffortStream): a full disk or a closed pipe behind stdout or stderr
+    never stops a computation, nor turns a finished one into a failure."""
+    import signal
+    import threading
+
+    from ..progress import BestEffortStream
+
+    streams = sys.stdout, sys.stderr
+    sys.stdout, sys.stderr = BestEffortStream.wrap(sys.stdout), BestEffortStream.wrap(sys.stderr)
+    previous = warnings.showwarning
+    warnings.showwarning = _one_line_warning
+    handler = None
+    if threading.current_thread() is threading.main_thread() \
+            and signal.getsignal(signal.SIGTERM) == signal.SIG_DFL:
+        handler = signal.signal(signal.SIGTERM, _terminate)
+    try:
+        return _main(argv)
+    finally:
+        if handler is not None:
+            signal.signal(signal.SIGTERM, handler)
+        warnings.showwarning = previous
+        sys.stdout, sys.stderr = streams
+
+
+def _main(argv):
     parser = build_parser()
     args, extra = parser.parse_known_args(argv)
     if extra:
         _unrecognized(parser, args, extra)
     name = f"crankgen {args.command}"
-    previous = warnings.showwarning
-    warnings.showwarning = _one_line_warning
+    from ..compile_cache import set_quiet
+    set_quiet(getattr(args, "quiet", False))
     try:
         return args.func(args)
     except ConvergenceError as exc:                          # a run that failed
@@ -211,17 +268,28 @@ def main(argv=None):
     except CrankgenError as exc:                             # parameters, --out, existing outputs
         print(f"{name}: error: {exc}", file=sys.stderr)
         return 2
-    except OSError as exc:                                   # writing an output failed mid-run
-        where = f"{exc.filename}: " if exc.filename else ""
-        print(f"{name}: error: {where}{exc.strerror or exc}", file=sys.stderr)
+    except MemoryError:
+        print(f"{name}: error: out of memory (the run needs more memory than this machine "
+              "gives it; ask for less)", file=sys.stderr)
         return 1
-    except KeyboardInterrupt:
-        resume = ("; the finished cases are in the checkpoint: the same command resumes"
-                  if args.command == "sweep" else "")
-        print(f"{name}: interrupted{resume}", file=sys.stderr)
-        return 130
-    finally:
-        warnings.showwarning = previous
+    except OSError as exc:                                   # writing an output failed mid-run
+        print(f"{name}: error: {_os_error_text(exc)}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt as exc:
+        detail = getattr(exc, "detail", "")
+        print(f"{name}: {'terminated' if isinstance(exc, Terminated) else 'interrupted'}"
+              + (f"; {detail}" if detail else ""), file=sys.stderr)
+        return 143 if isinstance(exc, Terminated) else 130
+
+
+def _os_error_text(exc):
+    """FILE: what went wrong (the file crankgen was writing; never a temporary file)."""
+    text = exc.strerror or str(exc)
+    if exc.filename is None:
+        return text
+    if exc.filename2 is not None and str(exc.filename).endswith(".tmp"):
+        return f"{exc.filename2}: {text}"
+    return f"{exc.filename}: {text}"
 
 
 if __name__ == "__main__":

@@ -1,29 +1,22 @@
-"""Options shared by the commands: the mechanism, the model (--model paper|consistent and its
-overrides) and the output folder; argument types; the Case a command line describes."""
+"""Options shared by the commands, made from the schema (derive/model.py): a flag per parameter of
+a case (its kind, range, units and help; --model and the options' flags from the presets and
+options), the output folder; argument types; the Case a command line describes."""
 
 import argparse
 import math
+import re
 import sys
 from pathlib import Path
 
+from .. import schema
 from ..errors import CrankgenError
-from ..ingredients import CHOICES
-from ..newmark import SCHEMES
 
-# the choices of the model options, from the declared model (derive/model.py)
-APPROACHES, FORMULATIONS = CHOICES["approach"], CHOICES["formulation"]
-DAMPING_MODELS, MEMBRANE_OPTIONS = CHOICES["damping"], CHOICES["membrane"]
-
-# The two models the project compares (see README): --model sets these three options; an explicit
-# --formulation, --damping or --membrane overrides the model's value for that option.
-MODELS = {
-    "paper": dict(formulation="paper", damping="paper", membrane="pointwise"),
-    "consistent": dict(formulation="lagrange", damping="kelvin-voigt", membrane="averaged"),
-}
-MODEL_HELP = ("paper: the printed form (formulation paper, damping paper, membrane pointwise); "
-              "consistent: formulation lagrange, damping kelvin-voigt, membrane averaged "
-              "(default consistent). An explicit --formulation, --damping or --membrane overrides "
-              "the model's value for that option")
+# The named models (presets of the schema): --model sets their options; an explicit --formulation,
+# --damping or --membrane overrides the model's value for that option.
+MODELS = {name: dict(p.options) for name, p in schema.PRESETS.items()}
+MODEL_HELP = ("; ".join(f"{name}: {p.doc}" for name, p in schema.PRESETS.items())
+              + f" (default {schema.DEFAULT_PRESET}). An explicit option flag overrides the model's value")
+_ON_OFF = {"on": True, "off": False}
 
 
 class UsageError(CrankgenError):
@@ -31,60 +24,82 @@ class UsageError(CrankgenError):
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse with a one-line error message (and exit code 2), pointing to --help."""
+    """argparse with a one-line error message (and exit code 2), pointing to --help.
+
+    A value that starts with a minus sign followed by a digit, a point or inf / nan is a value,
+    not an option: `--offset -0.05`, `--gravity -1e-3,0`, `--offset -0.05,0.05` and ranges
+    `-0.1:0.1:0.05` (argparse alone takes only plain negative numbers such as -1 or -.5 as
+    values).  No option of crankgen looks like that, so real option names keep working."""
+
+    NEGATIVE_VALUE = re.compile(r"^-(\d|\.\d|inf|nan)", re.IGNORECASE)
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = self.NEGATIVE_VALUE
 
     def error(self, message):
         self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
 
 
-# ---- options shared by the commands ------------------------------------------------------------
+# ---- flags from the schema ---------------------------------------------------------------------
+def _default_text(p):
+    default = p.default
+    if p.kind == "pair":
+        return ",".join(f"{x:g}" for x in default)
+    return f"{default:g}" if isinstance(default, float) else str(default)
+
+
+def _help(p, many):
+    where = ""
+    if p.owner in ("guide", "motion"):
+        where = f" [{' and '.join(p.readers)} {p.owner}]"
+    rng = f", {p.range_text}" if (p.kind == "real" and (p.low, p.high) != (None, None)) or p.kind == "count" else ""
+    return f"{p.doc}{rng}{where} (default {_default_text(p)})" + many
+
+
+def _parameter_type(p, grid):
+    if p.kind == "real":
+        return _float_grid if grid else _number
+    if p.kind == "pair":
+        return _pair
+    if p.kind == "count":
+        return _int_list(p.cli, p.low) if grid else int
+    if p.kind == "sign":
+        return _choices(p.cli, ("1", "-1", "+1"), grid, cast=int)
+    return _choices(p.cli, p.choices, grid)
+
+
+def _add_parameter(g, p, grid):
+    many = " (a list of them allowed)" if grid and p.kind in ("count", "sign", "choice") else ""
+    metavar = p.metavar or ("{" + ",".join(p.choices) + "}" if p.kind == "choice" else
+                             "{1,-1}" if p.kind == "sign" else p.cli.upper().replace("-", "_"))
+    g.add_argument(f"--{p.cli}", dest=p.name, type=_parameter_type(p, grid), default=None,
+                   metavar=metavar, help=_help(p, many))
+
+
 def _add_mechanism_options(p, grid=False):
     g = p.add_argument_group("mechanism (dimensionless, section 5 of the paper)"
                              + (": each takes a value, a list 0.1,0.2 or a range START:STOP:STEP" if grid else ""))
-    kind = _float_grid if grid else float
-    g.add_argument("--a", type=kind, default=0.1, help="crank length over rod length a* = a/L, 0 < a* < 1 (default 0.1)")
-    g.add_argument("--eps", type=kind, default=0.01, help="slenderness eps = r/L, r the radius of gyration, > 0 (default 0.01)")
-    g.add_argument("--ms", type=kind, default=0.5, help="slider mass ms* = m_s/(rho A L), >= 0 (default 0.5)")
-    g.add_argument("--mu", type=kind, default=0.5, help="damping mu* = omega_b mu, >= 0 (default 0.5)")
-    g.add_argument("--offset", type=kind, default=0.0,
-                   help="guide offset e/L: the slider moves on the line Y = e; a* + |e| < 1 (default 0)")
-    g.add_argument("--gravity", type=_pair, default=(0.0, 0.0), metavar="GX,GY",
-                   help="gravity (gX, gY) in units of L omega_b^2, X along the guide towards the slider, "
-                        "Y perpendicular (crank pin at a* (cos theta, sin theta)) (default 0,0)")
+    for name in schema.MECHANISM_PARAMETERS:
+        _add_parameter(g, schema.PARAMETERS[name], grid)
 
 
 def _add_model_options(p, grid=False, integrator=True):
-    g = p.add_argument_group("model and integration"
+    g = p.add_argument_group("crank motion, model and integration"
                              + (" (lists allowed: A,B or 8,16)" if grid else ""))
     many = " (a list of them allowed)" if grid else ""
-    g.add_argument("--omega", type=_float_grid if grid else float, default=0.8,
-                   help="crank speed Omega* = Omega/omega_b, > 0 (default 0.8)"
-                        + ("; e.g. 0.2:1.6:0.05 (stop included)" if grid else ""))
-    g.add_argument("--model", type=_choices("model", tuple(MODELS), grid), default=None,
+    for name in schema.RUN_PARAMETERS:
+        if name == "integrator" and not integrator:
+            continue
+        _add_parameter(g, schema.PARAMETERS[name], grid)
+    g.add_argument("--model", type=_choices("model", tuple(schema.PRESETS), grid), default=None,
                    help=MODEL_HELP + many)
-    g.add_argument("--approach", type=_choices("approach", APPROACHES, grid), default="A",
-                   help="strain energy: A full non-linear (eq. 2), B without the quartic v_x^4 term, "
-                        "C linear strain (default A)" + many)
-    g.add_argument("--formulation", type=_choices("formulation", FORMULATIONS, grid), default=None,
-                   help="lagrange: exact Euler-Lagrange equations; paper: the printed matrix form "
-                        "eqs. (17)-(29) (default: the model's)" + many)
-    g.add_argument("--damping", type=_choices("damping", DAMPING_MODELS, grid), default=None,
-                   help="paper: C = mu (K_lin + K_non), eq. (24); kelvin-voigt: strain-rate damping of "
-                        "each approach's strain (default: the model's)" + many)
-    g.add_argument("--membrane", type=_choices("membrane", MEMBRANE_OPTIONS, grid), default=None,
-                   help="pointwise: the element as derived from eq. (2); averaged: element-mean "
-                        "membrane strain, free of membrane locking (default: the model's)" + many)
-    g.add_argument("--rotary-inertia", type=_choices("rotary-inertia", ("on", "off"), grid), default="on",
-                   help="on: keep the rho I terms of the kinetic energy; off: drop them (default on)" + many)
-    g.add_argument("--elements", type=_int_list("elements", 1) if grid else int, default=16,
-                   help="number of rod elements, >= 1 (default 16)")
-    g.add_argument("--steps-per-rev", type=_int_list("steps-per-rev", 4) if grid else int, default=100,
-                   help="Newmark steps per crank revolution, >= 4 (default 100)")
-    if integrator:
-        g.add_argument("--integrator", type=_choices("integrator", SCHEMES, grid), default="newton",
-                       help="newton: Newton iterations on the exact tangent, its factorization reused "
-                            "while they converge fast; full-newton: the tangent refreshed at every "
-                            "iteration; one-pass: the paper's eqs. (34)-(39) (default newton)" + many)
+    for o in schema.OPTIONS.values():
+        choices = tuple(_ON_OFF) if isinstance(o.default, bool) else o.choices
+        shown = ({v: k for k, v in _ON_OFF.items()}[o.default] if isinstance(o.default, bool) else o.default)
+        g.add_argument(f"--{o.cli}", dest=o.name, default=None, metavar="{" + ",".join(map(str, choices)) + "}",
+                       type=_choices(o.cli, choices, grid, cast=_ON_OFF.get if isinstance(o.default, bool) else None),
+                       help=f"{o.doc} (default: the model's; without a model {shown})" + many)
     return g
 
 
@@ -113,9 +128,19 @@ def _number(text):
         raise argparse.ArgumentTypeError(f"expected a number, got {text!r}") from None
 
 
-def _clean(x):
-    """A grid value without floating-point noise (0.30000000000000004 -> 0.3)."""
-    return float(f"{x:.12g}")
+def _decimals(text):
+    """Decimal places a number is written with ('0.05' -> 2, '1e-3' -> 3, '2' -> 0)."""
+    from decimal import Decimal, InvalidOperation
+    try:
+        return max(0, -Decimal(text.strip()).as_tuple().exponent)
+    except (InvalidOperation, TypeError):
+        return 12
+
+
+def _clean(x, decimals=12):
+    """A grid value without floating-point noise: rounded to the decimal places its range is
+    written with (-0.3 + 3 x 0.1 -> 0.0, not 5.55e-17), one canonical zero."""
+    return round(x, decimals) + 0.0
 
 
 def _float_grid(text):
@@ -136,9 +161,10 @@ def _float_grid(text):
             n = int(math.floor((stop - start) / step + 1e-9))
             if n >= 100000:
                 raise argparse.ArgumentTypeError(f"the range {item!r} has more than 100000 values")
-            values += [_clean(start + k * step) for k in range(n + 1)]
+            places = max(_decimals(parts[0]), _decimals(parts[2]))
+            values += [_clean(start + k * step, places) for k in range(n + 1)]
         else:
-            values.append(_number(item))
+            values.append(_number(item) + 0.0)
     if not values:
         raise argparse.ArgumentTypeError(f"expected a number, a list or a range, got {text!r}")
     return list(dict.fromkeys(values))
@@ -156,7 +182,7 @@ def _int_list(what, low):
     return parse
 
 
-def _choices(what, allowed, many):
+def _choices(what, allowed, many, cast=None):
     def parse(text):
         values = [s.strip() for s in text.split(",") if s.strip()] if many else [text]
         for v in values or [text]:
@@ -164,7 +190,9 @@ def _choices(what, allowed, many):
                 raise argparse.ArgumentTypeError(
                     f"{what} must be {' or '.join(allowed) if len(allowed) < 3 else 'one of ' + ', '.join(allowed)}"
                     f", got {v!r}")
-        return list(dict.fromkeys(values)) if many else text
+        if cast is not None:
+            values = [cast(v) for v in values]
+        return list(dict.fromkeys(values)) if many else values[0]
     return parse
 
 
@@ -185,23 +213,30 @@ _figure_list = _number_list("figure", 2, 8)
 
 
 # ---- helpers -----------------------------------------------------------------------------------
+CASE_FIELDS = tuple(schema.PARAMETERS) + tuple(schema.OPTIONS)
+
+
+def _flag(name):
+    """The command-line flag (without --) of a case field."""
+    from .. import schema
+    spec = schema.PARAMETERS.get(name) or schema.OPTIONS.get(name)
+    return spec.cli
+
+
+def _explicit(args):
+    """{field: value} of every case field the command line gives (None: not given)."""
+    return {name: getattr(args, name) for name in CASE_FIELDS if getattr(args, name, None) is not None}
+
+
 def _model_options(args):
-    """formulation, damping, membrane: the model's (default consistent), explicit options winning;
-    and rotary_inertia."""
-    chosen = dict(MODELS[args.model or "consistent"])
-    for name in chosen:
-        if getattr(args, name) is not None:
-            chosen[name] = getattr(args, name)
-    chosen["rotary_inertia"] = args.rotary_inertia == "on"
-    return chosen
+    """The model options of the command line: the model's (default consistent), explicit options
+    winning."""
+    return schema.resolve_options(args.model, **{n: getattr(args, n, None) for n in schema.OPTIONS})
 
 
 def _case(args):
-    from ..cases import Case
-    return Case(a=args.a, eps=args.eps, ms=args.ms, mu=args.mu, omega=args.omega,
-                gravity=args.gravity, offset=args.offset, approach=args.approach,
-                n_elements=args.elements, steps_per_rev=args.steps_per_rev,
-                integrator=args.integrator, **_model_options(args))
+    from ..cases import make_case
+    return make_case(model=args.model, **_explicit(args))
 
 
 def _describe(case):
@@ -210,6 +245,12 @@ def _describe(case):
         extra += f", gravity ({case.gravity[0]:g}, {case.gravity[1]:g})"
     if case.offset:
         extra += f", offset {case.offset:g}"
+    if case.guide != schema.PARAMETERS["guide"].default:
+        extra += f", {case.guide} guide (" + ", ".join(
+            f"{n} = {getattr(case, n):g}" for n in schema.GUIDES[case.guide].parameters if n != "offset") + ")"
+    if case.motion != schema.PARAMETERS["motion"].default:
+        extra += f", {case.motion} crank (" + ", ".join(
+            f"{n} = {getattr(case, n):g}" for n in schema.MOTIONS[case.motion].parameters) + ")"
     return (f"approach {case.approach}, {case.formulation} formulation, {case.damping} damping, "
             f"{case.membrane} membrane, Omega* = {case.omega:g}, eps = {case.eps:g}, "
             f"n = {case.n_elements}{extra}")
@@ -224,11 +265,11 @@ class _Outputs:
     """The output folder of a command: checked (and created) before computing; if the command
     stops before writing anything, the folders it created are removed again."""
 
-    def __init__(self, folder, names, force):
+    def __init__(self, folder, names, force, subfolders=()):
         from ..compile_cache import announce
         from ..io import prepare_folder
         self.folder = Path(folder)
-        self.created = prepare_folder(self.folder, names, force)
+        self.created = prepare_folder(folder, names, force, subfolders)
         self.written = []
         announce()                  # arguments and folder are fine: computing starts now
 

@@ -1,11 +1,18 @@
-"""`crankgen simulate`, `crankgen steady`, `crankgen sweep`: runs of the mechanism."""
+"""`crankgen simulate`, `crankgen steady`, `crankgen sweep`: runs of the mechanism.
 
+Everything a command can check is checked before anything is computed or created: the
+parameters, the memory the run would need (crankgen.limits: steps x degrees of freedom, elements,
+the size of a sweep's grid before it is built), the output folder and the checkpoint."""
+
+import itertools
 import math
+import os
 import sys
 from pathlib import Path
 
 from ..errors import ConvergenceError
-from .options import MODELS, UsageError, _Outputs, _case, _describe, _say
+from ..limits import check_run_size
+from .options import CASE_FIELDS, UsageError, _Outputs, _case, _describe, _flag, _say
 
 
 SIM_COLUMNS = ["t", "theta_deg", "v_mid", "u_end", "extension", "deflection_over_L", "axial_strain",
@@ -37,6 +44,11 @@ def _cmd_simulate(args):
     case = _case(args)                                       # validates every parameter ...
     revolutions = in_range("revolutions", args.revolutions, 0, None, True)
     in_range("tol", args.tol, 0, None, True)
+    from ..simulation import run_length
+
+    steps = run_length(case, revolutions)[1]
+    check_run_size(case.n_elements, steps, stored="nodes" if args.nodes else "states",
+                   names={"n_steps": "--revolutions", "n_elements": "--elements"})
     names = ["simulation.csv", "v_mid.png"] + (["nodes.csv"] if args.nodes else [])
     out = _Outputs(args.out, names, args.force)             # ... and the output folder, first
     try:
@@ -53,17 +65,15 @@ def _simulate(args, case, revolutions, out):
     from ..progress import Progress
     from ..simulation import simulate
 
-    mech = case.mechanism
-    steps = max(1, int(round(revolutions * case.steps_per_rev)))
+    from ..simulation import run_length
+
+    steps = run_length(case, revolutions)[1]
     _say(args, f"simulate: {_describe(case)}, {revolutions:g} revolutions ({steps} steps)")
     failure = None
     with Progress("simulate", steps, enabled=not args.quiet) as progress:
         try:
-            res = simulate(mech, omega=case.omega, approach=case.approach, formulation=case.formulation,
-                           n_elements=case.n_elements, steps_per_rev=case.steps_per_rev,
-                           revolutions=revolutions, integrator=case.integrator, damping=case.damping,
-                           membrane=case.membrane, rotary_inertia=case.rotary_inertia,
-                           store_nodes=args.nodes, tol=args.tol, progress=progress)
+            res = simulate(case=case, revolutions=revolutions, store_nodes=args.nodes, tol=args.tol,
+                           progress=progress)
         except ConvergenceError as exc:
             if exc.partial is None:
                 raise
@@ -71,13 +81,15 @@ def _simulate(args, case, revolutions, out):
     from .. import theory
 
     strain = theory.axial_strain(res, per_step=True)
-    rows = [dict(t=t, theta_deg=math.degrees(th), v_mid=v, u_end=u, extension=e,
-                 deflection_over_L=theory.deflection_over_L(case.eps, v), axial_strain=st,
-                 beyond_theory=theory.beyond(theory.deflection_over_L(case.eps, v), st), status="ok")
-            for t, th, v, u, e, st in zip(res.t, res.theta, res.v_mid, res.u_end, res.extension, strain)]
+    defl = np.abs(np.asarray(res.v_mid, dtype=float)) * case.eps
+    rows = (dict(t=t, theta_deg=math.degrees(th), v_mid=v, u_end=u, extension=e, deflection_over_L=d,
+                 axial_strain=st, beyond_theory=theory.beyond(d, st), status="ok")      # streamed
+            for t, th, v, u, e, d, st in zip(res.t, res.theta, res.v_mid, res.u_end, res.extension,
+                                             defl, strain))
     if failure is not None:
-        rows.append(dict(t=failure.time, theta_deg=math.degrees(case.omega * failure.time),
-                         status=f"failed: {_failure_text(failure, case.approach)}"))
+        last = dict(t=failure.time, theta_deg=math.degrees(case.omega * failure.time),
+                    status=f"failed: {_failure_text(failure, case.approach)}")
+        rows = itertools.chain(rows, [last])
     out.wrote(write_csv(out.path("simulation.csv"), SIM_COLUMNS, rows))
     if args.nodes and res.nodes is not None:
         n = res.nodes.shape[1] // 3
@@ -85,12 +97,12 @@ def _simulate(args, case, revolutions, out):
         # psi = dv/dx (rad)
         columns = ["t", "theta_deg"] + [f"{q}{i}_{unit}" for i in range(n)
                                         for q, unit in (("u", "L"), ("v", "L"), ("psi", "rad"))]
-        node_rows = [dict(zip(columns, (t, math.degrees(th), *values)))
-                     for t, th, values in zip(res.t, res.theta, res.nodes)]
+        node_rows = (dict(zip(columns, (t, math.degrees(th), *values)))        # streamed
+                     for t, th, values in zip(res.t, res.theta, res.nodes))
         out.wrote(write_csv(out.path("nodes.csv"), columns, node_rows))
     out.wrote(plot_deflection(res, out.path("v_mid.png"), failure=failure))
-    defl = max((r["deflection_over_L"] for r in rows[:len(res.t)]), default=math.nan)
-    note = _theory_note(defl, float(np.max(strain)) if len(strain) else math.nan)
+    note = _theory_note(float(np.max(defl)) if len(defl) else math.nan,
+                        float(np.max(strain)) if len(strain) else math.nan)
     if failure is not None:
         print(f"crankgen simulate: run failed: {_failure_text(failure, case.approach)}; wrote the "
               f"history up to the failure ({len(res.t)} points, marked in the status column) to "
@@ -125,6 +137,8 @@ def _cmd_steady(args):
     case = _case(args)
     in_range("tol", args.tol, 0, None, True)
     integer("max_revolutions", args.max_revolutions, 1)
+    check_run_size(case.n_elements, case.steps_per_rev, stored="steady",
+                   names={"n_elements": "--elements", "n_steps": "--steps-per-rev"})
     _resolved(case)
     out = _Outputs(args.out, STEADY_NAMES, args.force)
     try:
@@ -189,52 +203,61 @@ def _steady(args, case, out):
 
 
 # ---- sweep -------------------------------------------------------------------------------------
-GRID_FIELDS = [("a", "a"), ("eps", "eps"), ("ms", "ms"), ("mu", "mu"), ("offset", "offset"),
-               ("omega", "omega"), ("approach", "approach"), ("n_elements", "elements"),
-               ("steps_per_rev", "steps_per_rev"), ("integrator", "integrator")]
-
-
 def _listed(value):
     return value if isinstance(value, list) else [value]
 
 
-def _sweep_cases(args):
-    """The grid: every combination of the listed values (models expanded first), validated."""
-    import itertools
+def _sweep_grid(args):
+    """(models, axes) of the grid: the presets listed (None: the default model) and the value
+    lists of every case field given; nothing is built yet."""
+    models = _listed(args.model) if args.model else [None]
+    axes = [[(name, v) for v in _listed(getattr(args, name))] for name in CASE_FIELDS
+            if getattr(args, name, None) is not None]
+    return models, axes
 
-    from ..cases import Case
+
+def _sweep_cases(args, models, axes):
+    """The grid: every combination of the listed values and models, validated."""
+    from ..cases import make_case
     from ..errors import ParameterError
 
-    models = []
-    for model in _listed(args.model or ["consistent"]):
-        base = dict(MODELS[model])
-        options = [[(name, v) for v in _listed(getattr(args, name))] if getattr(args, name) is not None
-                   else [(name, base[name])] for name in base]
-        options.append([("rotary_inertia", v == "on") for v in _listed(args.rotary_inertia)])
-        for combo in itertools.product(*options):
-            if dict(combo) not in models:
-                models.append(dict(combo))
-    axes = [[(field, v) for v in _listed(getattr(args, attr))] for field, attr in GRID_FIELDS]
     cases = []
     for model in models:
         for combo in itertools.product(*axes):
             try:
-                cases.append(Case(**dict(combo), **model, gravity=args.gravity))
+                cases.append(make_case(model=model, **dict(combo)))
             except ParameterError as exc:
-                raise ParameterError(f"in the grid: {exc}") from None
+                where = dict(combo, model=model) if model else dict(combo)
+                raise ParameterError(f"{exc} (in the grid: {where})") from None
     return list(dict.fromkeys(cases))
 
 
 def _cmd_sweep(args):
     from ..validation import in_range, integer
 
-    cases = _sweep_cases(args)
     in_range("tol", args.tol, 0, None, True)
     integer("max_revolutions", args.max_revolutions, 1)
-    integer("batch_size", args.batch_size, 1)
+    batch_size = integer("batch_size", args.batch_size, 1)
     integer("workers", args.workers, 1)
+    models, axes = _sweep_grid(args)
+    size = len(models) * math.prod(len(axis) for axis in axes)
+    given = [f"--{_flag(axis[0][0])} ({len(axis)})" for axis in axes
+             if len(axis) > 1] + ([f"models ({len(models)})"] if len(models) > 1 else [])
+    from .. import schema
+    elements = _listed(args.n_elements) if args.n_elements is not None else [schema.PARAMETERS["n_elements"].default]
+    steps = _listed(args.steps_per_rev) if args.steps_per_rev is not None else [schema.PARAMETERS["steps_per_rev"].default]
+    check_run_size(max(elements), max(steps), size, "steady",
+                   batch=batch_size * args.workers,
+                   names={"n_cases": "the grid " + " x ".join(given) if given else "the grid",
+                          "n_elements": "--elements (with --batch-size and --workers)",
+                          "n_steps": "--steps-per-rev"})
+    if size > 10000:
+        _say(args, f"sweep: building the grid of {size} cases")
+    cases = _sweep_cases(args, models, axes)
     for c in cases:
         _resolved(c, "in the grid: ")
+    if args.checkpoint is not None and not args.checkpoint.strip():
+        raise UsageError("--checkpoint is an empty name; give a file")
     checkpoint = Path(args.checkpoint) if args.checkpoint else Path(args.out) / "sweep.jsonl"
     _check_checkpoint(checkpoint, Path(args.out))
     out = _Outputs(args.out, ["sweep.csv"], args.force)
@@ -245,43 +268,62 @@ def _cmd_sweep(args):
 
 
 def _check_checkpoint(path, out):
-    if path.is_dir():
-        raise UsageError(f"checkpoint {path} is a folder, not a file")
-    if path.parent != out and not path.parent.is_dir():
-        raise UsageError(f"checkpoint {path}: its folder {path.parent} does not exist")
-    if path.exists():
-        with open(path, "rb") as fh:
-            head = fh.read(40)
-        if head and not head.startswith(b'{"format": "crankgen-sweep-checkpoint"'[:len(head)]):
-            raise UsageError(f"{path} exists and is not a crankgen sweep checkpoint; choose another "
-                             "--checkpoint or --out")
+    """Refuse, before anything is created, a checkpoint that is not a regular file (a folder, a
+    device, a FIFO, a socket, a link out of its folder), has no folder, or is not a crankgen sweep
+    checkpoint of this format version.  Nothing is opened but a regular file."""
+    from ..io import NotRegularFileError, check_target
+    from ..sweeps import check_checkpoint_file
+
+    try:
+        target = check_target(path)
+    except NotRegularFileError as exc:
+        raise UsageError(f"checkpoint {exc}") from None
+    if target.parent != out and not target.parent.is_dir():
+        raise UsageError(f"checkpoint {path}: its folder {target.parent} does not exist")
+    if target.exists():
+        try:
+            check_checkpoint_file(target)
+        except NotRegularFileError as exc:          # changed since check_target looked
+            raise UsageError(f"checkpoint {exc}") from None
 
 
 def _sweep(args, cases, checkpoint, out):
     from collections import Counter
 
     from ..progress import Progress
-    from ..sweeps import sweep
+    from ..sweeps import sweep, worker_init
 
-    if args.force and checkpoint.exists():
-        checkpoint.unlink()
-        _say(args, f"sweep: --force: {checkpoint} removed, every case is computed afresh")
+    if args.fresh and checkpoint.exists():
+        _say(args, f"sweep: --fresh: the records of {checkpoint} are discarded, every case is "
+                   "computed again")
     elif checkpoint.exists():
         _say(args, f"sweep: resuming from {checkpoint}: cases recorded there are not recomputed"
                    + ("" if args.retry_failed else " (failed ones included; --retry-failed reruns them)"))
-    _say(args, f"sweep: {len(cases)} cases; checkpoint {checkpoint}")
+    _say(args, f"sweep: {len(cases)} cases in batches of {args.batch_size}; checkpoint {checkpoint}")
     executor = None
     if args.workers > 1:
         import concurrent.futures as cf
-        executor = cf.ProcessPoolExecutor(args.workers)
+        executor = cf.ProcessPoolExecutor(args.workers, initializer=worker_init,
+                                          initargs=(os.getpid(),))
+    recorded, finished = {"done": None}, False
     try:
-        with Progress("sweep (cases)", len(cases), enabled=not args.quiet) as progress:
+        with Progress("sweep (cases)", len(cases), enabled=not args.quiet, interval=30) as bar:
+            def progress(done, total):
+                recorded["done"] = done
+                bar(done, total)
             table = sweep(cases, executor=executor, checkpoint=checkpoint, batch_size=args.batch_size,
                           tol=args.tol, max_revolutions=args.max_revolutions,
-                          retry_failed=args.retry_failed, progress=progress)
+                          retry_failed=args.retry_failed, progress=progress, fresh=args.fresh)
+        finished = True
+    except KeyboardInterrupt as exc:
+        done = recorded["done"]
+        exc.detail = (f"{done} of {len(cases)} cases are recorded in {checkpoint}: the same command "
+                      "resumes from them" if done else
+                      f"no case of this sweep had finished; nothing new was recorded in {checkpoint}")
+        raise
     finally:
         if executor is not None:
-            executor.shutdown(cancel_futures=True)
+            _stop_pool(executor, now=not finished)
     from ..io import write_csv
     from ..tables import flat_table
     out.wrote(write_csv(out.path("sweep.csv"), *flat_table(table.columns, table.rows)))
@@ -289,6 +331,18 @@ def _sweep(args, cases, checkpoint, out):
     print(f"wrote {out.path('sweep.csv')}: {len(table)} cases, "
           + ", ".join(f"{n} {status}" for status, n in sorted(counts.items())))
     return 0
+
+
+def _stop_pool(executor, now):
+    """Shut the pool down; `now` (the sweep stopped: an interruption, an error) without waiting for
+    work nobody will read: what has not started is cancelled and the workers are ended."""
+    if now:
+        for process in list((getattr(executor, "_processes", None) or {}).values()):
+            try:
+                process.kill()
+            except (OSError, AttributeError, ValueError):
+                pass
+    executor.shutdown(wait=True, cancel_futures=True)
 
 
 # ---- reproduce, audit --------------------------------------------------------------------------

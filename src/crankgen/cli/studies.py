@@ -2,14 +2,18 @@
 
 import sys
 
-from .options import UsageError, _Outputs, _add_model_options, _model_options, _say
+from .options import UsageError, _Outputs, _add_model_options, _explicit, _model_options, _say
 
 
 def _cmd_reproduce(args):
     from ..experiments import ReproduceConfig, reproduce
 
+    from ..experiments.runner import DATA, all_files
+
     config = ReproduceConfig.quick() if args.quick else ReproduceConfig.full()
-    out = _Outputs(args.out, (), True)     # a usable folder, checked first (reproduce keeps its files)
+    # a usable folder and data/ subfolder, and no output name taken by a folder, a device, ...:
+    # checked first (which files are kept or refused is reproduce's decision)
+    out = _Outputs(args.out, all_files(), True, subfolders=(DATA,))
     try:
         res = reproduce(args.out, config=config, force=args.force, quiet=args.quiet,
                         figures=args.figures)
@@ -28,7 +32,7 @@ def _cmd_audit(args):
     from ..audit import SECTIONS, TITLES, write_report
 
     sections = args.sections or list(SECTIONS)
-    out = _Outputs(args.out, (), True)            # report.md is regenerated: replaced, atomically
+    out = _Outputs(args.out, ("report.md",), True)   # regenerated: replaced, atomically
     start = time.perf_counter()
 
     def progress(k):
@@ -55,37 +59,34 @@ def _add_branch_model_options(p):
 
 
 def _branch_model(args):
-    from ..parameters import Mechanism
+    """The case of the first point, checked (the continued parameter set to the range's start)."""
+    from ..cases import make_case
 
-    base = dict(a=args.a, eps=args.eps, ms=args.ms, mu=args.mu, offset=args.offset, gravity=args.gravity)
-    if args.parameter in base:       # replaced by the range; the other values must be valid
-        base[args.parameter] = args.start
-    mech = Mechanism(**base)
-    model = dict(omega=args.omega, approach=args.approach, n_elements=args.elements,
-                 steps_per_rev=args.steps_per_rev, **_model_options(args))
-    return mech, model
+    fields = _explicit(args)
+    fields[args.parameter] = args.start
+    return make_case(model=args.model, **fields)
 
 
 def _checked_branch_model(args, continuation, values=()):
     """Every option of continue / poincare checked before anything is created or computed: the
-    mechanism and model at both ends of the range (and at every swept value), the continuation's
-    own settings when it runs, and the steady state it starts from.  Returns (mech, model)."""
+    case at both ends of the range (and at every swept value), the continuation's own settings
+    when it runs, and the steady state it starts from.  Returns the case of the first point."""
     from ..bifurcation.api import make_case
     from ..validation import in_range, integer
     from .runs import _resolved
 
     start, stop = in_range("--from", args.start), in_range("--to", args.stop)
-    mech, model = _branch_model(args)
+    case = _branch_model(args)
     for value in (start, stop, *values):
-        make_case(mech, args.parameter, value, None, **model)
+        make_case(None, args.parameter, value, case)
     if continuation:
         if start == stop:
             raise UsageError(f"--from and --to must differ for a continuation, got {start:g} twice")
         integer("--max-period", args.max_period, 1)
         first = min(start, stop) if args.parameter == "omega" else start
-        _resolved(make_case(mech, args.parameter, first, None, **model),
+        _resolved(make_case(None, args.parameter, first, case),
                   "the continuation starts from a steady state: " if args.parameter == "omega" else "")
-    return mech, model
+    return case
 
 
 CONTINUE_NAMES = ("branches.csv", "special_points.csv", "multipliers.csv", "continuation.png")
@@ -95,12 +96,12 @@ POINCARE_NAMES = ("poincare_summary.csv", "poincare_samples.csv", "poincare.png"
 def _cmd_continue(args):
     from ..bifurcation import continuation
 
-    mech, model = _checked_branch_model(args, continuation=True)
+    case = _checked_branch_model(args, continuation=True)
     folder = _Outputs(args.out, CONTINUE_NAMES, args.force)
     try:
         log = None if args.quiet else (lambda text: print(f"continue: {text}", file=sys.stderr, flush=True))
-        d = continuation(mech, args.parameter, args.start, args.stop, max_period=args.max_period,
-                         progress=log, **model)
+        d = continuation(parameter=args.parameter, start=args.start, stop=args.stop, case=case,
+                         max_period=args.max_period, progress=log)
         paths = [folder.wrote(p) for p in d.to_csv(folder.folder)]
         png = folder.wrote(d.plot(folder.path("continuation.png"), title=_title(args, "continuation"),
                                   ylabel="max |v*(1/2)| over the orbit", xlabel=_AXIS[args.parameter]))
@@ -115,16 +116,15 @@ def _cmd_continue(args):
     return 0
 
 
-_AXIS = {"omega": "Omega*", "eps": "eps", "ms": "ms*", "mu": "mu*", "a": "a*", "offset": "offset e/L"}
+_AXIS = {"omega": "Omega*", "eps": "eps", "ms": "ms*", "mu": "mu*", "a": "a*", "offset": "offset e/L",
+         "c": "rocker length c/L", "d": "ground pivot d/L", "fluctuation": "speed fluctuation k"}
 
 
 def _title(args, what):
-    m = _model_options(args)
-    return (f"{what} in {args.parameter}: approach {args.approach}, {m['formulation']} / {m['damping']} "
-            f"damping, {m['membrane']} membrane, n = {args.elements}, eps = {args.eps:g}"
-            if args.parameter != "eps" else
-            f"{what} in eps: approach {args.approach}, {m['formulation']} / {m['damping']} damping, "
-            f"{m['membrane']} membrane, n = {args.elements}, Omega* = {args.omega:g}")
+    c = _branch_model(args)
+    other = f"eps = {c.eps:g}" if args.parameter != "eps" else f"Omega* = {c.omega:g}"
+    return (f"{what} in {args.parameter}: approach {c.approach}, {c.formulation} / {c.damping} damping, "
+            f"{c.membrane} membrane, n = {c.n_elements}, {other}")
 
 
 def _cmd_poincare(args):
@@ -141,20 +141,20 @@ def _cmd_poincare(args):
     integer("--transient", args.transient, 0)
     integer("--samples", args.samples, 2)
     values = np.linspace(args.start, args.stop, args.values)
-    mech, model = _checked_branch_model(args, args.with_continuation, values)
+    case = _checked_branch_model(args, args.with_continuation, values)
     names = POINCARE_NAMES + (CONTINUE_NAMES[:3] if args.with_continuation else ())
     folder = _Outputs(args.out, names, args.force)
     try:
         total = args.values * (2 if args.direction == "both" else 1)
         with Progress("poincare", total, enabled=not args.quiet) as progress:
-            pc = poincare(mech, args.parameter, values, args.direction, transient=args.transient,
-                          samples=args.samples, progress=progress, **model)
+            pc = poincare(parameter=args.parameter, values=values, direction=args.direction, case=case,
+                          transient=args.transient, samples=args.samples, progress=progress)
         diagram = None
         if args.with_continuation:
             log = None if args.quiet else (lambda text: print(f"continue: {text}", file=sys.stderr, flush=True))
-            diagram = continuation(mech, args.parameter, min(args.start, args.stop),
-                                   max(args.start, args.stop), max_period=args.max_period, progress=log,
-                                   **model)
+            diagram = continuation(parameter=args.parameter, start=min(args.start, args.stop),
+                                   stop=max(args.start, args.stop), case=case,
+                                   max_period=args.max_period, progress=log)
             for p in diagram.to_csv(folder.folder):
                 folder.wrote(p)
         paths = [folder.wrote(p) for p in pc.to_csv(folder.folder)]

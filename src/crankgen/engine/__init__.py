@@ -1,13 +1,15 @@
 """Compiled engine: the model of model.py / newmark.py compiled with numba for speed.
 
 Split by concern:
-- compiled.py: numba compilation, the on-disk cache keyed by the generated kernels' hash, repair
-  of an unreadable cache;
-- kernels.py: the generated element kernels and dispatch, compiled;
-- elements.py: the element loop (gather, slider map, dispatch, projection) and per-step outputs;
+- compiled.py: numba compilation, the on-disk cache keyed by the code's hash (read-only and
+  home-less installs included), repair of an unreadable cache;
+- kernels.py: the generated kernels, compiled one at a time when a model first needs them, as
+  tables of first-class functions (the engine is compiled once for every model);
+- records.py: the named records the engine passes (kernel tables, cases, mesh, scheme, work arrays);
+- elements.py: the element loop (gather, end map, the selected families, projection) and per-step outputs;
 - banded.py: assembly and banded LU solvers;
 - step.py: one Newton-Newmark step (decisions shared with newmark.py through newton.py);
-- march.py: Batch (cases packed as named records) and march, lock-step batches;
+- march.py: Batch (cases packed as records) and march, lock-step batches on every core;
 - shooting.py: the revolution map and its exact linearization.
 The NumPy implementation (model.py, newmark.py) stays the reference: tests check that both give
 the same numbers and the same iteration counts.
@@ -16,9 +18,9 @@ the same numbers and the same iteration counts.
 from .banded import (KB_FIXED, assemble_band, assemble_band_newmark, assemble_fixed, assemble_vector,  # noqa: F401
                      band_factor, band_lu_solve, band_matmul, band_solve, factor_fixed, solve_fixed)
 from .compiled import CACHE, CODE_HASH, KERNELS_HASH, is_warm  # noqa: F401
-from .elements import FULL, NEWMARK, RESIDUAL, element_loop  # noqa: F401
+from .elements import FULL, NEWMARK, RESIDUAL, element_loop, kinematics  # noqa: F401
 from .march import Batch, MarchResult, march  # noqa: F401
-from .records import RUN, Work, make_work  # noqa: F401
+from .records import Work, make_work  # noqa: F401
 from .shooting import revolution  # noqa: F401
-from .step import (NOT_CONVERGED, NOT_FINITE, OK, SINGULAR, STATUS_TEXT, initial_acceleration,  # noqa: F401
-                   kinematics, newmark_step)
+from .step import (DIVERGED, NOT_CONVERGED, NOT_FINITE, OK, SINGULAR, STATUS_TEXT, TOO_LARGE,  # noqa: F401
+                   initial_acceleration, newmark_step)

@@ -8,6 +8,7 @@ iteration matrices (see the note before KB_FIXED).
 
 import numpy as np
 
+from ..schema import ELEMENT_DOFS as NDOF
 from .compiled import jit
 
 
@@ -16,7 +17,7 @@ def assemble_vector(dofs, rE, out):
     out[:] = 0.0
     N = out.shape[0]
     for e in range(dofs.shape[0]):
-        for i in range(6):
+        for i in range(NDOF):
             gi = dofs[e, i]
             if gi < N:
                 out[gi] += rE[e, i]
@@ -27,11 +28,11 @@ def assemble_band(dofs, kb, ME, CE, KE, cm, cv, cd, W):
     W[:, :] = 0.0
     N = W.shape[0]
     for e in range(dofs.shape[0]):
-        for i in range(6):
+        for i in range(NDOF):
             gi = dofs[e, i]
             if gi >= N:
                 continue
-            for j in range(6):
+            for j in range(NDOF):
                 gj = dofs[e, j]
                 if gj >= N:
                     continue
@@ -43,11 +44,11 @@ def assemble_band_newmark(dofs, kb, SE, W):
     W[:, :] = 0.0
     N = W.shape[0]
     for e in range(dofs.shape[0]):
-        for i in range(6):
+        for i in range(NDOF):
             gi = dofs[e, i]
             if gi >= N:
                 continue
-            for j in range(6):
+            for j in range(NDOF):
                 gj = dofs[e, j]
                 if gj < N:
                     W[gi, gj - gi + kb] += SE[e, i, j]
@@ -153,11 +154,11 @@ def assemble_fixed(dofs, SE, F, N):
     for i in range(N, F.shape[0]):
         F[i, KB_FIXED] = 1.0
     for e in range(dofs.shape[0]):
-        for i in range(6):
+        for i in range(NDOF):
             gi = dofs[e, i]
             if gi >= N:
                 continue
-            for j in range(6):
+            for j in range(NDOF):
                 gj = dofs[e, j]
                 if gj < N:
                     F[gi, gj - gi + KB_FIXED] += SE[e, i, j]
@@ -210,11 +211,11 @@ def band_matmul(dofs, kb, XE, X, out):
     N = X.shape[0]
     m = X.shape[1]
     for e in range(dofs.shape[0]):
-        for i in range(6):
+        for i in range(NDOF):
             gi = dofs[e, i]
             if gi >= N:
                 continue
-            for j in range(6):
+            for j in range(NDOF):
                 gj = dofs[e, j]
                 if gj >= N:
                     continue

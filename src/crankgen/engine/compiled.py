@@ -1,11 +1,15 @@
 """Compilation with numba, cached on disk under a hash of the compiled code, and repaired when unreadable.
 
 numba's own cache is keyed by the source file of each compiled function: a function that calls a
-function of another file (a generated kernel, the Newmark step) is not recompiled when only that
-other file changed, so after `make derive` or an edit of the engine a stale engine would run.
-Every crankgen function is therefore cached in the folder of crankgen.compile_cache, named by
-CODE_HASH (the generated kernels' specification and the engine's source), with that hash also in
-its source stamp: changed kernels or engine code always get a fresh compilation.
+function of another file (the Newmark step) is not recompiled when only that other file changed,
+so after `make derive` or an edit of the engine a stale engine would run.  Every crankgen function
+is therefore cached in the folder of crankgen.compile_cache, named by CODE_HASH (the generated
+kernels' specification and the engine's source), with that hash also in its source stamp: changed
+kernels or engine code always get a fresh compilation.
+
+The folder may be read-only (a shared installation): then what was compiled there is loaded and
+the rest is compiled in memory for this run; saving never fails a run (a full disk, a read-only
+folder: the code just stays in memory).  No home directory is needed.
 
 A cache file that cannot be read (a truncated write, a disk fault) makes numba fail on the first
 call of the function; `call` catches such a failure once, deletes the unreadable files with a
@@ -21,13 +25,17 @@ from pathlib import Path
 
 from numba import njit
 from numba.core import caching
+from numba.core.errors import NumbaExperimentalFeatureWarning
 
-from .._generated import dispatch as _table
-from ..compile_cache import CACHE, CODE_HASH, announce, is_warm, mark_warm  # noqa: F401
+from .._generated import schema as _table
+from ..compile_cache import CACHE, CODE_HASH, READ_ONLY, announce, is_warm  # noqa: F401
 
 KERNELS_HASH = _table.KERNELS_HASH
 _PACKAGE = Path(__file__).resolve().parent.parent
 _GENERATED = Path(_table.__file__).resolve().parent
+# The engine calls the kernels as first-class functions (engine/kernels.py), a numba feature still
+# labelled experimental although stable since numba 0.49; its warning says nothing to a user.
+warnings.filterwarnings("ignore", category=NumbaExperimentalFeatureWarning)
 
 
 class _KernelsHashLocator(caching._SourceFileBackedLocatorMixin, caching._CacheLocator):
@@ -40,6 +48,11 @@ class _KernelsHashLocator(caching._SourceFileBackedLocatorMixin, caching._CacheL
 
     def get_cache_path(self):
         return self._cache_path
+
+    def ensure_cache_path(self):
+        if READ_ONLY:                   # load what is there; saving is skipped (_Cache below)
+            return
+        super().ensure_cache_path()
 
     def get_source_stamp(self):
         return (super().get_source_stamp(), CODE_HASH)
@@ -56,12 +69,54 @@ if _KernelsHashLocator not in caching.CacheImpl._locator_classes:
     caching.CacheImpl._locator_classes.insert(0, _KernelsHashLocator)
 
 
-def jit(fn, parallel=False, name=None, namespace=None, inline="never"):
-    """fn compiled with numba (nopython, cached as above).  name: compile a copy under another name
-    (numba's cache is keyed by the qualified name, so a serial and a parallel compilation of one
-    function need two); namespace: globals to bind in the copy (e.g. the compiled kernels that a
-    generated dispatch function calls by name); inline="always" inlines fn into its callers at
-    numba's IR level (small functions called per element)."""
+class _Cache(caching.FunctionCache):
+    """numba's function cache that never fails a run: a folder that cannot be read loads nothing
+    (the code is compiled), one that cannot be written (read-only, a full disk) saves nothing."""
+
+    def load_overload(self, sig, target_context):
+        try:
+            return super().load_overload(sig, target_context)
+        except OSError:
+            return None
+
+    def save_overload(self, sig, data):
+        if READ_ONLY:
+            return
+        try:
+            super().save_overload(sig, data)
+        except OSError as exc:
+            _note_unsaved(exc)
+
+
+_unsaved = []
+
+
+def _note_unsaved(exc):
+    if not _unsaved:
+        _unsaved.append(exc)
+        try:
+            print(f"crankgen: could not save compiled code in {CACHE} ({exc}); it is kept in memory "
+                  "for this run", file=sys.stderr, flush=True)
+        except (OSError, ValueError):
+            pass
+
+
+def _with_cache(dispatcher):
+    """A dispatcher made with cache=False, given crankgen's cache."""
+    if hasattr(dispatcher, "py_func") and hasattr(dispatcher, "_cache"):
+        try:
+            dispatcher._cache = _Cache(dispatcher.py_func)
+        except (RuntimeError, OSError) as exc:       # no usable folder: compile in memory
+            _note_unsaved(exc)
+    return dispatcher
+
+
+def jit(fn, name=None, namespace=None, inline="never", signature=None):
+    """fn compiled with numba (nopython, releasing the GIL, cached as above).  name: compile a copy
+    under another name (numba's cache is keyed by the qualified name); namespace: globals to bind in
+    the copy; inline="always" inlines fn into its callers at numba's IR level (small functions
+    called per element); signature: compile now, for exactly this signature (the kernels the engine
+    calls as first-class functions)."""
     if name is not None or namespace is not None:
         glob = dict(fn.__globals__)
         glob.update(namespace or {})
@@ -70,7 +125,11 @@ def jit(fn, parallel=False, name=None, namespace=None, inline="never"):
         copy.__doc__ = fn.__doc__
         copy.__module__ = fn.__module__
         fn = copy
-    return njit(cache=True, parallel=parallel, inline=inline)(fn)
+    dispatcher = _with_cache(njit(nogil=True, inline=inline)(fn))
+    if signature is not None and hasattr(dispatcher, "compile"):
+        dispatcher.compile(signature)
+        dispatcher.disable_compile()
+    return dispatcher
 
 
 def _from_numba_cache(exc):
@@ -101,7 +160,10 @@ def repair():
     bad = []
     for path in sorted(CACHE.rglob("*.nb[ic]")):
         if _unreadable(path):
-            path.unlink(missing_ok=True)
+            try:
+                path.unlink(missing_ok=True)
+            except OSError:
+                continue
             bad.append(path.name)
     return bad
 
@@ -118,5 +180,5 @@ def call(fn, *args):
         warnings.warn(f"crankgen: the compiled-code cache in {CACHE} could not be read "
                       f"({type(exc).__name__}: {exc}); removed {len(bad)} unreadable file(s) and "
                       "recompiling once", RuntimeWarning, stacklevel=3)
-        print("crankgen: recompiling the engine after a damaged cache (about a minute)", file=sys.stderr)
+        print("crankgen: recompiling the engine after a damaged cache", file=sys.stderr)
         return fn(*args)

@@ -1,22 +1,25 @@
 """Batches of cases marched in lock step on the crank angle (compiled).
 
-A batch holds cases that share a mesh and steps per revolution (theta_m = 2 pi m / steps_per_rev
-for every case); each case keeps its own Newton iteration and status, so a failing case stops
-alone.  The cases' model travels as named records (records.RUN) and the arrays of the declared
-model (family variants, coefficients): see records.py.
+A batch holds cases that share a mesh and steps per revolution; each case keeps its own Newton
+iteration and status, so a failing case stops alone.  The cases' model travels as named records
+(records.py): the kernel tables of every model in the batch, one `Cases` row per case.  Batches of
+more than one case run on every core: the compiled loop releases the GIL and threads take slices
+of the batch (`parallel_slices`).
 """
 
-import math
+import os
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
-from numba import prange
 
+from .. import kinematics as _kinematics
 from .. import newton
 from .._generated import shape as _shape
-from .compiled import call, jit, mark_warm
-from .elements import step_outputs
-from .records import RUN, make_work
-from .step import NOT_FINITE, OK, SINGULAR, initial_acceleration, kinematics, newmark_step
+from .compiled import call, jit
+from .elements import kinematics, step_outputs
+from .kernels import build_items, select_rows, tables
+from .records import Cases, MeshData, Scheme, make_work
+from .step import NOT_FINITE, OK, SINGULAR, initial_acceleration, newmark_step
 
 HISTORY = newton.HISTORY
 
@@ -24,8 +27,11 @@ HISTORY = newton.HISTORY
 class Batch:
     """Cases that share a mesh and steps per revolution, packed for the compiled engine."""
 
-    def __init__(self, cases, dt=None):
-        """dt overrides the time step 2 pi / (omega steps_per_rev) (free vibration, omega ~ 0)."""
+    def __init__(self, cases, dt=None, entries=("march",), kernels_table=None):
+        """dt overrides the time step (free vibration, omega ~ 0).  entries: the engine's entry
+        points the batch will use ("march", "revolution"), compiled ahead with its kernels when
+        this machine has not compiled them yet (engine/build.py).  kernels_table: the kernel
+        tables to use instead of the cases' own (engine/build.py compiles on no-op tables)."""
         from ..assembly import BandedAssembler
         from ..mesh import Mesh
 
@@ -38,27 +44,36 @@ class Batch:
         self.cases, self.n_elements, self.steps_per_rev = cases, n, spr
         self.mesh = Mesh(n)
         self.N = self.mesh.n_dofs
-        self.dofs = np.ascontiguousarray(self.mesh.element_dofs, dtype=np.int64)
-        self.kb = BandedAssembler(self.mesh).bandwidth
-        self.l = self.mesh.length
-        self.mid_element, zeta = self.mesh.locate(0.5)
-        self.Nv_mid = np.ascontiguousarray(_shape.shape_functions(zeta, self.l)[1], dtype=float)
-        self.G = np.ascontiguousarray(_shape.slope_gram(self.l), dtype=float)
-        self.families = np.array([c.selection.families for c in cases], dtype=np.int64)
-        self.coef = np.array([c.coefficients for c in cases], dtype=float)
-        self.runs = np.zeros(len(cases), dtype=RUN)
-        for b, c in enumerate(cases):
-            run = self.runs[b]
-            run["a"], run["offset"], run["omega"], run["eps"] = c.a, c.offset, c.omega, c.eps
-            run["dt"] = dt if dt is not None else 2 * math.pi / c.omega / spr
-            run["scheme"] = newton.SCHEMES.index(c.integrator)
-            run["printed"] = c.selection.printed_iteration
-        self.scales = np.array([self.mesh.dof_scales(c.eps) for c in cases])
+        mid_element, zeta = self.mesh.locate(0.5)
+        self.meshdata = MeshData(
+            np.ascontiguousarray(self.mesh.element_dofs, dtype=np.int64), BandedAssembler(self.mesh).bandwidth,
+            self.mesh.length, mid_element,
+            np.ascontiguousarray(_shape.shape_functions(zeta, self.mesh.length)[1], dtype=float),
+            np.ascontiguousarray(_shape.slope_gram(self.mesh.length), dtype=float))
+        select = select_rows(cases)
+        printed = np.array([c.selection.printed_iteration and c.integrator == "one-pass" for c in cases])
+        if kernels_table is None:
+            from .build import prepare
+            prepare([f"entry:{e}" for e in entries] + build_items(select, printed))
+            kernels_table = tables(select, printed)
+        self.kernels = kernels_table
+        self.records = Cases(
+            select, np.array([c.coefficients for c in cases], dtype=float),
+            np.array([c.kinematic_parameters for c in cases], dtype=float),
+            np.array([dt if dt is not None else _kinematics.step_period(c) / spr for c in cases], dtype=float),
+            np.array([c.eps for c in cases], dtype=float),
+            np.array([newton.SCHEMES.index(c.integrator) for c in cases], dtype=np.int64),
+            printed.astype(np.bool_),
+            np.array([self.mesh.dof_scales(c.eps, _kinematics.end_scale(c)) for c in cases]))
 
     @property
     def dt(self):
         """Time step of each case (B,)."""
-        return self.runs["dt"]
+        return self.records.dt
+
+    @property
+    def scales(self):
+        return self.records.scales
 
     def __len__(self):
         return len(self.cases)
@@ -71,33 +86,36 @@ class MarchResult:
         self.__dict__.update(kw)
 
 
-def _march_impl(families, coef, runs, dofs, kb, l, scales, mid_e, Nv_mid, G, beta, gamma, tol,
-                max_iter, step0, n_steps, D0, V0, A0, P, n_prev, keep_history, keep_rates,
-                out_y, out_iter, status, fail_step, fail_res, Dh, Vh, Ah, D1, V1, A1):
-    """Advance every case of the batch n_steps in lock step (see march)."""
-    B = D0.shape[0]
-    n = dofs.shape[0]
+@jit
+def _march_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, D0, V0, A0, P, n_prev, keep_history,
+                 keep_rates, out_y, out_iter, status, fail_step, fail_res, Dh, Vh, Ah, D1, V1, A1):
+    """Advance cases lo..hi-1 of the batch n_steps in lock step (see march)."""
+    n = mesh.dofs.shape[0]
     N = D0.shape[1]
-    for b in prange(B):
-        w = make_work(n, N, kb)
-        run = runs[b]
+    for b in range(lo, hi):
+        w = make_work(n, N, mesh.kb)
+        sel, params = cases.select[b], cases.params[b]
+        dt = cases.dt[b]
         d, v, acc = D0[b].copy(), V0[b].copy(), A0[b].copy()
         dn, vn, an = np.zeros(N), np.zeros(N), np.zeros(N)
         y = np.zeros(3)
-        kinematics(run, step0 * run.dt, w.kin)
-        step_outputs(dofs, mid_e, Nv_mid, G, run.eps, w.kin[3], d, w.q, y)
-        out_y[b, 0, :] = y
+        kinematics(kern, sel, params, step0 * dt, w)
+        step_outputs(kern, sel, params, mesh.dofs, mesh.mid_element, mesh.Nv_mid, mesh.G, cases.eps[b], d, w, y)
+        for k in range(3):
+            out_y[b, 0, k] = y[k]
         if keep_history:
-            Dh[b, 0, :] = d
+            for i in range(N):
+                Dh[b, 0, i] = d[i]
         if keep_rates:
-            Vh[b, 0, :] = v
-            Ah[b, 0, :] = acc
+            for i in range(N):
+                Vh[b, 0, i] = v[i]
+                Ah[b, 0, i] = acc[i]
         for m in range(n_steps):
             if status[b] != OK:
                 break
-            t_new = (step0 + m + 1) * run.dt
-            st, it, rn = newmark_step(families[b], coef[b], run, dofs, kb, l, scales[b], beta, gamma,
-                                      tol, max_iter, t_new, d, v, acc, P[b], n_prev[b], dn, vn, an, w)
+            t_new = (step0 + m + 1) * dt
+            st, it, rn = newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, P[b], n_prev[b],
+                                      dn, vn, an, w)
             out_iter[b, m] = it
             if st == OK:
                 for i in range(N):
@@ -110,36 +128,63 @@ def _march_impl(families, coef, runs, dofs, kb, l, scales, mid_e, Nv_mid, G, bet
                 fail_res[b] = rn
                 break
             for k in range(HISTORY - 1, 0, -1):
-                P[b, k, :] = P[b, k - 1]
-            P[b, 0, :] = d
+                for i in range(N):
+                    P[b, k, i] = P[b, k - 1, i]
+            for i in range(N):
+                P[b, 0, i] = d[i]
+                d[i] = dn[i]
+                v[i] = vn[i]
+                acc[i] = an[i]
             n_prev[b] = min(n_prev[b] + 1, HISTORY)
-            d[:] = dn
-            v[:] = vn
-            acc[:] = an
-            step_outputs(dofs, mid_e, Nv_mid, G, run.eps, w.kin[3], d, w.q, y)
-            out_y[b, m + 1, :] = y
+            step_outputs(kern, sel, params, mesh.dofs, mesh.mid_element, mesh.Nv_mid, mesh.G, cases.eps[b],
+                         d, w, y)
+            for k in range(3):
+                out_y[b, m + 1, k] = y[k]
             if keep_history:
-                Dh[b, m + 1, :] = d
+                for i in range(N):
+                    Dh[b, m + 1, i] = d[i]
             if keep_rates:
-                Vh[b, m + 1, :] = v
-                Ah[b, m + 1, :] = acc
-        D1[b, :] = d
-        V1[b, :] = v
-        A1[b, :] = acc
-
-
-_march_serial = jit(_march_impl, name="_march_serial")
-_march_parallel = jit(_march_impl, parallel=True, name="_march_parallel")
+                for i in range(N):
+                    Vh[b, m + 1, i] = v[i]
+                    Ah[b, m + 1, i] = acc[i]
+        for i in range(N):
+            D1[b, i] = d[i]
+            V1[b, i] = v[i]
+            A1[b, i] = acc[i]
 
 
 @jit
-def _initial_accelerations(families, coef, runs, dofs, kb, l, step0, D0, V0, A0, status):
-    n, N = dofs.shape[0], D0.shape[1]
-    w = make_work(n, N, kb)
-    for b in range(D0.shape[0]):
-        if not initial_acceleration(families[b], coef[b], runs[b], dofs, kb, l, step0 * runs[b].dt,
-                                    D0[b], V0[b], A0[b], w):
+def _initial_accelerations(kern, cases, mesh, lo, hi, step0, D0, V0, A0, status):
+    n, N = mesh.dofs.shape[0], D0.shape[1]
+    w = make_work(n, N, mesh.kb)
+    for b in range(lo, hi):
+        if not initial_acceleration(kern, cases, b, mesh, step0 * cases.dt[b], D0[b], V0[b], A0[b], w):
             status[b] = SINGULAR
+
+
+def threads():
+    """Worker threads for a batch: the cores this process may use."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):
+        return max(1, os.cpu_count() or 1)
+
+
+def parallel_slices(fn, B, parallel, *args):
+    """fn(*args[:k], lo, hi, *args[k:]) over slices of the B cases: on threads when parallel (the
+    compiled functions release the GIL), else in one call.  args: (leading, trailing) tuples."""
+    leading, trailing = args
+    workers = min(threads(), B) if parallel else 1
+    if workers <= 1:
+        call(fn, *leading, 0, B, *trailing)
+        return
+    bounds = np.linspace(0, B, workers + 1).astype(int)
+    call(fn, *leading, 0, 0, *trailing)                       # compile (or load) once, before threading
+    with ThreadPoolExecutor(workers) as pool:
+        futures = [pool.submit(fn, *leading, int(lo), int(hi), *trailing)
+                   for lo, hi in zip(bounds[:-1], bounds[1:]) if hi > lo]
+        for f in futures:
+            f.result()
 
 
 def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False, parallel=None,
@@ -151,15 +196,18 @@ def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False
     displacements of the steps before D0, for the Newton starting guess; none by default).
     keep_history: True stores the displacements, velocities and accelerations of every step
     (D_history, V_history, A_history), "displacements" the displacements only.
-    Cases whose status is not OK on entry are not advanced."""
+    Cases whose status is not OK on entry are not advanced.  parallel: slices of the batch on
+    threads (default: when it holds more than one case)."""
     B, N = len(batch), batch.N
     D0 = np.zeros((B, N)) if D0 is None else np.ascontiguousarray(D0, dtype=float)
     V0 = np.zeros((B, N)) if V0 is None else np.ascontiguousarray(V0, dtype=float)
     status = np.zeros(B, dtype=np.int64) if status is None else np.array(status, dtype=np.int64)
+    kern, cases, mesh = batch.kernels, batch.records, batch.meshdata
+    if parallel is None:
+        parallel = B > 1
     if A0 is None:
         A0 = np.zeros((B, N))
-        call(_initial_accelerations, batch.families, batch.coef, batch.runs, batch.dofs, batch.kb,
-             batch.l, step0, D0, V0, A0, status)
+        parallel_slices(_initial_accelerations, B, parallel, (kern, cases, mesh), (step0, D0, V0, A0, status))
     else:
         A0 = np.ascontiguousarray(A0, dtype=float)
     if previous is None:
@@ -176,14 +224,10 @@ def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False
     rate_shape = hist_shape if keep_rates else (1, 1, 1)
     Dh, Vh, Ah = np.zeros(hist_shape), np.zeros(rate_shape), np.zeros(rate_shape)
     D1, V1, A1 = np.zeros((B, N)), np.zeros((B, N)), np.zeros((B, N))
-    if parallel is None:
-        parallel = B > 1
-    fn = _march_parallel if parallel else _march_serial
-    call(fn, batch.families, batch.coef, batch.runs, batch.dofs, batch.kb, batch.l, batch.scales,
-         batch.mid_element, batch.Nv_mid, batch.G, beta, gamma, tol, max_iter, step0, n_steps,
-         D0, V0, A0, P, n_prev, keep_history, keep_rates, out_y, out_iter, status, fail_step, fail_res, Dh, Vh, Ah,
-         D1, V1, A1)
-    mark_warm()
+    scheme = Scheme(float(beta), float(gamma), float(tol), int(max_iter))
+    parallel_slices(_march_cases, B, parallel, (kern, cases, mesh, scheme),
+                    (step0, n_steps, D0, V0, A0, P, n_prev, keep_history, keep_rates, out_y, out_iter,
+                     status, fail_step, fail_res, Dh, Vh, Ah, D1, V1, A1))
     return MarchResult(y=out_y, iterations=out_iter, status=status, fail_step=fail_step,
                        fail_residual=fail_res, D=D1, V=V1, A=A1, previous=(P, n_prev),
                        D_history=Dh if keep_history else None, V_history=Vh if keep_rates else None,

@@ -1,38 +1,63 @@
 """Named records the compiled engine passes around in place of positional vectors.
 
-- RUN: one case's scalars (structured dtype: a record per case, fields read by name in compiled
-  code): crank a*, guide offset, crank speed Omega*, time step dt, eps, the Newmark scheme code
-  (newton.SCHEMES) and whether the one-pass scheme iterates with the printed eq. (37) matrices.
-- A case's model is two arrays besides: `families` (variant index per declared term family, -1
-  when absent: crankgen.ingredients) and `coef` (the kernels' coefficient vector).
+- Kernels: the model's compiled kernels as tables of first-class functions (engine/kernels.py):
+  per part ("rod": every element; "end": the rod's end node), one table per calling variant
+  (accumulating r, K, C, M; the printed iteration matrix; residual only; r and the Newmark
+  iteration matrix), indexed by a case's `select` row; the guides' end maps and kinematics and the
+  crank motions, indexed likewise.
+- Cases: one row per case of a batch: `select` (the table index of each family's variant, -1 when
+  absent, then the guide and the motion), `coef` (the element kernels' coefficients), `params`
+  (the kinematic parameters), the time step, eps, the Newmark scheme code (newton.SCHEMES), whether
+  the one-pass scheme iterates with the printed eq. (37) matrices, and the natural size of every
+  reduced DOF (`scales`).
+- MeshData: the mesh as the engine reads it: the element DOF map, bandwidth, element length, and
+  where v* at x* = 1/2 is read (element, shape functions) and the slope Gram matrix of eq. (40).
+- Scheme: Newmark's beta and gamma, the Newton tolerance and iteration limit.
 - Work: the scratch arrays of one case's Newmark steps (allocated once per case and reused).
+Every record is a namedtuple of arrays and numbers: numba compiles them as such, and with
+NUMBA_DISABLE_JIT=1 the same code runs as plain Python.
 """
 
 from collections import namedtuple
 
 import numpy as np
 
+from .. import schema
 from .banded import KB_FIXED
 from .compiled import jit
 
-RUN = np.dtype([("a", np.float64), ("offset", np.float64), ("omega", np.float64), ("dt", np.float64),
-                ("eps", np.float64), ("scheme", np.int64), ("printed", np.bool_)])
+NDOF = schema.ELEMENT_DOFS
+N_KIN = len(schema.KINEMATICS)
+END_ROWS = len(schema.END_MAP_ROWS)
+
+Kernels = namedtuple("Kernels", [
+    "rod_add", "rod_printed", "rod_residual", "rod_newmark",      # rod families, flat variant tables
+    "end_add", "end_printed", "end_residual",                    # end families
+    "end_map", "guide", "motion",                                # by guide, guide, motion
+])
+
+Cases = namedtuple("Cases", ["select", "coef", "params", "dt", "eps", "scheme", "printed", "scales"])
+
+MeshData = namedtuple("MeshData", ["dofs", "kb", "l", "mid_element", "Nv_mid", "G"])
+
+Scheme = namedtuple("Scheme", ["beta", "gamma", "tol", "max_iter"])
 
 Work = namedtuple("Work", [
     "rE", "SE", "KE", "CE", "ME",       # element residuals, iteration and tangent matrices
     "R", "rhs",                         # assembled residual, right-hand side / solution (N + 5, 1)
     "W", "piv", "ext",                  # pivoted band LU storage
     "F", "diag",                        # fixed-bandwidth LU storage
-    "kin",                              # (a, theta, thetad, phi, phid, phidd)
+    "kin", "crank",                     # kinematics vector; (theta, thetad, thetadd)
     "q", "qd", "qdd", "geo",            # one element's nodal vectors and (l, x0)
+    "send", "E",                        # the end map's (s, sd, sdd) and its (8, 2) values
 ])
 
 
 @jit
 def make_work(n, N, kb):
     """Work arrays for n elements, N reduced DOFs, bandwidth kb."""
-    return Work(np.zeros((n, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6)), np.zeros((n, 6, 6)),
-                np.zeros((n, 6, 6)), np.zeros(N), np.zeros((N + KB_FIXED, 1)),
+    return Work(np.zeros((n, NDOF)), np.zeros((n, NDOF, NDOF)), np.zeros((n, NDOF, NDOF)),
+                np.zeros((n, NDOF, NDOF)), np.zeros((n, NDOF, NDOF)), np.zeros(N), np.zeros((N + KB_FIXED, 1)),
                 np.zeros((N, 3 * kb + 1)), np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64),
-                np.zeros((N + KB_FIXED, 2 * KB_FIXED + 1)), np.zeros(N), np.zeros(6),
-                np.zeros(6), np.zeros(6), np.zeros(6), np.zeros(2))
+                np.zeros((N + KB_FIXED, 2 * KB_FIXED + 1)), np.zeros(N), np.zeros(N_KIN), np.zeros(3),
+                np.zeros(NDOF), np.zeros(NDOF), np.zeros(NDOF), np.zeros(2), np.zeros(3), np.zeros((END_ROWS, 2)))

@@ -2,38 +2,39 @@
 shooting on periodic states (steady.py) and continuation."""
 
 import numpy as np
-from numba import prange
 
 from .. import newton
 from .banded import assemble_band, band_factor, band_lu_solve, band_matmul, band_solve
-from .compiled import call, jit
+from .compiled import jit
 from .elements import FULL, element_loop
-from .records import make_work
+from .march import parallel_slices
+from .records import Scheme, make_work
 from .step import OK, SINGULAR, initial_acceleration, newmark_step
 
 HISTORY = newton.HISTORY
 
 
-def _revolution_impl(families, coef, runs, dofs, kb, l, scales, beta, gamma, tol, max_iter, step0,
-                     n_steps, X0, active, X1, J, status):
-    """For every active case: state x = (d, v) at step step0 -> state after n_steps Newton steps,
-    and J = dx1/dx0, the exact linearization of the converged Newmark steps:
+@jit
+def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, X0, active, X1, J, status):
+    """For every active case of lo..hi-1: state x = (d, v) at step step0 -> state after n_steps
+    Newton steps, and J = dx1/dx0, the exact linearization of the converged Newmark steps:
         S da' = -(K dd~ + C dv~),  dd' = dd~ + beta dt^2 da',  dv' = dv~ + gamma dt da'
     with S, K, C the exact tangents at the converged state of each step (a0 from eq. 34)."""
-    B = X0.shape[0]
-    n = dofs.shape[0]
+    n = mesh.dofs.shape[0]
     N = X0.shape[1] // 2
-    for b in prange(B):
+    dofs, kb, l = mesh.dofs, mesh.kb, mesh.l
+    beta, gamma = scheme.beta, scheme.gamma
+    for b in range(lo, hi):
         if not active[b]:
             continue
         w = make_work(n, N, kb)
-        fam, cf, run = families[b], coef[b], runs[b]
-        dt = run.dt
+        sel, coef, params = cases.select[b], cases.coef[b], cases.params[b]
+        dt = cases.dt[b]
         cd, cv = beta * dt * dt, gamma * dt
         d, v = X0[b, :N].copy(), X0[b, N:].copy()
         acc = np.zeros(N)
         dn, vn, an = np.zeros(N), np.zeros(N), np.zeros(N)
-        if not initial_acceleration(fam, cf, run, dofs, kb, l, step0 * dt, d, v, acc, w):
+        if not initial_acceleration(kern, cases, b, mesh, step0 * dt, d, v, acc, w):
             status[b] = SINGULAR
             continue
         # sensitivities (N, 2N)
@@ -44,8 +45,8 @@ def _revolution_impl(families, coef, runs, dofs, kb, l, scales, beta, gamma, tol
             Dv[i, N + i] = 1.0
         Da = np.zeros((N, 2 * N))
         tmp = np.zeros((N, 2 * N))
-        # da0 = -M^-1 (K dd0 + C dv0) at t0 (initial_acceleration left the tangents at t0 in w)
-        element_loop(FULL, fam, cf, False, dofs, l, d, v, acc, w.kin, 0.0, 0.0, w)
+        # da0 = -M^-1 (K dd0 + C dv0) at t0 (initial_acceleration left the kinematics at t0 in w)
+        element_loop(FULL, kern, sel, coef, params, False, dofs, l, d, v, acc, 0.0, 0.0, w)
         band_matmul(dofs, kb, w.KE, Dd, Da)
         band_matmul(dofs, kb, w.CE, Dv, tmp)
         for i in range(N):
@@ -59,8 +60,8 @@ def _revolution_impl(families, coef, runs, dofs, kb, l, scales, beta, gamma, tol
         hist = np.zeros((HISTORY, N))
         for m in range(n_steps):
             t_new = (step0 + m + 1) * dt
-            st, it, rn = newmark_step(fam, cf, run, dofs, kb, l, scales[b], beta, gamma, tol, max_iter,
-                                      t_new, d, v, acc, hist, min(m, HISTORY), dn, vn, an, w)
+            st, it, rn = newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, hist, min(m, HISTORY),
+                                      dn, vn, an, w)
             if st != OK:
                 status[b] = st
                 ok = False
@@ -71,7 +72,7 @@ def _revolution_impl(families, coef, runs, dofs, kb, l, scales, beta, gamma, tol
                     Dd[i, c] = Dd[i, c] + dt * Dv[i, c] + 0.5 * dt * dt * (1.0 - 2.0 * beta) * Da[i, c]
                     Dv[i, c] = Dv[i, c] + dt * (1.0 - gamma) * Da[i, c]
             # exact tangents at the converged state
-            element_loop(FULL, fam, cf, False, dofs, l, dn, vn, an, w.kin, 0.0, 0.0, w)
+            element_loop(FULL, kern, sel, coef, params, False, dofs, l, dn, vn, an, 0.0, 0.0, w)
             band_matmul(dofs, kb, w.KE, Dd, Da)
             band_matmul(dofs, kb, w.CE, Dv, tmp)
             for i in range(N):
@@ -88,21 +89,21 @@ def _revolution_impl(families, coef, runs, dofs, kb, l, scales, beta, gamma, tol
                     Dd[i, c] += cd * Da[i, c]
                     Dv[i, c] += cv * Da[i, c]
             for k in range(HISTORY - 1, 0, -1):
-                hist[k, :] = hist[k - 1]
-            hist[0, :] = d
-            d[:] = dn
-            v[:] = vn
-            acc[:] = an
+                for i in range(N):
+                    hist[k, i] = hist[k - 1, i]
+            for i in range(N):
+                hist[0, i] = d[i]
+                d[i] = dn[i]
+                v[i] = vn[i]
+                acc[i] = an[i]
         if not ok:
             continue
-        X1[b, :N] = d
-        X1[b, N:] = v
-        J[b, :N, :] = Dd
-        J[b, N:, :] = Dv
-
-
-_revolution_serial = jit(_revolution_impl, name="_revolution_serial")
-_revolution_parallel = jit(_revolution_impl, parallel=True, name="_revolution_parallel")
+        for i in range(N):
+            X1[b, i] = d[i]
+            X1[b, N + i] = v[i]
+            for c in range(2 * N):
+                J[b, i, c] = Dd[i, c]
+                J[b, N + i, c] = Dv[i, c]
 
 
 def revolution(batch, X0, step0=0, active=None, parallel=None, beta=0.25, gamma=0.5, tol=1e-10,
@@ -117,7 +118,7 @@ def revolution(batch, X0, step0=0, active=None, parallel=None, beta=0.25, gamma=
     status = np.zeros(B, dtype=np.int64)
     if parallel is None:
         parallel = int(active.sum()) > 1
-    fn = _revolution_parallel if parallel else _revolution_serial
-    call(fn, batch.families, batch.coef, batch.runs, batch.dofs, batch.kb, batch.l, batch.scales, beta,
-         gamma, tol, max_iter, step0, int(revolutions) * batch.steps_per_rev, X0, active, X1, J, status)
+    scheme = Scheme(float(beta), float(gamma), float(tol), int(max_iter))
+    parallel_slices(_revolution_cases, B, parallel, (batch.kernels, batch.records, batch.meshdata, scheme),
+                    (step0, int(revolutions) * batch.steps_per_rev, X0, active, X1, J, status))
     return X1, J, status

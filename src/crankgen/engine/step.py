@@ -1,6 +1,9 @@
 """One Newmark step of one case (compiled), the same scheme as newmark.py: predictors (35)-(36),
 Newton iterations on a_{m+1} with the decisions of newton.py (shared with the NumPy reference),
-correctors (38)-(39); and the initial acceleration of eq. (34)."""
+correctors (38)-(39); and the initial acceleration of eq. (34).
+
+Arguments travel as records (records.py): `kern` (the model's kernel tables), `cases` with the row
+`b` of the case at hand, `mesh`, `scheme`, and the case's Work arrays `w`."""
 
 import math
 
@@ -10,31 +13,28 @@ from .. import newton
 from .banded import (KB_FIXED, assemble_band, assemble_band_newmark, assemble_fixed, assemble_vector,
                      band_factor, band_lu_solve, band_solve, factor_fixed, solve_fixed)
 from .compiled import jit
-from .elements import FULL, NEWMARK, RESIDUAL, element_loop
-from .kernels import crank_kinematics_into, extrapolation_weight, next_iteration
+from .elements import FULL, NEWMARK, RESIDUAL, element_loop, kinematics
+from .kernels import extrapolation_weight, next_iteration
 
 # status codes of a case
-OK, NOT_CONVERGED, SINGULAR, NOT_FINITE = 0, 1, 2, 3
+OK, NOT_CONVERGED, SINGULAR, NOT_FINITE, TOO_LARGE = 0, 1, 2, 3, 4
 STATUS_TEXT = {OK: "ok", NOT_CONVERGED: "Newton did not converge", SINGULAR: "singular iteration matrix",
-               NOT_FINITE: "non-finite state"}
+               NOT_FINITE: "non-finite state", TOO_LARGE: newton.DIVERGED_TEXT}
 ONE_PASS = newton.ONE_PASS
-
-
-@jit
-def kinematics(run, t, kin):
-    crank_kinematics_into(t, run.omega, run.a, run.offset, kin)
-
+DIVERGED = newton.DIVERGED
 
 @jit
-def initial_acceleration(families, coef, run, dofs, kb, l, t0, d, v, out, w):
+def initial_acceleration(kern, cases, b, mesh, t0, d, v, out, w):
     """Solve R(t0, d, v, a) = 0 for a (eq. 34; R is linear in a).  Returns False if singular."""
     N = d.shape[0]
-    kinematics(run, t0, w.kin)
+    sel, coef, params = cases.select[b], cases.coef[b], cases.params[b]
+    kinematics(kern, sel, params, t0, w)
     zero = np.zeros(N)
-    element_loop(FULL, families, coef, False, dofs, l, d, v, zero, w.kin, 0.0, 0.0, w)
-    assemble_vector(dofs, w.rE, w.R)
+    element_loop(FULL, kern, sel, coef, params, False, mesh.dofs, mesh.l, d, v, zero, 0.0, 0.0, w)
+    assemble_vector(mesh.dofs, w.rE, w.R)
+    kb = mesh.kb
     W = np.zeros((N, 3 * kb + 1))
-    assemble_band(dofs, kb, w.ME, w.CE, w.KE, 1.0, 0.0, 0.0, W)
+    assemble_band(mesh.dofs, kb, w.ME, w.CE, w.KE, 1.0, 0.0, 0.0, W)
     rhs = np.zeros((N, 1))
     for i in range(N):
         rhs[i, 0] = -w.R[i]
@@ -45,19 +45,21 @@ def initial_acceleration(families, coef, run, dofs, kb, l, t0, d, v, out, w):
 
 
 @jit
-def newmark_step(families, coef, run, dofs, kb, l, scales, beta, gamma, tol, max_iter, t_new,
-                 d, v, acc, hist, n_prev, d_new, v_new, a_new, w):
-    """One Newmark step from (d, v, acc) to (d_new, v_new, a_new) at t_new (scheme run.scheme).
+def newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, hist, n_prev, d_new, v_new, a_new, w):
+    """One Newmark step of case b from (d, v, acc) to (d_new, v_new, a_new) at t_new.
     hist[k]: the displacements k + 1 steps before d, of which the first n_prev (0 to HISTORY) are
     known, for the starting guess.  Returns (status, iterations, residual norm)."""
     N = d.shape[0]
-    dt = run.dt
-    scheme = run.scheme
-    one_pass = scheme == ONE_PASS
-    printed = one_pass and run.printed
+    sel, coef, params, scales = cases.select[b], cases.coef[b], cases.params[b], cases.scales[b]
+    dofs, kb, l = mesh.dofs, mesh.kb, mesh.l
+    beta, gamma, tol, max_iter = scheme.beta, scheme.gamma, scheme.tol, scheme.max_iter
+    dt = cases.dt[b]
+    code = cases.scheme[b]
+    one_pass = code == ONE_PASS
+    printed = one_pass and cases.printed[b]
     cd = beta * dt * dt
     cv = gamma * dt
-    kinematics(run, t_new, w.kin)
+    kinematics(kern, sel, params, t_new, w)
     R, rhs = w.R, w.rhs
     for i in range(N):
         if one_pass:
@@ -84,7 +86,7 @@ def newmark_step(families, coef, run, dofs, kb, l, scales, beta, gamma, tol, max
         v_new[i] = vp + cv * a_new[i]
     for it in range(1, max_iter + 1):
         mode = NEWMARK if refresh else RESIDUAL
-        element_loop(mode, families, coef, printed, dofs, l, d_new, v_new, a_new, w.kin, cv, cd, w)
+        element_loop(mode, kern, sel, coef, params, printed, dofs, l, d_new, v_new, a_new, cv, cd, w)
         assemble_vector(dofs, w.rE, R)
         rnorm = 0.0
         for i in range(N):
@@ -108,6 +110,7 @@ def newmark_step(families, coef, run, dofs, kb, l, scales, beta, gamma, tol, max
             band_lu_solve(w.W, kb, w.piv, w.ext, rhs)
         inc = 0.0
         size = 0.0
+        largest = 0.0
         for i in range(N):
             a_new[i] += rhs[i, 0]
             x = abs(cd * rhs[i, 0]) / scales[i]
@@ -119,11 +122,15 @@ def newmark_step(families, coef, run, dofs, kb, l, scales, beta, gamma, tol, max
             x = abs(d_new[i]) / scales[i]
             if x > size:
                 size = x
+            if abs(d_new[i]) > largest:
+                largest = abs(d_new[i])
         if not np.isfinite(inc):
             return NOT_FINITE, it, rnorm
-        done, reject, refresh, reused_before, full = next_iteration(scheme, it, inc, previous, size, tol,
+        done, reject, refresh, reused_before, full = next_iteration(code, it, inc, previous, size, tol,
                                                                     refresh, reused_before, full)
         if done:
+            if not largest < DIVERGED:
+                return TOO_LARGE, it, rnorm
             return OK, it, rnorm
         if reject:                      # undo the update of a diverging reused factorization
             for i in range(N):

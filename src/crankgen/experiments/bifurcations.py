@@ -46,7 +46,7 @@ def bifurcations(ctx, counts):
 
 
 def _model_options(m):
-    return dict(approach="A", formulation=m.formulation, damping=m.damping, membrane=m.membrane)
+    return dict(approach="A", model=m.key)
 
 
 def _run(ctx, m, eps, n, spr):

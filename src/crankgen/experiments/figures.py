@@ -112,10 +112,8 @@ def model_spec(key):
 
 
 def make_case(cfg, model_key, approach, n, omega, eps=None, ms=None, steps=None):
-    m = model_spec(model_key)
     return Case(a=cfg.a, eps=cfg.eps if eps is None else eps, ms=cfg.ms if ms is None else ms,
-                mu=cfg.mu, omega=omega, approach=approach, formulation=m.formulation,
-                damping=m.damping, membrane=m.membrane, n_elements=n,
+                mu=cfg.mu, omega=omega, approach=approach, model=model_spec(model_key).key, n_elements=n,
                 steps_per_rev=cfg.steps_per_rev if steps is None else steps, integrator="newton")
 
 

@@ -161,10 +161,9 @@ class Context:
             for revs, idx in groups.items():
                 cases = []
                 for i in idx:
-                    s, m = specs[i], F.model_spec(specs[i].model)
+                    s = specs[i]
                     cases.append(Case(a=cfg.a, eps=s.eps, ms=s.ms, mu=cfg.mu, omega=s.omega,
-                                      approach=s.approach, formulation=m.formulation,
-                                      damping=m.damping, membrane=m.membrane,
+                                      approach=s.approach, model=F.model_spec(s.model).key,
                                       n_elements=s.n_elements, steps_per_rev=s.steps_per_rev))
                 results = simulate_many(cases, revs, progress=lambda d, _t, o=offset: bar(o + d),
                                         keep_states=True)

@@ -1,0 +1,148 @@
+"""Stage 2c: the curve the rod's end travels on, the rigid closure it defines, and the end map.
+
+The crank pin is at A = a (cos theta, sin theta) and the rod's rigid chord runs from A along
+e_i = (cos phi, -sin phi) to the end point B = A + L e_i (L = 1; e_j = (sin phi, cos phi)).  A guide
+is a curve C(beta) of the inertial frame that B must lie on; the closure
+
+    A(theta) + e_i(phi) = C(beta)                                           (two equations)
+
+fixes the rod angle phi and the guide co-ordinate beta of the rigid mechanism at every crank
+angle.  Each guide gives that position analysis in closed form; the rates (phid, betad) and
+accelerations (phidd, betadd) follow by differentiating the closure in time (linear equations,
+solved here symbolically, with the crank's thetad and thetadd).
+
+The end map.  The rod's end node is not rigid: its displacement (u, v) in the moving frame
+(e_i, e_j) is written through one reduced co-ordinate s, the deviation of the guide co-ordinate
+from the rigid one,
+
+    (u, v) = g(s, t) = ( (C(beta + s) - C(beta)) . e_i,  (C(beta + s) - C(beta)) . e_j ),
+
+so that the end stays on the guide exactly, whatever s.  g is rheonomic (beta and phi move), so
+velocities and accelerations carry its time derivatives; the end map kernel returns g, its rates
+and every derivative that the reduced equations (d'Alembert: r_s = g_s . r_end) and their Newton
+tangent need (engine/elements.py, model.py).
+
+- line: the straight guide Y = e (the slider-crank); beta is the slider's abscissa X and s its
+  displacement along the guide; g = s (cos phi, sin phi) (eq. 26 holds identically).  The crank
+  turns a full revolution iff a + |e| < L.
+- circle: a rigid massless rocker of length c pivoted at D = (d, e): the four-bar linkage with a
+  flexible coupler; beta is the rocker angle and s its deviation.  Two closures exist; branch +1
+  puts B on the counter-clockwise side of the line from A to D.  The crank turns a full
+  revolution iff |L - c| < |D - A| < L + c at every crank angle (Grashof's crank-rocker condition):
+  |D| - a > |L - c| and |D| + a < L + c.
+"""
+
+from dataclasses import dataclass
+
+import sympy as sp
+from sympy.simplify.fu import TR10i
+
+from . import symbols as s
+from .euler_lagrange import total_time_derivative
+
+E_I = sp.Matrix([sp.cos(s.phi), -sp.sin(s.phi)])
+E_J = sp.Matrix([sp.sin(s.phi), sp.cos(s.phi)])
+PIN = sp.Matrix([s.a * sp.cos(s.theta), s.a * sp.sin(s.theta)])
+
+# The end map's reduced co-ordinate and its rates.
+sp_s, sp_sd, sp_sdd = sp.symbols("s sd sdd", real=True)
+END_MAP_ROWS = ("q", "qd", "qdd", "g_s", "dqd_ds", "dqdd_ds", "dqdd_dsd", "g_ss")
+
+
+@dataclass(frozen=True)
+class Guide:
+    name: str
+    title: str                   # the runtime's record of this guide (crankgen.Line, ...)
+    parameters: tuple            # parameter names it reads besides a (derive/model.py PARAMETERS)
+    curve: sp.Matrix             # C(beta)
+    step: sp.Matrix              # C(beta + s) - C(beta), written without cancellation for small s
+    phi: sp.Expr                 # rigid position analysis: phi(theta), beta(theta)
+    beta: sp.Expr
+    margin: tuple                # ((expression, text), ...): every expression > 0 iff the crank turns fully
+    end_scale: sp.Expr           # natural size of s, for Newton's scaled increments (eps: slenderness)
+    doc: str
+    aliases: tuple = ()          # keyword arguments of the runtime record standing for parameters:
+                                 # ((keyword, (parameter, ...)), ...), a tuple keyword for several
+
+
+def line():
+    sin_phi = s.a * sp.sin(s.theta) - s.e
+    phi = sp.asin(sin_phi)
+    return Guide(
+        "line", "Line", ("offset",), sp.Matrix([s.beta, s.e]), sp.Matrix([sp_s, 0]), phi,
+        s.a * sp.cos(s.theta) + sp.sqrt(1 - sin_phi**2),
+        ((1 - s.a - sp.Abs(s.e), "a* + |offset| < 1 (the rod must reach the guide Y = offset at every "
+                                 "crank angle)"),),
+        s.eps**2,
+        "straight guide Y = e: a slider (the end mass ms) on the line")
+
+
+def circle():
+    D = sp.Matrix([s.d, s.e])
+    delta = D - PIN
+    rho = sp.sqrt(delta.dot(delta))
+    along = (1 - s.c**2 + rho**2) / (2 * rho)
+    across = sp.sqrt(1 - along**2)
+    chord = (along * delta + s.branch * across * sp.Matrix([-delta[1], delta[0]])) / rho   # B - A
+    end = PIN + chord
+    ground = sp.sqrt(s.d**2 + s.e**2)
+    return Guide(
+        "circle", "Circle", ("offset", "c", "d", "branch"),
+        D + s.c * sp.Matrix([sp.cos(s.beta), sp.sin(s.beta)]),
+        2 * s.c * sp.sin(sp_s / 2) * sp.Matrix([-sp.sin(s.beta + sp_s / 2), sp.cos(s.beta + sp_s / 2)]),
+        sp.atan2(-chord[1], chord[0]), sp.atan2(end[1] - s.e, end[0] - s.d),
+        ((ground - s.a - sp.Abs(1 - s.c), "|D| - a* > |1 - c| (the rod and the rocker reach each "
+                                          "other when the crank points towards D)"),
+         (1 + s.c - ground - s.a, "|D| + a* < 1 + c (they reach each other when the crank points "
+                                  "away from D)")),
+        s.eps**2 / s.c,
+        "circle of radius c about D = (d, e): a rigid massless rocker DB carrying the end mass ms "
+        "(a four-bar linkage with a flexible coupler)",
+        (("center", ("d", "offset")), ("radius", ("c",))))
+
+
+GUIDES = (line(), circle())
+
+
+def closure_rates(guide):
+    """(phid, betad, phidd, betadd) in theta, thetad, thetadd, phi, beta (and the parameters), from
+    the time derivatives of the closure A(theta) + e_i(phi) - C(beta) = 0."""
+    closure = PIN + E_I - guide.curve
+    first = closure.applyfunc(lambda x: total_time_derivative(x, (), (), ()))
+    sol1 = sp.solve(list(first), [s.phid, s.betad], dict=True)[0]
+    second = first.applyfunc(lambda x: total_time_derivative(x, (), (), ()))
+    sol2 = sp.solve(list(second), [s.phidd, s.betadd], dict=True)[0]
+    phid, betad = sp.simplify(sol1[s.phid]), sp.simplify(sol1[s.betad])
+    phidd = sp.simplify(sol2[s.phidd].subs({s.phid: phid, s.betad: betad}))
+    betadd = sp.simplify(sol2[s.betadd].subs({s.phid: phid, s.betad: betad}))
+    return phid, betad, phidd, betadd
+
+
+def kinematics(guide):
+    """kin = derive/symbols.KINEMATICS as expressions in (theta, thetad, thetadd) and the parameters."""
+    phid, betad, phidd, betadd = closure_rates(guide)
+    position = {s.phi: guide.phi, s.beta: guide.beta}
+    values = {s.a: s.a, s.theta: s.theta, s.thetad: s.thetad, s.thetadd: s.thetadd,
+              s.phi: guide.phi, s.beta: guide.beta,
+              s.phid: phid.subs(position), s.betad: betad.subs(position),
+              s.phidd: phidd.subs(position), s.betadd: betadd.subs(position)}
+    return sp.Matrix([values[sym] for sym in s.KINEMATICS])
+
+
+def end_map(guide):
+    """The (8, 2) matrix of the end map (rows END_MAP_ROWS): the end node's (u, v) and rates, and
+    their derivatives in the reduced co-ordinate s and its rates, in s, sd, sdd and kin."""
+    step = guide.step
+    exact = guide.curve.subs(s.beta, s.beta + sp_s) - guide.curve
+    assert (step - exact).applyfunc(lambda x: sp.simplify(sp.expand_trig(x))) == sp.zeros(2, 1), guide.name
+    g = sp.Matrix([step.dot(E_I), step.dot(E_J)]).applyfunc(lambda x: TR10i(sp.factor_terms(x)))
+    coords, rates, accels = (sp_s,), (sp_sd,), (sp_sdd,)
+    gd = g.applyfunc(lambda x: total_time_derivative(x, coords, rates, accels))
+    gdd = gd.applyfunc(lambda x: total_time_derivative(x, coords, rates, accels))
+    rows = (g, gd, gdd, g.diff(sp_s), gd.diff(sp_s), gdd.diff(sp_s), gdd.diff(sp_sd), g.diff(sp_s, 2))
+    return sp.Matrix([list(r.applyfunc(sp.expand)) for r in rows])
+
+
+def rigid_end(guide):
+    """(X, Y) of the rigid mechanism's end point B = C(beta) as expressions in kin and the parameters."""
+    return guide.curve

@@ -1,0 +1,247 @@
+"""Compile what a run needs before it starts: its kernels and the engine's entry points, on two
+processes, shared safely with any other process compiling at the same time.
+
+The work is a list of items: a kernel in one calling variant ("kernel:<kind>:<name>") or an entry
+point of the engine ("entry:march", "entry:revolution"; the engine is compiled once for every
+model: it takes the kernels as tables of first-class functions, engine/kernels.py).  An item done
+once on this machine has a marker in the cache folder and is only loaded afterwards.
+
+Items are processed under a per-item file lock taken without waiting: a process compiles the
+items whose lock it gets and leaves the others to whoever holds them, then waits for those.  This
+process walks the list from the front while a helper process (`python -m crankgen.engine.build
+ITEM ...`) walks it from the back, so a cold start compiles on two cores; two runs started at once
+on a cold cache split the work the same way instead of both compiling everything.  Where the
+cache folder is read-only, everything is compiled here, in memory.  $CRANKGEN_BUILD_LOG, when
+set, receives a line per item compiled (by any of the processes).
+"""
+
+import contextlib
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+from .. import compile_cache
+from ..compile_cache import READ_ONLY
+
+try:
+    import fcntl
+except ImportError:           # pragma: no cover - not on Linux/macOS: no helper, no locks
+    fcntl = None
+
+ENTRIES = ("march", "revolution")
+
+
+def label(item):
+    """A build item as a reader would name it."""
+    kind, rest = item.split(":", 1)
+    if kind == "entry":
+        return f"the engine's {rest} loop"
+    variant, name = rest.split(":", 1)
+    return f"kernel {name}{variant}" if variant.startswith("_") else f"{variant} {name}"
+
+
+def _marker(item):
+    return compile_cache.kernel_mark(item.replace(":", "-"))
+
+
+def done(item):
+    return _marker(item).exists()
+
+
+def _mark(item):
+    compile_cache.mark_kernel(item.replace(":", "-"))
+
+
+@contextlib.contextmanager
+def _lock(item, wait):
+    """The item's lock: yields True when held (False: another process holds it and wait=False)."""
+    if fcntl is None or READ_ONLY:
+        yield True
+        return
+    path = compile_cache.CACHE / "locks" / f"{item.replace(':', '-')}.lock"
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fh = open(path, "a")
+    except OSError:
+        yield True
+        return
+    try:
+        try:
+            fcntl.flock(fh, fcntl.LOCK_EX | (0 if wait else fcntl.LOCK_NB))
+        except BlockingIOError:
+            yield False
+            return
+        try:
+            yield True
+        finally:
+            fcntl.flock(fh, fcntl.LOCK_UN)
+    finally:
+        fh.close()
+
+
+def compile_item(item):
+    """Compile (or load) one item in this process."""
+    from . import kernels
+    kind, rest = item.split(":", 1)
+    if kind == "kernel":
+        variant, name = rest.split(":", 1)
+        kernels.compiled(variant, name)
+    else:
+        _compile_entry(rest)
+
+
+def _compile_entry(name):
+    """Compile an engine entry point by running it once on no-op kernels (the engine's types do not
+    depend on which kernels it is given)."""
+    from ..cases import Case
+    from . import kernels
+    from .march import Batch, march
+    from .shooting import revolution
+    batch = Batch([Case(omega=1.0, n_elements=1, steps_per_rev=4)], kernels_table=kernels.noop_tables())
+    if name == "march":
+        march(batch, 1, parallel=False)
+    else:
+        revolution(batch, np.zeros((1, 2 * batch.N)), parallel=False)
+
+
+def _run(items, progress, start):
+    """One pass over items: compile those whose lock this process gets; return the others."""
+    left = []
+    for item in items:
+        if done(item):
+            continue
+        with _lock(item, wait=False) as held:
+            if not held:
+                left.append(item)
+                continue
+            if done(item):
+                continue
+            if progress is not None:
+                progress(item, start)
+            compile_item(item)
+            _mark(item)
+            _log(item)
+    return left
+
+
+def _log(item):
+    """Append the item to $CRANKGEN_BUILD_LOG, when set (which process compiled what)."""
+    path = os.environ.get("CRANKGEN_BUILD_LOG")
+    if path:
+        try:
+            with open(path, "a") as fh:
+                fh.write(f"{item}\n")
+        except OSError:
+            pass
+
+
+def _helper(items):
+    """Start the helper process on the reversed list (None when it cannot help)."""
+    if READ_ONLY or fcntl is None or len(items) < 2 or (os.cpu_count() or 1) < 2:
+        return None
+    env = dict(os.environ, CRANKGEN_CACHE_DIR=str(compile_cache.CACHE.parent),
+               CRANKGEN_BUILD_PARENT=str(os.getpid()))
+    try:
+        return subprocess.Popen([sys.executable, "-m", "crankgen.engine.build", *reversed(items)],
+                                stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                                stderr=subprocess.DEVNULL, env=env, start_new_session=False)
+    except OSError:
+        return None
+
+
+def _say(text):
+    try:
+        print(text, file=sys.stderr, flush=True)
+    except (OSError, ValueError):
+        pass
+
+
+def _wait_for(left, todo, quiet, start, every=0.5):
+    """Wait until the items other processes hold are done, saying how far the compilation is."""
+    shown = None
+    while True:
+        pending = [item for item in left if not done(item)]
+        if not pending or not any(_held(item) for item in pending):
+            return
+        finished = sum(done(item) for item in todo)
+        if not quiet and finished != shown:
+            shown = finished
+            _say(f"crankgen: compiling: {finished}/{len(todo)} done ({time.perf_counter() - start:.0f} s; "
+                 f"the rest on another process)")
+        time.sleep(every)
+
+
+def _held(item):
+    """True while another process holds the item's lock."""
+    with _lock(item, wait=False) as held:
+        return not held
+
+
+def prepare(items, quiet=False):
+    """Compile every item not done yet (module docstring), with progress lines on stderr."""
+    from numba.core import config
+    if config.DISABLE_JIT:                        # plain Python: nothing to compile
+        return
+    quiet = quiet or bool(compile_cache.QUIET)
+    todo = [item for item in items if not done(item)]
+    if not todo:
+        return
+    start = time.perf_counter()
+    count = [0]
+
+    def progress(item, t0):
+        count[0] += 1
+        if not quiet:
+            finished = sum(done(i) for i in todo)
+            _say(f"crankgen: compiling {label(item)} ({finished}/{len(todo)} done, "
+                 f"{time.perf_counter() - t0:.0f} s)")
+    helper = _helper(todo)
+    if not quiet:
+        _say(f"crankgen: compiling {len(todo)} item(s) for this machine, once (the engine and the "
+             f"model's kernels, on {2 if helper else 1} process(es); later runs load them)")
+    try:
+        left = _run(todo, progress, start)
+        _wait_for(left, todo, quiet, start)
+        for item in left:                         # held by another process: wait for it
+            with _lock(item, wait=True):
+                pass
+            if not done(item):                    # that process stopped without finishing
+                compile_item(item)
+                _mark(item)
+                _log(item)
+    finally:
+        if helper is not None:
+            try:
+                helper.wait(timeout=600)
+            except subprocess.TimeoutExpired:
+                helper.kill()
+    if not quiet:
+        _say(f"crankgen: compiled in {time.perf_counter() - start:.1f} s")
+
+
+def _die_with_parent():
+    """Linux: this helper gets SIGTERM when the process that started it dies."""
+    parent = int(os.environ.get("CRANKGEN_BUILD_PARENT", "0"))
+    try:
+        import ctypes
+        import signal
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGTERM)          # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        pass
+    if parent and os.getppid() != parent:     # the parent died before prctl took effect
+        sys.exit(0)
+
+
+def main(argv=None):
+    _die_with_parent()
+    items = sys.argv[1:] if argv is None else argv
+    _run(items, None, time.perf_counter())
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
