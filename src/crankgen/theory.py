@@ -65,11 +65,12 @@ def axial_strain(result, per_step=False):
     if getattr(result, "states", None) is None or getattr(result, "case", None) is None:
         t = getattr(result, "t", None)
         return np.full(0 if t is None else len(t), math.nan) if per_step else math.nan
-    xs = np.linspace(0.0, 1.0, 2 * result.case.n_elements + 1)
-    with np.errstate(over="ignore", invalid="ignore"):     # the history of a run that diverged
-        e = np.abs(np.atleast_2d(result.quantity("surface_strain", xs, fiber=0.0)))
-    e = np.where(np.isnan(e), np.inf, e)
-    values = e.max(axis=1)
+    values = None
+    for x in np.linspace(0.0, 1.0, 2 * result.case.n_elements + 1):      # one point at a time:
+        with np.errstate(over="ignore", invalid="ignore"):              # memory of one step array
+            e = np.abs(np.asarray(result.quantity("surface_strain", float(x), fiber=0.0), dtype=float))
+        e = np.where(np.isnan(e), np.inf, e)           # the history of a run that diverged
+        values = e if values is None else np.maximum(values, e)
     return values if per_step else (float(values.max()) if values.size else math.nan)
 
 
