@@ -306,22 +306,30 @@ _TINY_CLI = ("import sys; from crankgen.experiments import ReproduceConfig as R;
 # A child `crankgen reproduce --quick` (tiny preset) that stops at a defined point and waits there
 # for the test: it prints PAUSED on stderr, then reads the pipe whose read end it inherited (file
 # descriptor argv[2]).  The test signals it while it waits; a SIGINT raises KeyboardInterrupt out of
-# the read, and if the signal were handled only after the read returned, the loop (the pipe then
-# at EOF) keeps the child at this point until it is.  No clock is involved anywhere.
+# the read, or, if it is handled only after the read returned, at the next step of the loops that
+# follow (the signal is already pending then); a child that was never interrupted says so and
+# exits 3 instead of hanging.  No clock is involved anywhere.
 #   argv[1] "figure 4": after the first progress report of Figure 4's transients (in the middle
 #           of the step, inside simulate_many);
 #   argv[1] "fig7.png": when Figure 7's data and CSV are written but its PNG is not.
 PAUSED = "crankgen-test: paused"
 _PAUSING_CLI = f"""
-import os, sys
+import os, signal, sys
+# Ctrl-C's default: a process started from a background job of a shell script inherits SIGINT
+# ignored, and this child is about being interrupted by it
+signal.signal(signal.SIGINT, signal.default_int_handler)
 from crankgen.experiments import ReproduceConfig as R, figures as F, runner
 R.quick = classmethod(lambda cls: R.tiny())
 where, fd = sys.argv[1], int(sys.argv[2])
 
 def pause():
     print({PAUSED!r}, file=sys.stderr, flush=True)
-    while True:
-        os.read(fd, 1)
+    while os.read(fd, 1):       # until the test has written its byte and closed the pipe
+        pass
+    for _ in range(10 ** 7):    # the test's signal was sent before that byte: it is pending
+        pass
+    print("crankgen-test: no interruption arrived", file=sys.stderr, flush=True)
+    os._exit(3)
 
 if where == "figure 4":
     real_figure4, real_simulate_many, state = F.figure4, runner.simulate_many, {{}}
