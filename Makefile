@@ -1,4 +1,6 @@
-PYTHON ?= python3
+# The project's virtual environment when there is one (README: python3 -m venv .venv ...), so that
+# `make test` finds the test dependencies without activating it; `make PYTHON=...` overrides.
+PYTHON ?= $(if $(wildcard .venv/bin/python),.venv/bin/python,python3)
 
 .PHONY: derive check-generated test bench audit validate
 
@@ -8,7 +10,7 @@ derive:            ## regenerate generated/ from the SymPy derivation in derive/
 check-generated:   ## fail if generated/ differs from what derive/ produces (changed, new or missing files)
 	$(PYTHON) -m derive --check
 
-test:
+test:              ## the test suite (the README's test command without the install)
 	$(PYTHON) -m pytest -q
 
 bench:             ## benchmark: writes bench/results.json and prints a table

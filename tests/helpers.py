@@ -18,3 +18,39 @@ def zero_crossing_frequency(t, y):
 def observed_order(h, err):
     """Slope of log(err) against log(h) (least squares)."""
     return np.polyfit(np.log(h), np.log(err), 1)[0]
+
+
+BAD_CELLS = {"nan", "NaN", "inf", "-inf", "Infinity", "-Infinity", "None", "null", "NULL"}
+
+
+def _is_number(text):
+    try:
+        float(text)
+        return True
+    except ValueError:
+        return False
+
+
+def check_csv(path):
+    """A CSV crankgen writes: a header of names (none a number), and columns that are either all
+    numbers or all words, with empty fields for what does not exist: no 'nan', 'inf', 'None',
+    and no Python values such as '[0.0, 0.0]'.  pandas.read_csv parses the numeric columns as
+    numbers.  Returns the DataFrame."""
+    import pandas as pd
+
+    raw = pd.read_csv(path, dtype=str, keep_default_na=False)
+    assert len(raw.columns) and not any(_is_number(c) for c in raw.columns), (path, list(raw.columns))
+    assert not any(c.startswith("Unnamed") for c in raw.columns), (path, list(raw.columns))
+    numeric = []
+    for c in raw.columns:
+        cells = [x for x in raw[c] if x != ""]
+        bad = [x for x in cells if x.strip() in BAD_CELLS or x.strip()[:1] in "[({"]
+        assert not bad, (path, c, bad[:3])
+        kinds = {_is_number(x) for x in cells}
+        assert len(kinds) <= 1, (path, c, "numbers and words mixed", cells[:5])
+        if kinds == {True}:
+            numeric.append(c)
+    frame = pd.read_csv(path)
+    for c in numeric:
+        assert pd.api.types.is_numeric_dtype(frame[c]), (path, c, frame[c].dtype)
+    return frame

@@ -92,3 +92,62 @@ def test_combined_verdict():
     assert C.combine(C.REPRODUCED, C.REPRODUCED) == C.REPRODUCED
     assert C.combine(C.NOT_COMPUTABLE, C.NOT_COMPUTABLE) == C.NOT_COMPUTABLE
     assert C.combine(C.REPRODUCED, C.NOT_REPRODUCED) == C.PARTLY
+
+
+# ---- ill-posed is not unstable: a diverged B run is neither an amplitude nor a verdict ---------
+
+def _fig5_diverged(status_b):
+    """Figure 5 with every B run of the consistent model in status_b (no amplitude)."""
+    data = _fig5({"paper": 10.0, "consistent": 10.0})
+    for r in data["rows"]:
+        if r["model"] == "consistent" and r["approach"] == "B":
+            r.update(amplitude=math.nan, ratio_to_A=math.nan, status=status_b)
+    return data
+
+
+def test_a_diverged_b_makes_its_claims_not_computable_not_false():
+    run = _run({5: _fig5_diverged("diverged")})
+    b = C.evaluate(_claim("C5b"), run, "consistent")
+    assert b.verdict == C.NOT_COMPUTABLE and "diverged" in b.value and "unbounded below" in b.value
+    # a genuinely unstable B (an orbit exists, with a multiplier outside the unit circle) is a result
+    assert C.evaluate(_claim("C5b"), _run({5: _fig5_diverged("unstable")}), "consistent").verdict \
+        == C.NOT_REPRODUCED
+    # B against C: the diverged points are not computable; C against A still holds at Omega* 0.1
+    c5c = C.evaluate(_claim("C5c"), run, "consistent")
+    assert c5c.verdict == C.NOT_COMPUTABLE and "not computable at" in c5c.value
+    slopes = C.evaluate(_claim("C5d"), run, "consistent")
+    assert "B@0.8: diverged" in slopes.value and "n/a" not in slopes.value
+
+
+def _fig6(b_status_from, b_peak_at=None):
+    """Figure 6 rows at eps 0.01: A rising, C peaking at 1.0, B periodic below b_status_from and
+    diverged from there (its largest stable amplitude at its last stable speed)."""
+    rows = []
+    for om in np.round(np.arange(0.2, 1.61, 0.1), 10):
+        a = om
+        c = 10 * om if om <= 1.0 + 1e-9 else 10 * (2 - om)
+        bval = 5 * om if om < b_status_from - 1e-9 else math.nan
+        for ap, amp in (("A", a), ("B", bval), ("C", c)):
+            st = "periodic" if math.isfinite(amp) else "diverged"
+            rows.append(dict(model="consistent", approach=ap, omega=float(om), eps=0.01, ms=0.5,
+                             amplitude=amp, status=st, ratio_to_A=amp / a if math.isfinite(amp) else math.nan))
+    return dict(figure=6, rows=rows)
+
+
+def test_the_last_point_before_a_divergence_is_not_a_peak():
+    run = _run({6: _fig6(b_status_from=0.35)})
+    out = C.evaluate(_claim("C6d"), run, "consistent")
+    assert "B: no peak can be read (its runs from rest diverge from Omega* = 0.4" in out.value
+    assert "B max at" not in out.value
+    assert out.verdict == C.PARTLY              # C peaks at 1 and A rises; B's part is unknown
+    k4 = C.evaluate(_claim("K4"), run, "consistent")
+    assert "B/A diverged" in k4.value
+
+
+def test_crossings_are_described_in_words_when_there_are_none():
+    data = _extension((106.4, 295.2))
+    for c in data["curves"]:                    # parallel curves: no common crossing anywhere
+        c["extension"] = 1e-3 * np.cos(np.radians(c["theta_deg"])) + c["ms"] * 1e-3
+    out = C.evaluate(_claim("C7b"), _run({7: data}), "paper")
+    assert out.verdict == C.NOT_REPRODUCED
+    assert "inf" not in out.reason and "no common crossing at all" in out.reason

@@ -10,7 +10,6 @@ import signal
 import stat
 import subprocess
 import sys
-import time
 
 import numpy as np
 import pytest
@@ -207,17 +206,34 @@ def test_tiny_run_writes_every_file(tiny_run):
         assert {r["model"] for r in rows} == {"paper", "consistent"}
 
 
+def test_every_table_parses_into_numbers_words_and_empty_fields(tiny_run):
+    from helpers import check_csv
+    _, out = tiny_run
+    tables = sorted(out.glob("*.csv"))
+    assert len(tables) == 11
+    for path in tables:
+        check_csv(path)
+
+
 def test_tiny_run_reports_failed_cases_in_table_and_findings(tiny_run):
     _, out = tiny_run
     rows = list(csv.DictReader(open(out / "fig6.csv")))
-    failed = [r for r in rows if r["status"] == "failed"]
-    # the consistent model with approach B has no quartic term and diverges at high speed
+    failed = [r for r in rows if r["status"] not in ("periodic", "unstable", "not-periodic")]
+    # the consistent model's approach B has no quartic term (its strain energy is unbounded below:
+    # ill-posed) and diverges from rest at high speed: status "diverged", never "failed" or a
+    # stability result, no amplitude, and the CSV says why in words
     assert failed and all(r["model"] == "consistent" and r["approach"] == "B" for r in failed)
-    assert all(r["message"] and r["amplitude"] == "" for r in failed)
+    assert {r["status"] for r in failed} == {"diverged"}
+    assert all(r["message"] and r["amplitude"] == "" and r["orbit_amplitude"] == "" for r in failed)
+    assert all(r["strain_energy"] == "unbounded below (ill-posed)" for r in failed)
+    assert {r["strain_energy"] for r in rows if r["approach"] != "B"} == {"bounded below"}
     text = (out / "findings.md").read_text()
     assert "## Cases without a stable periodic steady state" in text
     assert "| 6 | consistent | B |" in text
     assert "Newton did not converge" in text or "diverged" in text
+    assert "## Approach B is ill-posed (its strain energy is unbounded below)" in text
+    assert "| 6 | consistent | B | 0.01 | 0.5 | diverged (ill-posed) |" in text
+    assert "no stable periodic state (while A does)" not in text
 
 
 def test_tiny_findings_numbers_come_from_the_runs(tiny_run):
@@ -287,6 +303,78 @@ _TINY_CLI = ("import sys; from crankgen.experiments import ReproduceConfig as R;
              "R.quick = classmethod(lambda cls: R.tiny()); from crankgen.cli import main; "
              "sys.exit(main(sys.argv[1:]))")
 
+# A child `crankgen reproduce --quick` (tiny preset) that stops at a defined point and waits there
+# for the test: it prints PAUSED on stderr, then reads the pipe whose read end it inherited (file
+# descriptor argv[2]).  The test signals it while it waits; a SIGINT raises KeyboardInterrupt out of
+# the read, or, if it is handled only after the read returned, at the next step of the loops that
+# follow (the signal is already pending then); a child that was never interrupted says so and
+# exits 3 instead of hanging.  No clock is involved anywhere.
+#   argv[1] "figure 4": after the first progress report of Figure 4's transients (in the middle
+#           of the step, inside simulate_many);
+#   argv[1] "fig7.png": when Figure 7's data and CSV are written but its PNG is not.
+PAUSED = "crankgen-test: paused"
+_PAUSING_CLI = f"""
+import os, signal, sys
+# Ctrl-C's default: a process started from a background job of a shell script inherits SIGINT
+# ignored, and this child is about being interrupted by it
+signal.signal(signal.SIGINT, signal.default_int_handler)
+from crankgen.experiments import ReproduceConfig as R, figures as F, runner
+R.quick = classmethod(lambda cls: R.tiny())
+where, fd = sys.argv[1], int(sys.argv[2])
+
+def pause():
+    print({PAUSED!r}, file=sys.stderr, flush=True)
+    while os.read(fd, 1):       # until the test has written its byte and closed the pipe
+        pass
+    for _ in range(10 ** 7):    # the test's signal was sent before that byte: it is pending
+        pass
+    print("crankgen-test: no interruption arrived", file=sys.stderr, flush=True)
+    os._exit(3)
+
+if where == "figure 4":
+    real_figure4, real_simulate_many, state = F.figure4, runner.simulate_many, {{}}
+
+    def figure4(ctx, counts):
+        state["figure 4"] = True
+        return real_figure4(ctx, counts)
+
+    def simulate_many(cases, revolutions, progress=None, **kw):
+        def report(done, total):
+            if progress is not None:
+                progress(done, total)
+            if state.get("figure 4") and done > 0:
+                pause()
+        return real_simulate_many(cases, revolutions, progress=report, **kw)
+    F.figure4, runner.simulate_many = figure4, simulate_many
+elif where == "fig7.png":
+    real_save = runner.save_figure
+
+    def save_figure(fig, path, **kw):
+        if os.path.basename(str(path)) == "fig7.png":
+            pause()
+        return real_save(fig, path, **kw)
+    runner.save_figure = save_figure
+from crankgen.cli import main
+sys.exit(main(sys.argv[3:]))
+"""
+
+
+def _paused_child(where, argv):
+    """Start the pausing child and return (process, write end of its pipe, stderr lines read) once
+    it has reached the pause point (read from its stderr: a blocking read, no clock)."""
+    r, w = os.pipe()
+    proc = subprocess.Popen([sys.executable, "-c", _PAUSING_CLI, where, str(r), *argv],
+                            stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True,
+                            pass_fds=(r,))
+    os.close(r)
+    seen = []
+    for line in proc.stderr:
+        seen.append(line)
+        if line.strip() == PAUSED:
+            return proc, w, seen
+    os.close(w)
+    raise AssertionError(f"the child ended (exit {proc.wait()}) before its pause point:\n" + "".join(seen))
+
 
 def _findings_body(path):
     """findings.md without its last section (Run: date and wall times)."""
@@ -301,17 +389,14 @@ def _tables(out):
 def test_sigint_then_rerun_gives_the_uninterrupted_result(tiny_run, tmp_path):
     _, ref = tiny_run
     out = tmp_path / "r"
-    cmd = [sys.executable, "-c", _TINY_CLI, "reproduce", "--quick", "--out", str(out)]
-    proc = subprocess.Popen(cmd, stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
-    seen = []
-    for line in proc.stderr:                     # interrupt in the middle of Figure 4
-        seen.append(line)
-        if "figure 4 (transients)" in line:
-            time.sleep(0.3)
-            proc.send_signal(signal.SIGINT)
-            break
-    proc.stderr.read()
-    assert proc.wait(timeout=120) == 130, "".join(seen)
+    proc, w, seen = _paused_child("figure 4", ["reproduce", "--quick", "--out", str(out)])
+    proc.send_signal(signal.SIGINT)              # in the middle of Figure 4: the child waits there
+    os.write(w, b"x")                            # then let it go on (it is interrupted at once)
+    os.close(w)
+    seen += proc.stderr.readlines()
+    assert proc.wait() == 130, "".join(seen)
+    assert "figure 4: computing" in "".join(seen) and "interrupted" in seen[-1]
+    assert json.loads((out / "manifest.json").read_text())["steps"]["figure 4"]["state"] == "incomplete"
     assert not (out / "findings.md").exists() and not (out / "fig5.csv").exists()
     (out / ".fig5.csv.x1y2z3.tmp").write_text("left by a killed run")     # as after a kill -9
     stream = io.StringIO()
@@ -347,20 +432,25 @@ def test_output_files_have_the_mode_open_gives(tiny_run):
     assert {stat.S_IMODE(p.stat().st_mode) for p in files} == {0o666 & ~mask}
 
 
-def test_second_command_line_run_recomputes_nothing(tiny_run, capsys):
+def test_second_command_line_run_recomputes_nothing(tiny_run, capsys, monkeypatch):
+    """Nothing is computed: every engine entry point the steps use refuses to run."""
+    from crankgen.experiments import runner
+    from crankgen import bifurcation
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("a kept step was recomputed")
     _, out = tiny_run
-    mp = pytest.MonkeyPatch()
-    mp.setattr(ReproduceConfig, "quick", classmethod(lambda cls: ReproduceConfig.tiny()))
-    try:
-        start = time.perf_counter()
-        assert cli_main(["reproduce", "--quick", "--out", str(out)]) == 0
-        wall = time.perf_counter() - start
-    finally:
-        mp.undo()
-    err = capsys.readouterr().err
-    assert "0 step(s) computed, 12 kept" in err and "computing" not in err
-    assert "bifurcations: kept (complete and current)" in err
-    assert wall < 5.0
+    monkeypatch.setattr(ReproduceConfig, "quick", classmethod(lambda cls: ReproduceConfig.tiny()))
+    monkeypatch.setattr(runner._steady, "steady_states", refuse)
+    monkeypatch.setattr(runner, "simulate_many", refuse)
+    monkeypatch.setattr(bifurcation, "continuation", refuse)
+    monkeypatch.setattr(bifurcation, "poincare", refuse)
+    assert cli_main(["reproduce", "--quick", "--out", str(out)]) == 0
+    captured = capsys.readouterr()
+    err = captured.err
+    assert "0 step(s) computed, 12 kept" in captured.out and "computing" not in err
+    assert "step(s) computed" not in err                   # the summary once, on stdout
+    assert "bifurcations: kept (complete and current)" in err and "starting the compiled engine" not in err
 
 
 def test_figures_subset_in_a_fresh_folder_says_what_is_missing(tmp_path):
@@ -368,6 +458,10 @@ def test_figures_subset_in_a_fresh_folder_says_what_is_missing(tmp_path):
     reproduce(out, config=ReproduceConfig.tiny(), quiet=True, figures=[8])
     text = (out / "findings.md").read_text()
     assert "Figures in this report: 8." in text
+    assert text.startswith("# Findings: Figure 8 recomputed (Figures 2, 3, 4, 5, 6 and 7 are not in "
+                           "this report)\n")
+    run = text[text.index("## Run"):]
+    assert "| engine start-up in this run: " in run and "| total of the steps |" in run
     assert "**Not in this report:** Figure 2 (not computed in this folder" in text
     rows = {line.split("|")[1].strip(): line for line in text.splitlines() if line.startswith("| C")}
     assert "| not computable |" in rows["C5b"] and "Figure 5 not computed" in rows["C5b"]
@@ -392,8 +486,9 @@ def test_claims_table_is_complete(tiny_run):
 def test_failed_transient_keeps_its_rows_up_to_the_failure(tiny_run):
     _, out = tiny_run
     rows = list(csv.DictReader(open(out / "fig4.csv")))
-    failed = [r for r in rows if r["status"] == "failed"]
+    failed = [r for r in rows if r["status"] == "diverged"]
     assert failed                                # the consistent model's B diverges at Omega* = 0.8
+    assert not [r for r in rows if r["status"] == "failed"]      # A and C never fail here
     key = lambda r: (r["model"], r["approach"], r["ms"])
     for k in {key(r) for r in failed}:
         rr = [r for r in failed if key(r) == k]
@@ -408,20 +503,20 @@ def test_failed_transient_keeps_its_rows_up_to_the_failure(tiny_run):
 
 
 def test_kill_then_rerun_finishes_the_job(tiny_run, tmp_path):
-    """SIGKILL (no clean-up at all) in the middle of Figure 7, then the same command."""
+    """SIGKILL (no clean-up at all) in the middle of Figure 7 (its data and CSV written, its PNG
+    not), then the same command."""
     _, ref = tiny_run
     out = tmp_path / "k"
-    cmd = [sys.executable, "-c", _TINY_CLI, "reproduce", "--quick", "--figures", "7", "--out", str(out)]
-    proc = subprocess.Popen(cmd, stderr=subprocess.PIPE, stdout=subprocess.DEVNULL, text=True)
-    for line in proc.stderr:
-        if "figure 7 (steady states)" in line:
-            proc.kill()
-            break
-    proc.wait(timeout=120)
+    argv = ["reproduce", "--quick", "--figures", "7", "--out", str(out)]
+    proc, w, _ = _paused_child("fig7.png", argv)
+    proc.kill()
+    proc.wait()
+    os.close(w)
     proc.stderr.close()
+    assert (out / "fig7.csv").exists() and not (out / "fig7.png").exists()
     steps = json.loads((out / "manifest.json").read_text())["steps"]
     assert steps["figure 7"]["state"] == "incomplete"
-    done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    done = subprocess.run([sys.executable, "-c", _TINY_CLI, *argv], capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     assert "figure 7: computing (incomplete" in done.stderr
     assert "convergence check: kept" in done.stderr
@@ -441,25 +536,33 @@ def test_output_folder_that_cannot_be_made_is_refused_before_computing(tmp_path,
     assert "cannot write to" in err or "cannot create" in err
 
 
-def test_theory_flag_matches_the_deflection(tiny_run):
+def test_theory_flag_matches_the_deflection_and_the_strain(tiny_run):
+    """beyond_theory: |v|/L of the row's response (the orbit when periodic or unstable, the
+    settled transient otherwise) above 0.1, or its axial strain above 0.01."""
     _, out = tiny_run
     rows = list(csv.DictReader(open(out / "fig6.csv")))
+    key = {"periodic": "amplitude", "unstable": "orbit_amplitude"}
     for r in rows:
-        vals = [float(r[k]) for k in ("amplitude", "orbit_amplitude", "envelope") if r[k] != ""]
-        if not vals:
-            assert r["beyond_theory"] == ""
+        v = r[key.get(r["status"], "envelope")]
+        strain = float(r["axial_strain"]) if r["axial_strain"] else math.nan
+        if v == "" and not math.isfinite(strain):
+            assert r["beyond_theory"] == "" and r["deflection_over_L"] == ""
             continue
-        assert float(r["deflection_over_L"]) == pytest.approx(float(r["eps"]) * max(vals))
-        assert r["beyond_theory"] == ("yes" if float(r["eps"]) * max(vals) > 0.1 else "no")
+        x = float(r["eps"]) * float(v) if v else math.nan
+        if v:
+            assert float(r["deflection_over_L"]) == pytest.approx(x)
+        expect = (x > 0.1) or (strain > 0.01)
+        assert r["beyond_theory"] == ("yes" if expect else "no"), r
+    assert any(r["beyond_theory"] == "yes" and float(r["deflection_over_L"]) <= 0.1 for r in rows), \
+        "no case flagged for its strain alone"
     text = (out / "findings.md").read_text()
     assert "## Results beyond the range of the theory" in text
     flagged = {(r["model"], r["approach"]) for r in rows if r["beyond_theory"] == "yes"}
     section = text[text.index("## Results beyond"):text.index("## Settings")]
     for m, ap in flagged:
         assert f"| 6 | {m} | {ap} |" in section
+    assert "axial strain of the neutral axis > 0.01" in section
 
-
-# ----------------------------------------------------------------------------- bifurcations step
 
 def _section(text):
     return text[text.index("## Bifurcations of approach A"):text.index("## Slope of log v*")]

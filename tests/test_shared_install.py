@@ -45,6 +45,8 @@ def test_the_cache_folder_needs_no_home(monkeypatch, tmp_path):
     monkeypatch.delenv("HOME", raising=False)
     monkeypatch.delenv("XDG_CACHE_HOME", raising=False)
     monkeypatch.setattr(Path, "home", classmethod(lambda cls: (_ for _ in ()).throw(RuntimeError("no home"))))
+    # an installation of its own: the real package's cache may already hold a compiled engine
+    monkeypatch.setattr(compile_cache, "_PACKAGE", tmp_path / "site-packages" / "crankgen")
     shared = compile_cache._PACKAGE / "__pycache__" / f"numba-{compile_cache.CODE_HASH}"
     monkeypatch.setattr(compile_cache, "_writable", lambda folder: False)
     assert compile_cache.cache_folder() == (shared, True)
@@ -52,6 +54,11 @@ def test_the_cache_folder_needs_no_home(monkeypatch, tmp_path):
     monkeypatch.setenv("XDG_CACHE_HOME", str(user))
     monkeypatch.setattr(compile_cache, "_writable", lambda folder: str(folder).startswith(str(user)))
     assert compile_cache.cache_folder() == (user / "crankgen" / shared.name, False)
+    # once an administrator compiled the engine into the shared folder, it is loaded read-only
+    marker = shared / "kernels" / "entry-march.ok"
+    marker.parent.mkdir(parents=True)
+    marker.touch()
+    assert compile_cache.cache_folder() == (shared, True)
 
 
 @pytest.fixture(scope="module")

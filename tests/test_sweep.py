@@ -178,12 +178,20 @@ def test_process_pool_gives_the_local_table(reference):
     assert _without_wall_time(table.rows) == _without_wall_time(reference.rows)
 
 
-def test_real_local_dask_cluster_gives_the_local_amplitudes(reference):
+def test_real_local_dask_cluster_gives_the_local_amplitudes(reference, tmp_path):
     distributed = pytest.importorskip(
         "distributed", reason="dask.distributed is not installed (pip install 'dask[distributed]')")
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as cluster, \
-            distributed.Client(cluster) as client:
+    import dask
+    # dask's own deadlines (30 s to connect) are hang guards, not part of the test: on a loaded
+    # machine a worker can take longer to start, so they are made long enough never to decide it;
+    # the scheduler's and the workers' scratch space is the test's own folder
+    slow_ok = {"distributed.comm.timeouts.connect": "900s", "distributed.comm.timeouts.tcp": "900s",
+               "distributed.deploy.lost-worker-timeout": "900s", "temporary-directory": str(tmp_path)}
+    with dask.config.set(slow_ok), \
+            distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                     dashboard_address=None, local_directory=str(tmp_path),
+                                     death_timeout=900) as cluster, \
+            distributed.Client(cluster, timeout=900) as client:
         with distributed.get_task_stream(client) as stream:
             table = sweep(CASES, executor=client.get_executor(), batch_size=2)
         pids = client.run(lambda: __import__("os").getpid())

@@ -1,4 +1,7 @@
-"""Plots (matplotlib, Agg backend, imported only when a figure is written)."""
+"""Plots (matplotlib, Agg backend, imported only when a figure is written), and their layout:
+measured, so that nothing is clipped and no legend or label covers data or another panel."""
+
+import numpy as np
 
 
 def _pyplot():
@@ -22,10 +25,32 @@ def _title(s):
             f"ms* = {s['ms']:g}, mu* = {s['mu']:g}, n = {s['n_elements']}{extra}")
 
 
+def _beyond_theory(ax, eps, v, strain):
+    """Shade |v*| beyond the theory's deflection limit where the data reach it; returns the note
+    for the title ('' when the response stays in the range of the theory)."""
+    from . import theory
+
+    v = np.asarray(v, dtype=float)
+    v = v[np.isfinite(v)]
+    vmax = float(np.max(np.abs(v))) if v.size else float("nan")
+    smax = float(np.nanmax(strain)) if strain is not None and np.size(strain) and np.any(np.isfinite(strain)) else float("nan")
+    lim = theory.DEFLECTION_LIMIT / eps
+    if np.isfinite(vmax) and vmax > lim:
+        lo, hi = ax.get_ylim()
+        for a, b in ((lim, max(hi, lim)), (min(lo, -lim), -lim)):
+            if b > a:
+                ax.axhspan(a, b, color="0.88", zorder=0, lw=0)
+        ax.set_ylim(lo, hi)
+    why = theory.reasons(eps * vmax, smax)
+    return f"\nBEYOND THE THEORY: {why} (shaded: |v|/L > {theory.DEFLECTION_LIMIT:g})" if why else ""
+
+
 def plot_deflection(result, path, failure=None, si=None):
     """v* at x* = 1/2 against t*, written atomically to path (returned).  failure: the
-    ConvergenceError of a run that stopped, whose time is marked on the plot.  si: the result's SI
-    view (crankgen.outputs.SIView): v in mm against t in s."""
+    ConvergenceError of a run that stopped, whose time is marked on the plot; a response beyond
+    the range of the theory (crankgen.theory) is shaded and named in the title.  si: the result's
+    SI view (crankgen.outputs.SIView): v in mm against t in s."""
+    from . import theory
     from .io import save_figure
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(7, 3.8), constrained_layout=True)
@@ -36,27 +61,32 @@ def plot_deflection(result, path, failure=None, si=None):
         tf = None if failure is None else failure.time * si.scales.factor("1/omega_b")
     ax.plot(t, v, lw=1, color="C0", label="v* (x* = 1/2)" if si is None else "v (x = L/2), mm")
     if failure is not None:
+        approach = result.settings.get("approach")
+        word = (f"run diverged (approach {approach} is ill-posed: strain energy unbounded below)"
+                if theory.ill_posed(approach) else "run failed")
         ax.axvline(tf, color="C3", ls="--", lw=1,
-                   label=f"run failed at {unit.split()[0]} = {tf:.4g} (step {failure.step})")
+                   label=f"{word} at {unit.split()[0]} = {tf:.4g} (step {failure.step})")
         if len(t):
-            ax.plot(t[-1:], v[-1:], "x", color="C3", ms=9, mew=2,
-                    label="last computed state")
+            ax.plot(t[-1:], v[-1:], "x", color="C3", ms=9, mew=2, label="last computed state")
         ax.legend(fontsize=8, loc="best")
     ax.set_xlabel(unit)
     ax.set_ylabel("v* at x* = 1/2" if si is None else "v at x = L/2 in the moving frame (mm)")
-    ax.set_title(_title(result.settings), fontsize=9)
+    # the range of the theory in the scale drawn: |v*| eps = |v| / L
+    eps = result.settings["eps"] if si is None else 1e-3 / si.scales.L
+    note = _beyond_theory(ax, eps, v, theory.axial_strain(result, per_step=True))
+    ax.set_title(_title(result.settings) + note, fontsize=9)
     ax.grid(alpha=0.3)
     return save_figure(fig, path)
 
 
 def plot_orbit(state, path):
     """A steady revolution (crankgen.SteadyState): v* at x* = 1/2 and the extension delta*
-    against the crank angle, written atomically to path (returned)."""
-    import numpy as np
-
+    against the crank angle, written atomically to path (returned); beyond the range of the
+    theory: shaded and named in the title."""
+    from . import theory
     from .io import save_figure
     plt = _pyplot()
-    fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 5.2), sharex=True, constrained_layout=True)
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 5.4), sharex=True, constrained_layout=True)
     deg = np.degrees(state.theta)
     a1.plot(deg, state.v_mid, lw=1.2, color="C0")
     a1.set_ylabel("v* at x* = 1/2")
@@ -69,7 +99,8 @@ def plot_orbit(state, path):
     s = dict(state.case.as_dict())
     mult = (f", largest |multiplier| {state.multiplier:.4f}"
             if state.multiplier is not None and np.isfinite(state.multiplier) else "")
-    a1.set_title(f"steady state: {state.status}{mult}\n" + _title(s), fontsize=9)
+    note = _beyond_theory(a1, state.case.eps, state.v_mid, theory.axial_strain(state, per_step=True))
+    a1.set_title(f"steady state: {state.status}{mult}\n" + _title(s) + note, fontsize=9)
     return save_figure(fig, path)
 
 
@@ -101,6 +132,8 @@ def panels(rows, cols, width=6.0, height=3.4, space_below=0.0, top_margin=0.6, *
                         top=1 - top_margin / h,
                         wspace=between / ((w - left - right - between * (cols - 1)) / cols),
                         hspace=gap / axes_h)
+    fig._crankgen_grid = dict(axes=axes, axes_w=(w - left - right - between * (cols - 1)) / cols,
+                              axes_h=axes_h)         # fit_panels lays it out from measurements
     return fig, axes
 
 
@@ -115,17 +148,190 @@ def mark_at_axis(ax, x, color, marker="x", label=None, size=50):
                       marker=marker, color=color, s=size, label=label, zorder=5)
 
 
-def status_legend_handles(kinds=("failed", "unstable", "envelope")):
-    """Grey proxy artists explaining the status markers of steady-state sweep plots."""
-    from matplotlib.lines import Line2D
-    text = {
-        "failed": ("x", "x on the axis: no steady response (run failed / diverged)"),
-        "unstable": ("o", "hollow o: unstable periodic orbit"),
-        "envelope": ("^", "hollow ^: non-periodic response, max |v*| of a transient (on the top edge: off scale, see CSV)"),
-    }
+# --- layout: measured, so that nothing is clipped and no legend covers another panel -----------
+
+def fit_panels(fig, pad=0.12):
+    """Lay out the grid of `panels` from the measured extents of every panel (title, tick and
+    axis labels, a legend below it): the axes keep their size in inches, the gaps, margins and
+    the figure grow to what the text needs.  One layout pass without rasterizing (cheaper than a
+    layout engine); returns fig."""
+    grid = getattr(fig, "_crankgen_grid", None)
+    if grid is None:
+        return fig
+    axes = grid["axes"]
+    rows, cols = axes.shape
+    renderer = fig.canvas.get_renderer()
+    dpi = fig.dpi
+    for ax in axes.flat:        # a legend below its panel starts just under the x axis' labels
+        leg = ax.get_legend()
+        if leg is not None and getattr(leg, "_crankgen_outside", False):
+            box, below = ax.get_window_extent(renderer), ax.xaxis.get_tightbbox(renderer)
+            y = (below.y0 - box.y0 - 0.06 * dpi) / box.height
+            leg.set_bbox_to_anchor((0.5, y), transform=ax.transAxes)
+    ax_w, ax_h = grid["axes_w"], grid["axes_h"]
+    ext = np.zeros((rows, cols, 4))             # inches beyond the axes: left, right, below, above
+    for i in range(rows):
+        for j in range(cols):
+            ax = axes[i, j]
+            box, tight = ax.get_window_extent(renderer), ax.get_tightbbox(renderer)
+            ext[i, j] = [(box.x0 - tight.x0) / dpi, (tight.x1 - box.x1) / dpi,
+                         (box.y0 - tight.y0) / dpi, (tight.y1 - box.y1) / dpi]
+    ext = np.maximum(ext, 0.0)
+    sup = fig._suptitle
+    sup_h = (sup.get_window_extent(renderer).height / dpi + pad) if sup is not None else 0.0
+    left = ext[:, 0, 0].max() + pad
+    between = [ext[:, j, 1].max() + ext[:, j + 1, 0].max() + pad for j in range(cols - 1)]
+    right = ext[:, -1, 1].max() + pad
+    top = sup_h + ext[0, :, 3].max() + pad
+    gaps = [ext[i, :, 2].max() + ext[i + 1, :, 3].max() + pad for i in range(rows - 1)]
+    bottom = ext[-1, :, 2].max() + pad
+    W = left + cols * ax_w + sum(between) + right
+    H = top + rows * ax_h + sum(gaps) + bottom
+    fig.set_size_inches(W, H)
+    y = H - top
+    for i in range(rows):
+        x = left
+        for j in range(cols):
+            axes[i, j].set_position([x / W, (y - ax_h) / H, ax_w / W, ax_h / H])
+            x += ax_w + (between[j] if j < cols - 1 else 0.0)
+        y -= ax_h + (gaps[i] if i < rows - 1 else 0.0)
+    if sup is not None:
+        sup.set_y(1.0 - (pad / 2) / H)
+        sup.set_va("top")
+    return fig
+
+
+def layout_problems(fig):
+    """What a reader would see as broken, measured on the drawn figure: text or a legend outside
+    the figure, a legend over an axes, panels whose titles, labels or legends overlap each other,
+    and annotations overlapping one another or leaving their axes.  [] when none."""
+    fig.canvas.draw()
+    r = fig.canvas.get_renderer()
+    frame = fig.bbox
     out = []
-    for k in kinds:
-        m, label = text[k]
-        face = "none" if k != "failed" else "grey"
-        out.append(Line2D([], [], ls="none", marker=m, color="grey", markerfacecolor=face, label=label))
+
+    def inside(bb, what):
+        if bb.x0 < frame.x0 - 1 or bb.y0 < frame.y0 - 1 or bb.x1 > frame.x1 + 1 or bb.y1 > frame.y1 + 1:
+            out.append(f"{what} extends beyond the figure")
+    axes = [a for a in fig.axes if a.get_visible()]
+    tights = [a.get_tightbbox(r) for a in axes]
+    for a, t in zip(axes, tights):
+        inside(t, f"panel {a.get_title()!r}")
+        leg = a.get_legend()
+        if leg is not None:
+            lb = leg.get_window_extent(r)
+            for b in axes:
+                if lb.overlaps(b.get_window_extent(r)) and (b is not a or _legend_outside(a)):
+                    out.append(f"the legend of {a.get_title()!r} covers panel {b.get_title()!r}")
+    for i in range(len(axes)):
+        for j in range(i + 1, len(axes)):
+            if tights[i].overlaps(tights[j]):
+                out.append(f"panels {axes[i].get_title()!r} and {axes[j].get_title()!r} overlap")
+    if fig._suptitle is not None:
+        sb = fig._suptitle.get_window_extent(r)
+        inside(sb, "the title")
+        out += [f"the title overlaps panel {a.get_title()!r}" for a, t in zip(axes, tights) if sb.overlaps(t)]
+    for a in axes:
+        points = None
+        for t in a.texts:
+            if getattr(t, "_crankgen_label", False):
+                points = drawn_points(a) if points is None else points
+                bb = _text_box(t, r)
+                hits = np.sum((points[:, 0] >= bb.x0) & (points[:, 0] <= bb.x1)
+                              & (points[:, 1] >= bb.y0) & (points[:, 1] <= bb.y1)) if points.size else 0
+                if hits:
+                    out.append(f"label {t.get_text()!r} covers {hits} drawn point(s) of {a.get_title()!r}")
+        boxes = [_text_box(t, r) for t in a.texts if t.get_visible() and t.get_text()]
+        abox = a.get_window_extent(r)
+        for k, b in enumerate(boxes):
+            if b.x0 < abox.x0 - 1 or b.x1 > abox.x1 + 1 or b.y0 < abox.y0 - 1 or b.y1 > abox.y1 + 1:
+                out.append(f"annotation {a.texts[k].get_text()!r} leaves panel {a.get_title()!r}")
+            out += [f"annotations {a.texts[k].get_text()!r} and {a.texts[m].get_text()!r} overlap"
+                    for m in range(k + 1, len(boxes)) if b.overlaps(boxes[m])]
     return out
+
+
+def _text_box(text, renderer):
+    """Display box of a text or annotation's text alone (an annotation's own extent includes its
+    leader line, which runs to the point it labels)."""
+    from matplotlib.text import Text
+    if hasattr(text, "update_positions"):
+        text.update_positions(renderer)
+    return Text.get_window_extent(text, renderer)
+
+
+def _legend_outside(ax):
+    """Whether the axes' legend was placed outside the axes (below it), so that covering the
+    axes itself is a fault too."""
+    leg = ax.get_legend()
+    return getattr(leg, "_crankgen_outside", False)
+
+
+def drawn_points(ax, spacing=2.0):
+    """Display coordinates of everything drawn in the panel: its lines (densified every
+    `spacing` pixels) and the markers of every collection, whatever their transform."""
+    out = []
+    for line in ax.get_lines():
+        xy = np.asarray(line.get_xydata(), dtype=float)
+        if len(xy) == 0 or not line.get_visible():
+            continue
+        d = line.get_transform().transform(xy)
+        d = d[np.all(np.isfinite(d), axis=1)]
+        if line.get_linestyle() in ("None", "none", " ", ""):
+            out.append(d)
+            continue
+        for a, b in zip(d[:-1], d[1:]):
+            k = min(2000, max(2, int(np.hypot(*(b - a)) / spacing) + 1))
+            out.append(a + (b - a) * np.linspace(0, 1, k)[:, None])
+        out.append(d)
+    for col in ax.collections:
+        off = np.asarray(col.get_offsets(), dtype=float)
+        if len(off) and col.get_visible():
+            d = col.get_offset_transform().transform(off)
+            out.append(d[np.all(np.isfinite(d), axis=1)])
+    return np.concatenate(out) if out else np.zeros((0, 2))
+
+
+# offsets (points) tried for a label, nearest first: right / left of the point, above / below,
+# then rings further out (a leader line joins a label placed away from its point)
+LABEL_OFFSETS = [(6, 5), (-6, 5), (6, -13), (-6, -13), (8, 16), (-8, 16), (8, -24), (-8, -24)] + [
+    (round(r * np.cos(a)) or 4, round(r * np.sin(a)))
+    for r in (30, 45, 60, 80, 100) for a in np.radians(np.arange(15, 360, 30))]
+
+
+def place_labels(ax, items, fontsize=8, margin=4.0):
+    """items: (x, y, text, colour) in data coordinates.  Each text goes beside its point at the
+    first of LABEL_OFFSETS where it covers no drawn point or line of the panel (with `margin`
+    pixels for the markers' size), no other label, and stays inside the frame; an arrow joins
+    a label placed away from its point.  A label that fits nowhere goes where it covers the
+    fewest drawn points."""
+    renderer = ax.figure.canvas.get_renderer()
+    box = ax.get_window_extent(renderer)
+    obstacles = drawn_points(ax)
+    placed = []
+    for x, y, text, color in items:
+        best, best_cost = None, None
+        for dx, dy in LABEL_OFFSETS:
+            far = abs(dy) > 20 or abs(dx) > 20
+            a = ax.annotate(text, (x, y), textcoords="offset points", xytext=(dx, dy),
+                            ha="left" if dx > 0 else "right", va="center", fontsize=fontsize,
+                            zorder=7, color=color,
+                            arrowprops=dict(arrowstyle="-", color=color, lw=0.6, shrinkA=0, shrinkB=3)
+                            if far else None)
+            bb = _text_box(a, renderer)        # the text, not its leader line
+            bb = bb.from_extents(bb.x0 - margin, bb.y0 - margin, bb.x1 + margin, bb.y1 + margin)
+            inside = box.contains(bb.x0, bb.y0) and box.contains(bb.x1, bb.y1)
+            hits = int(np.sum((obstacles[:, 0] >= bb.x0) & (obstacles[:, 0] <= bb.x1)
+                              & (obstacles[:, 1] >= bb.y0) & (obstacles[:, 1] <= bb.y1))) if obstacles.size else 0
+            clash = any(bb.overlaps(p) for p in placed)
+            cost = (not inside, clash, hits)
+            a._crankgen_label = True
+            if best_cost is None or cost < best_cost:
+                if best is not None:
+                    best[0].remove()
+                best, best_cost = (a, bb), cost
+                if cost == (False, False, 0):
+                    break
+            else:
+                a.remove()
+        placed.append(best[1])

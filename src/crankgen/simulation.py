@@ -53,12 +53,13 @@ class SimulationResult(DeclaredOutputs):
     scales: Optional[Scales] = field(default=None, repr=False)      # crankgen's units in SI (units="si")
 
     def to_csv(self, path):
-        """Write t*, theta, v_mid, u_end, extension as CSV (full double precision), atomically."""
+        """Write t*, theta (degrees), v_mid, u_end, extension as CSV (full double precision),
+        atomically."""
         from .io import atomic_file
         with atomic_file(path) as fh:
             w = csv.writer(fh)
-            w.writerow(["t", "theta", "v_mid", "u_end", "extension"])
-            for row in zip(self.t, self.theta, self.v_mid, self.u_end, self.extension):
+            w.writerow(["t", "theta_deg", "v_mid", "u_end", "extension"])
+            for row in zip(self.t, np.degrees(self.theta), self.v_mid, self.u_end, self.extension):
                 w.writerow([repr(float(x)) for x in row])
 
     @property

@@ -11,6 +11,31 @@ from ..io import atomic_file, save_figure
 LABELS = {"fold": "F", "period-doubling": "PD", "neimark-sacker": "NS"}
 
 
+# branch colours by period (the reproduce figures use the same): black, purple, green, olive,
+# none near the approaches' blue, orange and red (crankgen.plotting.APPROACH_COLORS)
+PERIOD_COLORS = {1: "black", 2: "#7b2d8e", 4: "#2ca02c", 8: "#6b6b00"}
+AXIS = {"omega": "Omega*", "eps": "eps", "ms": "ms*", "mu": "mu*", "a": "a*", "offset": "offset e/L"}
+
+
+def describe(info, what, parameter):
+    """A title from a diagram's info (the model and settings it was computed for)."""
+    if not info:
+        return f"{what} in {parameter}"
+    parts = [f"approach {info['approach']}" if "approach" in info else None,
+             " / ".join(str(info[k]) for k in ("formulation", "damping", "membrane") if k in info) or None,
+             f"n = {info['n_elements']}" if "n_elements" in info else None]
+    fixed = [f"{AXIS.get(k, k)} = {info[k]:g}" for k in ("omega", "eps") if k in info and k != parameter]
+    return f"{what} in {AXIS.get(parameter, parameter)}: " + ", ".join(p for p in parts + fixed if p)
+
+
+def _num(x):
+    """CSV cell of a number: full precision, empty when it does not exist (NaN, inf, None)."""
+    if x is None:
+        return ""
+    x = float(x)
+    return repr(x) if np.isfinite(x) else ""
+
+
 @dataclass
 class Branch:
     """One branch of period-`period` orbits, point by point (special points included)."""
@@ -49,52 +74,77 @@ class BifurcationDiagram:
     special_points: list
     info: dict = field(default_factory=dict)   # the model and settings it was computed for
 
+    def eps_at(self, p):
+        """Slenderness of the mechanism at parameter value p (None: not a mechanism diagram)."""
+        if self.parameter_name == "eps":
+            return float(p)
+        eps = self.info.get("eps")
+        return None if eps is None else float(eps)
+
     def to_csv(self, folder):
-        """branches.csv (one row per point), special_points.csv and multipliers.csv (every
-        multiplier of every point, long format) in folder; returns the paths."""
+        """branches.csv (one row per point; for the mechanism with deflection_over_L = eps
+        amplitude and beyond_theory, crankgen.theory), special_points.csv and multipliers.csv
+        (every multiplier of every point, long format) in folder; returns the paths.  A number
+        that does not exist is an empty field."""
+        from ..theory import DEFLECTION_LIMIT
+
         folder = Path(folder)
         folder.mkdir(parents=True, exist_ok=True)
         name = self.parameter_name
         paths = [folder / "branches.csv", folder / "special_points.csv", folder / "multipliers.csv"]
+        flags = self.eps_at(self.branches[0].parameter[0]) is not None if self.branches else False
+
+        def theory(p, amplitude):
+            x = abs(self.eps_at(p) * float(amplitude))
+            return [_num(x), "" if not np.isfinite(x) else ("yes" if x > DEFLECTION_LIMIT else "no")]
         with atomic_file(paths[0]) as fh:
             w = csv.writer(fh)
             w.writerow(["branch", "period", "point", name, "amplitude", "stable",
-                        "max_abs_multiplier", "origin"])
+                        "max_abs_multiplier", "origin"]
+                       + (["deflection_over_L", "beyond_theory"] if flags else []))
             for b, br in enumerate(self.branches):
                 for i in range(len(br)):
-                    w.writerow([b, br.period, i, repr(float(br.parameter[i])),
-                                repr(float(br.amplitude[i])), int(br.stable[i]),
-                                repr(float(np.abs(br.multipliers[i]).max())), br.origin])
+                    w.writerow([b, br.period, i, _num(br.parameter[i]), _num(br.amplitude[i]),
+                                int(br.stable[i]), _num(np.abs(br.multipliers[i]).max()), br.origin]
+                               + (theory(br.parameter[i], br.amplitude[i]) if flags else []))
         with atomic_file(paths[1]) as fh:
             w = csv.writer(fh)
             w.writerow(["kind", name, "amplitude", "period", "branch", "multiplier_re",
-                        "multiplier_im", "multiplier_abs"])
+                        "multiplier_im", "multiplier_abs"]
+                       + (["deflection_over_L", "beyond_theory"] if flags else []))
             for s in self.special_points:
-                w.writerow([s.kind, repr(float(s.parameter)), repr(float(s.amplitude)), s.period,
-                            s.branch, repr(s.multiplier.real), repr(s.multiplier.imag),
-                            repr(abs(s.multiplier))])
+                w.writerow([s.kind, _num(s.parameter), _num(s.amplitude), s.period, s.branch,
+                            _num(s.multiplier.real), _num(s.multiplier.imag), _num(abs(s.multiplier))]
+                           + (theory(s.parameter, s.amplitude) if flags else []))
         with atomic_file(paths[2]) as fh:
             w = csv.writer(fh)
             w.writerow(["branch", "point", name, "index", "re", "im", "abs"])
             for b, br in enumerate(self.branches):
                 for i in range(len(br)):
                     for j, m in enumerate(br.multipliers[i]):
-                        w.writerow([b, i, repr(float(br.parameter[i])), j, repr(float(m.real)),
-                                    repr(float(m.imag)), repr(float(abs(m)))])
+                        w.writerow([b, i, _num(br.parameter[i]), j, _num(m.real), _num(m.imag),
+                                    _num(abs(m))])
         return paths
 
-    def plot(self, path, ax=None, title=None, ylabel="amplitude", xlabel=None):
+    def plot(self, path, ax=None, title=None, ylabel=None, xlabel=None):
         """Amplitude against the parameter: stable solid, unstable dashed, one colour per period,
-        special points marked and labelled (F fold, PD period doubling, NS Neimark-Sacker)."""
-        from ..plotting import pyplot
+        special points marked and labelled (F fold, PD period doubling, NS Neimark-Sacker) where
+        the label covers no curve; for the mechanism, the range beyond the theory (|v|/L > 0.1)
+        shaded.  Axis labels and title default to what the diagram holds; the legend sits below
+        the axes."""
+        from matplotlib.lines import Line2D
+        from matplotlib.patches import Patch
 
-        plt = pyplot()
+        from ..plotting import fit_panels, panels, place_labels
+        from ..theory import DEFLECTION_LIMIT
+
         own = ax is None
         if own:
-            fig, ax = plt.subplots(figsize=(7.5, 4.5), constrained_layout=True)
+            fig, axes = panels(1, 1, width=7.5, height=4.2)
+            ax = axes[0, 0]
         colors = {}
         for br in self.branches:
-            c = colors.setdefault(br.period, f"C{len(colors)}")
+            c = colors.setdefault(br.period, PERIOD_COLORS.get(br.period, "0.4"))
             st = np.asarray(br.stable, dtype=bool)
             # draw stable and unstable runs, each run joined to the next point so no gap is left
             start = 0
@@ -104,8 +154,7 @@ class BifurcationDiagram:
                     ax.plot(br.parameter[start:j], br.amplitude[start:j], color=c,
                             ls="-" if st[start] else "--", lw=1.6 if st[start] else 1.1)
                     start = i
-        from matplotlib.lines import Line2D
-        handles = [Line2D([], [], color=c, label=f"period {k}") for k, c in colors.items()]
+        handles = [Line2D([], [], color=c, label=f"period {k}") for k, c in sorted(colors.items())]
         handles += [Line2D([], [], color="grey", ls="-", label="stable"),
                     Line2D([], [], color="grey", ls="--", label="unstable")]
         markers = {"fold": "s", "period-doubling": "o", "neimark-sacker": "D"}
@@ -115,22 +164,25 @@ class BifurcationDiagram:
                 continue
             ax.scatter([s.parameter for s in pts], [s.amplitude for s in pts], marker=m, s=36,
                        facecolor="white", edgecolor="black", zorder=5)
-        # labels alternately above and below, so that neighbouring points stay readable
-        for i, s in enumerate(sorted(self.special_points, key=lambda s: s.parameter)):
-            ax.annotate(f"{LABELS[s.kind]} {s.parameter:.4g}", (s.parameter, s.amplitude),
-                        textcoords="offset points", xytext=(5, 7 if i % 2 == 0 else -13),
-                        fontsize=8, zorder=6)
-        for kind, m in markers.items():
-            if not any(s.kind == kind for s in self.special_points):
-                continue
             handles.append(Line2D([], [], ls="none", marker=m, markerfacecolor="white",
                                   color="black", label=f"{LABELS[kind]}: {kind}"))
-        ax.set_xlabel(xlabel or self.parameter_name)
-        ax.set_ylabel(ylabel)
+        eps = self.info.get("eps") if self.parameter_name != "eps" else None
+        amps = [a for br in self.branches for a in np.asarray(br.amplitude, dtype=float) if np.isfinite(a)]
+        if eps and amps and max(amps) * eps > DEFLECTION_LIMIT:
+            lo, hi = ax.get_ylim()
+            ax.axhspan(DEFLECTION_LIMIT / eps, max(hi, DEFLECTION_LIMIT / eps), color="0.88", lw=0, zorder=0)
+            ax.set_ylim(lo, hi)
+            handles.append(Patch(color="0.88", label=f"|v|/L > {DEFLECTION_LIMIT:g}: beyond the theory"))
+        place_labels(ax, [(s.parameter, s.amplitude, f"{LABELS[s.kind]} {s.parameter:.4g}", "black")
+                          for s in sorted(self.special_points, key=lambda s: s.parameter)])
+        mech = "eps" in self.info or self.parameter_name == "eps"
+        ax.set_xlabel(xlabel or AXIS.get(self.parameter_name, self.parameter_name))
+        ax.set_ylabel(ylabel or ("max |v*(1/2)| over the orbit" if mech else "amplitude"))
         ax.grid(alpha=0.3)
-        ax.legend(handles=handles, fontsize=8, loc="best")
-        if title:
-            ax.set_title(title, fontsize=9)
+        leg = ax.legend(handles=handles, fontsize=8, loc="upper center", ncol=3, frameon=False,
+                        bbox_to_anchor=(0.5, -0.16))
+        leg._crankgen_outside = True
+        ax.set_title(title or describe(self.info, "continuation", self.parameter_name), fontsize=9)
         if own:
-            save_figure(fig, path, dpi=130)
+            save_figure(fit_panels(fig), path, dpi=130)
         return path

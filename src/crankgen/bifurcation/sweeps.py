@@ -28,6 +28,7 @@ from ._blas import single_thread
 from .maps import MapError
 
 from ..io import atomic_file, save_figure
+from .diagram import _num
 
 DIRECTIONS = ("up", "down", "both")
 
@@ -63,27 +64,29 @@ class PoincareDiagram:
             w.writerow(["direction", name, "classification", "period", "repeat_residual",
                         "lyapunov", "distinct", "message"])
             for q in self.points:
-                w.writerow([q.direction, repr(q.parameter), q.classification, q.period,
-                            repr(q.repeat_residual), repr(q.lyapunov), q.distinct, q.message])
+                w.writerow([q.direction, _num(q.parameter), q.classification, q.period,
+                            _num(q.repeat_residual), _num(q.lyapunov), q.distinct, q.message])
         with atomic_file(paths[1]) as fh:
             w = csv.writer(fh)
             w.writerow(["direction", name, "sample", "value"])
             for q in self.points:
                 for j, v in enumerate(q.samples):
-                    w.writerow([q.direction, repr(q.parameter), j, repr(float(v))])
+                    w.writerow([q.direction, _num(q.parameter), j, _num(v)])
         return paths
 
-    def plot(self, path, diagram=None, title=None, ylabel="section sample", xlabel=None):
+    def plot(self, path, diagram=None, title=None, ylabel=None, xlabel=None):
         """Samples against the parameter (sweeps up and down in two colours); with a
         BifurcationDiagram, its branches' section points are drawn over them (stable solid,
-        unstable dashed) and its special points marked."""
+        unstable dashed, one colour per period) and its special points marked, labelled where
+        the label covers no data.  Axis labels and title default to what the sweep holds; the
+        legend sits below the axes."""
         from matplotlib.lines import Line2D
 
-        from ..plotting import pyplot
-        from .diagram import LABELS
+        from ..plotting import fit_panels, panels, place_labels
+        from .diagram import AXIS, LABELS, PERIOD_COLORS, describe
 
-        plt = pyplot()
-        fig, ax = plt.subplots(figsize=(7.5, 4.5), constrained_layout=True)
+        fig, axes = panels(1, 1, width=7.5, height=4.2)
+        ax = axes[0, 0]
         handles = []
         style = {"up": ("C0", "o", 7), "down": ("C3", "x", 12)}
         for d in ("up", "down"):
@@ -95,10 +98,19 @@ class PoincareDiagram:
             ys = np.concatenate([q.samples for q in pts])
             ax.scatter(xs, ys, s=s, marker=m, color=c, lw=0.6, alpha=0.7, zorder=3)
             handles.append(Line2D([], [], ls="none", marker=m, color=c, label=f"sweep {d}"))
+        failed = [q.parameter for q in self.points if q.classification == "failed"]
+        if failed:
+            ax.scatter(failed, np.full(len(failed), 0.04), transform=ax.get_xaxis_transform(),
+                       marker="+", color="k", s=40, zorder=5)
+            handles.append(Line2D([], [], ls="none", marker="+", color="k",
+                                  label="+ at the bottom: the march failed there (see CSV)"))
         if diagram is not None:
+            periods = set()
             for br in diagram.branches:
                 if br.section is None:
                     continue
+                color = PERIOD_COLORS.get(br.period, "0.4")
+                periods.add(br.period)
                 st = np.asarray(br.stable, dtype=bool)
                 for j in range(br.period):
                     y = br.section[:, j]
@@ -106,24 +118,34 @@ class PoincareDiagram:
                     for i in range(1, len(br) + 1):
                         if i == len(br) or st[i] != st[start]:
                             e = min(i + 1, len(br))
-                            ax.plot(br.parameter[start:e], y[start:e], color="black",
+                            ax.plot(br.parameter[start:e], y[start:e], color=color,
                                     ls="-" if st[start] else "--", lw=0.9 if st[start] else 0.7,
                                     zorder=4)
                             start = i
-            handles += [Line2D([], [], color="black", ls="-", label="continuation, stable"),
-                        Line2D([], [], color="black", ls="--", label="continuation, unstable")]
+            handles += [Line2D([], [], color=PERIOD_COLORS.get(k, "0.4"), label=f"continuation, period {k}")
+                        for k in sorted(periods)]
+            handles += [Line2D([], [], color="grey", ls="-", label="continuation, stable"),
+                        Line2D([], [], color="grey", ls="--", label="continuation, unstable")]
             for sp in diagram.special_points:
                 ax.axvline(sp.parameter, color="grey", lw=0.6, ls=":", zorder=1)
-                ax.annotate(f"{LABELS[sp.kind]}", (sp.parameter, 1.0), xycoords=("data", "axes fraction"),
-                            xytext=(2, -10), textcoords="offset points", fontsize=7, color="dimgrey")
-        ax.set_xlabel(xlabel or self.parameter_name)
-        ax.set_ylabel(ylabel)
+            place_labels(ax, [(sp.parameter, float(diagram.branches[sp.branch].section[
+                np.argmin(np.abs(diagram.branches[sp.branch].parameter - sp.parameter)), 0])
+                if diagram.branches[sp.branch].section is not None else 0.0,
+                f"{LABELS[sp.kind]} {sp.parameter:.4g}", "dimgrey")
+                for sp in sorted(diagram.special_points, key=lambda s: s.parameter)])
+            handles.append(Line2D([], [], color="grey", lw=0.6, ls=":",
+                                  label="dotted: special points of the continuation"))
+        mech = "eps" in self.info or self.parameter_name == "eps"
+        ax.set_xlabel(xlabel or AXIS.get(self.parameter_name, self.parameter_name))
+        ax.set_ylabel(ylabel or ("v*(1/2) at theta = 0, once per revolution" if mech
+                                 else "observable, once per application of the map"))
         ax.grid(alpha=0.3)
         if handles:
-            ax.legend(handles=handles, fontsize=8, loc="best")
-        if title:
-            ax.set_title(title, fontsize=9)
-        save_figure(fig, path, dpi=130)
+            leg = ax.legend(handles=handles, fontsize=8, loc="upper center", ncol=3, frameon=False,
+                            bbox_to_anchor=(0.5, -0.16))
+            leg._crankgen_outside = True
+        ax.set_title(title or describe(self.info, "Poincare sweep", self.parameter_name), fontsize=9)
+        save_figure(fit_panels(fig), path, dpi=130)
         return path
 
 

@@ -7,6 +7,7 @@ computed up to the failure is written; steady: status "failed"; a file that coul
 before anything is computed or created; 130 interrupted (Ctrl-C), 143 terminated (SIGTERM).
 """
 
+import argparse
 import sys
 import warnings
 
@@ -123,8 +124,9 @@ def build_parser():
                    help="coarse pass: fewer speeds, eps values, slider masses and revolutions, element "
                         "ladder up to 64, continuation with 4 elements, 50 steps per revolution, period 2")
     p.add_argument("--force", action="store_true",
-                   help="recompute every selected step, and overwrite files of the output names that "
-                        "no recorded run made")
+                   help="recompute every selected step, overwrite files of the output names that no "
+                        "recorded run made, and replace a run of the other preset (a folder holds one "
+                        "run: --quick into a full run's folder, or the reverse, is refused without it)")
     p.add_argument("--figures", type=_figure_list, default=[2, 3, 4, 5, 6, 7, 8], metavar="LIST",
                    help="comma-separated figures to compute, e.g. 5,6 (default: all, 2-8); the "
                         "element-count check always runs")
@@ -208,6 +210,20 @@ def _one_line_warning(message, category, filename, lineno, file=None, line=None)
     print(f"crankgen: warning: {message}", file=sys.stderr, flush=True)
 
 
+def _unrecognized(parser, args, extra):
+    """Options the command does not know: the command's own one-line error (pointing to
+    `crankgen COMMAND --help`), with the nearest option names it has."""
+    import difflib
+
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    command = sub.choices[args.command]
+    known = [o for a in command._actions for o in a.option_strings]
+    near = [m for o in extra if o.startswith("-")
+            for m in difflib.get_close_matches(o.split("=")[0], known, n=1)]
+    hint = f"; did you mean {' or '.join(dict.fromkeys(near))}?" if near else ""
+    command.error(f"unrecognized arguments: {' '.join(extra)}{hint}")
+
+
 class Terminated(KeyboardInterrupt):
     """SIGTERM, handled as an interruption (the run stops cleanly: pool workers ended, temporary
     files removed), exit code 143."""
@@ -245,7 +261,9 @@ def main(argv=None):
 
 def _main(argv):
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args, extra = parser.parse_known_args(argv)
+    if extra:
+        _unrecognized(parser, args, extra)
     name = f"crankgen {args.command}"
     from ..compile_cache import set_quiet
     set_quiet(getattr(args, "quiet", False))

@@ -15,14 +15,29 @@ from ..limits import check_run_size
 from .options import CASE_FIELDS, UsageError, _Outputs, _case, _describe, _explicit, _flag, _say
 
 
-SIM_COLUMNS = ["t", "theta", "v_mid", "u_end", "extension", "status"]
+
+def _failure_text(failure, approach):
+    """A failed run's reason; for an ill-posed approach, what that means (not an instability)."""
+    from ..theory import ill_posed
+
+    text = str(failure)
+    if ill_posed(approach):
+        text += (f" (approach {approach} is ill-posed: its strain energy is unbounded below, so a "
+                 "run can diverge; this is not an instability)")
+    return text
+
+
+def _theory_note(deflection, strain):
+    """'; beyond the theory (...)' when a response leaves the range of the theory."""
+    from ..theory import CRITERION, reasons
+
+    why = reasons(deflection, strain)
+    return f"; BEYOND THE THEORY ({why}; criterion {CRITERION})" if why else ""
 
 
 # the SI file of `simulate --si`: crankgen.SIMechanism's fields
 SI_FIELDS = ("L", "a", "E", "rho", "A", "I", "slider_mass", "crank_speed", "damping")
 SI_REQUIRED = SI_FIELDS[:-1]
-# simulation.csv with --si: the per-step quantities and the declared outputs written, in SI
-SI_QUANTITIES = ("t", "theta", "v_mid", "u_end", "extension", "slider_position", "chord_angle")
 
 
 def _si_mechanism(path):
@@ -85,7 +100,7 @@ def _cmd_simulate(args):
 def _simulate(args, case, revolutions, out, si=None):
     import numpy as np
 
-    from ..io import atomic_write, write_csv
+    from ..io import write_csv
     from ..plotting import plot_deflection
     from ..progress import Progress
     from ..simulation import simulate
@@ -103,40 +118,67 @@ def _simulate(args, case, revolutions, out, si=None):
             if exc.partial is None:
                 raise
             failure, res = exc, exc.partial
-    if si is None:
-        rows = (dict(t=t, theta=th, v_mid=v, u_end=u, extension=e, status="ok")      # streamed
-                for t, th, v, u, e in zip(res.t, res.theta, res.v_mid, res.u_end, res.extension))
-        columns, view, nodes_units = SIM_COLUMNS, None, ""
-        fail_time = None if failure is None else failure.time
-    else:
-        view = res.si_view(si)
-        columns = [_si_column(view, name) for name in SI_QUANTITIES] + ["status"]
-        values = [getattr(view, name) for name in SI_QUANTITIES]
-        rows = (dict(zip(columns, row), status="ok") for row in zip(*values))
-        nodes_units = " (u, v in m; psi, a slope, dimensionless)"
-        fail_time = None if failure is None else failure.time * view.scales.factor("1/omega_b")
+    from .. import theory
+
+    strain = theory.axial_strain(res, per_step=True)
+    defl = np.abs(np.asarray(res.v_mid, dtype=float)) * case.eps
+    view = None if si is None else res.si_view(si)
+    columns, values = _simulation_columns(res, case, view)
+    rows = (dict(zip(columns, row), deflection_over_L=d, axial_strain=st,
+                 beyond_theory=theory.beyond(d, st), status="ok")                    # streamed
+            for *row, d, st in zip(*values, defl, strain))
+    columns = columns + ["deflection_over_L", "axial_strain", "beyond_theory", "status"]
     if failure is not None:
-        last = {columns[0]: fail_time, columns[1]: float(_theta_at(case, failure.time)),
-                "status": f"failed: {failure}"}
+        t_fail = failure.time if view is None else failure.time * view.scales.factor("1/omega_b")
+        theta = float(_theta_at(case, failure.time))
+        last = {columns[0]: t_fail, columns[1]: math.degrees(theta) if view is None else theta,
+                "status": f"failed: {_failure_text(failure, case.approach)}"}
         rows = itertools.chain(rows, [last])
     out.wrote(write_csv(out.path("simulation.csv"), columns, rows))
     if args.nodes and res.nodes is not None:
-        note = "" if failure is None else f"; run failed at step {failure.step}: history up to the failure"
         nodes = res.nodes if view is None else view.nodes
-        out.wrote(atomic_write(out.path("nodes.csv"), lambda fh: np.savetxt(
-            fh, nodes, delimiter=",", comments="# ",
-            header=f"full nodal vector per step: u, v, psi of nodes 0..n{nodes_units}{note}")))
+        n = nodes.shape[1] // 3
+        # node i at x* = i / n: u, v (along and across the rigid rod; units of L, or m with --si)
+        # and the slope psi = dv/dx (rad)
+        length, time = ("L", "t") if view is None else ("m", "t_s")
+        node_columns = [time, columns[1]] + [f"{q}{i}_{unit}" for i in range(n)
+                                             for q, unit in (("u", length), ("v", length),
+                                                             ("psi", "rad"))]
+        node_rows = (dict(zip(node_columns, (t, th, *row)))                          # streamed
+                     for t, th, row in zip(values[0], values[1], nodes))
+        out.wrote(write_csv(out.path("nodes.csv"), node_columns, node_rows))
     out.wrote(plot_deflection(res, out.path("v_mid.png"), failure=failure, si=view))
+    note = _theory_note(float(np.max(defl)) if len(defl) else math.nan,
+                        float(np.max(strain)) if len(strain) else math.nan)
     if failure is not None:
-        print(f"crankgen simulate: run failed: {failure}; wrote the history up to the failure "
-              f"({len(res.t)} points, marked in the status column) to {out.path('simulation.csv')}",
-              file=sys.stderr)
+        print(f"crankgen simulate: run failed: {_failure_text(failure, case.approach)}; wrote the "
+              f"history up to the failure ({len(res.t)} points, marked in the status column) to "
+              f"{out.path('simulation.csv')}", file=sys.stderr)
         return 1
     last = (res.v_mid if view is None else view.v_mid)[-case.steps_per_rev:]
-    print(f"wrote {out.path('simulation.csv')} and {out.path('v_mid.png')}; "
-          f"max |v{'*' if view is None else ''}| over the last revolution {np.max(np.abs(last)):.6g}"
-          + ("" if view is None else " m"))
+    print(f"wrote {', '.join(str(p) for p in out.written)}; max |v{'*' if view is None else ''}| "
+          f"over the last revolution {np.max(np.abs(last)):.6g}{'' if view is None else ' m'}{note}")
     return 0
+
+
+def _simulation_columns(res, case, view):
+    """simulation.csv's columns and their per-step values: t, the crank angle (degrees, or rad with
+    --si), v_mid, u_end, extension, then every declared step output of the case's guide
+    (crankgen.outputs; scaled units, or SI with --si, each column named with its unit)."""
+    import numpy as np
+
+    from .. import schema
+
+    names = ["v_mid", "u_end", "extension"]
+    if getattr(res, "states", None) is not None:
+        names += [name for name, spec in schema.OUTPUTS.items()
+                  if spec.kind == "step" and case.guide in spec.guides]
+    if view is None:
+        values = [res.t, np.degrees(res.theta)] + [np.asarray(getattr(res, name), dtype=float)
+                                                    for name in names]
+        return ["t", "theta_deg"] + names, values
+    names = ["t", "theta"] + names
+    return [_si_column(view, name) for name in names], [getattr(view, name) for name in names]
 
 
 def _si_column(view, name):
@@ -152,7 +194,19 @@ def _theta_at(case, t):
 
 # ---- steady ------------------------------------------------------------------------------------
 STEADY_NAMES = ["steady.csv", "orbit.csv", "orbit.png"]
-ORBIT_COLUMNS = ["theta", "t", "v_mid", "u_end", "extension"]
+ORBIT_COLUMNS = ["theta_deg", "t", "v_mid", "u_end", "extension", "deflection_over_L", "axial_strain"]
+THEORY_COLUMNS = ["deflection_over_L", "axial_strain", "beyond_theory", "strain_energy"]
+
+
+def _resolved(case, where=""):
+    """Steady states need Omega* * steps_per_rev >= 1 (crankgen.steady_states refuses coarser
+    steps); checked here, before any output or progress line, and said in one line."""
+    if case.omega * case.steps_per_rev < 1.0:
+        raise UsageError(
+            f"{where}a steady state at --omega {case.omega:g} needs --steps-per-rev >= "
+            f"{math.ceil(1 / case.omega)} (got {case.steps_per_rev}): a time step longer than the "
+            "rod's first bending period would make the stability verdict depend on the step; "
+            "`crankgen simulate` marches such slow runs")
 
 
 def _cmd_steady(args):
@@ -163,6 +217,7 @@ def _cmd_steady(args):
     integer("max_revolutions", args.max_revolutions, 1)
     check_run_size(case.n_elements, case.steps_per_rev, stored="steady",
                    names={"n_elements": "--elements", "n_steps": "--steps-per-rev"})
+    _resolved(case)
     out = _Outputs(args.out, STEADY_NAMES, args.force)
     try:
         return _steady(args, case, out)
@@ -170,19 +225,41 @@ def _cmd_steady(args):
         out.abandon()
 
 
+def _method_text(args, case):
+    """How the periodic state is sought: shooting differentiates the converged Newton step map,
+    so any other integrator marches."""
+    if args.method == "shooting" and case.integrator == "newton":
+        return f"shooting (Newton on the revolution map), tolerance {args.tol:g}"
+    why = "" if args.method == "march" else \
+        f" (shooting needs --integrator newton; the {case.integrator} step map is not differentiated)"
+    return (f"marching revolution by revolution until the state changes by less than {args.tol:g} "
+            f"per revolution{why}")
+
+
 def _steady(args, case, out):
+    import numpy as np
+
+    from .. import theory
     from ..io import write_csv
     from ..plotting import plot_orbit
     from ..steady import steady_states
+    from ..tables import flat_table
 
-    _say(args, f"steady: {_describe(case)}; {args.method}, tolerance {args.tol:g}")
+    _say(args, f"steady: {_describe(case)}; {_method_text(args, case)}")
     st = steady_states([case], tol=args.tol, max_revolutions=args.max_revolutions,
                        method=args.method)[0]
     row = st.row()
-    out.wrote(write_csv(out.path("steady.csv"), list(row), [row]))
+    defl = theory.deflection_over_L(case.eps, st.amplitude)
+    strain = theory.axial_strain(st) if st.v_mid is not None else math.nan
+    row.update(deflection_over_L=defl, axial_strain=strain, beyond_theory=theory.beyond(defl, strain),
+               strain_energy=theory.strain_energy(case.approach))
+    if st.status == "failed":
+        row["message"] = _failure_text(st.message, case.approach)
+    out.wrote(write_csv(out.path("steady.csv"), *flat_table(list(row), [row])))
     if st.v_mid is not None:
-        rows = [dict(zip(ORBIT_COLUMNS, values))
-                for values in zip(st.theta, st.t, st.v_mid, st.u_end, st.extension)]
+        steps = theory.axial_strain(st, per_step=True)
+        rows = [dict(zip(ORBIT_COLUMNS, (np.degrees(th), t, v, u, e, theory.deflection_over_L(case.eps, v), a)))
+                for th, t, v, u, e, a in zip(st.theta, st.t, st.v_mid, st.u_end, st.extension, steps)]
         out.wrote(write_csv(out.path("orbit.csv"), ORBIT_COLUMNS, rows))
         out.wrote(plot_orbit(st, out.path("orbit.png")))
     else:                                    # no orbit: leave no orbit of an earlier run beside it
@@ -195,10 +272,10 @@ def _steady(args, case, out):
           f"{num(st.half_peak_to_peak, '{:.6g}')}; largest |Floquet multiplier| "
           f"{num(st.multiplier, '{:.4f}')}; {st.iterations} shooting iterations, {st.periods} "
           f"revolutions marched, residual {num(st.residual, '{:.2e}')}"
-          + (f"; {st.message}" if st.message else ""))
+          + (f"; {row['message']}" if row["message"] else "") + _theory_note(defl, strain))
     print(f"wrote {', '.join(str(p) for p in out.written)}")
     if st.status == "failed":
-        print(f"crankgen steady: run failed: {st.message}", file=sys.stderr)
+        print(f"crankgen steady: run failed: {row['message']}", file=sys.stderr)
         return 1
     return 0
 
@@ -255,6 +332,8 @@ def _cmd_sweep(args):
     if size > 10000:
         _say(args, f"sweep: building the grid of {size} cases")
     cases = _sweep_cases(args, models, axes)
+    for c in cases:
+        _resolved(c, "in the grid: ")
     if args.checkpoint is not None and not args.checkpoint.strip():
         raise UsageError("--checkpoint is an empty name; give a file")
     checkpoint = Path(args.checkpoint) if args.checkpoint else Path(args.out) / "sweep.jsonl"
@@ -324,7 +403,8 @@ def _sweep(args, cases, checkpoint, out):
         if executor is not None:
             _stop_pool(executor, now=not finished)
     from ..io import write_csv
-    out.wrote(write_csv(out.path("sweep.csv"), table.columns, table.rows))
+    from ..tables import flat_table
+    out.wrote(write_csv(out.path("sweep.csv"), *flat_table(table.columns, table.rows)))
     counts = Counter(row["status"] for row in table.rows)
     print(f"wrote {out.path('sweep.csv')}: {len(table)} cases, "
           + ", ".join(f"{n} {status}" for status, n in sorted(counts.items())))

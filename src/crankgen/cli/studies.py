@@ -67,6 +67,28 @@ def _branch_model(args):
     return make_case(model=args.model, **fields)
 
 
+def _checked_branch_model(args, continuation, values=()):
+    """Every option of continue / poincare checked before anything is created or computed: the
+    case at both ends of the range (and at every swept value), the continuation's own settings
+    when it runs, and the steady state it starts from.  Returns the case of the first point."""
+    from ..bifurcation.api import make_case
+    from ..validation import in_range, integer
+    from .runs import _resolved
+
+    start, stop = in_range("--from", args.start), in_range("--to", args.stop)
+    case = _branch_model(args)
+    for value in (start, stop, *values):
+        make_case(None, args.parameter, value, case)
+    if continuation:
+        if start == stop:
+            raise UsageError(f"--from and --to must differ for a continuation, got {start:g} twice")
+        integer("--max-period", args.max_period, 1)
+        first = min(start, stop) if args.parameter == "omega" else start
+        _resolved(make_case(None, args.parameter, first, case),
+                  "the continuation starts from a steady state: " if args.parameter == "omega" else "")
+    return case
+
+
 CONTINUE_NAMES = ("branches.csv", "special_points.csv", "multipliers.csv", "continuation.png")
 POINCARE_NAMES = ("poincare_summary.csv", "poincare_samples.csv", "poincare.png")
 
@@ -74,7 +96,7 @@ POINCARE_NAMES = ("poincare_summary.csv", "poincare_samples.csv", "poincare.png"
 def _cmd_continue(args):
     from ..bifurcation import continuation
 
-    case = _branch_model(args)
+    case = _checked_branch_model(args, continuation=True)
     folder = _Outputs(args.out, CONTINUE_NAMES, args.force)
     try:
         log = None if args.quiet else (lambda text: print(f"continue: {text}", file=sys.stderr, flush=True))
@@ -111,13 +133,18 @@ def _cmd_poincare(args):
     from ..bifurcation import continuation, poincare
     from ..progress import Progress
 
-    case = _branch_model(args)
-    if args.values < 2:
-        raise UsageError("--values must be >= 2")
+    from ..validation import integer
+
+    integer("--values", args.values, 2)
+    if args.values > 100000:
+        raise UsageError(f"--values must be at most 100000, got {args.values}")
+    integer("--transient", args.transient, 0)
+    integer("--samples", args.samples, 2)
+    values = np.linspace(args.start, args.stop, args.values)
+    case = _checked_branch_model(args, args.with_continuation, values)
     names = POINCARE_NAMES + (CONTINUE_NAMES[:3] if args.with_continuation else ())
     folder = _Outputs(args.out, names, args.force)
     try:
-        values = np.linspace(args.start, args.stop, args.values)
         total = args.values * (2 if args.direction == "both" else 1)
         with Progress("poincare", total, enabled=not args.quiet) as progress:
             pc = poincare(parameter=args.parameter, values=values, direction=args.direction, case=case,

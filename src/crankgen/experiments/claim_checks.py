@@ -8,12 +8,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import theory
 from . import findings as fd
 
 REPRODUCED, PARTLY, NOT_REPRODUCED, NOT_COMPUTABLE = (
     "reproduced", "partly", "not reproduced", "not computable")
 VERDICTS = (REPRODUCED, PARTLY, NOT_REPRODUCED, NOT_COMPUTABLE)
 STABLE = "periodic"
+DIVERGED = "diverged"          # a run of an ill-posed approach that failed (figures.DIVERGED)
+ILL = f"diverged ({theory.ILL_POSED})"
 
 # tolerances (stated in findings.md beside the table)
 CLOSE = 0.05          # "almost the same", "negligible", "almost indistinguishable": within 5 %
@@ -52,8 +55,13 @@ def _num(x, d=3):
 
 def _pct(x):
     if x is not None and x == math.inf:
-        return "inf (one run diverges or has no stable state)"
+        return "not comparable (a run failed)"
     return "n/a" if x is None or not math.isfinite(x) else f"{100 * x:.3g} %"
+
+
+def _pct_or(x, why):
+    """A percentage, or why there is none (a part that cannot be computed)."""
+    return why if x is None else _pct(x)
 
 
 def _fig(run, f):
@@ -71,14 +79,66 @@ def _amp(run, f, **match):
     return rr[0]["amplitude"] if rr else math.nan
 
 
+def _status(run, f, **match):
+    rr = _rows(run, f, **match)
+    return rr[0]["status"] if rr else "missing"
+
+
+def _compare_points(pairs):
+    """pairs: (point, amplitude a, amplitude b, status a, status b).  Relative differences |b/a - 1|
+    where both are periodic; points where either diverged are not computable (ill-posed); points
+    where either has no stable periodic state otherwise are a qualitative difference (inf).
+    Returns (differences by point, the points that diverged)."""
+    diffs, diverged = {}, []
+    for x, a, b, sa, sb in pairs:
+        if DIVERGED in (sa, sb):
+            diverged.append(x)
+        elif math.isfinite(a) and math.isfinite(b) and a != 0:
+            diffs[x] = abs(b / a - 1)
+        else:
+            diffs[x] = math.inf
+    return diffs, diverged
+
+
+def _held_text(diffs, diverged, what):
+    """'max |C/B - 1| = 3 % at ...; holds at 5 of 8 points; not computable at 2 (B diverged: ...)'."""
+    finite = {x: d for x, d in diffs.items() if math.isfinite(d)}
+    lost = [x for x, d in diffs.items() if not math.isfinite(d)]
+    held = sum(d <= CLOSE for d in diffs.values())
+    parts = []
+    if finite:
+        x, d = max(finite.items(), key=lambda t: t[1])
+        parts.append(f"max {what} = {_pct(d)} at {x}")
+    parts.append(f"holds at {held} of {len(diffs)} comparable points")
+    if lost:
+        parts.append(f"no stable periodic state in one of them at {len(lost)}")
+    if diverged:
+        parts.append(f"not computable at {len(diverged)} ({ILL})")
+    return "; ".join(parts)
+
+
+def _held_verdict(diffs, diverged=()):
+    """Reproduced when the claim holds at every point; points that cannot be computed (a run
+    that diverged) leave at most partly."""
+    if not diffs:
+        return NOT_COMPUTABLE
+    held = sum(d <= CLOSE for d in diffs.values())
+    if held == 0:
+        return NOT_REPRODUCED
+    return REPRODUCED if held == len(diffs) and not diverged else PARTLY
+
+
 def _curves(run, f, model, **match):
     return [c for c in _fig(run, f)["curves"] if c.spec.model == model
             and all(getattr(c.spec, k) == v for k, v in match.items())]
 
 
 def _diff(a, b):
-    """Transient difference max |v_a - v_b| / max |v_b| over their common history (a failed run
-    counts as an infinite difference: it diverges)."""
+    """Transient difference max |v_a - v_b| / max |v_b| over their common history; None when
+    either run diverged (an ill-posed approach: no result to compare), inf when either failed
+    otherwise."""
+    if a.diverged or b.diverged:
+        return None
     if not (a.ok and b.ok):
         return math.inf
     ka, kb = a.spec.steps_per_rev, b.spec.steps_per_rev
@@ -93,9 +153,20 @@ def _diff(a, b):
 
 
 def _by_parts(parts):
-    """Verdict from sub-statements (bool each): all -> reproduced, some -> partly, none -> not."""
-    n = sum(bool(p) for p in parts)
-    return REPRODUCED if n == len(parts) else (NOT_REPRODUCED if n == 0 else PARTLY)
+    """Verdict from sub-statements (bool each, None for a part that cannot be computed, e.g. of a
+    run that diverged): all true -> reproduced, none true -> not reproduced, otherwise partly;
+    not computable when no part can be."""
+    known = [p for p in parts if p is not None]
+    if not known:
+        return NOT_COMPUTABLE
+    n = sum(bool(p) for p in known)
+    if n == len(parts):
+        return REPRODUCED
+    return NOT_REPRODUCED if n == 0 else PARTLY
+
+
+def _diverged_rows(rows):
+    return [r for r in rows if r["status"] == DIVERGED]
 
 
 def _near(x, target, tol, partly_tol=None):
@@ -145,6 +216,13 @@ def _limit_speed(run, model, eps):
     return min(first) if first else None
 
 
+def _first_divergence(run, model, eps):
+    """Lowest Omega* of Figure 6 where B or C diverged (None if nowhere)."""
+    xs = [r["omega"] for ap in "BC" for r in _rows(run, 6, model=model, eps=eps, approach=ap)
+          if r["status"] == DIVERGED]
+    return min(xs) if xs else None
+
+
 def _conv_series(run, model, ap, omega):
     s = run.conv["series"].get((model, ap, omega))
     if s is None:
@@ -165,6 +243,18 @@ def _angle_match(found, expected):
     return d
 
 
+def _offsets_text(found, expected, d):
+    """'off by 0.8, 0.5 deg', or which of the paper's angles have no crossing near them."""
+    if not found:
+        return "no common crossing at all"
+    near = [f"{x:.1f}" for x in d if x <= 90]
+    far = [f"{e:g}" for e, x in zip(expected, d) if x > 90]
+    text = "off by " + ", ".join(f"{x:.1f}" for x in d) + " deg" if not far else \
+        (f"off by {', '.join(near)} deg; " if near else "") + \
+        f"no crossing within 90 deg of the paper's {', '.join(far)} deg"
+    return f"{len(found)} crossing(s) found; {text}"
+
+
 def _ext_curves(run, f, model):
     cs = [c for c in _fig(run, f)["curves"] if c["model"] == model and c["status"] == STABLE]
     if not cs:
@@ -183,10 +273,12 @@ def c2a(run, m):
         if not (c2 and c4):
             raise Missing("Figure 2 was not run with 2 and 4 elements")
         out[ap] = _diff(c2[0], c4[0])
-    worst = max(out.values())
-    value = ", ".join(f"{ap} {_pct(d)}" for ap, d in out.items())
-    return Outcome(_by_parts([d <= CLOSE for d in out.values()]), f"2 vs 4 elements: {value}",
-                   f"largest {_pct(worst)} (tolerance {_pct(CLOSE)}) at Omega* = {cfg.fig2_omega:g}")
+    known = [d for d in out.values() if d is not None]
+    value = ", ".join(f"{ap} {_pct_or(d, ILL)}" for ap, d in out.items())
+    return Outcome(_by_parts([None if d is None else d <= CLOSE for d in out.values()]),
+                   f"2 vs 4 elements: {value}",
+                   f"largest {_pct(max(known)) if known else 'n/a'} (tolerance {_pct(CLOSE)}) at "
+                   f"Omega* = {cfg.fig2_omega:g}")
 
 
 def _fig2_count(run, m):
@@ -203,8 +295,8 @@ def c2b(run, m):
         if not (a and c):
             raise Missing(f"Figure 2 has no A and {ap} run with the same count")
         out[ap] = _diff(c[0], a[0])
-    return Outcome(_by_parts([d <= CLOSE for d in out.values()]),
-                   f"vs A (n = {n}): " + ", ".join(f"{ap} {_pct(d)}" for ap, d in out.items()),
+    return Outcome(_by_parts([None if d is None else d <= CLOSE for d in out.values()]),
+                   f"vs A (n = {n}): " + ", ".join(f"{ap} {_pct_or(d, ILL)}" for ap, d in out.items()),
                    f"tolerance {_pct(CLOSE)} of max |v*_A|")
 
 
@@ -225,6 +317,8 @@ def c3b(run, m):
     if len(pair) < 2:
         raise Missing("Figure 3 has no run with a second time step")
     d = _diff(pair[0], pair[-1])
+    if d is None:
+        return Outcome(NOT_COMPUTABLE, ILL, "the runs of approach A diverged")
     v = REPRODUCED if d <= SAME else (PARTLY if d <= NOTICEABLE else NOT_REPRODUCED)
     return Outcome(v, f"{_pct(d)} (n = {finest}, {pair[0].spec.steps_per_rev} vs "
                    f"{pair[-1].spec.steps_per_rev} steps)",
@@ -234,10 +328,15 @@ def c3b(run, m):
 def c3c(run, m):
     om = run.cfg.fig3_omega
     res = {ap: _conv_series(run, m, ap, om) for ap in "BC"}
-    ok = [s["kind"] == "converged" and s["n"] <= 4 for s in res.values()]
-    value = ", ".join(f"{ap}: {s['n'] if s['kind'] == 'converged' else s['kind']}" for ap, s in res.items())
-    return Outcome(_by_parts(ok), f"converged n {value}",
-                   f"converged count at Omega* = {om:g} at most 4")
+    ok = [None if s["kind"] == "diverged" else (s["kind"] == "converged" and s["n"] <= 4)
+          for s in res.values()]
+    words = {"diverged": ILL, "no-result": "no periodic state at any count",
+             "not-converged": f"not converged up to n = {max(run.cfg.conv_ladder)}"}
+    value = "; ".join(f"{ap} {'converges at n = ' + str(s['n']) if s['kind'] == 'converged' else words[s['kind']]}"
+                      for ap, s in res.items())
+    return Outcome(_by_parts(ok), value,
+                   f"converged count at Omega* = {om:g} at most 4" +
+                   ("; a series that diverged has no count" if None in ok else ""))
 
 
 def c4a(run, m):
@@ -248,10 +347,13 @@ def c4a(run, m):
     if not all(base.values()) or not all(heavy.values()) or heavy_ms <= cfg.ms:
         raise Missing("Figure 4 has no B and C runs with a larger slider mass")
     d0, d1 = _diff(base["C"][0], base["B"][0]), _diff(heavy["C"][0], heavy["B"][0])
-    return Outcome(_by_parts([d0 > NOTICEABLE, d1 > NOTICEABLE and d1 > d0]),
-                   f"|C - B| / max |B|: {_pct(d0)} at ms* = {cfg.ms:g}, {_pct(d1)} at ms* = {heavy_ms:g}",
-                   f"noticeable above {_pct(NOTICEABLE)}, and larger with the larger mass "
-                   "(inf: one of them diverges)")
+    parts = [None if d0 is None else d0 > NOTICEABLE,
+             None if d0 is None or d1 is None else (d1 > NOTICEABLE and d1 > d0)]
+    return Outcome(_by_parts(parts),
+                   f"|C - B| / max |B|: {_pct_or(d0, 'B ' + ILL)} at ms* = {cfg.ms:g}, "
+                   f"{_pct_or(d1, 'B ' + ILL)} at ms* = {heavy_ms:g}",
+                   f"noticeable above {_pct(NOTICEABLE)}, and larger with the larger mass; a B run "
+                   "that diverged has no deflection to compare")
 
 
 def c4b(run, m):
@@ -260,7 +362,10 @@ def c4b(run, m):
     ref = [c for c in cs if c.spec.ms == cfg.ms]
     if len(cs) < 2 or not ref:
         raise Missing("Figure 4 has no C runs with several slider masses")
-    d = max(_diff(c, ref[0]) for c in cs if c is not ref[0])
+    ds = [_diff(c, ref[0]) for c in cs if c is not ref[0]]
+    if any(d is None for d in ds):
+        return Outcome(NOT_COMPUTABLE, ILL, "a C run diverged")
+    d = max(ds)
     v = REPRODUCED if d <= SAME else (PARTLY if d <= NOTICEABLE else NOT_REPRODUCED)
     return Outcome(v, f"largest change of C with ms*: {_pct(d)}",
                    f"no effect within {_pct(SAME)}, partly within {_pct(NOTICEABLE)}")
@@ -274,35 +379,43 @@ def c4c(run, m):
         c = _curves(run, 4, m, approach=ap, ms=cfg.ms)
         if not (a and c):
             raise Missing("Figure 4 lacks A, B or C at the base slider mass")
-        if not (a[0].ok and c[0].ok):
+        if a[0].diverged or c[0].diverged:
+            out[ap] = None
+        elif not (a[0].ok and c[0].ok):
             out[ap] = math.nan
-            continue
-        out[ap] = a[0].max_abs / c[0].max_abs
-    ok = [_fold(r, 0.1) == REPRODUCED if math.isfinite(r) else False for r in out.values()]
-    failed = [ap for ap, r in out.items() if not math.isfinite(r)]
-    return Outcome(_by_parts(ok), "max|A| / max|X|: " + ", ".join(f"{ap} {_num(r)}" for ap, r in out.items()),
-                   f"within a factor {FACTOR:g} of 0.1" + (f"; {', '.join(failed)} (or A) diverges" if failed else ""))
+        else:
+            out[ap] = a[0].max_abs / c[0].max_abs
+    ok = [None if r is None else (_fold(r, 0.1) == REPRODUCED if math.isfinite(r) else False)
+          for r in out.values()]
+    return Outcome(_by_parts(ok), "max|A| / max|X|: " + ", ".join(
+        f"{ap} {ILL if r is None else _num(r)}" for ap, r in out.items()),
+        f"within a factor {FACTOR:g} of 0.1; a run that diverged has no deflection")
 
 
 def c5a(run, m):
     om = min(run.cfg.fig5_omegas, key=lambda o: abs(o - 0.1))
     if abs(om - 0.1) > 1e-9:
         raise Missing("Figure 5 was not run at Omega* = 0.1")
-    worst, held, total = 0.0, 0, 0
-    for eps in run.cfg.fig5_eps:
-        a = _amp(run, 5, model=m, approach="A", omega=om, eps=eps)
-        ds = [abs(_amp(run, 5, model=m, approach=ap, omega=om, eps=eps) / a - 1) for ap in "BC"]
-        d = max(ds) if all(math.isfinite(x) for x in ds) else math.inf
-        worst, held, total = max(worst, d), held + (d <= CLOSE), total + 1
-    v = REPRODUCED if held == total else (NOT_REPRODUCED if held == 0 else PARTLY)
-    return Outcome(v, f"max |X/A - 1| = {_pct(worst)}; holds at {held} of {total} eps",
-                   f"within {_pct(CLOSE)} at every eps")
+    diffs, diverged = {}, []
+    for eps in run.cfg.fig5_eps:          # at each eps, the larger of |B/A - 1| and |C/A - 1|
+        a = dict(model=m, approach="A", omega=om, eps=eps)
+        d, div = _compare_points([(ap, _amp(run, 5, **a), _amp(run, 5, **dict(a, approach=ap)),
+                                   _status(run, 5, **a), _status(run, 5, **dict(a, approach=ap)))
+                                  for ap in "BC"])
+        if div:
+            diverged.append(f"eps = {eps:g}")
+        else:
+            diffs[f"eps = {eps:g}"] = max(d.values())
+    return Outcome(_held_verdict(diffs, diverged), _held_text(diffs, diverged, "|X/A - 1|"),
+                   f"within {_pct(CLOSE)} at every eps, for B and C")
 
 
 def c5b(run, m):
     cfg = run.cfg
     if 0.8 not in cfg.fig5_omegas or 0.01 not in cfg.fig5_eps:
         raise Missing("Figure 5 was not run at Omega* = 0.8, eps = 0.01")
+    if _status(run, 5, model=m, approach="B", omega=0.8, eps=0.01) == DIVERGED:
+        return Outcome(NOT_COMPUTABLE, f"B {ILL}", "B has no amplitude at Omega* = 0.8, eps = 0.01")
     r = _amp(run, 5, model=m, approach="B", omega=0.8, eps=0.01) / _amp(run, 5, model=m, approach="A", omega=0.8, eps=0.01)
     return Outcome(_fold(r, 10.0), f"B/A = {_num(r)}",
                    f"within a factor {FACTOR:g} of 10; partly if at least 2" +
@@ -310,20 +423,17 @@ def c5b(run, m):
 
 
 def c5c(run, m):
-    worst, held, total = 0.0, 0, 0
-    where = None
+    pairs = []
     for om in run.cfg.fig5_omegas:
         for eps in run.cfg.fig5_eps:
-            b = _amp(run, 5, model=m, approach="B", omega=om, eps=eps)
-            c = _amp(run, 5, model=m, approach="C", omega=om, eps=eps)
-            d = abs(c / b - 1) if math.isfinite(b) and math.isfinite(c) else math.inf
-            if d > worst:
-                worst, where = d, (om, eps)
-            held, total = held + (d <= CLOSE), total + 1
-    v = REPRODUCED if held == total else (NOT_REPRODUCED if held == 0 else PARTLY)
-    at = f" at Omega* = {where[0]:g}, eps = {where[1]:g}" if where else ""
-    return Outcome(v, f"max |C/B - 1| = {_pct(worst)}{at}; holds at {held} of {total} points",
-                   f"within {_pct(CLOSE)} (inf: one has no stable periodic state)")
+            b = dict(model=m, approach="B", omega=om, eps=eps)
+            c = dict(b, approach="C")
+            pairs.append((f"Omega* = {om:g}, eps = {eps:g}", _amp(run, 5, **b), _amp(run, 5, **c),
+                          _status(run, 5, **b), _status(run, 5, **c)))
+    diffs, diverged = _compare_points(pairs)
+    return Outcome(_held_verdict(diffs, diverged), _held_text(diffs, diverged, "|C/B - 1|"),
+                   f"within {_pct(CLOSE)} where both have a stable periodic state (no stable state in "
+                   "one of them counts against the claim; a B run that diverged has no amplitude)")
 
 
 def c5d(run, m):
@@ -332,6 +442,10 @@ def c5d(run, m):
         for ap in "ABC":
             rr = sorted(_rows(run, 5, model=m, approach=ap, omega=om), key=lambda r: r["eps"])
             f = fd.loglog_slope([r["eps"] for r in rr], [r["amplitude"] for r in rr])
+            if not f and rr and all(r["status"] == DIVERGED for r in rr):
+                parts.append(None)
+                texts.append(f"{ap}@{om:g}: {ILL}")
+                continue
             ok = bool(f) and f["points"] >= 3 and abs(f["slope"] + 1) <= SLOPE and f["max_residual"] <= 0.1
             parts.append(ok)
             texts.append(f"{ap}@{om:g}: {_num(f['slope']) if f else 'n/a'}")
@@ -345,20 +459,20 @@ def c6a(run, m):
     oms = sorted(o for o in rows_b if o < 0.7 and o in rows_c)
     if not oms:
         raise Missing("Figure 6 has no eps = 0.01 points below Omega* = 0.7")
-    ds = [abs(rows_c[o]["amplitude"] / rows_b[o]["amplitude"] - 1)
-          if math.isfinite(rows_b[o]["amplitude"]) and math.isfinite(rows_c[o]["amplitude"]) else math.inf
-          for o in oms]
-    held = [d <= CLOSE for d in ds]
-    upto = max([o for o, h in zip(oms, held) if all(held[:oms.index(o) + 1])], default=None)
-    v = REPRODUCED if all(held) else (NOT_REPRODUCED if not any(held) else PARTLY)
-    return Outcome(v, f"max |C/B - 1| below 0.7: {_pct(max(ds))}; within {_pct(CLOSE)} up to Omega* = "
-                   f"{_num(upto) if upto is not None else 'none'}", f"within {_pct(CLOSE)} at every Omega* < 0.7")
+    diffs, diverged = _compare_points(
+        [(f"Omega* = {o:g}", rows_b[o]["amplitude"], rows_c[o]["amplitude"], rows_b[o]["status"],
+          rows_c[o]["status"]) for o in oms])
+    return Outcome(_held_verdict(diffs, diverged), _held_text(diffs, diverged, "|C/B - 1|"),
+                   f"within {_pct(CLOSE)} at every Omega* < 0.7 where both can be compared")
 
 
 def c6b(run, m):
     s = _limit_speed(run, m, 0.01)
+    div = _first_divergence(run, m, 0.01)
+    how = (f" (where the run from rest of B diverges; B is {theory.ILL_POSED})"
+           if div is not None and div == s else "")
     return Outcome(_near(s, 0.2, SPEED, 2 * SPEED) if s is not None else NOT_REPRODUCED,
-                   f"Omega* = {_num(s)}" if s is not None else "never over the sweep",
+                   f"Omega* = {_num(s)}{how}" if s is not None else "never over the sweep",
                    f"speed where B or C first differs from A by more than "
                    f"{_pct(run.cfg.differ_threshold)}; 0.2 +- {SPEED:g}, partly +- {2 * SPEED:g}")
 
@@ -367,24 +481,36 @@ def c6c(run, m):
     rs = {ap: _at_speed(run, 6, m, ap, 0.01, 1.0) for ap in "ABC"}
     if any(r is None for r in rs.values()):
         raise Missing("Figure 6 has no eps = 0.01 point at Omega* = 1")
-    ratios = {ap: rs[ap]["ratio_to_A"] for ap in "BC"}
-    vs = [_fold(x, 10.0) for x in ratios.values()]
-    v = vs[0] if vs[0] == vs[1] else PARTLY
-    return Outcome(v, "at Omega* = 1: " + ", ".join(f"{ap}/A {_num(x)}" for ap, x in ratios.items()),
-                   f"within a factor {FACTOR:g} of 10" +
-                   ("; A has no stable periodic state there" if rs["A"]["status"] != STABLE else ""))
+    ratios = {ap: None if rs[ap]["status"] == DIVERGED else rs[ap]["ratio_to_A"] for ap in "BC"}
+    vs = [None if x is None else _fold(x, 10.0) for x in ratios.values()]
+    known = [v for v in vs if v is not None]
+    v = NOT_COMPUTABLE if not known else (known[0] if len(set(known)) == 1 and len(known) == len(vs)
+                                          else PARTLY)
+    return Outcome(v, "at Omega* = 1: " + ", ".join(
+        f"{ap}/A {ILL if x is None else _num(x)}" for ap, x in ratios.items()),
+        f"within a factor {FACTOR:g} of 10" +
+        ("; A has no stable periodic state there" if rs["A"]["status"] != STABLE else ""))
 
 
 def c6d(run, m):
     parts, texts = [], []
     for ap in "BC":
-        rr = [r for r in _rows(run, 6, model=m, approach=ap, eps=0.01) if r["status"] == STABLE]
+        rows = _rows(run, 6, model=m, approach=ap, eps=0.01)
+        rr = [r for r in rows if r["status"] == STABLE]
+        div = [r["omega"] for r in rows if r["status"] == DIVERGED]
         if not rr:
-            parts.append(False)
-            texts.append(f"{ap}: no stable points")
+            parts.append(None if div else False)
+            texts.append(f"{ap}: {ILL} at every speed" if div else f"{ap}: no stable points")
             continue
         top = max(rr, key=lambda r: r["amplitude"])
-        hi = max(r["omega"] for r in _rows(run, 6, model=m, approach=ap, eps=0.01))
+        if div and min(div) > top["omega"] and not any(r["omega"] > top["omega"] and r["status"] == STABLE
+                                                       for r in rows):
+            # the largest stable point is the last one before the runs diverge: not a peak
+            parts.append(None)
+            texts.append(f"{ap}: no peak can be read (its runs from rest diverge from Omega* = "
+                         f"{min(div):g}; {ap} is {theory.ILL_POSED})")
+            continue
+        hi = max(r["omega"] for r in rows)
         parts.append(abs(top["omega"] - 1.0) <= 2 * SPEED and top["omega"] < hi)
         texts.append(f"{ap} max at {top['omega']:g}")
     ra = sorted([r for r in _rows(run, 6, model=m, approach="A", eps=0.01)
@@ -439,8 +565,7 @@ def _crossing_claim(run, f, m, expected):
 def c7b(run, m):
     xs, d, v = _crossing_claim(run, 7, m, (106.4, 295.2))
     return Outcome(v, ", ".join(f"{x:.1f}" for x in xs) + " deg" if xs else "no common crossing",
-                   f"two crossings, each within {ANGLE:g} deg of the paper's (off by "
-                   + ", ".join(f"{x:.1f}" for x in d) + " deg)")
+                   f"two crossings, each within {ANGLE:g} deg of the paper's ({_offsets_text(xs, (106.4, 295.2), d)})")
 
 
 def c7c(run, m):
@@ -496,8 +621,8 @@ def c8b(run, m):
         v = PARTLY
     return Outcome(v, (", ".join(f"{x:.1f}" for x in xs) + " deg; crank-rod angle there "
                        + ", ".join(f"{x:.0f}" for x in angles) + " deg") if xs else "no common crossing",
-                   f"crossings within {ANGLE:g} deg of the paper's (off by " + ", ".join(f"{x:.1f}" for x in d)
-                   + " deg), angle between crank and rod within 90 +- 10 deg")
+                   f"crossings within {ANGLE:g} deg of the paper's ({_offsets_text(xs, (86.4, 279.0), d)}), "
+                   "angle between crank and rod within 90 +- 10 deg")
 
 
 def k1(run, m):
@@ -536,7 +661,7 @@ def k2(run, m):
     common = [o for o in errs[0.01] if o in errs[0.1]]
     larger = bool(common) and np.median([errs[0.01][o] - errs[0.1][o] for o in common]) > 0
     lo, hi = _conv_series(run, m, "A", 0.1), _conv_series(run, m, "A", 0.8)
-    na = [s["n"] if s["kind"] != "no-result" else None for s in (lo, hi)]
+    na = [s["n"] if s["kind"] not in ("no-result", "diverged") else None for s in (lo, hi)]
     more = None not in na and na[1] > na[0]
     return Outcome(_by_parts([noticeable, larger, more]),
                    f"max error above 0.2: {_pct(max(errs[0.01].values()))} (eps 0.01); larger for eps 0.01 than 0.1: "
@@ -560,8 +685,10 @@ def k4(run, m):
     rs = {ap: _at_speed(run, 6, m, ap, 0.01, 1.0) for ap in "BC"}
     if any(r is None for r in rs.values()):
         raise Missing("Figure 6 has no eps = 0.01 point at Omega* = 1")
-    ratios = [rs[ap]["ratio_to_A"] for ap in "BC"]
-    parts = [s is not None and abs(s - 0.2) <= SPEED, *[_fold(x, 10.0) == REPRODUCED for x in ratios]]
+    ratios = [None if rs[ap]["status"] == DIVERGED else rs[ap]["ratio_to_A"] for ap in "BC"]
+    parts = [s is not None and abs(s - 0.2) <= SPEED,
+             *[None if x is None else _fold(x, 10.0) == REPRODUCED for x in ratios]]
+    txt = [ILL if x is None else _num(x) for x in ratios]
     return Outcome(_by_parts(parts), f"errors from Omega* = {_num(s) if s is not None else 'never'}; at 1: B/A "
-                   f"{_num(ratios[0])}, C/A {_num(ratios[1])}",
+                   f"{txt[0]}, C/A {txt[1]}",
                    f"onset 0.2 +- {SPEED:g}; ratios within a factor {FACTOR:g} of 10")

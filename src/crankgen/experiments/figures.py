@@ -11,20 +11,36 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import theory
 from ..cases import Case
 from . import findings as fd
 from .config import APPROACHES, MODELS
 
 STABLE = "periodic"
-# Range of the theory: the models assume small transverse deflections.  A result is flagged
-# "beyond the theory" when its largest |v| / L = eps |v*| exceeds this.
-THEORY_LIMIT = 0.1
+# A run of an approach whose strain energy is unbounded below (crankgen.theory: approach B) that
+# fails has diverged: its status is DIVERGED (the word every table, figure and CSV uses), never an
+# amplitude or a stability result.  A failure of another approach stays "failed".
+DIVERGED = "diverged"
+# Range of the theory (crankgen.theory): |v| / L = eps |v*| above THEORY_LIMIT or an axial strain of
+# the neutral axis above STRAIN_LIMIT is "beyond the theory".
+THEORY_LIMIT = theory.DEFLECTION_LIMIT
+STRAIN_LIMIT = theory.STRAIN_LIMIT
+# a transient from rest whose max |v*| over its last window is more than this factor times the
+# window before is still growing (a run-off, not an irregular response, whose window maxima
+# differ by tens of per cent): it gives no envelope
+GROWTH = 2.0
 
 
-def beyond_theory(eps, v_star):
-    """(|v|/L, flag) for a deflection v* (scaled by r) at slenderness eps; flag "" when unknown."""
-    x = abs(float(eps) * float(v_star)) if v_star is not None and math.isfinite(float(v_star)) else math.nan
-    return x, ("" if not math.isfinite(x) else ("yes" if x > THEORY_LIMIT else "no"))
+def failure_status(approach):
+    """Status of a run that failed: DIVERGED for an ill-posed approach, "failed" otherwise."""
+    return DIVERGED if theory.ill_posed(approach) else "failed"
+
+
+def beyond_theory(eps, v_star, strain=math.nan):
+    """(|v|/L, flag) for a deflection v* (scaled by r) at slenderness eps and an axial strain;
+    flag "" when neither is known."""
+    x = theory.deflection_over_L(eps, v_star) if v_star is not None else math.nan
+    return x, theory.beyond(x, strain)
 
 
 # ----------------------------------------------------------------------------- basic records
@@ -47,15 +63,26 @@ class TransientCurve:
     failed run keeps its history up to the last good step in t, v_mid (possibly empty)."""
 
     spec: TransientSpec
-    status: str = "ok"
+    status: str = "ok"             # "ok", DIVERGED (an ill-posed approach failed) or "failed"
     message: str = ""
     fail_time: float = math.nan
     t: np.ndarray = field(default=None, repr=False)
     v_mid: np.ndarray = field(default=None, repr=False)
+    axial_strain: np.ndarray = field(default=None, repr=False)   # per step (crankgen.theory)
 
     @property
     def ok(self):
         return self.status == "ok"
+
+    @property
+    def diverged(self):
+        return self.status == DIVERGED
+
+    @property
+    def max_strain(self):
+        """Largest axial strain of the run (of its history up to the failure); nan if unknown."""
+        s = self.axial_strain
+        return float(np.max(s)) if s is not None and len(s) else math.nan
 
     @property
     def has_history(self):
@@ -71,12 +98,13 @@ class TransientCurve:
 
     def to_record(self):
         return dict(spec=self.spec.__dict__.copy(), status=self.status, message=self.message,
-                    fail_time=self.fail_time, t=self.t, v_mid=self.v_mid)
+                    fail_time=self.fail_time, t=self.t, v_mid=self.v_mid, axial_strain=self.axial_strain)
 
     @classmethod
     def from_record(cls, r):
         return cls(TransientSpec(**r["spec"]), status=r["status"], message=r["message"],
-                   fail_time=r["fail_time"], t=r["t"], v_mid=r["v_mid"])
+                   fail_time=r["fail_time"], t=r["t"], v_mid=r["v_mid"],
+                   axial_strain=r.get("axial_strain"))
 
 
 def model_spec(key):
@@ -96,28 +124,41 @@ def _num(x):
 
 
 def steady_row(model_key, s, **extra):
-    """Flat record of a SteadyState (numbers as floats; NaN where there is no periodic state)."""
+    """Flat record of a SteadyState (numbers as floats; NaN where there is no periodic state).  A
+    failure of an ill-posed approach is DIVERGED; axial_strain is the orbit's (periodic or
+    unstable), or a non-periodic response's from its transient (_envelopes)."""
     c = s.case
+    orbit = s.status in (STABLE, "unstable") and getattr(s, "states", None) is not None
     row = dict(model=model_key, formulation=c.formulation, damping=c.damping, membrane=c.membrane,
                approach=c.approach,
                n_elements=c.n_elements, steps_per_rev=c.steps_per_rev, omega=c.omega, eps=c.eps,
-               ms=c.ms, status=s.status,
+               ms=c.ms, status=failure_status(c.approach) if s.status == "failed" else s.status,
                amplitude=_num(s.amplitude) if s.status == STABLE else math.nan,
                orbit_amplitude=_num(s.amplitude), half_peak_to_peak=_num(s.half_peak_to_peak),
                iterations=s.iterations, periods=s.periods, residual=_num(s.residual),
                multiplier=_num(getattr(s, "multiplier", None)), message=s.message,
-               envelope=math.nan, envelope_note="")
+               envelope=math.nan, envelope_note="",
+               axial_strain=theory.axial_strain(s) if orbit else math.nan,
+               strain_energy=theory.strain_energy(c.approach))
     row.update(extra)
     flag_theory(row)
     return row
 
 
+def response_of(row):
+    """max |v*| of the response a row stands for: the periodic orbit, the unstable orbit (the
+    status is about it), or for a non-periodic response the envelope of its transient from rest;
+    nan when there is none (a diverged or failed case)."""
+    key = {STABLE: "amplitude", "unstable": "orbit_amplitude"}.get(row["status"], "envelope")
+    value = row.get(key, math.nan)
+    return math.nan if value is None else value
+
+
 def flag_theory(row):
-    """deflection_over_L (largest |v|/L of the row's response: periodic or unstable orbit, or the
-    envelope of a transient) and beyond_theory ("yes" above THEORY_LIMIT)."""
-    vals = [row.get(k, math.nan) for k in ("amplitude", "orbit_amplitude", "envelope")]
-    vals = [v for v in vals if v is not None and math.isfinite(v)]
-    row["deflection_over_L"], row["beyond_theory"] = beyond_theory(row["eps"], max(vals) if vals else math.nan)
+    """deflection_over_L (|v|/L of the row's response, response_of) and beyond_theory ("yes" when
+    it or the row's axial strain exceeds the limits of crankgen.theory)."""
+    row["deflection_over_L"], row["beyond_theory"] = beyond_theory(
+        row["eps"], response_of(row), row.get("axial_strain", math.nan))
 
 
 # ----------------------------------------------------------------------------- convergence
@@ -131,6 +172,9 @@ def _series_summary(ns, rows, tol):
     finite = [r for r in rows if math.isfinite(r["amplitude"])]
     if not finite:
         bad = rows[0]
+        if all(r["status"] == DIVERGED for r in rows):
+            return dict(kind="diverged", n=None,
+                        note=f"diverged at every n ({theory.ILL_POSED}; {bad['message']})")
         return dict(kind="no-result", n=None,
                     note=f"no periodic state at any n ({bad['status']}: {bad['message']})")
     ch = fd.successive_changes(amps)
@@ -328,8 +372,11 @@ def _add_ratios(rows):
 
 
 def _envelopes(ctx, rows, label):
-    """For cases without a stable periodic state whose integration did not fail: max |v*| over the
-    last envelope_window revolutions of a transient from zero initial conditions."""
+    """For cases without a stable periodic state whose integration did not fail: a transient from
+    zero initial conditions of envelope_revolutions; its max |v*| over the last envelope_window
+    revolutions is the envelope, unless it still grows (more than GROWTH times the window
+    before): then there is no settled response and no envelope.  A transient that fails has none
+    either: DIVERGED for an ill-posed approach (its numbers before it stopped are no amplitude)."""
     cfg = ctx.config
     if cfg.envelope_revolutions <= 0:
         return
@@ -340,15 +387,34 @@ def _envelopes(ctx, rows, label):
                            cfg.envelope_revolutions, r["steps_per_rev"], r["eps"], r["ms"])
              for r in todo]
     curves = ctx.transients(specs, f"{label}: response of cases without a stable periodic state")
+    total, w = cfg.envelope_revolutions, cfg.envelope_window
     for r, c in zip(todo, curves):
         if c.ok:
-            tail = c.v_mid[-(cfg.envelope_window * c.spec.steps_per_rev + 1):]
-            r["envelope"] = float(np.max(np.abs(tail)))
-            r["envelope_note"] = (f"max |v*| over revolutions {cfg.envelope_revolutions - cfg.envelope_window}"
-                                  f"-{cfg.envelope_revolutions} from zero initial conditions")
+            k = c.spec.steps_per_rev
+            last = float(np.max(np.abs(c.v_mid[-(w * k + 1):])))
+            before = c.v_mid[-(2 * w * k + 1):-(w * k)]
+            prev = float(np.max(np.abs(before))) if 2 * w <= total and len(before) else math.nan
+            if math.isfinite(prev) and last > GROWTH * prev:
+                r["envelope_note"] = (f"the transient from rest is still growing after {total} revolutions "
+                                      f"(max |v*| {prev:.4g} over revolutions {total - 2 * w}-{total - w}, "
+                                      f"{last:.4g} over {total - w}-{total}): no settled response")
+            else:
+                r["envelope"] = last
+                note = f"max |v*| over revolutions {total - w}-{total} from zero initial conditions"
+                strain = (float(np.max(c.axial_strain[-(w * k + 1):]))
+                          if c.axial_strain is not None else math.nan)
+                if r["status"] == "not-periodic":
+                    r["axial_strain"] = strain
+                else:        # an unstable orbit: the row is about the orbit, the note about this
+                    why = theory.reasons(theory.deflection_over_L(r["eps"], last), strain)
+                    note += ("; it settles away from the unstable orbit" if last > 1.05 * r["orbit_amplitude"]
+                             else "") + (f"; beyond the theory ({why})" if why else "")
+                r["envelope_note"] = note
         else:
-            r["envelope_note"] = (f"transient failed at t* = {c.fail_time:.4g} (max |v*| {c.max_abs:.4g} "
-                                  f"before the failure): {c.message}")
+            word = "diverged" if c.diverged else "failed"
+            ill = f" ({theory.ILL_POSED})" if c.diverged else ""
+            r["envelope_note"] = (f"the transient from rest {word}{ill} at t* = {c.fail_time:.4g} "
+                                  f"(|v*| had reached {c.max_abs:.3g}; no amplitude): {c.message}")
         flag_theory(r)
 
 
@@ -420,16 +486,17 @@ def extension_crossings_of(data, model_key, rel_tol):
 
 # ----------------------------------------------------------------------------- CSV tables
 
-STEADY_COLUMNS = ["model", "formulation", "damping", "approach", "n_elements", "steps_per_rev",
-                  "omega", "eps", "ms", "status", "amplitude", "ratio_to_A", "orbit_amplitude",
-                  "half_peak_to_peak", "envelope", "envelope_note", "deflection_over_L",
-                  "beyond_theory", "iterations", "periods", "residual", "multiplier", "message"]
-TRANSIENT_COLUMNS = ["model", "formulation", "damping", "approach", "n_elements", "steps_per_rev",
-                     "omega", "eps", "ms", "status", "message", "t", "theta_deg", "v_mid",
-                     "deflection_over_L", "beyond_theory"]
-EXTENSION_COLUMNS = ["model", "formulation", "damping", "approach", "n_elements", "steps_per_rev",
-                     "omega", "eps", "ms", "status", "message", "deflection_over_L", "beyond_theory",
-                     "theta_deg", "extension", "u_end"]
+STEADY_COLUMNS = ["model", "formulation", "damping", "approach", "strain_energy", "n_elements",
+                  "steps_per_rev", "omega", "eps", "ms", "status", "amplitude", "ratio_to_A",
+                  "orbit_amplitude", "half_peak_to_peak", "envelope", "envelope_note",
+                  "deflection_over_L", "axial_strain", "beyond_theory", "iterations", "periods",
+                  "residual", "multiplier", "message"]
+TRANSIENT_COLUMNS = ["model", "formulation", "damping", "approach", "strain_energy", "n_elements",
+                     "steps_per_rev", "omega", "eps", "ms", "status", "message", "t", "theta_deg",
+                     "v_mid", "deflection_over_L", "axial_strain", "beyond_theory"]
+EXTENSION_COLUMNS = ["model", "formulation", "damping", "approach", "strain_energy", "n_elements",
+                     "steps_per_rev", "omega", "eps", "ms", "status", "message", "deflection_over_L",
+                     "axial_strain", "beyond_theory", "theta_deg", "extension", "u_end"]
 CONVERGENCE_COLUMNS = ["check", "model", "approach", "omega", "eps", "n_elements", "status",
                        "amplitude", "change_to_next", "n_refined", "amplitude_refined",
                        "status_refined", "change", "message"]
@@ -443,14 +510,16 @@ def csv_table(data):
         for c in data["curves"]:
             s, m = c.spec, model_spec(c.spec.model)
             base = dict(model=s.model, formulation=m.formulation, damping=m.damping, membrane=m.membrane,
-                        approach=s.approach, n_elements=s.n_elements, steps_per_rev=s.steps_per_rev,
+                        approach=s.approach, strain_energy=theory.strain_energy(s.approach),
+                        n_elements=s.n_elements, steps_per_rev=s.steps_per_rev,
                         omega=s.omega, eps=s.eps, ms=s.ms, status=c.status, message=c.message)
             if c.has_history:     # a failed run: its rows up to the last good step
                 theta = np.degrees(s.omega * c.t)
-                for t, th, v in zip(c.t, theta, c.v_mid):
-                    x, flag = beyond_theory(s.eps, v)
+                strain = c.axial_strain if c.axial_strain is not None else np.full(len(c.t), math.nan)
+                for t, th, v, e in zip(c.t, theta, c.v_mid, strain):
+                    x, flag = beyond_theory(s.eps, v, e)
                     rows.append(dict(base, t=t, theta_deg=th, v_mid=v, deflection_over_L=x,
-                                     beyond_theory=flag))
+                                     axial_strain=e, beyond_theory=flag))
             if not c.ok:    # and one row where it failed (no v*)
                 rows.append(dict(base, t=c.fail_time, theta_deg=math.degrees(s.omega * c.fail_time)
                                  if math.isfinite(c.fail_time) else math.nan))

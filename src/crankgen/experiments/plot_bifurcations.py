@@ -8,7 +8,7 @@ import numpy as np
 
 LABELS = {"fold": "F", "period-doubling": "PD", "neimark-sacker": "NS"}
 MARKERS = {"fold": "s", "period-doubling": "o", "neimark-sacker": "D"}
-PERIOD_COLORS = {1: "black", 2: "#7b2d8e", 4: "#b5651d", 8: "#2e7d32"}
+from ..bifurcation.diagram import PERIOD_COLORS  # noqa: E402  (one colour per period, everywhere)
 FONT = 8
 
 
@@ -80,64 +80,9 @@ def draw(ax, run, label_points=True):
     return legend_handles(run, ax)
 
 
-# offsets (points) tried for a label, nearest first: right / left of the point, above / below
-_OFFSETS = [(6, 5), (-6, 5), (6, -13), (-6, -13), (8, 16), (-8, 16), (8, -24), (-8, -24),
-            (10, 28), (-10, 28), (10, -36), (-10, -36)]
-
-
 def _labels(ax, pts):
-    """Kind and Omega* beside each special point, at the first of _OFFSETS where the text covers
-    no drawn point or line of the panel, no other label and stays inside the frame."""
-    fig = ax.figure
-    renderer = fig.canvas.get_renderer()
-    box = ax.get_window_extent(renderer)
-    obstacles = _drawn_points(ax)
-    placed = []
-    for s in pts:
-        text = f"{LABELS[s['kind']]} {s['omega']:.4g}"
-        best = None
-        for dx, dy in _OFFSETS:
-            a = ax.annotate(text, (s["omega"], s["amplitude"]), textcoords="offset points",
-                            xytext=(dx, dy), ha="left" if dx > 0 else "right", fontsize=FONT,
-                            zorder=7, color=_color(s["period"]))
-            bb = a.get_window_extent(renderer).expanded(1.05, 1.1)
-            ok = (box.contains(bb.x0, bb.y0) and box.contains(bb.x1, bb.y1)
-                  and not any(bb.overlaps(p) for p in placed)
-                  and not (obstacles.size and np.any(
-                      (obstacles[:, 0] >= bb.x0) & (obstacles[:, 0] <= bb.x1)
-                      & (obstacles[:, 1] >= bb.y0) & (obstacles[:, 1] <= bb.y1))))
-            if ok:
-                best = (a, bb)
-                break
-            a.remove()
-        if best is None:        # crowded: the nearest place inside the frame, over the curves
-            a = ax.annotate(text, (s["omega"], s["amplitude"]), textcoords="offset points",
-                            xytext=_OFFSETS[0], ha="left", fontsize=FONT, zorder=7,
-                            color=_color(s["period"]))
-            best = (a, a.get_window_extent(renderer))
-        placed.append(best[1])
-
-
-def _drawn_points(ax, spacing=2.0):
-    """Display coordinates of the panel's lines (densified every `spacing` pixels) and markers."""
-    out = []
-    for line in ax.get_lines():
-        xy = line.get_xydata()
-        if len(xy) == 0:
-            continue
-        if line.get_transform() != ax.transData:
-            continue
-        d = ax.transData.transform(np.asarray(xy, dtype=float))
-        d = d[np.all(np.isfinite(d), axis=1)]
-        if line.get_linestyle() in ("None", "none", " ", ""):
-            out.append(d)
-            continue
-        for a, b in zip(d[:-1], d[1:]):
-            k = max(2, int(np.hypot(*(b - a)) / spacing) + 1)
-            out.append(a + (b - a) * np.linspace(0, 1, k)[:, None])
-        out.append(d)
-    for col in ax.collections:
-        off = col.get_offsets()
-        if len(off) and col.get_offset_transform() == ax.transData:
-            out.append(ax.transData.transform(np.asarray(off, dtype=float)))
-    return np.concatenate(out) if out else np.zeros((0, 2))
+    """Kind and Omega* beside each special point, where the text covers no drawn point or line,
+    no other label, and stays inside the frame (crankgen.plotting.place_labels)."""
+    from ..plotting import place_labels
+    place_labels(ax, [(s["omega"], s["amplitude"], f"{LABELS[s['kind']]} {s['omega']:.4g}",
+                       _color(s["period"])) for s in pts], fontsize=FONT)

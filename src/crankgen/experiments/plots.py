@@ -1,20 +1,22 @@
 """Plots of Figures 2-8 and of the convergence check: paper model | consistent model side by side.
-Nothing is dropped: a failed transient is drawn up to its failure, marked with a large 'x' there;
-sweep cases without a value get an 'x' inside the frame at the bottom, off-scale values a
-triangle inside the frame at the top (both in the series' colour); hollow markers for unstable
-orbits and non-periodic responses; deflections beyond the theory (|v|/L > 0.1) lie in a shaded
-band.  Curves that coincide keep distinct markers and line styles, and the legend says so.
-Legends sit outside the axes; no text is smaller than 8 pt."""
+Nothing is dropped: a transient that diverged (approach B: ill-posed) or failed is drawn up to
+there, marked with a large 'X'; a sweep case whose run from rest diverged gets an 'x' inside the
+frame at the bottom (a '+' for a run that failed otherwise or never settled), an off-scale value a
+filled triangle inside the frame at the top (both in the series' colour); hollow markers for
+unstable orbits and the settled transients of non-periodic responses; deflections beyond the
+theory (|v|/L > 0.1) lie in a shaded band.  Curves that coincide keep distinct markers and line
+styles, and the legend says so.  Legends sit below the axes, labels wrapped to the panel; the
+layout is measured (crankgen.plotting.fit_panels); no text is smaller than 8 pt."""
 
 import math
 
 import numpy as np
 
-from ..plotting import APPROACH_COLORS, mark_at_axis, panels
+from ..plotting import APPROACH_COLORS, fit_panels, mark_at_axis, panels
 from . import findings as fd
-from . import plot_bifurcations as PB
+
 from .config import APPROACHES, MODELS
-from .figures import THEORY_LIMIT
+from .figures import DIVERGED, STRAIN_LIMIT, THEORY_LIMIT
 
 FONT = 8                                   # legends, insets, annotations (pt)
 # per approach: line style and marker, so that coinciding curves stay visible
@@ -32,8 +34,11 @@ def _grid(ax):
 
 
 def _transient(ax, curve, color, ls="-", label=None, lw=1.0):
-    """A transient curve; a failed run up to its failure (its 'X' is drawn by _transient_axes)."""
-    if not curve.ok:
+    """A transient curve; a run that diverged or failed up to there (its 'X' is drawn by
+    _transient_axes)."""
+    if curve.diverged:
+        label = f"{label}: DIVERGED at t* = {curve.fail_time:.3g}"
+    elif not curve.ok:
         label = f"{label}: FAILED at t* = {curve.fail_time:.3g}"
     if curve.has_history:
         ax.plot(curve.t, curve.v_mid, color=color, ls=ls, lw=lw, label=label)
@@ -62,6 +67,7 @@ def _theory_handle():
 
 def _legend(ax, handles=None, labels=None, ncol=1, extra=()):
     """Legend below the axes (outside them, so that it covers no data), 8 pt."""
+    import textwrap
     if handles is None:
         handles, labels = ax.get_legend_handles_labels()
     handles, labels = list(handles) + list(extra), list(labels) + [h.get_label() for h in extra]
@@ -69,8 +75,18 @@ def _legend(ax, handles=None, labels=None, ncol=1, extra=()):
         return
     fig = ax.figure
     h_in = ax.get_position().height * fig.get_figheight()
-    ax.legend(handles, labels, fontsize=FONT, loc="upper center", ncol=ncol, frameon=False,
-              bbox_to_anchor=(0.5, -0.55 / h_in), handlelength=2.6, columnspacing=1.2)
+    w_in = ax.get_position().width * fig.get_figwidth()
+    # characters per column (8 pt text is about 0.5 em wide; handle and spacing take 3.8 em)
+    width = max(20, int((w_in * 72 / ncol - 3.8 * FONT) / (0.52 * FONT)))
+    def wrap(text):
+        lines = textwrap.wrap(str(text), width, break_on_hyphens=False)
+        if len(lines) > 1 and len(lines[-1]) < 6:          # no orphan word on a line of its own
+            lines = textwrap.wrap(str(text), width + 6, break_on_hyphens=False)
+        return "\n".join(lines)
+    labels = [wrap(t) for t in labels]
+    leg = ax.legend(handles, labels, fontsize=FONT, loc="upper center", ncol=ncol, frameon=False,
+                    bbox_to_anchor=(0.5, -0.55 / h_in), handlelength=2.6, columnspacing=1.2)
+    leg._crankgen_outside = True
 
 
 def _coincide_note(pairs):
@@ -135,16 +151,22 @@ def _transient_axes(ax, curves, eps):
             k = stacked.setdefault(v > 0, 0)
             stacked[v > 0] += 1
             ax.plot([t], [y], ls="none", marker="X", ms=9, color=col, markeredgecolor="k", zorder=6)
-            ax.annotate(f"v* = {v:.3g}", (t, y), xytext=(8, (-2 - 10 * k) if v > 0 else (2 + 10 * k)),
-                        textcoords="offset points", fontsize=FONT, color=col,
+            x0, x1 = ax.get_xlim()
+            right = t < (x0 + x1) / 2               # the label on the side with room
+            ax.annotate(f"v* = {v:.3g}", (t, y), xytext=(8 if right else -8, (-2 - 10 * k) if v > 0 else (2 + 10 * k)),
+                        textcoords="offset points", fontsize=FONT, color=col, ha="left" if right else "right",
                         va="top" if v > 0 else "bottom")
         else:
             ax.plot([t], [v], ls="none", marker="X", ms=9, color=col, markeredgecolor="k", zorder=6)
     vmax = max([c.max_abs for c in curves if c.has_history] or [math.nan])
     extra = []
-    if bad:
+    if any(c.diverged for c in bad):
         extra.append(Line2D([], [], ls="none", marker="X", ms=8, color="0.6", markeredgecolor="k",
-                            label="X: run failed here (history kept)"))
+                            label="X: the run diverged here (history kept; approach B is ill-posed: "
+                                  "its strain energy is unbounded below)"))
+    if any(not c.diverged for c in bad):
+        extra.append(Line2D([], [], ls="none", marker="X", ms=8, color="0.6", markeredgecolor="k",
+                            label="X: the run failed here (history kept)"))
     if _theory_band(ax, eps, vmax):
         extra.append(_theory_handle())
     return extra
@@ -264,219 +286,8 @@ def plot_figure4(data, cfg, counts):
         ax.set_ylabel("v* at x* = 1/2")
         _legend(ax, ncol=2, extra=extra)
         _grid(ax)
-    fig.suptitle(f"Figure 4: transient v* at high speed (eps = {cfg.eps:g}; X: where a run failed)",
+    fig.suptitle(f"Figure 4: transient v* at high speed (eps = {cfg.eps:g}; X: where a run diverged)",
                  fontsize=10)
-    return fig
-
-
-def _sweep_series(ax, rows, xkey, color, ls, marker, label, mark_missing=True, ms=4):
-    """Line through the periodic points; markers for the other statuses (see module docstring)."""
-    rows = sorted(rows, key=lambda r: r[xkey])
-    x = np.array([r[xkey] for r in rows], dtype=float)
-    y = np.array([r["amplitude"] for r in rows], dtype=float)
-    hollow = marker in ("s", "D")
-    ax.plot(x, y, ls=ls, marker=marker, ms=ms, color=color, lw=1.2, label=label,
-            markerfacecolor="none" if hollow else color, markeredgewidth=1.1)
-    unst = [r for r in rows if r["status"] == "unstable" and math.isfinite(r["orbit_amplitude"])]
-    if unst:
-        ax.scatter([r[xkey] for r in unst], [r["orbit_amplitude"] for r in unst], marker="o",
-                   facecolors="none", edgecolors=color, s=30, zorder=4)
-    env = [r for r in rows if r["status"] != "periodic" and math.isfinite(r["envelope"])]
-    if env:
-        ax.scatter([r[xkey] for r in env], [r["envelope"] for r in env], marker="^",
-                   facecolors="none", edgecolors=color, s=34, zorder=4)
-    if mark_missing:
-        missing = [r[xkey] for r in rows if r["status"] != "periodic" and not math.isfinite(r["envelope"])]
-        if missing:     # inside the frame, at the bottom
-            ax.scatter(missing, np.full(len(missing), 0.04), transform=ax.get_xaxis_transform(),
-                       marker="x", color=color, s=40, zorder=5, linewidths=1.5)
-
-
-def _room_below(ax):
-    """Extend the y range downwards by a strip (about 10 % of the height) for the 'x' markers of
-    cases without a value, so that they never hide under data points."""
-    lo, hi = ax.get_ylim()
-    if ax.get_yscale() == "log":
-        ax.set_ylim(lo / (hi / lo) ** 0.12, hi)
-    else:
-        ax.set_ylim(lo - 0.1 * (hi - lo), hi)
-        ax.axhline(0.0, color="0.5", lw=0.6)
-
-
-def _has_missing(rows):
-    return any(r["status"] != "periodic" and not math.isfinite(r["envelope"]) for r in rows)
-
-
-def _off_scale(ax, rows, top, xkey):
-    """Values above the y range (envelopes of non-periodic responses): filled triangles inside the
-    frame at the top, in the series' colour."""
-    for ap in APPROACHES:
-        off = [r[xkey] for r in rows if r["approach"] == ap and r["status"] != "periodic"
-               and math.isfinite(r["envelope"]) and r["envelope"] > top]
-        if off:
-            ax.scatter(off, np.full(len(off), 0.95), transform=ax.get_xaxis_transform(), marker="^",
-                       color=APPROACH_COLORS[ap], edgecolors="k", linewidths=0.5, s=40, zorder=5)
-
-
-def _limit_to_steady(ax, rows, xkey, margin=1.25, extra=()):
-    """Linear y axis scaled to the steady amplitudes (periodic and unstable orbits, and the
-    `extra` values: continuation branches); responses beyond it are marked at the top inside the
-    frame, so they never squash the curves."""
-    vals = [r["amplitude"] for r in rows if math.isfinite(r["amplitude"])]
-    vals += [r["orbit_amplitude"] for r in rows if r["status"] == "unstable"
-             and math.isfinite(r["orbit_amplitude"])]
-    vals += [v for v in extra if math.isfinite(v)]
-    if not vals:
-        return
-    top = margin * max(vals)
-    ax.set_ylim(0.0, top)
-    _off_scale(ax, rows, top, xkey)
-
-
-def _status_handles(rows, off_scale=False):
-    out = []
-    kinds = {r["status"] for r in rows}
-    if any(r["status"] != "periodic" and not math.isfinite(r["envelope"]) for r in rows):
-        out.append(Line2D([], [], ls="none", marker="x", color="0.4", label="x at the bottom: no steady response (run failed)"))
-    if "unstable" in kinds:
-        out.append(Line2D([], [], ls="none", marker="o", color="0.4", markerfacecolor="none",
-                          label="hollow o: unstable periodic orbit"))
-    if any(math.isfinite(r["envelope"]) for r in rows):
-        out.append(Line2D([], [], ls="none", marker="^", color="0.4", markerfacecolor="none",
-                          label="hollow ^: non-periodic, max |v*| of a transient"))
-    if off_scale:
-        out.append(Line2D([], [], ls="none", marker="^", color="0.4", markeredgecolor="k",
-                          label="filled ^ at the top: off scale (value in the CSV)"))
-    return out
-
-
-def _has_off_scale(ax, rows):
-    top = ax.get_ylim()[1]
-    return any(r["status"] != "periodic" and math.isfinite(r["envelope"]) and r["envelope"] > top for r in rows)
-
-
-def _approach_coincidences(rows, xkey):
-    """Pairs of approaches whose amplitudes agree within 1 % at every common point."""
-    by = {ap: {r[xkey]: r["amplitude"] for r in rows if r["approach"] == ap} for ap in APPROACHES}
-    pairs = []
-    for i, a in enumerate(APPROACHES):
-        for b in APPROACHES[i + 1:]:
-            xs = [x for x in by[a] if x in by[b] and math.isfinite(by[a][x]) and math.isfinite(by[b][x])]
-            d = max((abs(by[b][x] / by[a][x] - 1) for x in xs if by[a][x] != 0), default=None)
-            pairs.append((a, b, d))
-    return _coincide_note(pairs)
-
-
-def _theory_curve(ax, xkey, eps_fixed, rows):
-    """Shade |v|/L > THEORY_LIMIT (v* > THEORY_LIMIT / eps) where the data reach it."""
-    vals = [r["deflection_over_L"] for r in rows if math.isfinite(r.get("deflection_over_L", math.nan))]
-    if not vals or max(vals) <= THEORY_LIMIT:
-        return []
-    lo, hi = ax.get_ylim()
-    if xkey == "eps":
-        x = np.geomspace(*sorted(ax.get_xlim()), 200) if ax.get_xscale() == "log" else np.linspace(*sorted(ax.get_xlim()), 200)
-        lim = THEORY_LIMIT / x
-        ax.fill_between(x, lim, max(hi, lim.max()), color="0.85", zorder=0, lw=0)
-        ax.set_xlim(x[0], x[-1])
-    else:
-        lim = THEORY_LIMIT / eps_fixed
-        if lim >= hi:
-            return []
-        ax.axhspan(lim, hi, color="0.85", zorder=0, lw=0)
-    ax.set_ylim(lo, hi)
-    return [_theory_handle()]
-
-
-def plot_figure5(data, cfg, counts):
-    oms = list(cfg.fig5_omegas)
-    fig, axes = panels(len(oms) + 1, 2, width=6.2, height=2.9, space_below=_below(8, 2), top_margin=0.8)
-    for j, m in enumerate(MODELS):
-        rows = [r for r in data["rows"] if r["model"] == m.key]
-        for i in range(len(oms) + 1):
-            ax = axes[i, j]
-            log = i == len(oms)
-            shown = oms if log else [oms[i]]
-            sel_rows = [r for r in rows if r["omega"] in shown]
-            for k, om in enumerate(shown):
-                speed_ls = _SPEED_STYLES[k % len(_SPEED_STYLES)][0]
-                for ap in APPROACHES:
-                    ls, mk, size = APPROACH_STYLES[ap]
-                    sel = [r for r in rows if r["approach"] == ap and r["omega"] == om]
-                    n = sel[0]["n_elements"] if sel else "?"
-                    _sweep_series(ax, sel, "eps", APPROACH_COLORS[ap], speed_ls if log else ls, mk,
-                                  f"{ap} (n = {n})" + (f", Omega* = {om:g}" if log else ""), ms=size)
-            ax.set_xlabel("eps")
-            if log:
-                ax.set_xscale("log")
-                ax.set_yscale("log")
-                ax.set_ylabel("max |v*| (log scale)")
-                _title(ax, m, f"\nlog-log, Omega* = {', '.join(f'{o:g}' for o in oms)} "
-                       "(solid, dashed)")
-            else:
-                ax.set_ylabel("steady amplitude max |v*|")
-                _limit_to_steady(ax, sel_rows, "eps")
-                _title(ax, m, f"\nOmega* = {oms[i]:g}")
-            if _has_missing(sel_rows):
-                _room_below(ax)
-            extra = _theory_curve(ax, "eps", None, sel_rows)
-            note = None if log else _approach_coincidences(sel_rows, "eps")
-            extra += _status_handles(sel_rows, off_scale=not log and _has_off_scale(ax, sel_rows))
-            _legend(ax, ncol=2, extra=extra + ([note] if note else []))
-            _grid(ax)
-    fig.suptitle("Figure 5: steady-state amplitude of v* against slenderness eps", fontsize=10)
-    return fig
-
-
-def plot_figure6(data, cfg, counts, bifurcations=None):
-    """Steady amplitude against Omega*; with `bifurcations` (bifurcations.py), the continuation
-    of approach A drawn over the consistent model's panels."""
-    n_rows = 2 * len(cfg.fig6_eps)
-    runs = {}
-    for r in (bifurcations or {}).get("runs", []):
-        if r["model"] == MODELS[1].key:
-            runs[r["eps"]] = r
-    n_bif = max((len(PB.legend_handles(r)) for r in runs.values()), default=0)
-    fig, axes = panels(n_rows, 2, width=6.4, height=2.9, space_below=_below(7 + n_bif, 2),
-                       top_margin=1.0 if runs else 0.8)
-    for j, m in enumerate(MODELS):
-        for i, eps in enumerate(cfg.fig6_eps):
-            rows = [r for r in data["rows"] if r["model"] == m.key and r["eps"] == eps]
-            run = runs.get(eps) if m is MODELS[1] else None
-            for zoom in (False, True):
-                ax = axes[2 * i + zoom, j]
-                for ap in APPROACHES:
-                    ls, mk, size = APPROACH_STYLES[ap]
-                    sel = [r for r in rows if r["approach"] == ap]
-                    n = sel[0]["n_elements"] if sel else "?"
-                    _sweep_series(ax, sel, "omega", APPROACH_COLORS[ap], ls, mk, f"{ap} (n = {n})",
-                                  mark_missing=not zoom, ms=size)
-                ax.set_xlabel("Omega*")
-                ax.set_ylabel("steady amplitude max |v*|")
-                if zoom:
-                    ax.set_ylim(0, cfg.fig6_inset_ylim)
-                    lo = [r["omega"] for r in rows if r["status"] == "periodic"
-                          and r["amplitude"] <= cfg.fig6_inset_ylim]
-                    if lo:
-                        ax.set_xlim(0, max(lo) * 1.15)
-                    _title(ax, m, f", eps = {eps:g}\nmagnified: v* from 0 to {cfg.fig6_inset_ylim:g}")
-                    extra = []
-                else:
-                    xlim = ax.get_xlim()
-                    _limit_to_steady(ax, rows, "omega",
-                                     extra=[PB.top(run, xlim) * 1.05 / 1.25] if run else ())
-                    ax.set_xlim(*xlim)
-                    if _has_missing(rows):
-                        _room_below(ax)
-                    _title(ax, m, f", eps = {eps:g}" + ("\nswept points and the continuation of approach A"
-                                                        if run else ""))
-                    extra = _status_handles(rows, off_scale=_has_off_scale(ax, rows))
-                if run is not None:
-                    extra = PB.draw(ax, run) + extra
-                extra = _theory_curve(ax, "omega", eps, rows) + extra
-                note = _approach_coincidences(rows, "omega")
-                _legend(ax, ncol=2, extra=extra + ([note] if note else []))
-                _grid(ax)
-    fig.suptitle("Figure 6: steady-state amplitude of v* against crank speed Omega*", fontsize=10)
     return fig
 
 
@@ -494,8 +305,8 @@ def plot_extension(data, cfg, counts):
                 if c["status"] != "periodic":
                     label += f" ({c['status']})"
                 ax.plot(c["theta_deg"], c["extension"], color=col, ls=ls, lw=1.2 + 0.5 * (k == 0), label=label)
-            else:
-                ax.plot([], [], ls="none", marker="x", color=col, label=f"{label}: no periodic state ({c['status']})")
+            else:                   # nothing to draw: the legend says so, with no marker
+                ax.plot([], [], ls="none", label=f"{label}: no periodic state ({c['status']}), no curve")
         stable = [c for c in cs if c["status"] == "periodic"]
         extra = []
         if len(stable) >= 2:
@@ -512,7 +323,8 @@ def plot_extension(data, cfg, counts):
                 extra.append(Line2D([], [], ls="none", label="all ms* coincide to 1 %"))
         flagged = [c for c in cs if c.get("beyond_theory") == "yes"]
         if flagged:
-            extra.append(Line2D([], [], ls="none", label="beyond the theory (|v|/L > 0.1): ms* = "
+            extra.append(Line2D([], [], ls="none", label=f"beyond the theory (|v|/L > {THEORY_LIMIT:g} or axial "
+                                f"strain > {STRAIN_LIMIT:g}): ms* = "
                                 + ", ".join(f"{c['ms']:g}" for c in flagged)))
         n = cs[0]["n_elements"] if cs else "?"
         _title(ax, m, f"\napproach A, n = {n}, Omega* = {data['omega']:g}")
@@ -528,15 +340,18 @@ def plot_extension(data, cfg, counts):
 
 
 def plot_figure(data, cfg, counts, bifurcations=None):
+    """The figure of `data`, laid out from measurements (nothing clipped, no legend over a panel)."""
     f = data["figure"]
+    from .plots_sweeps import plot_figure5, plot_figure6
     if f == 6:
-        return plot_figure6(data, cfg, counts, bifurcations)
+        return fit_panels(plot_figure6(data, cfg, counts, bifurcations))
     fn = {2: plot_figure2, 3: plot_figure3, 4: plot_figure4, 5: plot_figure5, 7: plot_extension,
           8: plot_extension}[f]
-    return fn(data, cfg, counts)
+    return fit_panels(fn(data, cfg, counts))
 
 
 def plot_convergence(conv, cfg):
+    from .plots_sweeps import _room_below
     """Top: steady amplitude against n; bottom: relative change to the next count and the tolerance."""
     fig, axes = panels(2, 2, width=6.2, height=3.0, space_below=_below(3 * len(cfg.conv_omegas) + 2, 2),
                        top_margin=0.95)
@@ -556,10 +371,12 @@ def plot_convergence(conv, cfg):
                              markerfacecolor="none" if ap == "B" else col, markeredgewidth=1.1)
                 top.plot(x, [r["amplitude"] for r in rows], label=f"{ap}, Omega* = {om:g}", **style)
                 amps[ap] = {r["n_elements"]: r["amplitude"] for r in rows}
-                bad = [r["n_elements"] for r in rows if r["status"] != "periodic"]
-                if bad:
-                    top.scatter(bad, np.full(len(bad), 0.04), transform=top.get_xaxis_transform(),
-                                marker="x", color=col, s=40, zorder=5)
+                for kind, marker in ((True, "x"), (False, "+")):
+                    bad = [r["n_elements"] for r in rows if r["status"] != "periodic"
+                           and (r["status"] == DIVERGED) == kind]
+                    if bad:
+                        top.scatter(bad, np.full(len(bad), 0.04), transform=top.get_xaxis_transform(),
+                                    marker=marker, color=col, s=40, zorder=5)
                 ch = [(r["n_elements"], r["change_to_next"]) for r in rows
                       if math.isfinite(r.get("change_to_next", math.nan)) and r["change_to_next"] > 0]
                 if ch:
@@ -569,21 +386,31 @@ def plot_convergence(conv, cfg):
                           and math.isfinite(amps[b][n]) and amps[a][n] != 0]
                 d = max((abs(amps[b][n] / amps[a][n] - 1) for n in common), default=None)
                 pairs.append((f"{a}@{om:g}", f"{b}@{om:g}", d))
+        used = {}
         for ap in APPROACHES:
-            for a in (top, bot):
-                a.axvline(conv["counts"][(m.key, ap)], color=APPROACH_COLORS[ap], ls=":", lw=1.0)
+            used.setdefault(conv["counts"][(m.key, ap)], []).append(ap)
         bot.axhline(cfg.conv_tol, color="k", lw=0.8, ls="--", label=f"tolerance {100 * cfg.conv_tol:g} %")
+        ticks = sorted(set(cfg.conv_ladder) | set(used))
+        names = [str(n) + (f"\n{', '.join(used[n])}" if n in used else "") for n in ticks]
         for a in (top, bot):
             a.set_xscale("log", base=2)
             a.set_yscale("log")
+            a.set_xticks(ticks, names)      # the approaches using a count are named under it
+            a.minorticks_off()
+            a.set_xlim(ticks[0] / 1.25, ticks[-1] * 1.25)
+            for n in used:                  # one dotted line per count used
+                a.axvline(n, color="0.45", ls=":", lw=1.0, zorder=1)
             _grid(a)
         if any(r["status"] != "periodic" for r in conv["rows"] if r["model"] == m.key):
             top.autoscale_view()
             _room_below(top)
         note = _coincide_note(pairs)
-        extra = [Line2D([], [], color="0.4", ls=":", label="vertical dotted: count used")]
-        if any(r["status"] != "periodic" for r in conv["rows"] if r["model"] == m.key):
-            extra.append(Line2D([], [], ls="none", marker="x", color="0.4", label="x at the bottom: no periodic state"))
+        extra = [Line2D([], [], color="0.45", ls=":", label="dotted: element count used, by the approaches named under it")]
+        if any(r["status"] == DIVERGED for r in conv["rows"] if r["model"] == m.key):
+            extra.append(Line2D([], [], ls="none", marker="x", color="0.4",
+                                label="x at the bottom: the run from rest diverged (B is ill-posed)"))
+        if any(r["status"] not in ("periodic", DIVERGED) for r in conv["rows"] if r["model"] == m.key):
+            extra.append(Line2D([], [], ls="none", marker="+", color="0.4", label="+ at the bottom: no periodic state"))
         _legend(top, ncol=2, extra=extra + ([note] if note else []))
         _legend(bot, ncol=2)
         top.set_ylabel("steady amplitude max |v*|")
@@ -593,4 +420,4 @@ def plot_convergence(conv, cfg):
         _title(top, m, "\nsteady amplitude against n")
         _title(bot, m, "\nchange to the next count")
     fig.suptitle(f"Element-count convergence of the steady amplitude (eps = {cfg.eps:g})", fontsize=10)
-    return fig
+    return fit_panels(fig)

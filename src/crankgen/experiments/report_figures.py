@@ -13,6 +13,13 @@ from .markdown import num, pct, table
 from .markdown import rows_where as _rows, series as _series, short as _short
 
 STABLE = "periodic"
+KIND_WORDS = {"not-converged": "not converged", "no-result": "no periodic state",
+              "diverged": "diverged (ill-posed)"}
+
+
+def _status_word(status):
+    """A status as a table cell: a run of an ill-posed approach that failed 'diverged (ill-posed)'."""
+    return "diverged (ill-posed)" if status == F.DIVERGED else status
 
 
 def _convergence(cfg, conv, refine):
@@ -31,9 +38,10 @@ def _convergence(cfg, conv, refine):
                 byn = dict(zip(s["ns"], s["amplitudes"]))
                 st = {r["n_elements"]: r["status"] for r in conv["rows"]
                       if r["model"] == m.key and r["approach"] == ap and r["omega"] == om}
-                cells = [num(byn[n], 6) if n in byn and math.isfinite(byn[n]) else (st.get(n, "") if n in byn else "")
-                         for n in ladder]
-                rows.append([m.key, ap, f"{om:g}", *cells, s["n"] if s["kind"] == "converged" else s["kind"]])
+                cells = [num(byn[n], 6) if n in byn and math.isfinite(byn[n])
+                         else (_status_word(st.get(n, "")) if n in byn else "") for n in ladder]
+                rows.append([m.key, ap, f"{om:g}", *cells,
+                             s["n"] if s["kind"] == "converged" else KIND_WORDS[s["kind"]]])
     lines += [table(["model", "approach", "Omega*", *[f"n = {n}" for n in ladder], "converged n"], rows), ""]
     lines += [table(["model", "approach", "count used", "basis"],
                     [[m.key, ap, counts[(m.key, ap)], conv["notes"][(m.key, ap)]]
@@ -72,9 +80,10 @@ def _convergence(cfg, conv, refine):
                   "recomputed with twice the count used.", "",
                   table(["model", "approach", "eps", "Omega*", "n", "max |v*|", "2 n", "max |v*| (2 n)", "change"],
                         [[r["model"], r["approach"], f"{r['eps']:g}", f"{r['omega']:g}", r["n_elements"],
-                          num(r["amplitude"], 6) if math.isfinite(r["amplitude"]) else r["status"],
+                          num(r["amplitude"], 6) if math.isfinite(r["amplitude"]) else _status_word(r["status"]),
                           r["n_refined"],
-                          num(r["amplitude_refined"], 6) if math.isfinite(r["amplitude_refined"]) else r["status_refined"],
+                          num(r["amplitude_refined"], 6) if math.isfinite(r["amplitude_refined"])
+                          else _status_word(r["status_refined"]),
                           pct(r["change"])] for r in rr]), ""]
         for m in MODELS:
             ch = [(r["change"], r) for r in rr if r["model"] == m.key and math.isfinite(r["change"])]
@@ -88,7 +97,7 @@ def _convergence(cfg, conv, refine):
             else:
                 lines.append(f"- {m.key} model: no refinement pair with two periodic states.")
             if mism:
-                lines.append(f"  Status changes on doubling n: " + "; ".join(
+                lines.append("  Status changes on doubling n: " + "; ".join(
                     f"{r['approach']} eps = {r['eps']:g} Omega* = {r['omega']:g}: {r['status']} -> {r['status_refined']}"
                     for r in mism) + ".")
         lines.append("")
@@ -98,11 +107,16 @@ def _convergence(cfg, conv, refine):
 def _transient_note(c):
     """Failure, deflection beyond the theory, and growth over the last two revolutions."""
     notes = []
-    if not c.ok:
+    if c.diverged:
+        notes.append(f"diverged at t* = {num(c.fail_time)} ({F.theory.ILL_POSED}; history up to there "
+                     f"kept, no amplitude): {_short(c.message, 80)}")
+    elif not c.ok:
         notes.append(f"failed at t* = {num(c.fail_time)} (history up to there kept): {_short(c.message, 80)}")
     x = c.spec.eps * c.max_abs
-    if math.isfinite(x) and x > F.THEORY_LIMIT:
-        notes.append(f"beyond the theory: |v|/L up to {num(x, 3)}")
+    if c.ok:
+        why = F.theory.reasons(x, c.max_strain)
+        if why:
+            notes.append(f"beyond the theory: {why}")
     k = c.spec.steps_per_rev
     if c.ok and c.has_history and len(c.v_mid) > 2 * k:
         last, before = np.max(np.abs(c.v_mid[-k:])), np.max(np.abs(c.v_mid[-2 * k:-k]))
@@ -121,9 +135,12 @@ def _transients(cfg, data):
             continue
         curves = data[f]["curves"]
         lines += [f"## {titles[f]}", "",
-                  table(["model", "approach", "n", "steps/rev", "ms*", "status", "max |v*|", "note"],
+                  table(["model", "approach", "n", "steps/rev", "ms*", "status", "max |v*|",
+                         "max axial strain", "note"],
                         [[c.spec.model, c.spec.approach, c.spec.n_elements, c.spec.steps_per_rev,
-                          f"{c.spec.ms:g}", c.status, num(c.max_abs), _transient_note(c)]
+                          f"{c.spec.ms:g}", _status_word(c.status),
+                          num(c.max_abs) if c.ok else "none (no amplitude)",
+                          num(c.max_strain, 3) if c.ok else "", _transient_note(c)]
                          for c in curves]), ""]
         if f == 3:
             for m in MODELS:
@@ -145,9 +162,12 @@ def _transients(cfg, data):
             lines.append("")
         failed = [c for c in curves if not c.ok]
         for c in failed:
+            why = (f"; approach {c.spec.approach} is ill-posed (strain energy unbounded below), so this "
+                   "is no instability and its numbers before the failure are no amplitude"
+                   if c.diverged else "")
             lines.append(f"- {c.spec.model} model, approach {c.spec.approach} (n = {c.spec.n_elements}, "
-                         f"ms* = {c.spec.ms:g}) diverges: the integration fails at t* = {num(c.fail_time)} "
-                         f"({_short(c.message, 90)}).")
+                         f"ms* = {c.spec.ms:g}) {'diverges' if c.diverged else 'fails'}: the integration "
+                         f"stops at t* = {num(c.fail_time)} ({_short(c.message, 90)}){why}.")
         if failed:
             lines.append("")
     return lines
@@ -163,7 +183,8 @@ def _ratios(cfg, data):
                 a = {ap: (amp[ap][0]["amplitude"] if amp[ap] else math.nan) for ap in APPROACHES}
                 st = {ap: (amp[ap][0]["status"] if amp[ap] else "missing") for ap in APPROACHES}
                 rb, rc = fd.ratio(a["B"], a["A"]), fd.ratio(a["C"], a["A"])
-                rows.append([m.key, f"{om:g}", *(num(a[ap], 5) if math.isfinite(a[ap]) else st[ap] for ap in APPROACHES),
+                rows.append([m.key, f"{om:g}", *(num(a[ap], 5) if math.isfinite(a[ap]) else _status_word(st[ap])
+                                                   for ap in APPROACHES),
                              num(rb, 5), num(rc, 5)])
         lines += [f"## Ratios of the B and C amplitudes to A (eps = {cfg.eps:g}, from Figure 5)", "",
                   table(["model", "Omega*", "A: max |v*|", "B", "C", "B/A", "C/A"], rows), ""]
@@ -176,7 +197,9 @@ def _ratios(cfg, data):
                     verdicts.append(f"{name}/A = {v} ({'within' if abs(x - 1) <= cfg.differ_threshold else 'beyond'} "
                                     f"{pct(cfg.differ_threshold)})")
                 except ValueError:
-                    verdicts.append(f"{name}/A not available ({name} has no stable periodic state)")
+                    why = ("diverged: ill-posed, no amplitude" if "diverged" in str(r[3 if name == "B" else 4])
+                           else "no stable periodic state")
+                    verdicts.append(f"{name}/A not available ({name}: {why})")
             lines.append(f"- {r[0]} model, Omega* = {r[1]}: " + "; ".join(verdicts) + ".")
         lines.append("")
     if 6 in data:
@@ -192,11 +215,12 @@ def _ratios(cfg, data):
                         rr = _rows(data[6], model=m.key, omega=om, eps=eps, approach=ap)
                         cell[ap] = rr[0] if rr else None
                     a = cell["A"]
-                    row.append(num(a["amplitude"]) if a and a["status"] == STABLE else (a["status"] if a else ""))
+                    row.append(num(a["amplitude"]) if a and a["status"] == STABLE
+                               else (_status_word(a["status"]) if a else ""))
                     for ap in ("B", "C"):
                         c = cell[ap]
                         row.append(num(c["ratio_to_A"]) if c and math.isfinite(c["ratio_to_A"])
-                                   else (c["status"] if c and c["status"] != STABLE else "n/a"))
+                                   else (_status_word(c["status"]) if c and c["status"] != STABLE else "n/a"))
                 rows.append(row)
             lines += [f"### Amplitude ratios against Omega* (Figure 6, eps = {eps:g})", "",
                       table(head, rows), ""]
@@ -215,18 +239,23 @@ def _threshold(cfg, data):
                 x, d, rr = _series(_rows(data[6], model=m.key, eps=eps, approach=ap), "omega", "ratio_to_A")
                 cross = fd.first_exceedance(x, np.abs(d - 1.0), thr)
                 a_rows = {r["omega"]: r for r in _rows(data[6], model=m.key, eps=eps, approach="A")}
-                lost = fd.first_where(x, [r["status"] != STABLE and a_rows.get(r["omega"], {}).get("status") == STABLE
-                                          for r in rr])
-                res[ap] = (cross, lost)
-            cands = [v for ap in ("B", "C") for v in res[ap] if v is not None]
+                a_ok = [a_rows.get(r["omega"], {}).get("status") == STABLE for r in rr]
+                lost = fd.first_where(x, [r["status"] not in (STABLE, F.DIVERGED) and ok
+                                          for r, ok in zip(rr, a_ok)])
+                div = fd.first_where(x, [r["status"] == F.DIVERGED and ok for r, ok in zip(rr, a_ok)])
+                count = sum(r["status"] == F.DIVERGED for r in rr)
+                res[ap] = (cross, lost, div, count, len(rr))
+            cands = [v for ap in ("B", "C") for v in res[ap][:3] if v is not None]
             first = min(cands) if cands else None
             rows.append([m.key, f"{eps:g}",
                          *(num(res[ap][0]) if res[ap][0] is not None else "none" for ap in ("B", "C")),
                          *(num(res[ap][1]) if res[ap][1] is not None else "none" for ap in ("B", "C")),
+                         *(f"{num(res[ap][2])} ({res[ap][3]} of {res[ap][4]} speeds)" if res[ap][2] is not None
+                           else "none" for ap in ("B", "C")),
                          num(first) if first is not None else "none"])
             start = min(cfg.fig6_omegas)
             for ap in ("B", "C"):
-                cross, lost = res[ap]
+                cross, lost, div, count, total = res[ap]
                 if cross is not None:
                     where = (f"already at the lowest speed of the sweep (Omega* = {start:g})"
                              if cross == start else f"from Omega* = {num(cross)} (interpolated)")
@@ -236,14 +265,22 @@ def _threshold(cfg, data):
                     lines.append(f"- {m.key} model, eps = {eps:g}: where both have stable periodic states, "
                                  f"{ap} stays within {pct(thr)} of A over the sweep.")
                 if lost is not None:
-                    lines.append(f"  {ap} has no stable periodic state (while A does) from Omega* = {num(lost)}.")
+                    lines.append(f"  {ap} has no stable periodic state (an unstable orbit or no periodic "
+                                 f"one, while A is stable) from Omega* = {num(lost)}.")
+                if div is not None:
+                    lines.append(f"  {ap} diverges from rest from Omega* = {num(div)} ({count} of {total} "
+                                 f"speeds): approach {ap} is ill-posed (strain energy unbounded below), so "
+                                 "these runs give neither an amplitude nor a stability verdict.")
     head = ["model", "eps", f"B: |B/A - 1| > {pct(thr)} from", f"C: > {pct(thr)} from",
-            "B: no stable state from", "C: no stable state from", "lowest speed (B or C)"]
+            "B: unstable / not periodic from", "C: unstable / not periodic from",
+            "B: diverges (ill-posed) from", "C: diverges from", "lowest speed (B or C)"]
     return (["## Lowest speed at which B or C differs from A (Figure 6)", "",
              f"Crossings of |ratio - 1| = {pct(thr)} are interpolated linearly between sweep points "
              f"(step {num(np.min(np.diff(sorted(cfg.fig6_omegas)))) if len(cfg.fig6_omegas) > 1 else 'n/a'}); "
-             "speeds where B or C has no stable periodic state but A has are listed separately and "
-             "count as a difference in the last column.", "",
+             "speeds where A is stable and B or C is not are listed separately, those where B or C "
+             "has an unstable orbit or no periodic one apart from those where its run from rest "
+             "diverges (an ill-posed approach: no result at all). Each counts as a departure from A "
+             "in the last column.", "",
              table(head, rows), ""] + lines + [""])
 
 
@@ -328,19 +365,27 @@ def _disagreement(cfg, conv, data):
     tol = cfg.agree_tol
     rows, lines = [], []
     p, c = MODELS[0].key, MODELS[1].key
+    xname_key = {"eps": "eps", "Omega*": "omega"}
     for ap in APPROACHES:
         rows.append([f"element count used, approach {ap}", conv["counts"][(p, ap)],
                      conv["counts"][(c, ap)], ""])
 
-    def compare(label, x, a, b, xname):
+    def compare(label, x, a, b, xname, ra=(), rb=()):
         d = fd.max_relative_difference(x, b, a)
-        onlyp = [xx for xx, aa, bb in zip(x, a, b) if math.isfinite(aa) and not math.isfinite(bb)]
-        onlyc = [xx for xx, aa, bb in zip(x, a, b) if math.isfinite(bb) and not math.isfinite(aa)]
+        div = {p: [r[xname_key[xname]] for r in ra if r["status"] == F.DIVERGED],
+               c: [r[xname_key[xname]] for r in rb if r["status"] == F.DIVERGED]}
+        onlyp = [xx for xx, aa, bb in zip(x, a, b) if math.isfinite(aa) and not math.isfinite(bb)
+                 and xx not in div[c]]
+        onlyc = [xx for xx, aa, bb in zip(x, a, b) if math.isfinite(bb) and not math.isfinite(aa)
+                 and xx not in div[p]]
         note = []
         if onlyp:
             note.append(f"stable in {p} only at {xname} = {fd.ranges_text(onlyp)}")
         if onlyc:
             note.append(f"stable in {c} only at {xname} = {fd.ranges_text(onlyc)}")
+        for k, xs in div.items():
+            if xs:
+                note.append(f"{k} diverges (ill-posed, no amplitude) at {xname} = {fd.ranges_text(xs)}")
         diff = (f"max {pct(d['value'])} at {xname} = {d['at']:g} ({d['points']} points)" if d else "no common points")
         rows.append([label, "", "", diff + ("; " + "; ".join(note) if note else "")])
         if d:
@@ -356,15 +401,17 @@ def _disagreement(cfg, conv, data):
             cc = [x for x in data[4]["curves"] if x.spec.model == c and x.spec.approach == ap and x.spec.ms == cfg.ms]
             if cp and cc:
                 a, b = cp[0].max_abs, cc[0].max_abs
-                rows.append([f"Figure 4 max |v*| (transient), {ap}", num(a) if cp[0].ok else "failed",
-                             num(b) if cc[0].ok else f"failed at t* = {num(cc[0].fail_time)}",
-                             pct(fd.relative_difference(b, a)) if cp[0].ok and cc[0].ok else "one model diverges"])
+                def cell(x, v):
+                    return num(v) if x.ok else f"{_status_word(x.status)} at t* = {num(x.fail_time)}"
+                rows.append([f"Figure 4 max |v*| (transient), {ap}", cell(cp[0], a), cell(cc[0], b),
+                             pct(fd.relative_difference(b, a)) if cp[0].ok and cc[0].ok
+                             else "not comparable: a run has no result"])
     if 5 in data:
         for ap in APPROACHES:
             for om in cfg.fig5_omegas:
-                x, a, _ = _series(_rows(data[5], model=p, approach=ap, omega=om), "eps")
-                _, b, _ = _series(_rows(data[5], model=c, approach=ap, omega=om), "eps")
-                compare(f"Figure 5 amplitude, {ap}, Omega* = {om:g}", x, a, b, "eps")
+                x, a, ra = _series(_rows(data[5], model=p, approach=ap, omega=om), "eps")
+                _, b, rb = _series(_rows(data[5], model=c, approach=ap, omega=om), "eps")
+                compare(f"Figure 5 amplitude, {ap}, Omega* = {om:g}", x, a, b, "eps", ra, rb)
         for ap in APPROACHES:
             for om in cfg.fig5_omegas:
                 x, a, _ = _series(_rows(data[5], model=p, approach=ap, omega=om), "eps")
@@ -376,9 +423,9 @@ def _disagreement(cfg, conv, data):
     if 6 in data:
         for ap in APPROACHES:
             for eps in cfg.fig6_eps:
-                x, a, _ = _series(_rows(data[6], model=p, approach=ap, eps=eps), "omega")
-                _, b, _ = _series(_rows(data[6], model=c, approach=ap, eps=eps), "omega")
-                compare(f"Figure 6 amplitude, {ap}, eps = {eps:g}", x, a, b, "Omega*")
+                x, a, ra = _series(_rows(data[6], model=p, approach=ap, eps=eps), "omega")
+                _, b, rb = _series(_rows(data[6], model=c, approach=ap, eps=eps), "omega")
+                compare(f"Figure 6 amplitude, {ap}, eps = {eps:g}", x, a, b, "Omega*", ra, rb)
     for f in (7, 8):
         if f not in data:
             continue

@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import steady as _steady
+from .. import theory
 from ..errors import CrankgenError
 from ..cases import Case
 from ..progress import Progress
@@ -55,10 +56,13 @@ def step_files(step):
             "findings": ["findings.md"]}[step]
 
 
+STEPS = ("convergence check", "bifurcations", *[f"figure {f}" for f in FIGURES], "refinement check",
+         "convergence files", "findings")
+
+
 def all_files():
     out = [MANIFEST]
-    for step in ["convergence check", "bifurcations", *[f"figure {f}" for f in FIGURES],
-                 "refinement check", "convergence files", "findings"]:
+    for step in STEPS:
         out += step_files(step)
     return out
 
@@ -97,6 +101,27 @@ class Context:
         self.stream = stream if stream is not None else sys.stderr
         self.steady_calls = 0
         self.steady_cases = 0
+        self.engine = None          # (seconds, compiled) of the engine's start-up in this run
+
+    def start_engine(self):
+        """Load the compiled engine (compile it, on a machine's first run) before the first step
+        that needs it, and time that on its own: every path reproduce uses (steady states of one
+        and of several cases, transients with states, the revolution map of the continuation)."""
+        if self.engine is not None:
+            return
+        from ..bifurcation.mechanism import MechanismMap
+        from ..compile_cache import is_warm
+        compiled = not is_warm()
+        t0 = time.perf_counter()
+        self.log("starting the compiled engine" + (" (compiling it for this machine, once: 1-3 "
+                                                   "minutes on 2 cores)" if compiled else ""))
+        cases = [Case(n_elements=1, steps_per_rev=20, omega=w) for w in (0.8, 0.9)]
+        _steady.steady_states(cases[:1], max_revolutions=2)
+        _steady.steady_states(cases, max_revolutions=2)
+        simulate_many(cases, 0.2, keep_states=True)
+        fmap = MechanismMap(cases[0], "omega")
+        fmap.evaluate(np.zeros(fmap.dim), 0.8)
+        self.engine = (time.perf_counter() - t0, compiled)
 
     def log(self, message):
         if not self.quiet:
@@ -120,8 +145,9 @@ class Context:
         return states
 
     def transients(self, specs, label):
-        """Runs from zero initial conditions, batched in the compiled engine (simulate_many); a run
-        that fails is returned with status "failed" and where it failed."""
+        """Runs from zero initial conditions, batched in the compiled engine (simulate_many), with
+        the axial strain of every step; a run that fails is returned with where it failed and status
+        DIVERGED (an ill-posed approach) or "failed"."""
         specs = list(specs)
         cfg = self.config
         groups = {}
@@ -139,16 +165,21 @@ class Context:
                     cases.append(Case(a=cfg.a, eps=s.eps, ms=s.ms, mu=cfg.mu, omega=s.omega,
                                       approach=s.approach, model=F.model_spec(s.model).key,
                                       n_elements=s.n_elements, steps_per_rev=s.steps_per_rev))
-                results = simulate_many(cases, revs, progress=lambda d, _t, o=offset: bar(o + d))
+                results = simulate_many(cases, revs, progress=lambda d, _t, o=offset: bar(o + d),
+                                        keep_states=True)
                 for i, r in zip(idx, results):
                     if isinstance(r, CrankgenError):
                         part = getattr(r, "partial", None)
-                        out[i] = F.TransientCurve(specs[i], status="failed", message=str(r),
+                        out[i] = F.TransientCurve(specs[i], status=F.failure_status(specs[i].approach),
+                                                  message=str(r),
                                                   fail_time=math.nan if r.time is None else float(r.time),
                                                   t=None if part is None else np.asarray(part.t),
-                                                  v_mid=None if part is None else np.asarray(part.v_mid))
+                                                  v_mid=None if part is None else np.asarray(part.v_mid),
+                                                  axial_strain=None if part is None else
+                                                  theory.axial_strain(part, per_step=True))
                     else:
-                        out[i] = F.TransientCurve(specs[i], t=r.t, v_mid=r.v_mid)
+                        out[i] = F.TransientCurve(specs[i], t=r.t, v_mid=r.v_mid,
+                                                  axial_strain=theory.axial_strain(r, per_step=True))
                 offset += sum(max(1, int(round(revs * specs[i].steps_per_rev))) for i in idx)
         return out
 
@@ -221,12 +252,18 @@ def _reproduce(out, config, force, quiet, figures, stream):
     if removed:
         ctx.log(f"removed {len(removed)} temporary file(s) left by an interrupted run: "
                 + ", ".join(removed[:4]) + (" ..." if len(removed) > 4 else ""))
-    try:
-        manifest = Manifest.load(out)
-    except CrankgenError:
+    manifest = Manifest.load(out, steps=STEPS, names=all_files())
+    if manifest.entries and manifest.preset not in (None, config.preset):
+        # a full and a quick run never replace each other silently
         if not force:
-            raise
-        manifest = Manifest(out)
+            raise OutputExistsError(
+                f"{out} holds the results of a {manifest.preset} run of crankgen reproduce "
+                f"(manifest.json); this {config.preset} run would replace them: choose another "
+                "--out, or use --force to replace them")
+        deleted = manifest.remove(list(manifest.entries))
+        ctx.log(f"--force: the {manifest.preset} run recorded in {out} is replaced by this "
+                f"{config.preset} run ({len(deleted)} of its files removed)")
+    manifest.preset = config.preset
     # files this run may write that no recorded step made: refuse before computing anything
     selected = ["convergence check", *(["bifurcations"] if 6 in figures else []),
                 *[f"figure {f}" for f in figures], "refinement check", "convergence files", "findings"]
@@ -249,6 +286,8 @@ def _reproduce(out, config, force, quiet, figures, stream):
             kept.append(step)
             return None
         why = "--force" if state == "current" else f"{state}: {reason}"
+        if step not in ("convergence files", "findings"):
+            ctx.start_engine()
         ctx.log(f"{step}: computing ({why})")
         files = step_files(step)
         manifest.start(step, settings, version, files)
@@ -337,6 +376,11 @@ def _reproduce(out, config, force, quiet, figures, stream):
                           lambda: F.refinement_check(ctx, counts, figure_data(6), figure_data(5)),
                           lambda r: write_json(out / DATA / "refinement.json", r))
         refine = refine if refine is not None else load("refinement.json")
+    elif "refinement check" in manifest.entries:
+        # this configuration has no refinement check: a recorded one is not this run's result
+        deleted = manifest.remove(["refinement check"])
+        ctx.log("refinement check: not part of this configuration; the recorded one is removed "
+                f"({', '.join(deleted) or 'no file left'})")
     inputs = {"convergence check": manifest.fingerprint("convergence check")}
     if refine is not None:
         inputs["refinement check"] = manifest.fingerprint("refinement check")
@@ -366,13 +410,11 @@ def _reproduce(out, config, force, quiet, figures, stream):
         total = sum(v for v in timings.values() if v)
         return report.findings_markdown(config, conv, refine, data, timings, total, files=present,
                                         missing=missing, bifurcations=bif,
-                                        bifurcations_missing=bif_missing)
+                                        bifurcations_missing=bif_missing, engine=ctx.engine)
     run_step("findings", dict(config=config.as_dict(), inputs=inputs, missing=missing,
                               bifurcations_missing=bif_missing),
              make_findings, lambda text: atomic_write_text(out / "findings.md", text))
     total = time.perf_counter() - started
-    ctx.log(f"{len(computed)} step(s) computed, {len(kept)} kept; wrote {len(written)} files to "
-            f"{out} in {total:.1f} s")
     return dict(out=out, files=written, wall_time=total, data=data, convergence=conv,
                 refinement=refine, bifurcations=bif, timings=timings, computed=computed, kept=kept,
                 missing=missing)

@@ -1,0 +1,28 @@
+"""Rows as CSV columns: every cell a number, a word or empty.
+
+A case's parameters come as Python values (Case.as_dict: gravity a pair, groups_off a list of
+switched-off term groups as text); flat_table turns them into columns that any CSV reader parses:
+gravity into two numeric columns gravity_x, gravity_y (units L omega_b^2), groups_off dropped when
+it is empty in every row (it is only set by the audit's term-switching runs)."""
+
+PAIRS = {"gravity": ("gravity_x", "gravity_y")}
+
+
+def flat_table(columns, rows):
+    """(columns, rows) with pairs split into two columns and always-empty optional columns dropped."""
+    rows = [dict(r) for r in rows]
+    out_cols = []
+    for c in columns:
+        if c in PAIRS:
+            names = PAIRS[c]
+            for r in rows:
+                value = r.pop(c, None)
+                pair = tuple(value) if isinstance(value, (list, tuple)) and len(value) == 2 else (None, None)
+                r.update(zip(names, pair))
+            out_cols += list(names)
+        elif c == "groups_off" and not any(r.get(c) for r in rows):
+            for r in rows:
+                r.pop(c, None)
+        else:
+            out_cols.append(c)
+    return out_cols, rows

@@ -1,0 +1,67 @@
+"""The README's examples run as written: every ```python block (in a temporary folder, with the
+continuation and the Poincare sweep made small: they take minutes at the README's sizes), every
+`crankgen ...` command line of the ```bash blocks parses, and the test command is the one .ci/run
+runs."""
+
+import re
+import shlex
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import crankgen
+
+ROOT = Path(__file__).resolve().parent.parent
+README = (ROOT / "README.md").read_text(encoding="utf-8")
+PYTHON_BLOCKS = re.findall(r"```python\n(.*?)```", README, flags=re.S)
+BASH_BLOCKS = re.findall(r"```bash\n(.*?)```", README, flags=re.S)
+
+
+def _small(real, **overrides):
+    """real(...) with the sizes of a test (the call as written otherwise)."""
+    def call(*args, **kwargs):
+        kwargs.update(overrides)
+        if "values" in kwargs:
+            kwargs["values"] = np.asarray(kwargs["values"])[::20]
+        return real(*args, **kwargs)
+    return call
+
+
+def test_the_readme_has_python_examples():
+    assert len(PYTHON_BLOCKS) >= 2 and any("continuation" in b for b in PYTHON_BLOCKS)
+
+
+@pytest.mark.parametrize("k", range(len(PYTHON_BLOCKS)))
+def test_every_python_block_runs_as_written(k, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(crankgen, "continuation", _small(crankgen.continuation, n_elements=2,
+                                                         steps_per_rev=30, max_period=2))
+    monkeypatch.setattr(crankgen, "poincare", _small(crankgen.poincare, n_elements=2, steps_per_rev=30,
+                                                     transient=3, samples=4))
+    code = PYTHON_BLOCKS[k]
+    exec(compile(code, f"README.md python block {k + 1}", "exec"), {"__name__": "readme"})
+    for name in re.findall(r"""(?:to_csv|plot)\("([^"]+)""", code):      # what it says it writes
+        assert (tmp_path / name).exists(), name
+
+
+def _command_lines():
+    for block in BASH_BLOCKS:
+        for line in block.splitlines():
+            for part in line.split("&&"):
+                words = shlex.split(part, comments=True)
+                if words and words[0].endswith("crankgen"):
+                    yield words[1:]
+
+
+@pytest.mark.parametrize("argv", list(_command_lines()), ids=lambda a: " ".join(a)[:60])
+def test_every_command_line_parses(argv):
+    from crankgen.cli import build_parser
+    args, extra = build_parser().parse_known_args(argv)
+    assert extra == [] and callable(args.func)
+
+
+def test_the_test_command_is_the_one_ci_runs():
+    command = "python3 -m venv .venv && .venv/bin/pip install -e '.[test]' && .venv/bin/python -m pytest -q"
+    assert command in README
+    assert command in (ROOT / ".ci" / "run").read_text()
