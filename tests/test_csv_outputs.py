@@ -19,16 +19,32 @@ def test_simulate_writes_units_a_time_column_and_the_theory_flags(tmp_path):
     out = tmp_path / "s"
     assert main(["simulate", "--revolutions", "1", "--nodes", "--out", str(out), *TINY]) == 0
     sim = check_csv(out / "simulation.csv")
-    assert list(sim.columns) == ["t", "theta_deg", "v_mid", "u_end", "extension", "deflection_over_L",
-                                 "axial_strain", "beyond_theory", "status"]
+    step_outputs = ["crank_speed", "slider_position", "end_height", "chord_angle", "chord_rate",
+                    "chord_elongation", "slider_velocity", "torque", "pin_force_x", "pin_force_y",
+                    "end_force_x", "end_force_y"]
+    assert list(sim.columns) == (["t", "theta_deg", "v_mid", "u_end", "extension"] + step_outputs
+                                 + ["deflection_over_L", "axial_strain", "beyond_theory", "status"])
     ref = crankgen.simulate(crankgen.Mechanism(), n_elements=2, steps_per_rev=20, revolutions=1,
                             formulation="lagrange", damping="kelvin-voigt", membrane="averaged")
     np.testing.assert_allclose(sim["theta_deg"], np.degrees(ref.theta), rtol=1e-15)
+    for name in step_outputs:                 # the declared outputs of the same run, per step
+        np.testing.assert_allclose(sim[name], getattr(ref, name), rtol=1e-14, atol=1e-15, err_msg=name)
     np.testing.assert_allclose(sim["deflection_over_L"], 0.01 * np.abs(ref.v_mid), rtol=1e-15)
     nodes = check_csv(out / "nodes.csv")
     assert list(nodes.columns[:5]) == ["t", "theta_deg", "u0_L", "v0_L", "psi0_rad"]
     assert list(nodes.columns[-3:]) == ["u2_L", "v2_L", "psi2_rad"] and len(nodes) == len(sim)
     np.testing.assert_allclose(nodes["t"], sim["t"])
+
+
+def test_a_four_bar_writes_its_rocker_and_a_run_up_is_drawn_against_the_crank_speed(tmp_path):
+    out = tmp_path / "fb"
+    assert main(["simulate", "--guide", "circle", "--crank", "runup", "--omega0", "0.2", "--ramp", "1",
+                 "--revolutions", "1", "--out", str(out), *TINY]) == 0
+    sim = check_csv(out / "simulation.csv")
+    assert {"rocker_angle", "transmission_angle", "torque"} <= set(sim.columns)
+    # the run-up's crank speed rises from Omega0 = 0.2 to Omega* = 0.8 over the ramp
+    assert sim["crank_speed"].iloc[0] == pytest.approx(0.2) and sim["crank_speed"].iloc[-1] == pytest.approx(0.8)
+    assert (out / "v_mid.png").stat().st_size > 0
 
 
 def test_the_axial_strain_of_one_averaged_element_is_the_extension(tmp_path):

@@ -12,17 +12,27 @@ def _pyplot():
 
 
 def _title(s):
-    extra = ""
+    """Two lines naming the model and the case; a third for what differs from the paper's slider
+    crank (gravity, guide offset, rotary inertia off, a four-bar's circle guide)."""
+    extra = []
     gravity = tuple(s.get("gravity", (0.0, 0.0)))
     if any(gravity):
-        extra += f", gravity ({gravity[0]:g}, {gravity[1]:g})"
+        extra.append(f"gravity ({gravity[0]:g}, {gravity[1]:g})")
     if s.get("offset", 0.0):
-        extra += f", offset {s['offset']:g}"
+        extra.append(f"offset {s['offset']:g}")
     if not s.get("rotary_inertia", True):
-        extra += ", no rotary inertia"
+        extra.append("no rotary inertia")
+    if s.get("guide") == "circle":
+        extra.append(f"four-bar: rocker c* = {s['c']:g}, ground d* = {s['d']:g}, branch {s['branch']:+d}")
+    speed = f"Omega* = {s['omega']:g}"
+    if s.get("motion") == "runup":
+        speed = f"run-up Omega* {s['omega0']:g} -> {s['omega']:g} over {s['ramp']:g} rev"
+    elif s.get("motion") == "fluctuation":
+        speed = f"Omega* = {s['omega']:g} (1 + {s['fluctuation']:g} sin({s['order']} theta))"
     return (f"approach {s['approach']}, {s['formulation']} formulation, {s['damping']} damping, "
-            f"{s.get('membrane', 'pointwise')} membrane\nOmega* = {s['omega']:g}, eps = {s['eps']:g}, "
-            f"ms* = {s['ms']:g}, mu* = {s['mu']:g}, n = {s['n_elements']}{extra}")
+            f"{s.get('membrane', 'pointwise')} membrane\n{speed}, eps = {s['eps']:g}, "
+            f"ms* = {s['ms']:g}, mu* = {s['mu']:g}, n = {s['n_elements']}"
+            + ("\n" + ", ".join(extra) if extra else ""))
 
 
 def _beyond_theory(ax, eps, v, strain):
@@ -45,29 +55,40 @@ def _beyond_theory(ax, eps, v, strain):
     return f"\nBEYOND THE THEORY: {why} (shaded: |v|/L > {theory.DEFLECTION_LIMIT:g})" if why else ""
 
 
-def plot_deflection(result, path, failure=None, si=None):
-    """v* at x* = 1/2 against t*, written atomically to path (returned).  failure: the
-    ConvergenceError of a run that stopped, whose time is marked on the plot; a response beyond
-    the range of the theory (crankgen.theory) is shaded and named in the title.  si: the result's
-    SI view (crankgen.outputs.SIView): v in mm against t in s."""
+def plot_deflection(result, path, failure=None, si=None, against="t"):
+    """v* at x* = 1/2 against t* (against="t") or against the instantaneous crank speed Omega*
+    (against="crank_speed": a run-up's passage through resonance), written atomically to path
+    (returned).  failure: the ConvergenceError of a run that stopped, marked on the plot; a
+    response beyond the range of the theory (crankgen.theory) is shaded and named in the title.
+    si: the result's SI view (crankgen.outputs.SIView): v in mm against t in s (or rad/s)."""
     from . import theory
     from .io import save_figure
+    if against not in ("t", "crank_speed"):
+        raise ValueError(f"against must be 't' or 'crank_speed', got {against!r}")
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(7, 3.8), constrained_layout=True)
-    if si is None:
-        t, v, tf, unit = result.t, result.v_mid, None if failure is None else failure.time, "t*"
+    view = result if si is None else si
+    v = result.v_mid if si is None else si.v_mid * 1e3
+    if against == "t":
+        x = view.t
+        unit = "t*" if si is None else "t (s)"
+        xf = None if failure is None else (failure.time if si is None else
+                                           failure.time * si.scales.factor("1/omega_b"))
     else:
-        t, v, unit = si.t, si.v_mid * 1e3, "t (s)"
-        tf = None if failure is None else failure.time * si.scales.factor("1/omega_b")
-    ax.plot(t, v, lw=1, color="C0", label="v* (x* = 1/2)" if si is None else "v (x = L/2), mm")
+        x = view.crank_speed
+        unit = ("instantaneous crank speed Omega*" if si is None
+                else "instantaneous crank speed (rad/s)")
+        xf = None if failure is None or not len(x) else x[-1]
+    ax.plot(x, v, lw=1, color="C0", label="v* (x* = 1/2)" if si is None else "v (x = L/2), mm")
     if failure is not None:
         approach = result.settings.get("approach")
         word = (f"run diverged (approach {approach} is ill-posed: strain energy unbounded below)"
                 if theory.ill_posed(approach) else "run failed")
-        ax.axvline(tf, color="C3", ls="--", lw=1,
-                   label=f"{word} at {unit.split()[0]} = {tf:.4g} (step {failure.step})")
-        if len(t):
-            ax.plot(t[-1:], v[-1:], "x", color="C3", ms=9, mew=2, label="last computed state")
+        where = (f"{unit.split()[0]} = {xf:.4g}" if against == "t"
+                 else f"crank speed {xf:.4g}")
+        ax.axvline(xf, color="C3", ls="--", lw=1, label=f"{word} at {where} (step {failure.step})")
+        if len(x):
+            ax.plot(x[-1:], v[-1:], "x", color="C3", ms=9, mew=2, label="last computed state")
         ax.legend(fontsize=8, loc="best")
     ax.set_xlabel(unit)
     ax.set_ylabel("v* at x* = 1/2" if si is None else "v at x = L/2 in the moving frame (mm)")

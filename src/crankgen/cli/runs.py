@@ -147,7 +147,9 @@ def _simulate(args, case, revolutions, out, si=None):
         node_rows = (dict(zip(node_columns, (t, th, *row)))                          # streamed
                      for t, th, row in zip(values[0], values[1], nodes))
         out.wrote(write_csv(out.path("nodes.csv"), node_columns, node_rows))
-    out.wrote(plot_deflection(res, out.path("v_mid.png"), failure=failure, si=view))
+    # a run-up is drawn against the crank speed it passes (its resonances), other runs against time
+    against = "crank_speed" if case.motion == "runup" and getattr(res, "states", None) is not None else "t"
+    out.wrote(plot_deflection(res, out.path("v_mid.png"), failure=failure, si=view, against=against))
     note = _theory_note(float(np.max(defl)) if len(defl) else math.nan,
                         float(np.max(strain)) if len(strain) else math.nan)
     if failure is not None:
