@@ -168,10 +168,10 @@ PARAMETERS = (
               "crank revolutions over which a run-up's speed rises", owner="motion:runup", low=0.0,
               low_open=True, symbol=s.ramp),
     Parameter("fluctuation", "real", 0.1, "fluctuation (speed fluctuation k)",
-              "relative amplitude k of a cyclic speed fluctuation, |k| < 1", owner="motion:fluctuation",
+              "relative amplitude k of a cyclic speed fluctuation", owner="motion:fluctuation",
               low=-1.0, high=1.0, low_open=True, high_open=True, continuable=True, symbol=s.k_fl),
     Parameter("order", "count", 1, "order (speed fluctuation order j)",
-              "order j of a cyclic speed fluctuation (j per revolution), a positive integer",
+              "order j of a cyclic speed fluctuation (j per revolution)",
               owner="motion:fluctuation", low=1, symbol=s.j_fl),
     Parameter("theta0", "real", 0.0, "theta0 (crank angle at t = 0, rad)",
               "the crank angle at t = 0 (rad, counter-clockwise from the X axis); the rod starts in "
