@@ -8,7 +8,7 @@ import hashlib
 from functools import lru_cache
 from importlib import resources
 
-VERSION = "0.1.0"
+VERSION = "0.2.0"
 
 
 @lru_cache(maxsize=None)
