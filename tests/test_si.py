@@ -125,13 +125,15 @@ def test_cli_si_file_in_and_si_columns_out(tmp_path):
     rc = cli_main(["simulate", "--si", str(path), "--approach", "C", "--elements", "4", "--steps-per-rev", "50",
                    "--revolutions", "0.5", "--out", str(out), "--quiet", "--nodes"])
     assert rc == 0
-    header = (out / "simulation.csv").read_text().splitlines()[0].split(",")
-    assert header == ["t_s", "theta_rad", "v_mid_m", "u_end_m", "extension", "slider_position_m",
-                      "chord_angle_rad", "status"]
-    data = np.loadtxt(out / "simulation.csv", delimiter=",", skiprows=1, usecols=range(7))
-    assert data[-1, 0] == pytest.approx(0.5 * 2 * math.pi / OMEGA, rel=1e-12)
-    assert data[0, 5] == pytest.approx(A_CRANK + L, rel=1e-12)
-    assert data[-1, 5] == pytest.approx(L - A_CRANK, rel=1e-3)          # half a turn: the pin at -a
+    import pandas
+    data = pandas.read_csv(out / "simulation.csv")
+    assert list(data.columns[:5]) == ["t_s", "theta_rad", "v_mid_m", "u_end_m", "extension"]
+    assert {"slider_position_m", "chord_angle_rad", "torque_N_m", "pin_force_x_N", "end_force_y_N",
+            "slider_velocity_m_per_s", "crank_speed_rad_per_s"} <= set(data.columns)
+    assert data["t_s"].iloc[-1] == pytest.approx(0.5 * 2 * math.pi / OMEGA, rel=1e-12)
+    assert data["crank_speed_rad_per_s"].to_numpy() == pytest.approx(OMEGA, rel=1e-12)
+    assert data["slider_position_m"].iloc[0] == pytest.approx(A_CRANK + L, rel=1e-12)
+    assert data["slider_position_m"].iloc[-1] == pytest.approx(L - A_CRANK, rel=1e-3)   # half a turn: the pin at -a
     proc = subprocess.run([sys.executable, "-m", "crankgen.cli", "simulate", "--si", str(path), "--eps", "0.1",
                            "--out", str(tmp_path / "x"), "--quiet"], capture_output=True, text=True)
     assert proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1 and "--eps" in proc.stderr
