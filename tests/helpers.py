@@ -54,3 +54,14 @@ def check_csv(path):
     for c in numeric:
         assert pd.api.types.is_numeric_dtype(frame[c]), (path, c, frame[c].dtype)
     return frame
+
+
+def fake_steady_states(calls):
+    """Instant synthetic steady_states (for sweep plumbing tests) that records the cases it is given."""
+    from crankgen import SteadyState
+
+    def fake(cases, tol=1e-8, max_revolutions=400, progress=None, parallel=None):
+        cases = list(cases)
+        calls.extend(cases)
+        return [SteadyState(c, "periodic", 2 * c.omega, c.omega, 3, 0, 1e-9, "", 0.01) for c in cases]
+    return fake

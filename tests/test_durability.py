@@ -17,6 +17,7 @@ import pytest
 import crankgen
 from crankgen import Case, ParameterError, SteadyState, engine, sweep
 from crankgen.provenance import code_version
+from helpers import fake_steady_states as _fake_states
 
 sweep_mod = importlib.import_module("crankgen.sweeps")
 
@@ -35,15 +36,6 @@ def _strict(line):
     def refuse(name):
         raise ValueError(f"non-standard JSON constant {name}")
     return json.loads(line, parse_constant=refuse)
-
-
-def _fake_states(calls):
-    """Instant synthetic steady_states that records the cases it is given."""
-    def fake(cases, tol=1e-8, max_revolutions=400, progress=None, parallel=None):
-        cases = list(cases)
-        calls.extend(cases)
-        return [SteadyState(c, "periodic", 2 * c.omega, c.omega, 3, 0, 1e-9, "", 0.01) for c in cases]
-    return fake
 
 
 # --- D1: a killed pool worker is not a failed case ---------------------------------------------

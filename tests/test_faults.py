@@ -22,6 +22,7 @@ import pytest
 import crankgen
 from crankgen import Case, ParameterError, SteadyState, sweep
 from crankgen.cli import main
+from helpers import fake_steady_states as _fake_states
 
 sweep_mod = importlib.import_module("crankgen.sweeps")
 TINY = ["--elements", "2", "--steps-per-rev", "20"]
@@ -44,14 +45,6 @@ def one_line_error(capsys, *words):
         assert w in lines[0], lines[0]
     assert ".tmp" not in lines[0], lines[0]
     return lines[0]
-
-
-def _fake_states(calls):
-    def fake(cases, tol=1e-8, max_revolutions=400, progress=None, parallel=None):
-        cases = list(cases)
-        calls.extend(cases)
-        return [SteadyState(c, "periodic", 2 * c.omega, c.omega, 3, 0, 1e-9, "", 0.01) for c in cases]
-    return fake
 
 
 def _device(path, major, minor):
