@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen import Case, ParameterError, SteadyState, engine, sweep
+from crankgen import Case, ParameterError, engine, sweep
 from crankgen.provenance import code_version
 from helpers import fake_steady_states as _fake_states
 

@@ -20,7 +20,7 @@ import warnings
 import pytest
 
 import crankgen
-from crankgen import Case, ParameterError, SteadyState, sweep
+from crankgen import Case, ParameterError, sweep
 from crankgen.cli import main
 from helpers import fake_steady_states as _fake_states
 
