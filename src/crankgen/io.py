@@ -231,13 +231,14 @@ def write_csv(path, columns, rows, overwrite=True):
 
 
 def save_figure(fig, path, overwrite=True, dpi=120):
-    """Save a matplotlib figure atomically as PNG (and close it)."""
+    """Save a matplotlib figure atomically as PNG (and close it when pyplot made it)."""
     try:
         return atomic_write(path, lambda fh: fig.savefig(fh, format="png", dpi=dpi), mode="wb",
                             overwrite=overwrite)
     finally:
-        import matplotlib.pyplot as plt
-        plt.close(fig)
+        import sys
+        if "matplotlib.pyplot" in sys.modules:
+            sys.modules["matplotlib.pyplot"].close(fig)
 
 
 def existing_outputs(folder, names):

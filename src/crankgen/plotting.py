@@ -4,11 +4,24 @@ measured, so that nothing is clipped and no legend or label covers data or anoth
 import numpy as np
 
 
+class _Figures:
+    """plt.subplots without pyplot: a matplotlib Figure drawn by the Agg canvas (no GUI backend,
+    no global figure registry to close, a third of a second less to import)."""
+
+    FIGURE_KEYS = ("figsize", "dpi", "constrained_layout", "layout", "facecolor")
+
+    @classmethod
+    def subplots(cls, nrows=1, ncols=1, **kwargs):
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        from matplotlib.figure import Figure
+
+        fig = Figure(**{k: kwargs.pop(k) for k in cls.FIGURE_KEYS if k in kwargs})
+        FigureCanvasAgg(fig)
+        return fig, fig.subplots(nrows, ncols, **kwargs)
+
+
 def _pyplot():
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    return plt
+    return _Figures
 
 
 def _title(s):
@@ -128,11 +141,6 @@ def plot_orbit(state, path):
 # --- helpers for multi-panel figures (crankgen reproduce) -------------------------------------
 
 APPROACH_COLORS = {"A": "C0", "B": "C1", "C": "C3"}
-
-
-def pyplot():
-    """matplotlib.pyplot with the Agg backend."""
-    return _pyplot()
 
 
 def panels(rows, cols, width=6.0, height=3.4, space_below=0.0, top_margin=0.6, **kwargs):

@@ -51,8 +51,8 @@ def _add_branch_model_options(p):
     """Model options of continue and poincare (the continued parameter's own option is ignored)."""
     g = _add_model_options(p, integrator=False)
     g.title = "model (the option of the continued parameter is replaced by its range)"
-    from ..bifurcation.mechanism import PARAMETERS
-    g.add_argument("--parameter", choices=PARAMETERS, default="omega",
+    from .. import schema
+    g.add_argument("--parameter", choices=schema.CONTINUABLE, default="omega",
                    help="the parameter varied (default omega)")
     g.add_argument("--from", dest="start", type=float, required=True, help="first value of the parameter")
     g.add_argument("--to", dest="stop", type=float, required=True, help="last value of the parameter")
