@@ -42,7 +42,7 @@ class MechanismMap(Map):
             raise ParameterError(f"continuation needs integrator='newton' (the converged step map "
                                  f"is differentiated), got {case.integrator!r}")
         self.case, self.parameter, self.dp_step, self.derivative = case, parameter, dp_step, derivative
-        b = engine.Batch([case], entries=("march", "revolution"))
+        b = self._template = engine.Batch([case], entries=("march", "revolution"))
         self.N, self.spr = b.N, b.steps_per_rev
         self.s = np.concatenate([b.scales[0], b.scales[0]])
         self.dim = 2 * self.N
@@ -57,7 +57,8 @@ class MechanismMap(Map):
         if b is None:
             if len(self._cache) > 16:
                 self._cache.clear()
-            b = self._cache[key] = engine.Batch([self.case_at(v) for v in values])
+            b = self._cache[key] = engine.Batch([self.case_at(v) for v in values], like=self._template,
+                                                entries=("march", "revolution"))
         return b
 
     def _check(self, status, p, what):

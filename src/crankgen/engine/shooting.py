@@ -267,8 +267,10 @@ def shoot(batch, X0, step0=0, active=None, parallel=None, beta=0.25, gamma=0.5, 
         if not jacobian:
             raise ValueError("the parameter derivative comes with the Jacobian (jacobian=True)")
         minus, plus, h = parameter
-        if len(minus) != B or len(plus) != B or minus.N != N or plus.N != N:
-            raise ValueError("the perturbed batches must match the batch case for case")
+        if (len(minus) != B or len(plus) != B or minus.N != N or plus.N != N
+                or not np.array_equal(minus.records.select, batch.records.select)
+                or not np.array_equal(plus.records.select, batch.records.select)):
+            raise ValueError("the perturbed batches must match the batch case for case (same models)")
         minus, plus, h = minus.records, plus.records, float(h)
     else:
         minus, plus, h = batch.records, batch.records, 1.0
