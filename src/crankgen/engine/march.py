@@ -15,6 +15,7 @@ import numpy as np
 from .. import kinematics as _kinematics
 from .. import newton
 from .._generated import shape as _shape
+from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
 from .compiled import call, jit
 from .elements import kinematics, step_outputs
 from .kernels import build_items, select_rows, tables
@@ -110,8 +111,10 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, 
     """Advance cases lo..hi-1 of the batch n_steps in lock step (see march)."""
     n = mesh.dofs.shape[0]
     N = D0.shape[1]
+    kern, cases, mesh = borrowed_kernels(kern), borrowed_cases(cases), borrowed_mesh(mesh)    # the caller's
     for b in range(lo, hi):
-        w = make_work(n, N, mesh.kb)
+        owned = make_work(n, N, mesh.kb)
+        w = borrowed_work(owned)
         sel, params = cases.select[b], cases.params[b]
         dt = cases.dt[b]
         d, v, acc = D0[b].copy(), V0[b].copy(), A0[b].copy()
@@ -169,6 +172,7 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, 
             D1[b, i] = d[i]
             V1[b, i] = v[i]
             A1[b, i] = acc[i]
+        keep(owned)
 
 
 @jit

@@ -13,6 +13,7 @@ import numpy as np
 
 from .. import newton
 from .banded import (KB_FIXED, assemble_band, assemble_vector, band_factor, band_lu_solve, factor_fixed)
+from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
 from .compiled import jit
 from .elements import FULL, RESIDUAL, element_loop, kinematics, step_outputs
 from .march import parallel_slices
@@ -115,12 +116,15 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
     ncol = 2 * N + (1 if with_p else 0)
     width = (ncol + PAD - 1) // PAD * PAD if with_j else 0
     P = 2 * N                                   # the parameter column
+    kern, cases, mesh = borrowed_kernels(kern), borrowed_cases(cases), borrowed_mesh(mesh)    # the caller's
+    minus, plus = borrowed_cases(minus), borrowed_cases(plus)
     dofs, kb, l = mesh.dofs, mesh.kb, mesh.l
     beta, gamma = scheme.beta, scheme.gamma
     for b in range(lo, hi):
         if not active[b]:
             continue
-        w = make_work(n, N, kb)
+        owned = make_work(n, N, kb)
+        w = borrowed_work(owned)
         sel, coef, params = cases.select[b], cases.coef[b], cases.params[b]
         dt = cases.dt[b]
         ddt = (plus.dt[b] - minus.dt[b]) / (2.0 * h) if with_p else 0.0
@@ -231,6 +235,7 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
                 for i in range(N):
                     XR[b, r, i] = d[i]
                     XR[b, r, N + i] = v[i]
+        keep(owned)
         if not ok:
             continue
         for i in range(N):
