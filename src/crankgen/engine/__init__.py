@@ -10,7 +10,8 @@ Split by concern:
 - banded.py: assembly and banded LU solvers;
 - step.py: one Newton-Newmark step (decisions shared with newmark.py through newton.py);
 - march.py: Batch (cases packed as records) and march, lock-step batches on every core;
-- shooting.py: the revolution map and its exact linearization (in the state and, optionally, a parameter).
+- shooting.py: the revolution map and its exact linearization (in the state and, optionally, a parameter);
+- borrow.py: arrays without a memory owner for the hot loops (no atomic reference counting).
 The NumPy implementation (model.py, newmark.py) stays the reference: tests check that both give
 the same numbers and the same iteration counts.
 """
