@@ -87,6 +87,9 @@ class MechanismMap(Map):
         if dp and self.derivative == "exact":
             h = self.dp_step * max(abs(p), 0.01)
             parameter = (self._batch(("one", p - h), [p - h]), self._batch(("one", p + h), [p + h]), h)
+            here = self._batch(("one", p), [p]).records.select
+            if any(not np.array_equal(b.records.select, here) for b in parameter[:2]):
+                parameter = None        # a term family switches at p (its coefficient vanishes): marches
         X, r = self._shoot(y, p, period, True, parameter)
         J = r.J[0]
         if not np.all(np.isfinite(J)):
