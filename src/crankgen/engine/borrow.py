@@ -11,16 +11,21 @@ arrays of a case, whose owning record stays bound until the case is done (`keep(
 use of the borrowed ones)."""
 
 from numba.core import types
-from numba.core.extending import intrinsic
+from numba.core.extending import intrinsic, overload
 from numba.np.arrayobj import make_array, populate_array
 
 from .compiled import jit
 from .records import Cases, Kernels, MeshData, Work
 
 
+def borrowed(a):
+    """The array a without its memory owner (module docstring); with numba switched off
+    (NUMBA_DISABLE_JIT=1), a itself."""
+    return a
+
+
 @intrinsic
-def borrowed(typingctx, a):
-    """The array a without its memory owner (module docstring)."""
+def _borrowed(typingctx, a):
     if not isinstance(a, types.Array):
         return None
 
@@ -32,6 +37,12 @@ def borrowed(typingctx, a):
         return out._getvalue()
 
     return a(a), codegen
+
+
+@overload(borrowed, jit_options={"nogil": True})
+def _borrowed_overload(a):
+    if isinstance(a, types.Array):
+        return lambda a: _borrowed(a)
 
 
 @jit(python=False)
