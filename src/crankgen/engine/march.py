@@ -60,7 +60,7 @@ class Batch:
             starts = [0] + [b for b in range(1, len(cases)) if not np.array_equal(select[b], select[b - 1])]
             self.runs = [(kernels_table if kernels_table is not None else tables(select[lo]), lo, hi)
                          for lo, hi in zip(starts, starts[1:] + [len(cases)])]
-        printed = np.array([c.selection.printed_iteration and c.integrator == "one-pass" for c in cases])
+        printed = np.array([c.integrator == "one-pass" and c.selection.printed_iteration for c in cases])
         self.kernels = self.runs[0][0]
         self.records = Cases(
             select, np.array([c.coefficients for c in cases], dtype=float),
