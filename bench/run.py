@@ -108,6 +108,7 @@ def kernel_vs_quadrature(n=16, repeats=200):
     t_quad = best_of(lambda: [quadrature() for _ in range(repeats)]) / repeats
     # compiled kernels: the engine's whole element loop (same terms + constraint and slider)
     import numba
+    from crankgen.engine.borrow import borrowed_kernels, borrowed_work, keep
     from crankgen.engine.elements import element_loop
     case = Case(n_elements=n, damping="kelvin-voigt")
     batch = engine.Batch([case])
@@ -118,9 +119,11 @@ def kernel_vs_quadrature(n=16, repeats=200):
     args = (batch.kernels, rec.select[0], rec.coef[0], rec.params[0], mesh.dofs, mesh.l, d, w)
 
     @numba.njit
-    def loop(reps, kern, sel, coef, params, dofs, l, d, w):
+    def loop(reps, kern, sel, coef, params, dofs, l, d, owned):
+        w, kern = borrowed_work(owned), borrowed_kernels(kern)       # as the engine's loops bind them
         for _ in range(reps):
             element_loop(engine.FULL, kern, sel, coef, params, False, dofs, l, d, d, d, 0.0, 0.0, w)
+        keep(owned)
 
     loop(1, *args)
     reps = 20000
