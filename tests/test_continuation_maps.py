@@ -108,3 +108,55 @@ def test_settings_are_checked():
         continue_map(logistic(), [0.6], 2.5, 3.0, Settings(ds=1.0, ds_max=0.5))
     with pytest.raises(ParameterError, match="direction"):
         sweep_map(logistic(), [3.0], [0.5], "sideways")
+
+
+@pytest.mark.parametrize("corrector, predictor", [("newton", "tangent"), ("newton", "quadratic"),
+                                                  ("broyden", "tangent"), ("broyden", "quadratic")])
+def test_every_corrector_and_predictor_finds_the_known_points(corrector, predictor):
+    s = Settings(corrector=corrector, predictor=predictor)
+    pd = {p.period: p for p in continue_map(logistic(), [0.6], 2.5, 3.56, s).special_points
+          if p.kind == "period-doubling"}
+    assert abs(pd[1].parameter - 3.0) < 1e-6 and abs(pd[2].parameter - (1 + math.sqrt(6))) < 1e-6
+    (fold,) = continue_map(FunctionMap(lambda x, p: (x + p - x**2, 1 - 2 * x, np.ones(1)), 1, "p"),
+                           [0.5], 0.25, -0.5, s).special_points
+    assert fold.kind == "fold" and abs(fold.parameter) < 1e-6
+    (ns,) = continue_map(delayed_logistic(), [0.5, 0.5], 1.5, 2.3, s).special_points
+    assert ns.kind == "neimark-sacker" and abs(ns.parameter - 2.0) < 1e-6
+
+
+def test_broyden_corrector_evaluates_the_jacobians_less_often():
+    """The quasi-Newton corrector iterates on the map's values (Map.value) and evaluates the
+    Jacobians about once per point; Newton evaluates them at every iterate."""
+    from crankgen.bifurcation.core import Continuer
+
+    calls = {}
+
+    class Counted(FunctionMap):
+        def evaluate(self, x, p, period=1, dp=True):
+            if dp:                          # (the orbits of accepted points are evaluated without)
+                calls["jacobians"] = calls.get("jacobians", 0) + 1
+            return super().evaluate(x, p, period, dp)
+
+        def value(self, x, p, period=1):
+            calls["values"] = calls.get("values", 0) + 1
+            return FunctionMap.evaluate(self, x, p, period, False)[0]
+
+    counts = {}
+    for corrector in ("newton", "broyden"):
+        calls.clear()
+        fmap = Counted(lambda x, r: (r * x * (1 - x), r * (1 - 2 * x), x * (1 - x)), 1, "r")
+        c = Continuer(fmap, 2.5, 3.4, Settings(corrector=corrector))
+        d = c.diagram(np.array([0.6]), 2.5, 1.0)
+        assert c.evaluations == calls.get("jacobians", 0) and c.values == calls.get("values", 0)
+        counts[corrector] = (dict(calls), sum(len(b) for b in d.branches))
+    (newton, points_n), (broyden, points_b) = counts["newton"], counts["broyden"]
+    assert "values" not in newton and broyden["values"] > 0
+    assert broyden["jacobians"] / points_b < 0.8 * newton["jacobians"] / points_n
+
+
+def test_corrector_and_predictor_names_are_checked():
+    from crankgen import ParameterError
+    with pytest.raises(ParameterError, match="corrector"):
+        Settings(corrector="secant").check()
+    with pytest.raises(ParameterError, match="predictor"):
+        Settings(predictor="cubic").check()

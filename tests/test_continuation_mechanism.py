@@ -100,3 +100,57 @@ def test_command_line(tmp_path):
     rows = (tmp_path / "p" / "poincare_summary.csv").read_text().splitlines()
     assert len(rows) == 1 + 2 * 3                          # both directions by default
     assert (tmp_path / "p" / "poincare.png").stat().st_size > 0
+
+
+@pytest.mark.parametrize("parameter, value", [("omega", 0.9), ("eps", 0.02), ("offset", 0.05), ("mu", 0.3)])
+def test_exact_parameter_derivative_matches_central_differences(parameter, value):
+    """dP^2/dp of the map (the sensitivity column of the linearized steps) against a Richardson-
+    extrapolated central difference of the map itself (marched with Newton to 1e-14)."""
+    from dataclasses import replace
+
+    from crankgen.bifurcation import MechanismMap
+
+    case = Case(**{**MODEL, "n_elements": 3, "steps_per_rev": 30}, **{parameter: value})
+    fmap = MechanismMap(case, parameter)
+    warm = engine.march(engine.Batch([case]), 60)
+    X = np.concatenate([warm.D[0], warm.V[0]])
+    P, jy, jp = fmap.evaluate(X / fmap.s, value, 2)
+    fd = []
+    for h in (4e-4 * abs(value), 2e-4 * abs(value)):
+        Y = [engine.shoot(engine.Batch([replace(case, **{parameter: q})]), X[None], revolutions=2, tol=1e-14,
+                          max_iter=60, jacobian=False).X1[0] / fmap.s for q in (value - h, value + h)]
+        fd.append((Y[1] - Y[0]) / (2 * h))
+    richardson = (4 * fd[1] - fd[0]) / 3
+    scale = np.max(np.abs(richardson))
+    assert scale > 0 and np.max(np.abs(jp - richardson)) < 1e-6 * scale
+
+
+def test_shooting_marches_the_same_steps_as_march():
+    """engine.shoot (with and without its linearization) takes the very steps of engine.march: the
+    same states and outputs, so the orbit of a map evaluation is the marched orbit."""
+    case = _case(0.95)
+    b = engine.Batch([case])
+    warm = engine.march(b, 80)
+    X0 = np.concatenate([warm.D, warm.V], axis=1)
+    N, spr = b.N, b.steps_per_rev
+    m = engine.march(b, 2 * spr, D0=X0[:, :N], V0=X0[:, N:], keep_history=True)
+    for jacobian in (False, True):
+        r = engine.shoot(b, X0, revolutions=2, jacobian=jacobian)
+        assert np.array_equal(r.y, m.y)
+        assert np.array_equal(r.X1, np.concatenate([m.D, m.V], axis=1))
+        hist = np.concatenate([m.D_history, m.V_history], axis=2)[:, ::spr]
+        assert np.array_equal(r.states, hist)
+
+
+def test_former_corrector_and_derivative_find_the_same_special_points(diagram):
+    """Newton with the Jacobians at every iterate, the tangent predictor and dP/dp by differences of
+    marches (the former method) find the special points of the default method."""
+    old = crankgen.continuation(crankgen.Mechanism(eps=0.01), "omega", 0.8, 1.2, max_period=2, corrector="newton",
+                                predictor="tangent", derivative="central", **MODEL)
+    assert old.info["map_values"] == 0 and diagram.info["map_values"] > 0
+    assert [(s.kind, s.period) for s in old.special_points] == [(s.kind, s.period) for s in diagram.special_points]
+    for a, b in zip(old.special_points, diagram.special_points):
+        assert abs(a.parameter - b.parameter) < 1e-6
+        assert abs(a.amplitude - b.amplitude) < 1e-6 * abs(a.amplitude)
+        target = {"fold": 1.0, "period-doubling": -1.0}[a.kind]
+        assert abs(a.multiplier - target) < 1e-6 and abs(b.multiplier - target) < 1e-6

@@ -221,6 +221,22 @@ def test_lock_step_batch_equals_single_runs_and_isolates_failures():
         assert np.array_equal(single.y[0], batch.y[i])
 
 
+def test_a_batch_like_another_shares_its_mesh_and_tables_and_marches_the_same():
+    """Batch(cases, like=b) (the continuation's batch per parameter value) reuses b's mesh and kernel
+    tables when the cases are of b's model and mesh, and is built anew otherwise."""
+    base = engine.Batch([Case(omega=0.5, n_elements=4, steps_per_rev=50)])
+    cases = [Case(omega=0.7, n_elements=4, steps_per_rev=50), Case(omega=0.9, n_elements=4, steps_per_rev=50)]
+    like, fresh = engine.Batch(cases, like=base), engine.Batch(cases)
+    assert like.meshdata is base.meshdata and like.kernels is base.kernels
+    for a, b in zip(like.records, fresh.records):
+        assert np.array_equal(a, b)
+    assert np.array_equal(engine.march(like, 60).y, engine.march(fresh, 60).y)
+    other = engine.Batch([Case(omega=0.7, n_elements=4, steps_per_rev=50, approach="C")], like=base)
+    assert not np.array_equal(other.records.select[0], base.records.select[0])
+    assert other.kernels is not base.kernels
+    assert engine.Batch([Case(omega=0.7, n_elements=5, steps_per_rev=50)], like=base).N != base.N
+
+
 def test_revolution_jacobian_matches_finite_differences():
     case = Case(omega=0.8, n_elements=3, steps_per_rev=30, mu=0.2, damping="paper", membrane="pointwise")
     b = engine.Batch([case])

@@ -8,7 +8,7 @@ import numpy as np
 from ..cases import run_case
 from ..errors import CrankgenError, ParameterError
 from ..validation import choice, in_range, integer
-from .core import Continuer, Settings
+from .core import CORRECTORS, PREDICTORS, Continuer, Settings
 from .mechanism import PARAMETERS, MechanismMap
 
 
@@ -26,7 +26,8 @@ def _check_progress(progress):
 
 def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, model=None, max_period=4, ds=0.05,
                  ds_min=1e-4, ds_max=100.0, dp_max=None, max_points=400, tol=1e-9, switch_step=0.05,
-                 case=None, progress=None, **fields):
+                 case=None, progress=None, corrector="broyden", predictor="quadratic", derivative="exact",
+                 **fields):
     """Follow the periodic response of the mechanism as `parameter` (omega, eps, ms, mu, a or offset) goes
     from start to stop, by pseudo-arclength continuation of the fixed points of the crank-revolution
     map, and return a BifurcationDiagram: branches (period, parameter, amplitude = max |v*(1/2)|
@@ -35,7 +36,11 @@ def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, model=Non
     doublings.  The case as in steady_state (a Mechanism with the run's fields and model=, or
     case=Case(...)); the value of `parameter` given among them is replaced by start.  Steps ds, ds_min, ds_max are arclengths in the metric
     |dy|^2 / dim + dp^2, y the state in v*-like units; no step changes the parameter by more than
-    dp_max (default |stop - start| / 50).  progress(text) receives progress lines."""
+    dp_max (default |stop - start| / 50).  progress(text) receives progress lines.
+    corrector ("broyden" or "newton"), predictor ("quadratic" or "tangent") and derivative
+    ("exact" or "central", the map's parameter derivative) select the methods
+    (bifurcation/core.py, mechanism.py): the defaults are the fast ones; "newton", "tangent" and
+    "central" together are the former method, kept as a baseline."""
     _check_progress(progress)
     start = in_range("start", start)
     stop = in_range("stop", stop)
@@ -50,9 +55,11 @@ def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, model=Non
                         max_points=integer("max_points", max_points, 2),
                         tol=in_range("tol", tol, 0, None, True),
                         max_period=integer("max_period", max_period, 1),
-                        switch_step=in_range("switch_step", switch_step, 0, None, True)).check()
+                        switch_step=in_range("switch_step", switch_step, 0, None, True),
+                        corrector=choice("corrector", corrector, CORRECTORS),
+                        predictor=choice("predictor", predictor, PREDICTORS)).check()
     t0 = time.perf_counter()
-    fmap = MechanismMap(c0, parameter)
+    fmap = MechanismMap(c0, parameter, derivative=choice("derivative", derivative, ("exact", "central")))
     from ..steady import steady_states
     first = steady_states([c0])[0]
     if first.state is None:
@@ -63,7 +70,8 @@ def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, model=Non
     info = c0.as_dict()
     info.pop(parameter)
     info.update(parameter=parameter, start=start, stop=stop, max_period=max_period,
-                map_evaluations=cont.evaluations, wall_time=time.perf_counter() - t0)
+                corrector=corrector, predictor=predictor, derivative=derivative,
+                map_evaluations=cont.evaluations, map_values=cont.values, wall_time=time.perf_counter() - t0)
     diagram.info = info
     return diagram
 

@@ -1,9 +1,20 @@
 """Pseudo-arclength continuation of the fixed points of P^k for a map x -> P(x, p) (maps.Map).
 
 Unknown z = (x, p); metric <a, b> = a_x . b_x / dim + a_p b_p.  A step predicts z + ds t along the
-unit tangent t and corrects with Newton on
+unit tangent t (plus a curvature term: _predict) and corrects on
     P^k(x, p) - x = 0,   <t, z - z_pred> = 0
-(bordered Jacobian [[dP/dx - I, dP/dp], [t_x / dim, t_p]]).  The step grows after easy corrections,
+(bordered Jacobian [[dP/dx - I, dP/dp], [t_x / dim, t_p]]) with one of two correctors:
+- "broyden" (default): quasi-Newton from the Jacobians of the accepted point the step starts from
+  (or of the prediction where there is none), with Broyden's rank-one update after each iteration,
+  which evaluates P^k alone (for the mechanism a march, several times cheaper than P^k with its
+  Jacobians); the Jacobians are refreshed at the iterate when an iteration contracts less than
+  REFRESH_RATE-fold, and evaluated at the converged point (its tangent, multipliers and test
+  functions are those of the exact Jacobians there): at the iterate expected to be the last, or
+  once more after it converged;
+- "newton": the Jacobians at every iterate (the former corrector, kept as a baseline).
+Both accept a point on the same residual test, so they find the same points to within the
+tolerance, and the special points, located on the exact Jacobians, to within the location's.
+The step grows after easy corrections,
 shrinks after hard ones and is halved on failure or on a sharp turn of the tangent (backtracking)
 down to ds_min; no step changes p by more than dp_max.  The tangent solves
 [[dP/dx - I, dP/dp], [t_old]] t = (0, 1), which keeps its orientation through folds.  A branch ends
@@ -11,7 +22,9 @@ on the ends of the parameter range (its last point exactly there), after max_poi
 step falls below ds_min (the reason is kept in Branch.stop_reason).
 
 Test functions between consecutive points (each is located by the Illinois false-position method on
-the arclength from the earlier point, to ~1e-9 in the test function):
+the arclength from the earlier point, to ~1e-9 in the test function, or, once it is below 1e-6, until
+STALLED iterations in a row fail to halve its smallest value: its noise floor, set by the
+corrector's tolerance, is reached):
 - fold: t_p, the parameter component of the tangent, changes sign (turning point) and so does
   det(dP/dx - I) (a real multiplier through +1); located on the latter, or on t_p if that fails;
 - period-doubling: (mu_c + 1) times the sign of prod(mu + 1) over the others, mu_c the real
@@ -39,6 +52,13 @@ from .maps import MapError
 from ..errors import CrankgenError, ParameterError
 
 KINDS = ("fold", "period-doubling", "neimark-sacker")
+CORRECTORS = ("broyden", "newton")
+PREDICTORS = ("quadratic", "tangent")
+STALLED = 4              # location iterations without halving |test function| (its noise floor) ...
+NOISE = 1e3              # ... once it is below NOISE locate_tol
+REFRESH_RATE = 0.5       # "broyden": refresh the Jacobians when |residual| falls less than this
+# iterations of an easy (the step grows) and of a hard correction (the step shrinks), per corrector
+EASY, HARD = {"broyden": 4, "newton": 2}, {"broyden": 8, "newton": 5}
 
 
 @dataclass
@@ -50,7 +70,10 @@ class Settings:
     ds_max: float = 0.05         # largest step
     max_points: int = 500        # per branch
     tol: float = 1e-9            # max |P^k(x) - x| / (1 + max |x|) of a converged point
-    max_newton: int = 8          # corrector iterations
+    max_newton: int = 8          # corrector iterations ("newton")
+    corrector: str = "broyden"   # or "newton" (module docstring)
+    max_broyden: int = 16        # corrector iterations ("broyden")
+    predictor: str = "quadratic"  # or "tangent" (_predict)
     max_turn: float = 0.5        # largest angle (rad) between consecutive tangents
     max_period: int = 4          # switch at period doublings up to this period
     switch_step: float = 0.02    # h of the branch switch, in the metric
@@ -66,7 +89,11 @@ class Settings:
         if self.ds_min > self.ds or self.ds > self.ds_max:
             raise ParameterError(f"the steps must satisfy ds_min <= ds <= ds_max, got "
                                  f"{self.ds_min:g}, {self.ds:g}, {self.ds_max:g}")
-        for name, low in (("max_points", 2), ("max_newton", 1), ("max_period", 1)):
+        if self.predictor not in PREDICTORS:
+            raise ParameterError(f"predictor must be one of {', '.join(PREDICTORS)}, got {self.predictor!r}")
+        if self.corrector not in CORRECTORS:
+            raise ParameterError(f"corrector must be one of {', '.join(CORRECTORS)}, got {self.corrector!r}")
+        for name, low in (("max_points", 2), ("max_newton", 1), ("max_period", 1), ("max_broyden", 1)):
             v = getattr(self, name)
             if not isinstance(v, int) or isinstance(v, bool) or v < low:
                 raise ParameterError(f"{name} must be an integer >= {low}, got {v!r}")
@@ -114,17 +141,18 @@ class Continuer:
         self.lo, self.hi = min(p_lo, p_hi), max(p_lo, p_hi)
         self.w = 1.0 / fmap.dim
         self.log = log or (lambda text: None)
-        self.evaluations = 0
+        self.evaluations = 0         # of P^k with its Jacobians
+        self.values = 0              # of P^k alone
 
     # -- linear algebra ------------------------------------------------------------------------
     def _dot(self, a, b):
         return self.w * float(np.dot(a[:-1], b[:-1])) + float(a[-1] * b[-1])
 
-    def _bordered(self, pt, row):
+    def _bordered(self, jx, jp, row):
         n = self.map.dim
         A = np.empty((n + 1, n + 1))
-        A[:n, :n] = pt.jx - np.eye(n)
-        A[:n, n] = pt.jp
+        A[:n, :n] = jx - np.eye(n)
+        A[:n, n] = jp
         A[n, :n] = self.w * row[:-1]
         A[n, n] = row[-1]
         return A
@@ -132,31 +160,99 @@ class Continuer:
     def _tangent(self, pt, t_old):
         rhs = np.zeros(self.map.dim + 1)
         rhs[-1] = 1.0
-        t = np.linalg.solve(self._bordered(pt, t_old), rhs)
+        t = np.linalg.solve(self._bordered(pt.jx, pt.jp, t_old), rhs)
         return t / math.sqrt(self._dot(t, t))
 
     # -- corrector -----------------------------------------------------------------------------
-    def correct(self, z_pred, t, period, max_jump=math.inf):
-        """Newton on P^k(x) - x = 0, <t, z - z_pred> = 0 from z_pred; a converged _Point or _Failed."""
+    def correct(self, z_pred, t, period, max_jump=math.inf, near=None):
+        """Correct z_pred onto the branch (P^k(x) - x = 0, <t, z - z_pred> = 0); a converged
+        _Point or _Failed.  near: Jacobians (dP/dx, dP/dp) near z_pred (those of an accepted point
+        close by, or their extrapolation: _predict), which start the "broyden" corrector (without
+        them it starts from the Jacobians at z_pred)."""
+        if self.s.corrector == "newton":
+            return self._newton(z_pred, t, period, max_jump)
+        return self._broyden(z_pred, t, period, max_jump, near)
+
+    def _evaluate(self, z, period, jacobians=True):
+        try:
+            if jacobians:
+                out = self.map.evaluate(z[:-1], z[-1], period)
+                self.evaluations += 1
+            else:
+                out = self.map.value(z[:-1], z[-1], period)
+                self.values += 1
+        except (MapError, CrankgenError, np.linalg.LinAlgError) as exc:
+            raise _Failed(str(exc))
+        return out
+
+    def _residual(self, z, P, best):
+        r = P - z[:-1]
+        res = float(np.max(np.abs(r))) / (1.0 + float(np.max(np.abs(z[:-1]))))
+        if not math.isfinite(res) or res > 1e3 * min(best, 1.0):
+            raise _Failed(f"corrector diverged (residual {res:.3g})")
+        return r, res
+
+    def _check_jump(self, z, z_pred, max_jump):
+        d = z - z_pred
+        dist = math.sqrt(max(self._dot(d, d), 0.0))
+        if dist > max_jump:
+            raise _Failed(f"corrector left the neighbourhood of the prediction ({dist:.3g} > {max_jump:.3g})")
+
+    def _broyden(self, z_pred, t, period, max_jump, near):
+        z = np.array(z_pred, dtype=float)
+        A = None if near is None else self._bordered(near[0], near[1], t)
+        fresh = A is None                   # evaluate the Jacobians at this iterate
+        best = math.inf
+        F_old = dz = None
+        res_old = math.inf
+        for it in range(self.s.max_broyden + 1):
+            if fresh:
+                P, jx, jp = self._evaluate(z, period)
+            else:
+                P = self._evaluate(z, period, jacobians=False)
+            r, res = self._residual(z, P, best)
+            best = min(best, res)
+            F = np.append(r, self._dot(t, z - z_pred))
+            if res < self.s.tol and it > 0 or res < 0.01 * self.s.tol:
+                if not fresh:
+                    P, jx, jp = self._evaluate(z, period)
+                return _Point(z.copy(), jx, jp, it)
+            if it == self.s.max_broyden:
+                break
+            if fresh:
+                A = self._bordered(jx, jp, t)
+                fresh = False
+            elif dz is not None:
+                # Broyden's update: A dz = F - F_old afterwards, A unchanged orthogonally to dz
+                A += np.outer(F - F_old - A @ dz, dz / float(dz @ dz))
+            try:
+                dz = np.linalg.solve(A, -F)
+            except np.linalg.LinAlgError:
+                raise _Failed("singular bordered Jacobian")
+            # the next iterate gets its own Jacobians after a slow contraction, and when it is
+            # likely the last (the superlinear estimate res^2 / res_old of its residual is far
+            # below tol): they are needed there anyway, and P^k comes with them
+            fresh = it > 0 and (res > REFRESH_RATE * res_old or res * res < 0.1 * self.s.tol * res_old)
+            F_old, res_old = F, res
+            z = z + dz
+            self._check_jump(z, z_pred, max_jump)
+        raise _Failed(f"corrector did not converge in {self.s.max_broyden} iterations "
+                      f"(residual {res:.3g})")
+
+    def _newton(self, z_pred, t, period, max_jump):
+        """Newton on P^k(x) - x = 0, <t, z - z_pred> = 0 from z_pred, the Jacobians at every iterate."""
         z = np.array(z_pred, dtype=float)
         best = math.inf
         for it in range(self.s.max_newton + 1):
-            try:
-                P, jx, jp = self.map.evaluate(z[:-1], z[-1], period)
-            except (MapError, CrankgenError, np.linalg.LinAlgError) as exc:
-                raise _Failed(str(exc))
-            self.evaluations += 1
-            r = P - z[:-1]
-            res = float(np.max(np.abs(r))) / (1.0 + float(np.max(np.abs(z[:-1]))))
-            if not math.isfinite(res) or res > 1e3 * min(best, 1.0):
-                raise _Failed(f"corrector diverged (residual {res:.3g})")
+            P, jx, jp = self._evaluate(z, period)
+            r, res = self._residual(z, P, best)
             best = min(best, res)
             pt = _Point(z.copy(), jx, jp, it)
             if res < self.s.tol and it > 0 or res < 0.01 * self.s.tol:
                 return pt
             if it == self.s.max_newton:
                 break
-            A = self._bordered(pt, t)
+            A = self._bordered(jx, jp, t)
             rhs = -np.append(r, self._dot(t, z - z_pred))
             try:
                 dz = np.linalg.solve(A, rhs)
@@ -169,11 +265,27 @@ class Continuer:
                 # below it; keep the Jacobians of the previous iterate (O(|dz|) away)
                 pt.z = z.copy()
                 return pt
-            d = z - z_pred
-            if math.sqrt(max(self._dot(d, d), 0.0)) > max_jump:
-                raise _Failed(f"corrector left the neighbourhood of the prediction ({math.sqrt(max(self._dot(d, d), 0.0)):.3g} > {max_jump:.3g})")
+            self._check_jump(z, z_pred, max_jump)
         raise _Failed(f"corrector did not converge in {self.s.max_newton} iterations "
                       f"(residual {res:.3g})")
+
+    def _predict(self, points, ds):
+        """The prediction ds along the branch from its last point, and Jacobians there (those of
+        the last point).  The "quadratic" predictor adds half ds^2 times the curvature, the change
+        of the tangent from the point before over their distance h, and extrapolates the
+        Jacobians linearly from those two points (when h is not much shorter than ds)."""
+        prev = points[-1]
+        z = prev.z + ds * prev.t
+        near = (prev.jx, prev.jp)
+        if self.s.predictor == "quadratic" and len(points) > 1:
+            before = points[-2]
+            d = prev.z - before.z
+            h = math.sqrt(max(self._dot(d, d), 0.0))
+            if h > 0.25 * ds:
+                z = z + (0.5 * ds * ds / h) * (prev.t - before.t)
+                f = ds / h
+                near = (prev.jx + f * (prev.jx - before.jx), prev.jp + f * (prev.jp - before.jp))
+        return z, near
 
     def _finish(self, pt, period):
         """Amplitude and orbit states of an accepted point."""
@@ -241,22 +353,26 @@ class Continuer:
         best = a if abs(f_a) < abs(f_b) else b
         jump = self.s.max_jump * abs(s_b)
         side = 0
+        stalled = 0
         for _ in range(40):
             s_c = (s_a * f_b - s_b * f_a) / (f_b - f_a)
             try:
-                pt = self.correct(a.z + s_c * a.t, a.t, period, max_jump=jump)
+                pt = self.correct(a.z + s_c * a.t, a.t, period, max_jump=jump, near=(a.jx, a.jp))
                 pt.t = self._tangent(pt, a.t)
             except (_Failed, np.linalg.LinAlgError):
                 s_c = 0.5 * (s_a + s_b)
                 try:
-                    pt = self.correct(a.z + s_c * a.t, a.t, period, max_jump=jump)
+                    pt = self.correct(a.z + s_c * a.t, a.t, period, max_jump=jump, near=(a.jx, a.jp))
                     pt.t = self._tangent(pt, a.t)
                 except (_Failed, np.linalg.LinAlgError):
                     break
             f_c = self._test(kind, pt, locate)
-            if abs(f_c) < abs(self._test(kind, best, locate)):
+            f_best = abs(self._test(kind, best, locate))
+            near = f_best < NOISE * self.s.locate_tol
+            stalled = stalled + 1 if near and abs(f_c) >= 0.5 * f_best else 0
+            if abs(f_c) < f_best:
                 best = pt
-            if abs(f_c) < self.s.locate_tol or abs(s_b - s_a) < 1e-13:
+            if abs(f_c) < self.s.locate_tol or abs(s_b - s_a) < 1e-13 or stalled == STALLED:
                 break
             if np.sign(f_c) == np.sign(f_b):
                 s_b, f_b = s_c, f_c
@@ -300,7 +416,8 @@ class Continuer:
             prev = points[-1]
             ds = min(ds, s.dp_max / max(abs(prev.t[-1]), 1e-300))
             try:
-                new = self.correct(prev.z + ds * prev.t, prev.t, period, max_jump=self.s.max_jump * ds)
+                z_pred, near = self._predict(points, ds)
+                new = self.correct(z_pred, prev.t, period, max_jump=self.s.max_jump * ds, near=near)
                 new.t = self._tangent(new, prev.t)
                 if self._dot(new.t, prev.t) < math.cos(s.max_turn):
                     raise _Failed("tangent turned too sharply")
@@ -310,7 +427,7 @@ class Continuer:
                     frac = (at_end - prev.p) / (new.p - prev.p)
                     guess = prev.z + frac * (new.z - prev.z)
                     guess[-1] = at_end
-                    new = self.correct(guess, e_p, period)
+                    new = self.correct(guess, e_p, period, near=(new.jx, new.jp))
                     new.t = self._tangent(new, prev.t)
                 self._finish(new, period)
             except (_Failed, np.linalg.LinAlgError) as exc:
@@ -352,9 +469,9 @@ class Continuer:
             if at_end is not None:
                 reason = f"reached {self.map.parameter} = {at_end:g}"
                 break
-            if new.iterations <= 2:
+            if new.iterations <= EASY[s.corrector]:
                 ds = min(1.5 * ds, s.ds_max)
-            elif new.iterations >= 5:
+            elif new.iterations >= HARD[s.corrector]:
                 ds = max(0.7 * ds, s.ds_min)
         return points, specials, reason
 

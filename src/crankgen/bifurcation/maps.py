@@ -3,6 +3,7 @@
 Periodic orbits of period k are the fixed points of P^k.  A map supplies
 - evaluate(x, p, period, dp): P^period(x, p), its Jacobian dP^period/dx (exact) and, when dp,
   dP^period/dp (exact or by a documented finite difference);
+- value(x, p, period): P^period(x, p) alone (the corrector's quasi-Newton iterations);
 - orbit(x, p, period): the amplitude of the orbit through x, its states after 0..period
   applications of P and the observable at each of them (its points on the Poincare section);
 - iterate(x, p, n): the states after 0..n applications and one observable sample each
@@ -29,6 +30,10 @@ class Map:
     def evaluate(self, x, p, period=1, dp=True):
         """(P^period(x, p), dP^period/dx, dP^period/dp or None)."""
         raise NotImplementedError
+
+    def value(self, x, p, period=1):
+        """P^period(x, p) alone (maps whose Jacobians cost more than their value override it)."""
+        return self.evaluate(x, p, period, dp=False)[0]
 
     def observe(self, x):
         """Scalar observable of a state (the amplitude is max |observable| over an orbit)."""

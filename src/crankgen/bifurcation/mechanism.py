@@ -3,10 +3,15 @@
 State y = x / s, x = (d, v) the reduced displacements and velocities at theta = 0 and s the natural
 size of each DOF at the starting case (eps^2 axial, eps transverse; velocities alike), so that every
 component is of the order of v* and the arclength metric is well conditioned.  P^k and its exact
-Jacobian come from engine.revolution(..., revolutions=k); dP^k/dp is a central difference of two
-marches at p -/+ h, h = 1e-5 max(1, |p|) (truncation ~1e-10, Newton noise ~1e-5 relative: the
-corrector needs it only approximately).  Amplitude: max |v*(1/2)| over the k revolutions of the
-orbit, marched from the state as in steady_state.
+Jacobian come from engine.shoot(..., revolutions=k), and so does dP^k/dp (derivative="exact", the
+default): one more sensitivity column of the linearized steps, forced by dR/dp at the converged
+state of each step (a central difference of the residual alone between the cases at p -/+ h,
+h = 1e-5 max(|p|, 0.01): truncation ~1e-10 relative, no Newton noise) and by the dependence of the
+time step on p.  derivative="central" keeps the former central difference of two marches at
+p -/+ h, h = 1e-5 max(1, |p|) (Newton noise ~1e-5 relative), as a baseline to measure against.
+value(y, p, k) marches P^k alone.  Amplitude: max |v*(1/2)| over the k revolutions of the orbit,
+marched from the state as in steady_state (taken from the last evaluation with Jacobians when that
+was at the same state and parameter: the same steps).
 """
 
 from dataclasses import replace
@@ -26,8 +31,9 @@ class MechanismMap(Map):
     """P: scaled state at theta = 0 -> scaled state one crank revolution later, for the case with
     `parameter` set to p."""
 
-    def __init__(self, case, parameter, dp_step=1e-5):
+    def __init__(self, case, parameter, dp_step=1e-5, derivative="exact"):
         choice("parameter", parameter, PARAMETERS)
+        choice("derivative", derivative, ("exact", "central"))
         if not case.periodic:
             raise ParameterError(f"continuation and poincare follow the crank-revolution map, which needs a "
                                  f"crank motion periodic in the crank angle; the {case.motion!r} motion is "
@@ -35,12 +41,13 @@ class MechanismMap(Map):
         if case.integrator != "newton":
             raise ParameterError(f"continuation needs integrator='newton' (the converged step map "
                                  f"is differentiated), got {case.integrator!r}")
-        self.case, self.parameter, self.dp_step = case, parameter, dp_step
-        b = engine.Batch([case], entries=("march", "revolution"))
+        self.case, self.parameter, self.dp_step, self.derivative = case, parameter, dp_step, derivative
+        b = self._template = engine.Batch([case], entries=("march", "revolution"))
         self.N, self.spr = b.N, b.steps_per_rev
         self.s = np.concatenate([b.scales[0], b.scales[0]])
         self.dim = 2 * self.N
         self._cache = {}
+        self._orbits = {}
 
     def case_at(self, p):
         return replace(self.case, **{self.parameter: float(p)})
@@ -50,7 +57,8 @@ class MechanismMap(Map):
         if b is None:
             if len(self._cache) > 16:
                 self._cache.clear()
-            b = self._cache[key] = engine.Batch([self.case_at(v) for v in values])
+            b = self._cache[key] = engine.Batch([self.case_at(v) for v in values], like=self._template,
+                                                entries=("march", "revolution"))
         return b
 
     def _check(self, status, p, what):
@@ -58,25 +66,58 @@ class MechanismMap(Map):
             if st != engine.OK:
                 raise MapError(f"{what} at {self.parameter} = {p:.6g}: {engine.STATUS_TEXT[int(st)]}")
 
-    def evaluate(self, y, p, period=1, dp=True):
+    def _shoot(self, y, p, period, jacobian, parameter=None):
+        """engine.shoot from the scaled state y; the orbit it marched is kept for orbit()."""
         X = np.asarray(y, dtype=float) * self.s
         b = self._batch(("one", p), [p])
-        X1, J, st = engine.revolution(b, X[None], parallel=False, revolutions=period)
-        self._check(st, p, "revolution map")
-        if not (np.all(np.isfinite(X1)) and np.all(np.isfinite(J))):
+        r = engine.shoot(b, X[None], parallel=False, revolutions=period, jacobian=jacobian,
+                         parameter=parameter)
+        self._check(r.status, p, "revolution map")
+        if not np.all(np.isfinite(r.X1)):
             raise MapError(f"revolution map not finite at {self.parameter} = {p:.6g}")
-        jy = J[0] / self.s[:, None] * self.s[None, :]
+        if len(self._orbits) > 8:
+            self._orbits.clear()
+        idx = np.arange(period + 1) * self.spr
+        self._orbits[(np.asarray(y, dtype=float).tobytes(), float(p), period)] = (
+            float(np.max(np.abs(r.y[0, :, 0]))), r.states[0] / self.s, r.y[0, idx, 0])
+        return X, r
+
+    def evaluate(self, y, p, period=1, dp=True):
+        parameter = None
+        if dp and self.derivative == "exact":
+            h = self.dp_step * max(abs(p), 0.01)
+            parameter = (self._batch(("one", p - h), [p - h]), self._batch(("one", p + h), [p + h]), h)
+            here = self._batch(("one", p), [p]).records.select
+            if any(not np.array_equal(b.records.select, here) for b in parameter[:2]):
+                parameter = None        # a term family switches at p (its coefficient vanishes): marches
+        X, r = self._shoot(y, p, period, True, parameter)
+        J = r.J[0]
+        if not np.all(np.isfinite(J)):
+            raise MapError(f"revolution map not finite at {self.parameter} = {p:.6g}")
+        jy = J / self.s[:, None] * self.s[None, :]
         jp = None
-        if dp:
-            h = self.dp_step * max(1.0, abs(p))
-            b2 = self._batch(("pair", p), [p - h, p + h])
-            N = self.N
-            XX = np.repeat(X[None], 2, axis=0)
-            res = engine.march(b2, period * self.spr, D0=XX[:, :N], V0=XX[:, N:], parallel=False)
-            self._check(res.status, p, "march for dP/dp")
-            Xh = np.concatenate([res.D, res.V], axis=1)
-            jp = (Xh[1] - Xh[0]) / (2 * h) / self.s
-        return X1[0] / self.s, jy, jp
+        if parameter is not None:
+            if not np.all(np.isfinite(r.Jp)):
+                raise MapError(f"dP/d{self.parameter} not finite at {self.parameter} = {p:.6g}")
+            jp = r.Jp[0] / self.s
+        elif dp:
+            jp = self._central_dp(X, p, period)
+        return r.X1[0] / self.s, jy, jp
+
+    def value(self, y, p, period=1):
+        """P^period(y, p) alone: the revolutions without linearization."""
+        return self._shoot(y, p, period, False)[1].X1[0] / self.s
+
+    def _central_dp(self, X, p, period):
+        """dP^k/dp by a central difference of two marches at p -/+ h (derivative="central")."""
+        h = self.dp_step * max(1.0, abs(p))
+        b2 = self._batch(("pair", p), [p - h, p + h])
+        N = self.N
+        XX = np.repeat(X[None], 2, axis=0)
+        res = engine.march(b2, period * self.spr, D0=XX[:, :N], V0=XX[:, N:], parallel=False)
+        self._check(res.status, p, "march for dP/dp")
+        Xh = np.concatenate([res.D, res.V], axis=1)
+        return (Xh[1] - Xh[0]) / (2 * h) / self.s
 
     def march(self, y, p, revolutions, history=False):
         X = np.asarray(y, dtype=float) * self.s
@@ -90,6 +131,9 @@ class MechanismMap(Map):
         return res
 
     def orbit(self, y, p, period=1):
+        known = self._orbits.get((np.asarray(y, dtype=float).tobytes(), float(p), period))
+        if known is not None:
+            return known
         res = self.march(y, p, period, history=True)
         idx = np.arange(period + 1) * self.spr
         states = np.concatenate([res.D_history[0, idx], res.V_history[0, idx]], axis=1) / self.s

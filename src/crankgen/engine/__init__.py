@@ -10,7 +10,8 @@ Split by concern:
 - banded.py: assembly and banded LU solvers;
 - step.py: one Newton-Newmark step (decisions shared with newmark.py through newton.py);
 - march.py: Batch (cases packed as records) and march, lock-step batches on every core;
-- shooting.py: the revolution map and its exact linearization.
+- shooting.py: the revolution map and its exact linearization (in the state and, optionally, a parameter);
+- borrow.py: arrays without a memory owner for the hot loops (no atomic reference counting).
 The NumPy implementation (model.py, newmark.py) stays the reference: tests check that both give
 the same numbers and the same iteration counts.
 """
@@ -21,6 +22,6 @@ from .compiled import CACHE, CODE_HASH, KERNELS_HASH, is_warm  # noqa: F401
 from .elements import FULL, NEWMARK, RESIDUAL, element_terms  # noqa: F401
 from .march import Batch, MarchResult, march  # noqa: F401
 from .records import Work, new_work as make_work  # noqa: F401
-from .shooting import revolution  # noqa: F401
+from .shooting import Revolution, revolution, shoot  # noqa: F401
 from .step import (DIVERGED, NOT_CONVERGED, NOT_FINITE, OK, SINGULAR, STATUS_TEXT, TOO_LARGE,  # noqa: F401
                    initial_acceleration, newmark_step)

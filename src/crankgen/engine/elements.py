@@ -114,10 +114,14 @@ _map_end = jit(_map_end, inline="always", python=False)
 def element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv, cd, w):
     """Element terms of one case into w.rE and (by mode) w.KE, w.CE, w.ME / w.SE, at w.kin; the
     end element's terms are projected on the reduced end co-ordinate.  printed: the one-pass
-    scheme's printed iteration matrices."""
+    scheme's printed iteration matrices.  Every array is read once, on entry; one element's terms
+    are computed in the scratch arrays w.r1, w.K1, ... and copied into w.rE[e], w.KE[e], ... (a
+    view per element, rE[e], costs an atomic reference count increment and decrement)."""
     n = dofs.shape[0]
     q, qd, qdd, geo, kin = w.q, w.qd, w.qdd, w.geo, w.kin
     rE, KE, CE, ME, SE = w.rE, w.KE, w.CE, w.ME, w.SE
+    r, K, C, M, S = w.r1, w.K1, w.C1, w.M1, w.S1
+    rod, end = kern.rod, kern.end
     geo[0] = l
     full = ADD_PRINTED if printed else ADD_FULL
     for e in range(n):
@@ -126,33 +130,49 @@ def element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv,
         if last:
             _map_end(kern, sel, params, q, qd, qdd, w)
         geo[1] = e * l
-        r, K, C, M, S = rE[e], KE[e], CE[e], ME[e], SE[e]
-        r[:] = 0.0
+        for i in range(NDOF):
+            r[i] = 0.0
         if mode == RESIDUAL:
             add = ADD_RESIDUAL
         elif mode == NEWMARK and not last and not printed:
             add = ADD_NEWMARK
-            S[:, :] = 0.0
+            for i in range(NDOF):
+                for j in range(NDOF):
+                    S[i, j] = 0.0
         else:
             add = full
-            K[:, :] = 0.0
-            C[:, :] = 0.0
-            M[:, :] = 0.0
+            for i in range(NDOF):
+                for j in range(NDOF):
+                    K[i, j] = 0.0
+                    C[i, j] = 0.0
+                    M[i, j] = 0.0
         for k in range(N_ROD):
             if sel[k] >= 0:
-                call(kern.rod, k, (add, q, qd, qdd, geo, coef, kin, cv, cd, r, K, C, M, S))
+                call(rod, k, (add, q, qd, qdd, geo, coef, kin, cv, cd, r, K, C, M, S))
         if last:
             for k in range(N_END):
                 if sel[N_ROD + k] >= 0:
-                    call(kern.end, k, (add, q, qd, qdd, geo, coef, kin, cv, cd, r, K, C, M, S))
+                    call(end, k, (add, q, qd, qdd, geo, coef, kin, cv, cd, r, K, C, M, S))
             if add == ADD_RESIDUAL:
                 project_residual(w.E, r)
             else:
                 project_last(w.E, r, K, C, M)
-        if mode == NEWMARK and add != ADD_NEWMARK:
+        for i in range(NDOF):
+            rE[e, i] = r[i]
+        if add == ADD_NEWMARK:
             for i in range(NDOF):
                 for j in range(NDOF):
-                    S[i, j] = M[i, j] + cv * C[i, j] + cd * K[i, j]
+                    SE[e, i, j] = S[i, j]
+        elif add != ADD_RESIDUAL:
+            for i in range(NDOF):
+                for j in range(NDOF):
+                    KE[e, i, j] = K[i, j]
+                    CE[e, i, j] = C[i, j]
+                    ME[e, i, j] = M[i, j]
+            if mode == NEWMARK:
+                for i in range(NDOF):
+                    for j in range(NDOF):
+                        SE[e, i, j] = M[i, j] + cv * C[i, j] + cd * K[i, j]
 
 
 @jit(python=False)

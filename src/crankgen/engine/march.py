@@ -15,6 +15,7 @@ import numpy as np
 from .. import kinematics as _kinematics
 from .. import newton
 from .._generated import shape as _shape
+from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
 from .compiled import call, jit
 from .elements import kinematics, step_outputs
 from .kernels import build_items, select_rows, tables
@@ -27,15 +28,15 @@ HISTORY = newton.HISTORY
 class Batch:
     """Cases that share a mesh and steps per revolution, packed for the compiled engine."""
 
-    def __init__(self, cases, dt=None, entries=("march",), kernels_table=None):
+    def __init__(self, cases, dt=None, entries=("march",), kernels_table=None, like=None):
         """dt overrides the time step: one for every case (free vibration, omega ~ 0) or one per case
         (the steps of simulate's `times` that land between the steps of a run).  entries: the
         engine's entry points the batch will use ("march", "revolution"), compiled ahead with its
         kernels when this machine has not compiled them yet (engine/build.py).  kernels_table: the
-        kernel tables to use instead of the cases' own (engine/build.py compiles on no-op tables)."""
-        from ..assembly import BandedAssembler
-        from ..mesh import Mesh
-
+        kernel tables to use instead of the cases' own (engine/build.py compiles on no-op tables).
+        like: a Batch of one model whose mesh, kernel tables and compiled entries these cases share
+        when they have its mesh, steps per revolution and model (a continuation builds a batch per
+        parameter value); otherwise ignored."""
         cases = list(cases)
         if not cases:
             raise ValueError("a batch needs at least one case")
@@ -43,23 +44,23 @@ class Batch:
         if any(c.n_elements != n or c.steps_per_rev != spr for c in cases):
             raise ValueError("all cases of a batch must share n_elements and steps_per_rev")
         self.cases, self.n_elements, self.steps_per_rev = cases, n, spr
-        self.mesh = Mesh(n)
-        self.N = self.mesh.n_dofs
-        mid_element, zeta = self.mesh.locate(0.5)
-        self.meshdata = MeshData(
-            np.ascontiguousarray(self.mesh.element_dofs, dtype=np.int64), BandedAssembler(self.mesh).bandwidth,
-            self.mesh.length, mid_element,
-            np.ascontiguousarray(_shape.shape_functions(zeta, self.mesh.length)[1], dtype=float),
-            np.ascontiguousarray(_shape.slope_gram(self.mesh.length), dtype=float))
         select = select_rows(cases)
-        printed = np.array([c.selection.printed_iteration and c.integrator == "one-pass" for c in cases])
-        if kernels_table is None:
-            from .build import prepare
-            prepare([f"entry:{e}" for e in entries] + build_items(select))
-        # runs of consecutive cases of one model, each with its model's kernel table
-        starts = [0] + [b for b in range(1, len(cases)) if not np.array_equal(select[b], select[b - 1])]
-        self.runs = [(kernels_table if kernels_table is not None else tables(select[lo]), lo, hi)
-                     for lo, hi in zip(starts, starts[1:] + [len(cases)])]
+        self.entries = frozenset(entries)
+        if (like is not None and kernels_table is None and like.n_elements == n and like.steps_per_rev == spr
+                and len(like.runs) == 1 and (select == like.records.select[0]).all()
+                and self.entries <= like.entries):
+            self.mesh, self.N, self.meshdata = like.mesh, like.N, like.meshdata
+            self.runs = [(like.runs[0][0], 0, len(cases))]
+        else:
+            self._new_mesh(n)
+            if kernels_table is None:
+                from .build import prepare
+                prepare([f"entry:{e}" for e in entries] + build_items(select))
+            # runs of consecutive cases of one model, each with its model's kernel table
+            starts = [0] + [b for b in range(1, len(cases)) if not np.array_equal(select[b], select[b - 1])]
+            self.runs = [(kernels_table if kernels_table is not None else tables(select[lo]), lo, hi)
+                         for lo, hi in zip(starts, starts[1:] + [len(cases)])]
+        printed = np.array([c.integrator == "one-pass" and c.selection.printed_iteration for c in cases])
         self.kernels = self.runs[0][0]
         self.records = Cases(
             select, np.array([c.coefficients for c in cases], dtype=float),
@@ -70,6 +71,19 @@ class Batch:
             np.array([newton.SCHEMES.index(c.integrator) for c in cases], dtype=np.int64),
             printed.astype(np.bool_),
             np.array([self.mesh.dof_scales(c.eps, _kinematics.end_scale(c)) for c in cases]))
+
+    def _new_mesh(self, n):
+        from ..assembly import BandedAssembler
+        from ..mesh import Mesh
+
+        self.mesh = Mesh(n)
+        self.N = self.mesh.n_dofs
+        mid_element, zeta = self.mesh.locate(0.5)
+        self.meshdata = MeshData(
+            np.ascontiguousarray(self.mesh.element_dofs, dtype=np.int64), BandedAssembler(self.mesh).bandwidth,
+            self.mesh.length, mid_element,
+            np.ascontiguousarray(_shape.shape_functions(zeta, self.mesh.length)[1], dtype=float),
+            np.ascontiguousarray(_shape.slope_gram(self.mesh.length), dtype=float))
 
     @property
     def dt(self):
@@ -97,8 +111,10 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, 
     """Advance cases lo..hi-1 of the batch n_steps in lock step (see march)."""
     n = mesh.dofs.shape[0]
     N = D0.shape[1]
+    kern, cases, mesh = borrowed_kernels(kern), borrowed_cases(cases), borrowed_mesh(mesh)    # the caller's
     for b in range(lo, hi):
-        w = make_work(n, N, mesh.kb)
+        owned = make_work(n, N, mesh.kb)
+        w = borrowed_work(owned)
         sel, params = cases.select[b], cases.params[b]
         dt = cases.dt[b]
         d, v, acc = D0[b].copy(), V0[b].copy(), A0[b].copy()
@@ -156,6 +172,7 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, 
             D1[b, i] = d[i]
             V1[b, i] = v[i]
             A1[b, i] = acc[i]
+        keep(owned)
 
 
 @jit

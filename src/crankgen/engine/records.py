@@ -48,6 +48,7 @@ Work = namedtuple("Work", [
     "kin", "crank",                     # kinematics vector; (theta, thetad, thetadd)
     "q", "qd", "qdd", "geo",            # one element's nodal vectors and (l, x0)
     "send", "E",                        # the end map's (s, sd, sdd) and its (8, 2) values
+    "r1", "S1", "K1", "C1", "M1",       # one element's residual and matrices (the element loop's scratch)
 ])
 
 
@@ -57,7 +58,9 @@ def _make_work(n, N, kb):
                 np.zeros((n, NDOF, NDOF)), np.zeros((n, NDOF, NDOF)), np.zeros(N), np.zeros((N + KB_FIXED, 1)),
                 np.zeros((N, 3 * kb + 1)), np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64),
                 np.zeros((N + KB_FIXED, 2 * KB_FIXED + 1)), np.zeros(N), np.zeros(N_KIN), np.zeros(3),
-                np.zeros(NDOF), np.zeros(NDOF), np.zeros(NDOF), np.zeros(2), np.zeros(3), np.zeros((END_ROWS, 2)))
+                np.zeros(NDOF), np.zeros(NDOF), np.zeros(NDOF), np.zeros(2), np.zeros(3), np.zeros((END_ROWS, 2)),
+                np.zeros(NDOF), np.zeros((NDOF, NDOF)), np.zeros((NDOF, NDOF)), np.zeros((NDOF, NDOF)),
+                np.zeros((NDOF, NDOF)))
 
 
 make_work = jit(_make_work, python=False)       # inside compiled code

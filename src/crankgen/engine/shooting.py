@@ -1,61 +1,174 @@
 """The revolution map of the Newton-Newmark scheme and its exact linearization (compiled), for
-shooting on periodic states (steady.py) and continuation."""
+shooting on periodic states (steady.py) and continuation.
+
+The linearization propagates the sensitivities of (d, v, a) to the 2N initial state components
+(and optionally to a parameter) through every converged step, as (N, columns) arrays whose rows
+are updated whole (the innermost loops run over the columns, which LLVM vectorizes; the columns
+are padded to a multiple of 8).  Per step: K dd~ + C dv~ row by row from the assembled band
+matrices, and the solve with the iteration matrix at the converged state, factorized like the
+Newton iterations' (the fixed-bandwidth LU without pivoting where it is safe, else the pivoted
+band LU: banded.py)."""
 
 import numpy as np
 
 from .. import newton
-from .banded import assemble_band, band_factor, band_lu_solve, band_matmul, band_solve
+from .banded import (KB_FIXED, assemble_band, assemble_vector, band_factor, band_lu_solve, factor_fixed)
+from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
 from .compiled import jit
-from .elements import FULL, element_loop
+from .elements import FULL, RESIDUAL, element_loop, kinematics, step_outputs
 from .march import parallel_slices
 from .records import Scheme, make_work
 from .step import OK, SINGULAR, initial_acceleration, newmark_step
 
 HISTORY = newton.HISTORY
+PAD = 8                 # the sensitivity columns are padded to a multiple of PAD
 
 
 @jit
-def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, X0, active, X1, J, status):
+def _residual_into(kern, cases, b, sel, mesh, t, d, v, a, w, out):
+    """out = R(t, d, v, a) with the coefficients and kinematic parameters of row b of `cases` (the
+    family selection `sel` of the case being linearized); leaves w.kin at t for that row."""
+    kinematics(kern, sel, cases.params[b], t, w)
+    element_loop(RESIDUAL, kern, sel, cases.coef[b], cases.params[b], False, mesh.dofs, mesh.l, d, v, a,
+                 0.0, 0.0, w)
+    assemble_vector(mesh.dofs, w.rE, out)
+
+
+@jit
+def _parameter_forcing(kern, minus, plus, b, sel, mesh, k, h, d, v, a, w, rm, rp, g):
+    """g = dR/dp at the fixed state (d, v, a) of step k: a central difference of the residual
+    between the cases at p - h and p + h (coefficients, kinematic parameters and time
+    t = k dt(p), all at the perturbed p)."""
+    _residual_into(kern, minus, b, sel, mesh, k * minus.dt[b], d, v, a, w, rm)
+    _residual_into(kern, plus, b, sel, mesh, k * plus.dt[b], d, v, a, w, rp)
+    inv = 0.5 / h
+    for i in range(g.shape[0]):
+        g[i] = (rp[i] - rm[i]) * inv
+
+
+@jit
+def _tangent_rhs(Kb, Cb, kb, Dd, Dv, Da):
+    """Da = -(K Dd + C Dv) (N, m); K, C in row band storage (offset kb)."""
+    N, m = Da.shape
+    for i in range(N):
+        for c in range(m):
+            Da[i, c] = 0.0
+        for j in range(max(0, i - kb), min(N - 1, i + kb) + 1):
+            k = Kb[i, j - i + kb]
+            cc = Cb[i, j - i + kb]
+            for c in range(m):
+                Da[i, c] -= k * Dd[j, c] + cc * Dv[j, c]
+
+
+@jit
+def _solve_fixed_columns(F, B):
+    """Solve with the factors of banded.factor_fixed for B (N, m), in place."""
+    N, m = B.shape
+    for k in range(N):
+        for ii in range(1, min(KB_FIXED, N - 1 - k) + 1):
+            f = F[k + ii, KB_FIXED - ii]
+            for c in range(m):
+                B[k + ii, c] -= f * B[k, c]
+    for i in range(N - 1, -1, -1):
+        for j in range(1, min(KB_FIXED, N - 1 - i) + 1):
+            u = F[i, KB_FIXED + j]
+            for c in range(m):
+                B[i, c] -= u * B[i + j, c]
+        piv = F[i, KB_FIXED]
+        for c in range(m):
+            B[i, c] /= piv
+
+
+@jit
+def _assemble_iteration_matrix(dofs, ME, CE, KE, cv, cd, F, N):
+    """F (N + 5, 11) = M + cv C + cd K in the padded fixed-bandwidth storage of banded.assemble_fixed."""
+    F[:, :] = 0.0
+    for i in range(N, F.shape[0]):
+        F[i, KB_FIXED] = 1.0
+    for e in range(dofs.shape[0]):
+        for i in range(dofs.shape[1]):
+            gi = dofs[e, i]
+            if gi >= N:
+                continue
+            for j in range(dofs.shape[1]):
+                gj = dofs[e, j]
+                if gj < N:
+                    F[gi, gj - gi + KB_FIXED] += ME[e, i, j] + cv * CE[e, i, j] + cd * KE[e, i, j]
+
+
+@jit
+def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0, active, minus, plus, h,
+                      with_j, with_p, X1, J, Y, XR, status):
     """For every active case of lo..hi-1: state x = (d, v) at step step0 -> state after n_steps
-    Newton steps, and J = dx1/dx0, the exact linearization of the converged Newmark steps:
+    Newton steps, and (with_j) J = dx1/dx0, the exact linearization of the converged Newmark steps:
         S da' = -(K dd~ + C dv~),  dd' = dd~ + beta dt^2 da',  dv' = dv~ + gamma dt da'
-    with S, K, C the exact tangents at the converged state of each step (a0 from eq. 34)."""
+    with S, K, C the exact tangents at the converged state of each step (a0 from eq. 34).
+    with_p: J has one more column, dx1/dp for the parameter whose perturbed cases are `minus`
+    (p - h) and `plus` (p + h), rows matching `cases`; x0 does not depend on p, the steps do
+    through R (at the fixed state: _parameter_forcing) and through dt:
+        dd~ += (v + dt (1 - 2 beta) a + 2 beta dt a') ddt/dp,  dv~ += ((1 - gamma) a + gamma a') ddt/dp
+    (with a fixed number of steps per revolution the crank angles of the steps need not depend on
+    p, the times t = k dt do).
+    Y[b, m]: the step outputs (v*, u*(1), delta*) at step step0 + m; XR[b, r]: the state after r
+    times spr steps (r = 0 .. n_steps // spr)."""
     n = mesh.dofs.shape[0]
     N = X0.shape[1] // 2
+    ncol = 2 * N + (1 if with_p else 0)
+    width = (ncol + PAD - 1) // PAD * PAD if with_j else 0
+    P = 2 * N                                   # the parameter column
+    kern, cases, mesh = borrowed_kernels(kern), borrowed_cases(cases), borrowed_mesh(mesh)    # the caller's
+    minus, plus = borrowed_cases(minus), borrowed_cases(plus)
     dofs, kb, l = mesh.dofs, mesh.kb, mesh.l
     beta, gamma = scheme.beta, scheme.gamma
     for b in range(lo, hi):
         if not active[b]:
             continue
-        w = make_work(n, N, kb)
+        owned = make_work(n, N, kb)
+        w = borrowed_work(owned)
         sel, coef, params = cases.select[b], cases.coef[b], cases.params[b]
         dt = cases.dt[b]
+        ddt = (plus.dt[b] - minus.dt[b]) / (2.0 * h) if with_p else 0.0
         cd, cv = beta * dt * dt, gamma * dt
+        c1, c2 = 0.5 * dt * dt * (1.0 - 2.0 * beta), dt * (1.0 - gamma)
         d, v = X0[b, :N].copy(), X0[b, N:].copy()
         acc = np.zeros(N)
         dn, vn, an = np.zeros(N), np.zeros(N), np.zeros(N)
+        rm, rp, g = np.zeros(N), np.zeros(N), np.zeros(N)
+        Kb = np.zeros((N, 3 * kb + 1))
+        Cb = np.zeros((N, 3 * kb + 1))
+        y = np.zeros(3)
         if not initial_acceleration(kern, cases, b, mesh, step0 * dt, d, v, acc, w):
             status[b] = SINGULAR
             continue
-        # sensitivities (N, 2N)
-        Dd = np.zeros((N, 2 * N))
-        Dv = np.zeros((N, 2 * N))
-        for i in range(N):
-            Dd[i, i] = 1.0
-            Dv[i, N + i] = 1.0
-        Da = np.zeros((N, 2 * N))
-        tmp = np.zeros((N, 2 * N))
-        # da0 = -M^-1 (K dd0 + C dv0) at t0 (initial_acceleration left the kinematics at t0 in w)
-        element_loop(FULL, kern, sel, coef, params, False, dofs, l, d, v, acc, 0.0, 0.0, w)
-        band_matmul(dofs, kb, w.KE, Dd, Da)
-        band_matmul(dofs, kb, w.CE, Dv, tmp)
-        for i in range(N):
-            for c in range(2 * N):
-                Da[i, c] = -(Da[i, c] + tmp[i, c])
-        assemble_band(dofs, kb, w.ME, w.CE, w.KE, 1.0, 0.0, 0.0, w.W)
-        if not band_solve(w.W, kb, Da):
-            status[b] = SINGULAR
-            continue
+        step_outputs(kern, sel, params, dofs, mesh.mid_element, mesh.Nv_mid, mesh.G, cases.eps[b], d, w, y)
+        for k in range(3):
+            Y[b, 0, k] = y[k]
+        for i in range(2 * N):
+            XR[b, 0, i] = X0[b, i]
+        # sensitivities (N, width)
+        Dd = np.zeros((N, width))
+        Dv = np.zeros((N, width))
+        Da = np.zeros((N, width))
+        if with_j:
+            for i in range(N):
+                Dd[i, i] = 1.0
+                Dv[i, N + i] = 1.0
+            # da0 = -M^-1 (K dd0 + C dv0 + dR/dp) at t0 (initial_acceleration left the kinematics
+            # at t0 in w)
+            element_loop(FULL, kern, sel, coef, params, False, dofs, l, d, v, acc, 0.0, 0.0, w)
+            assemble_band(dofs, kb, w.ME, w.CE, w.KE, 0.0, 0.0, 1.0, Kb)
+            assemble_band(dofs, kb, w.ME, w.CE, w.KE, 0.0, 1.0, 0.0, Cb)
+            assemble_band(dofs, kb, w.ME, w.CE, w.KE, 1.0, 0.0, 0.0, w.W)
+            if not band_factor(w.W, kb, w.piv, w.ext):
+                status[b] = SINGULAR
+                continue
+            if with_p:
+                _parameter_forcing(kern, minus, plus, b, sel, mesh, step0, h, d, v, acc, w, rm, rp, g)
+            _tangent_rhs(Kb, Cb, kb, Dd, Dv, Da)
+            if with_p:
+                for i in range(N):
+                    Da[i, P] -= g[i]
+            band_lu_solve(w.W, kb, w.piv, w.ext, Da)
         ok = True
         hist = np.zeros((HISTORY, N))
         for m in range(n_steps):
@@ -66,28 +179,44 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, X0, act
                 status[b] = st
                 ok = False
                 break
-            # predictor sensitivities (in place): Dd <- dd~, Dv <- dv~
-            for i in range(N):
-                for c in range(2 * N):
-                    Dd[i, c] = Dd[i, c] + dt * Dv[i, c] + 0.5 * dt * dt * (1.0 - 2.0 * beta) * Da[i, c]
-                    Dv[i, c] = Dv[i, c] + dt * (1.0 - gamma) * Da[i, c]
-            # exact tangents at the converged state
-            element_loop(FULL, kern, sel, coef, params, False, dofs, l, dn, vn, an, 0.0, 0.0, w)
-            band_matmul(dofs, kb, w.KE, Dd, Da)
-            band_matmul(dofs, kb, w.CE, Dv, tmp)
-            for i in range(N):
-                for c in range(2 * N):
-                    Da[i, c] = -(Da[i, c] + tmp[i, c])
-            assemble_band(dofs, kb, w.ME, w.CE, w.KE, 1.0, cv, cd, w.W)
-            if not band_factor(w.W, kb, w.piv, w.ext):
-                status[b] = SINGULAR
-                ok = False
-                break
-            band_lu_solve(w.W, kb, w.piv, w.ext, Da)
-            for i in range(N):
-                for c in range(2 * N):
-                    Dd[i, c] += cd * Da[i, c]
-                    Dv[i, c] += cv * Da[i, c]
+            if with_j:
+                # exact tangents at the converged state, the iteration matrix factorized
+                element_loop(FULL, kern, sel, coef, params, False, dofs, l, dn, vn, an, 0.0, 0.0, w)
+                assemble_band(dofs, kb, w.ME, w.CE, w.KE, 0.0, 0.0, 1.0, Kb)
+                assemble_band(dofs, kb, w.ME, w.CE, w.KE, 0.0, 1.0, 0.0, Cb)
+                fixed = False
+                if kb == KB_FIXED:
+                    _assemble_iteration_matrix(dofs, w.ME, w.CE, w.KE, cv, cd, w.F, N)
+                    fixed = factor_fixed(w.F, N, w.diag)
+                if not fixed:
+                    assemble_band(dofs, kb, w.ME, w.CE, w.KE, 1.0, cv, cd, w.W)
+                    if not band_factor(w.W, kb, w.piv, w.ext):
+                        status[b] = SINGULAR
+                        ok = False
+                        break
+                if with_p:
+                    _parameter_forcing(kern, minus, plus, b, sel, mesh, step0 + m + 1, h, dn, vn, an, w, rm, rp, g)
+                # predictor sensitivities (in place): Dd <- dd~, Dv <- dv~
+                for i in range(N):
+                    for c in range(width):
+                        Dd[i, c] += dt * Dv[i, c] + c1 * Da[i, c]
+                        Dv[i, c] += c2 * Da[i, c]
+                if with_p:
+                    for i in range(N):
+                        Dd[i, P] += (v[i] + dt * (1.0 - 2.0 * beta) * acc[i] + 2.0 * beta * dt * an[i]) * ddt
+                        Dv[i, P] += ((1.0 - gamma) * acc[i] + gamma * an[i]) * ddt
+                _tangent_rhs(Kb, Cb, kb, Dd, Dv, Da)
+                if with_p:
+                    for i in range(N):
+                        Da[i, P] -= g[i]
+                if fixed:
+                    _solve_fixed_columns(w.F, Da)
+                else:
+                    band_lu_solve(w.W, kb, w.piv, w.ext, Da)
+                for i in range(N):
+                    for c in range(width):
+                        Dd[i, c] += cd * Da[i, c]
+                        Dv[i, c] += cv * Da[i, c]
             for k in range(HISTORY - 1, 0, -1):
                 for i in range(N):
                     hist[k, i] = hist[k - 1, i]
@@ -96,29 +225,79 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, X0, act
                 d[i] = dn[i]
                 v[i] = vn[i]
                 acc[i] = an[i]
+            if with_p:                  # _parameter_forcing moved the kinematics to p +- h
+                kinematics(kern, sel, params, t_new, w)
+            step_outputs(kern, sel, params, dofs, mesh.mid_element, mesh.Nv_mid, mesh.G, cases.eps[b], d, w, y)
+            for k in range(3):
+                Y[b, m + 1, k] = y[k]
+            if (m + 1) % spr == 0:
+                r = (m + 1) // spr
+                for i in range(N):
+                    XR[b, r, i] = d[i]
+                    XR[b, r, N + i] = v[i]
+        keep(owned)
         if not ok:
             continue
         for i in range(N):
             X1[b, i] = d[i]
             X1[b, N + i] = v[i]
-            for c in range(2 * N):
-                J[b, i, c] = Dd[i, c]
-                J[b, N + i, c] = Dv[i, c]
+        if with_j:
+            for i in range(N):
+                for c in range(ncol):
+                    J[b, i, c] = Dd[i, c]
+                    J[b, N + i, c] = Dv[i, c]
+
+
+class Revolution:
+    """Result of shoot: X1 (B, 2N) the states after the revolutions, J (B, 2N, 2N) = dX1/dX0 (None
+    without jacobian), Jp (B, 2N) = dX1/dp (None without a parameter), y (B, steps + 1, 3) the
+    step outputs (v*, u*(1), delta*), states (B, revolutions + 1, 2N) at theta = 0, status (B,)."""
+
+    def __init__(self, **kw):
+        self.__dict__.update(kw)
+
+
+def shoot(batch, X0, step0=0, active=None, parallel=None, beta=0.25, gamma=0.5, tol=1e-10, max_iter=30,
+          revolutions=1, jacobian=True, parameter=None):
+    """The map over `revolutions` crank revolutions of the Newton-Newmark scheme, with its exact
+    Jacobian (jacobian=True) and the orbit it marches, for states X0 (B, 2N) = (d, v) at step
+    index step0.  parameter: (minus, plus, h): Batches of the cases at p - h and p + h (case for
+    case like `batch`, same mesh and steps per revolution) for the exact derivative dX1/dp
+    (docstring of _revolution_cases)."""
+    B, N = len(batch), batch.N
+    X0 = np.ascontiguousarray(X0, dtype=float)
+    active = np.ones(B, dtype=np.bool_) if active is None else np.asarray(active, dtype=np.bool_)
+    with_p = parameter is not None
+    if with_p:
+        if not jacobian:
+            raise ValueError("the parameter derivative comes with the Jacobian (jacobian=True)")
+        minus, plus, h = parameter
+        if (len(minus) != B or len(plus) != B or minus.N != N or plus.N != N
+                or not np.array_equal(minus.records.select, batch.records.select)
+                or not np.array_equal(plus.records.select, batch.records.select)):
+            raise ValueError("the perturbed batches must match the batch case for case (same models)")
+        minus, plus, h = minus.records, plus.records, float(h)
+    else:
+        minus, plus, h = batch.records, batch.records, 1.0
+    n_steps = int(revolutions) * batch.steps_per_rev
+    X1 = np.full((B, 2 * N), np.nan)
+    J = np.full((B, 2 * N, 2 * N + (1 if with_p else 0)) if jacobian else (1, 1, 1), np.nan)
+    Y = np.full((B, n_steps + 1, 3), np.nan)
+    XR = np.full((B, int(revolutions) + 1, 2 * N), np.nan)
+    status = np.zeros(B, dtype=np.int64)
+    if parallel is None:
+        parallel = int(active.sum()) > 1
+    scheme = Scheme(float(beta), float(gamma), float(tol), int(max_iter))
+    parallel_slices(_revolution_cases, batch, parallel, (batch.records, batch.meshdata, scheme),
+                    (step0, n_steps, batch.steps_per_rev, X0, active, minus, plus, h, bool(jacobian), with_p,
+                     X1, J, Y, XR, status))
+    return Revolution(X1=X1, J=J[:, :, :2 * N] if jacobian else None, Jp=J[:, :, 2 * N] if with_p else None,
+                      y=Y, states=XR, status=status)
 
 
 def revolution(batch, X0, step0=0, active=None, parallel=None, beta=0.25, gamma=0.5, tol=1e-10,
                max_iter=30, revolutions=1):
     """(X1, J, status): the map over `revolutions` crank revolutions of the Newton-Newmark scheme and
     its Jacobian, for states X0 (B, 2N) = (d, v) at step index step0."""
-    B, N = len(batch), batch.N
-    X0 = np.ascontiguousarray(X0, dtype=float)
-    active = np.ones(B, dtype=np.bool_) if active is None else np.asarray(active, dtype=np.bool_)
-    X1 = np.full((B, 2 * N), np.nan)
-    J = np.full((B, 2 * N, 2 * N), np.nan)
-    status = np.zeros(B, dtype=np.int64)
-    if parallel is None:
-        parallel = int(active.sum()) > 1
-    scheme = Scheme(float(beta), float(gamma), float(tol), int(max_iter))
-    parallel_slices(_revolution_cases, batch, parallel, (batch.records, batch.meshdata, scheme),
-                    (step0, int(revolutions) * batch.steps_per_rev, X0, active, X1, J, status))
-    return X1, J, status
+    r = shoot(batch, X0, step0, active, parallel, beta, gamma, tol, max_iter, revolutions)
+    return r.X1, r.J, r.status
