@@ -174,5 +174,6 @@ MODULES = {
 }
 # modules whose element kernels also get the accumulating one-element variants (emit.py)
 ACCUMULATING = ("elements",)
-# modules whose kernels also get a one-element `_into` variant (compiled by the engine)
-SCALAR = ("kinematics", "shape")
+# modules whose kernels also get a one-element `_into` variant (the engine compiles those of
+# motion_, guide_ and end_map_)
+SCALAR = ("kinematics",)

@@ -8,7 +8,7 @@ import math
 
 import numpy
 
-__all__ = ['shape_functions', 'shape_functions_into', 'slope_gram', 'slope_gram_into']
+__all__ = ['shape_functions', 'slope_gram']
 
 def shape_functions(zeta, l):
     """Shape functions N_u, N_v, N_psi of Appendix A at zeta = x / l.
@@ -43,33 +43,6 @@ def shape_functions(zeta, l):
     return N_u, N_v, N_psi
 
 
-def shape_functions_into(zeta, l, N_u, N_v, N_psi):
-    """shape_functions for one element: scalars in, outputs written into N_u, N_v, N_psi."""
-    _c0 = zeta - 1
-    _c1 = zeta**2
-    _c2 = 3*_c1
-    _c3 = 2*zeta
-    _c4 = 6*_c0*zeta/l
-    N_u[0] = -_c0
-    N_u[1] = 0.0
-    N_u[2] = 0.0
-    N_u[3] = zeta
-    N_u[4] = 0.0
-    N_u[5] = 0.0
-    N_v[0] = 0.0
-    N_v[1] = -_c2 + 2*zeta**3 + 1
-    N_v[2] = _c0**2*l*zeta
-    N_v[3] = 0.0
-    N_v[4] = _c1*(3 - _c3)
-    N_v[5] = _c0*_c1*l
-    N_psi[0] = 0.0
-    N_psi[1] = _c4
-    N_psi[2] = _c2 - 4*zeta + 1
-    N_psi[3] = 0.0
-    N_psi[4] = -_c4
-    N_psi[5] = _c2 - _c3
-
-
 def slope_gram(l):
     """int_0^l {B_v}{B_v}^T dx, so that int v_x^2 dx = q^T G q (eq. 40).
 
@@ -101,47 +74,3 @@ def slope_gram(l):
     G[..., 5, 4] = -1/10
     G[..., 5, 5] = _c2
     return G
-
-
-def slope_gram_into(l, G):
-    """slope_gram for one element: scalars in, outputs written into G."""
-    _c0 = (6/5)/l
-    _c1 = -_c0
-    _c2 = (2/15)*l
-    _c3 = -1/30*l
-    G[0, 0] = 0.0
-    G[0, 1] = 0.0
-    G[0, 2] = 0.0
-    G[0, 3] = 0.0
-    G[0, 4] = 0.0
-    G[0, 5] = 0.0
-    G[1, 0] = 0.0
-    G[1, 1] = _c0
-    G[1, 2] = 0.100000000000000
-    G[1, 3] = 0.0
-    G[1, 4] = _c1
-    G[1, 5] = 0.100000000000000
-    G[2, 0] = 0.0
-    G[2, 1] = 0.100000000000000
-    G[2, 2] = _c2
-    G[2, 3] = 0.0
-    G[2, 4] = -0.100000000000000
-    G[2, 5] = _c3
-    G[3, 0] = 0.0
-    G[3, 1] = 0.0
-    G[3, 2] = 0.0
-    G[3, 3] = 0.0
-    G[3, 4] = 0.0
-    G[3, 5] = 0.0
-    G[4, 0] = 0.0
-    G[4, 1] = _c1
-    G[4, 2] = -0.100000000000000
-    G[4, 3] = 0.0
-    G[4, 4] = _c0
-    G[4, 5] = -0.100000000000000
-    G[5, 0] = 0.0
-    G[5, 1] = 0.100000000000000
-    G[5, 2] = _c3
-    G[5, 3] = 0.0
-    G[5, 4] = -0.100000000000000
-    G[5, 5] = _c2

@@ -3,8 +3,8 @@
 Split by concern:
 - compiled.py: numba compilation, the on-disk cache keyed by the code's hash (read-only and
   home-less installs included), repair of an unreadable cache;
-- kernels.py: the generated kernels, compiled one at a time when a model first needs them, as
-  tables of first-class functions (the engine is compiled once for every model);
+- kernels.py: the generated kernels, compiled one at a time when a model first needs them, and
+  tables of their native addresses (calls.py; the engine is compiled once for every model);
 - records.py: the named records the engine passes (kernel tables, cases, mesh, scheme, work arrays);
 - elements.py: the element loop (gather, end map, the selected families, projection) and per-step outputs;
 - banded.py: assembly and banded LU solvers;

@@ -3,7 +3,7 @@ processes, shared safely with any other process compiling at the same time.
 
 The work is a list of items: a kernel in one calling variant ("kernel:<kind>:<name>") or an entry
 point of the engine ("entry:march", "entry:revolution"; the engine is compiled once for every
-model: it takes the kernels as tables of first-class functions, engine/kernels.py).  An item done
+model: it takes the kernels as tables of native addresses, engine/kernels.py and calls.py).  An item done
 once on this machine has a marker in the cache folder and is only loaded afterwards.
 
 Items are processed under a per-item file lock taken without waiting: a process compiles the

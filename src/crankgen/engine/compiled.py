@@ -33,8 +33,8 @@ from ..compile_cache import CACHE, CODE_HASH, READ_ONLY, announce, is_warm  # no
 KERNELS_HASH = _table.KERNELS_HASH
 _PACKAGE = Path(__file__).resolve().parent.parent
 _GENERATED = Path(_table.__file__).resolve().parent
-# The engine calls the kernels as first-class functions (engine/kernels.py), a numba feature still
-# labelled experimental although stable since numba 0.49; its warning says nothing to a user.
+# numba labels some of what it compiles experimental (first-class function types, which the engine
+# no longer uses but a user's own code may); the warning says nothing to a user of crankgen.
 warnings.filterwarnings("ignore", category=NumbaExperimentalFeatureWarning)
 
 

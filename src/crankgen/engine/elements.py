@@ -4,7 +4,7 @@ one per family slot: engine/kernels.py), project the end element's terms on the 
 co-ordinate (the exact constraint elimination of constraints.py), and the per-step outputs.
 
 Three modes: FULL (residual and tangents K, C, M), NEWMARK (residual and the iteration matrix
-S = M + cv C + cd K of eq. 37; interior elements through the accumulating `_newmark_add` kernels),
+S = M + cv C + cd K of eq. 37: each kernel's `_element` function in its newmark mode),
 RESIDUAL (residual only, for iterations that reuse a factorization).  Nothing here names a family,
 a guide or a motion.
 """
