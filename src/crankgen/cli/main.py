@@ -40,8 +40,12 @@ def build_parser():
 
     p = sub.add_parser("simulate", help="one run from zero initial conditions; writes CSV and a PNG of v*(t*)",
                        description="Integrate one mechanism from the paper's zero initial conditions and "
-                                   "write simulation.csv (t*, theta, v* at x*=1/2, u*(1), extension delta*, "
-                                   "status) and v_mid.png to the output folder. If the integration fails, "
+                                   "write simulation.csv (t*, the crank angle, v* at x*=1/2, u*(1), the "
+                                   "extension delta*, every declared step output of the guide: crank speed, "
+                                   "slider position, chord angle, driving torque, pin and end forces, ...; "
+                                   "the range-of-the-theory flags and a status; in SI with --si) and "
+                                   "v_mid.png (against the crank speed for a run-up) to the output folder. "
+                                   "If the integration fails, "
                                    "the history up to the failure is written, a last row with status "
                                    "'failed: <reason>' marks the failure (also marked in the plot), and "
                                    "the exit code is 1.")
