@@ -299,7 +299,7 @@ def _check_resolved(case, where=""):
     if not case.periodic:
         raise ParameterError(
             f"{where}a steady state needs a crank motion periodic in the crank angle; the "
-            f"{case.motion!r} motion is not (simulate() runs it)")
+            f"{case.motion!r} motion is not (a run-up is a transient: simulate runs it)")
     T = _kinematics.period(case)
     dt = T / case.steps_per_rev
     if dt > 2 * math.pi:

@@ -93,7 +93,7 @@ def _add_model_options(p, grid=False, integrator=True):
             continue
         _add_parameter(g, schema.PARAMETERS[name], grid)
     g.add_argument("--model", type=_choices("model", tuple(schema.PRESETS), grid), default=None,
-                   help=MODEL_HELP + many)
+                   metavar="{" + ",".join(schema.PRESETS) + "}", help=MODEL_HELP + many)
     for o in schema.OPTIONS.values():
         choices = tuple(_ON_OFF) if isinstance(o.default, bool) else o.choices
         shown = ({v: k for k, v in _ON_OFF.items()}[o.default] if isinstance(o.default, bool) else o.default)
