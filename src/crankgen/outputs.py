@@ -81,6 +81,7 @@ class StateHistory:
         self.rates, self.accelerations = rates, accelerations
         self.mesh = Mesh(case.n_elements)
         self._kin = None
+        self._pin_end = None
 
     def kinematics(self):
         if self._kin is None:
@@ -99,8 +100,10 @@ class StateHistory:
         if self.rates is None or self.accelerations is None:
             raise ParameterError("the reactions need the stored velocities and accelerations, which "
                                  "this result does not hold")
-        from .model import Model
-        return Model(self.case).reactions(self.t, self.states, self.rates, self.accelerations)
+        if self._pin_end is None:            # torque, pin and end forces all read them
+            from .model import Model
+            self._pin_end = Model(self.case).reactions(self.t, self.states, self.rates, self.accelerations)
+        return self._pin_end
 
     def _inputs(self, spec, element=None):
         """{input name: array} for an output kernel (element: (q, zeta, geo) of a field)."""
@@ -182,10 +185,21 @@ class DeclaredOutputs:
     each field output a method (`result.axial_force(0.5)`, `result.surface_strain(0.5, fiber=3**0.5)`)."""
 
     def _history(self):
+        """The result's StateHistory, made once: its kinematics and reactions serve every output
+        asked of the result (kept beside the frozen dataclass's fields, never pickled)."""
         if getattr(self, "states", None) is None:
             raise ParameterError("this result holds no states (a failed or state-less result)")
-        return StateHistory(self.case, self.t, self.states, getattr(self, "rates", None),
-                            getattr(self, "accelerations", None))
+        history = self.__dict__.get("_state_history")
+        if history is None:
+            history = StateHistory(self.case, self.t, self.states, getattr(self, "rates", None),
+                                   getattr(self, "accelerations", None))
+            object.__setattr__(self, "_state_history", history)
+        return history
+
+    def __getstate__(self):
+        state = dict(self.__dict__)
+        state.pop("_state_history", None)
+        return state
 
     def quantity(self, name, x=None, **arguments):
         spec = schema.OUTPUTS.get(name)
