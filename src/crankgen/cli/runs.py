@@ -92,12 +92,12 @@ def _cmd_simulate(args):
     names = ["simulation.csv", "v_mid.png"] + (["nodes.csv"] if args.nodes else [])
     out = _Outputs(args.out, names, args.force)             # ... and the output folder, first
     try:
-        return _simulate(args, case, revolutions, out, si)
+        return _simulate(args, case, revolutions, steps, out, si)
     finally:
         out.abandon()
 
 
-def _simulate(args, case, revolutions, out, si=None):
+def _simulate(args, case, revolutions, steps, out, si=None):
     import numpy as np
 
     from ..io import write_csv
@@ -105,9 +105,6 @@ def _simulate(args, case, revolutions, out, si=None):
     from ..progress import Progress
     from ..simulation import simulate
 
-    from ..simulation import run_length
-
-    steps = run_length(case, revolutions)[1]
     _say(args, f"simulate: {_describe(case)}, {revolutions:g} revolutions ({steps} steps)")
     failure = None
     with Progress("simulate", steps, enabled=not args.quiet) as progress:
