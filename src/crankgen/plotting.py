@@ -4,24 +4,18 @@ measured, so that nothing is clipped and no legend or label covers data or anoth
 import numpy as np
 
 
-class _Figures:
-    """plt.subplots without pyplot: a matplotlib Figure drawn by the Agg canvas (no GUI backend,
-    no global figure registry to close, a third of a second less to import)."""
-
-    FIGURE_KEYS = ("figsize", "dpi", "constrained_layout", "layout", "facecolor")
-
-    @classmethod
-    def subplots(cls, nrows=1, ncols=1, **kwargs):
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
-        from matplotlib.figure import Figure
-
-        fig = Figure(**{k: kwargs.pop(k) for k in cls.FIGURE_KEYS if k in kwargs})
-        FigureCanvasAgg(fig)
-        return fig, fig.subplots(nrows, ncols, **kwargs)
+_FIGURE_KEYS = ("figsize", "dpi", "constrained_layout", "layout", "facecolor")
 
 
-def _pyplot():
-    return _Figures
+def subplots(nrows=1, ncols=1, **kwargs):
+    """pyplot.subplots without pyplot: a matplotlib Figure on the Agg canvas (no GUI backend, no
+    global registry of figures to close); figure keywords go to the Figure, the rest to its grid."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(**{k: kwargs.pop(k) for k in _FIGURE_KEYS if k in kwargs})
+    FigureCanvasAgg(fig)
+    return fig, fig.subplots(nrows, ncols, **kwargs)
 
 
 def _title(s):
@@ -78,8 +72,7 @@ def plot_deflection(result, path, failure=None, si=None, against="t"):
     from .io import save_figure
     if against not in ("t", "crank_speed"):
         raise ValueError(f"against must be 't' or 'crank_speed', got {against!r}")
-    plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(7, 3.8), constrained_layout=True)
+    fig, ax = subplots(figsize=(7, 3.8), constrained_layout=True)
     view = result if si is None else si
     v = result.v_mid if si is None else si.v_mid * 1e3
     if against == "t":
@@ -119,8 +112,7 @@ def plot_orbit(state, path):
     theory: shaded and named in the title."""
     from . import theory
     from .io import save_figure
-    plt = _pyplot()
-    fig, (a1, a2) = plt.subplots(2, 1, figsize=(7, 5.4), sharex=True, constrained_layout=True)
+    fig, (a1, a2) = subplots(2, 1, figsize=(7, 5.4), sharex=True, constrained_layout=True)
     deg = np.degrees(state.theta)
     a1.plot(deg, state.v_mid, lw=1.2, color="C0")
     a1.set_ylabel("v* at x* = 1/2")
@@ -149,10 +141,8 @@ def panels(rows, cols, width=6.0, height=3.4, space_below=0.0, top_margin=0.6, *
     top_margin inches above the first row (suptitle and panel titles).  Fixed
     margins instead of a layout engine: constrained layout cost about a third of the wall time of
     `crankgen reproduce --quick`."""
-    plt = _pyplot()
     h_row = height + space_below
-    fig, axes = plt.subplots(rows, cols, figsize=(width * cols, h_row * rows), squeeze=False,
-                             **kwargs)
+    fig, axes = subplots(rows, cols, figsize=(width * cols, h_row * rows), squeeze=False, **kwargs)
     w, h = width * cols, h_row * rows
     gap = 0.75 + space_below + (top_margin - 0.6)    # inches: axis labels + (taller) titles
     axes_h = (h - top_margin - 0.6 - space_below - gap * (rows - 1)) / rows
