@@ -13,7 +13,7 @@ import pytest
 import reference as ref
 from kernel_api import energy, lagrange
 from reference import APPROACHES, assert_close
-from test_kernel_derivatives import Trajectory
+from test_kernel_derivatives import Trajectory, _euler_lagrange, random_rod
 
 FD_RTOL = 2e-6
 
@@ -50,23 +50,12 @@ def test_the_trajectory_rates_are_derivatives():
     assert np.max(np.abs(k[6])) > 0.5                      # the crank does accelerate
 
 
-def _euler_lagrange(lag, traj, t, h_q=1e-3, h_qd=1e-2, tau=1e-3):
-    def momentum(s):
-        q, qd, _ = traj.q(s)
-        return ref.fd_jacobian(lambda y: lag(q, y, s), qd, h_qd)
-
-    q, qd, _ = traj.q(t)
-    return ref.fd_derivative(momentum, t, tau) - ref.fd_jacobian(lambda y: lag(y, qd, t), q, h_q)
-
-
 @pytest.mark.parametrize("approach", APPROACHES)
 @pytest.mark.parametrize("t", [0.3, 2.1])
 def test_rod_euler_lagrange_with_an_accelerating_crank(approach, t):
     rng = np.random.default_rng(52)
     n = 7
-    l, x0 = rng.uniform(0.05, 0.5, n), rng.uniform(0.0, 0.9, n)
-    rhoA, rhoI = rng.uniform(0.5, 2.0, n), rng.uniform(0.01, 0.1, n)
-    EA, EI = rng.uniform(10.0, 1000.0, n), rng.uniform(0.005, 0.05, n)
+    l, x0, rhoA, rhoI, EA, EI = random_rod(rng, n)
     traj = AcceleratingTrajectory(rng, (n,), a=0.25, omega=2.3, c=1.5, w=1.9)
     U = getattr(energy, f"strain_energy_{approach}")
 

@@ -185,15 +185,21 @@ def _euler_lagrange(lag, traj, t, h_q=1e-3, h_qd=1e-2, tau=1e-3):
     return dmomentum - force
 
 
+def random_rod(rng, n):
+    """Element lengths, positions, rhoA, rhoI, EA and EI of n random elements."""
+    l, x0 = rng.uniform(0.05, 0.5, n), rng.uniform(0.0, 0.9, n)
+    rhoA, rhoI = rng.uniform(0.5, 2.0, n), rng.uniform(0.01, 0.1, n)
+    EA, EI = rng.uniform(10.0, 1000.0, n), rng.uniform(0.005, 0.05, n)
+    return l, x0, rhoA, rhoI, EA, EI
+
+
 @pytest.mark.parametrize("approach", APPROACHES)
 @pytest.mark.parametrize("t", [0.3, 2.1])
 def test_rod_euler_lagrange(approach, t):
     """lagrange.rod_inertia + lagrange.rod_elastic_X = EL(rod_kinetic_energy - strain_energy_X)."""
     rng = np.random.default_rng(42)
     n = 7
-    l, x0 = rng.uniform(0.05, 0.5, n), rng.uniform(0.0, 0.9, n)
-    rhoA, rhoI = rng.uniform(0.5, 2.0, n), rng.uniform(0.01, 0.1, n)
-    EA, EI = rng.uniform(10.0, 1000.0, n), rng.uniform(0.005, 0.05, n)
+    l, x0, rhoA, rhoI, EA, EI = random_rod(rng, n)
     traj = Trajectory(rng, (n,), a=0.25, omega=2.3)
     U = getattr(energy, f"strain_energy_{approach}")
 
