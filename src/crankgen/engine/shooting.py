@@ -12,7 +12,8 @@ band LU: banded.py)."""
 import numpy as np
 
 from .. import newton
-from .banded import (KB_FIXED, assemble_band, assemble_vector, band_factor, band_lu_solve, factor_fixed)
+from .banded import (KB_FIXED, assemble_band, assemble_fixed, assemble_vector, band_factor, band_lu_solve,
+                     factor_fixed)
 from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
 from .compiled import jit
 from .elements import FULL, RESIDUAL, element_loop, kinematics, step_outputs
@@ -80,20 +81,13 @@ def _solve_fixed_columns(F, B):
 
 
 @jit
-def _assemble_iteration_matrix(dofs, ME, CE, KE, cv, cd, F, N):
-    """F (N + 5, 11) = M + cv C + cd K in the padded fixed-bandwidth storage of banded.assemble_fixed."""
-    F[:, :] = 0.0
-    for i in range(N, F.shape[0]):
-        F[i, KB_FIXED] = 1.0
+def _assemble_iteration_matrix(dofs, ME, CE, KE, cv, cd, SE, F, N):
+    """F = M + cv C + cd K in banded.assemble_fixed's storage (the element matrices combined in SE)."""
     for e in range(dofs.shape[0]):
         for i in range(dofs.shape[1]):
-            gi = dofs[e, i]
-            if gi >= N:
-                continue
             for j in range(dofs.shape[1]):
-                gj = dofs[e, j]
-                if gj < N:
-                    F[gi, gj - gi + KB_FIXED] += ME[e, i, j] + cv * CE[e, i, j] + cd * KE[e, i, j]
+                SE[e, i, j] = ME[e, i, j] + cv * CE[e, i, j] + cd * KE[e, i, j]
+    assemble_fixed(dofs, SE, F, N)
 
 
 @jit
@@ -186,7 +180,7 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
                 assemble_band(dofs, kb, w.ME, w.CE, w.KE, 0.0, 1.0, 0.0, Cb)
                 fixed = False
                 if kb == KB_FIXED:
-                    _assemble_iteration_matrix(dofs, w.ME, w.CE, w.KE, cv, cd, w.F, N)
+                    _assemble_iteration_matrix(dofs, w.ME, w.CE, w.KE, cv, cd, w.SE, w.F, N)
                     fixed = factor_fixed(w.F, N, w.diag)
                 if not fixed:
                     assemble_band(dofs, kb, w.ME, w.CE, w.KE, 1.0, cv, cd, w.W)
