@@ -221,6 +221,42 @@ def test_lock_step_batch_equals_single_runs_and_isolates_failures():
         assert np.array_equal(single.y[0], batch.y[i])
 
 
+def test_balanced_slices_cover_every_case_and_share_the_active_ones_evenly():
+    from crankgen.engine.march import balanced_bounds
+    rng = np.random.default_rng(3)
+    for _ in range(200):
+        lo = int(rng.integers(0, 5))
+        hi = lo + int(rng.integers(1, 40))
+        active = np.zeros(hi + 3, dtype=bool)
+        active[lo:hi] = rng.random(hi - lo) < rng.random()
+        if rng.random() < 0.3:                      # the active cases side by side, as in a sweep
+            active[lo:hi] = False
+            start = int(rng.integers(lo, hi))
+            active[start:hi] = True
+        parts = int(rng.integers(1, 10))
+        bounds = balanced_bounds(lo, hi, active, parts)
+        assert bounds[0] == lo and bounds[-1] == hi and all(a < b for a, b in zip(bounds, bounds[1:]))
+        counts = [int(active[a:b].sum()) for a, b in zip(bounds, bounds[1:])]
+        n = int(active[lo:hi].sum())
+        assert len(counts) == max(1, min(parts, n))
+        assert max(counts) - min(counts) <= 1
+
+
+def test_a_batch_whose_active_cases_cluster_marches_the_same_on_threads_and_serially():
+    """Only the last cases of the batch are active (as the slow, non-periodic cases of a sweep): the
+    threads share them, and every case, active or not, comes back as a serial run gives it."""
+    cases = [Case(omega=0.3 + 0.1 * k, n_elements=4, steps_per_rev=50) for k in range(10)]
+    batch = engine.Batch(cases)
+    rng = np.random.default_rng(0)
+    D0 = 1e-3 * rng.standard_normal((len(cases), batch.N))
+    status = np.array([engine.NOT_CONVERGED] * 7 + [engine.OK] * 3)
+    runs = [engine.march(batch, 60, D0=D0, status=status, parallel=p) for p in (True, False)]
+    for name in ("y", "D", "V", "A", "status", "iterations"):
+        assert np.array_equal(getattr(runs[0], name), getattr(runs[1], name), equal_nan=True), name
+    assert np.array_equal(runs[0].D[:7], D0[:7])                   # inactive: left where they were
+    assert not np.array_equal(runs[0].D[7:], D0[7:])
+
+
 def test_a_batch_like_another_shares_its_mesh_and_tables_and_marches_the_same():
     """Batch(cases, like=b) (the continuation's batch per parameter value) reuses b's mesh and kernel
     tables when the cases are of b's model and mesh, and is built anew otherwise."""

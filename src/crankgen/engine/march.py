@@ -192,17 +192,32 @@ def threads():
         return max(1, os.cpu_count() or 1)
 
 
-def parallel_slices(fn, batch, parallel, leading, trailing):
+CHUNKS_PER_WORKER = 4     # a parallel batch is cut into this many slices per worker thread
+
+
+def balanced_bounds(lo, hi, active, parts):
+    """Cut lo..hi into at most `parts` contiguous slices holding equal numbers of the cases marked in
+    `active` (the others cost next to nothing: the compiled loops skip them) and covering every
+    case of lo..hi."""
+    idx = lo + np.flatnonzero(active[lo:hi])
+    parts = max(1, min(parts, len(idx)))
+    return [lo] + [int(idx[(k * len(idx)) // parts]) for k in range(1, parts)] + [hi]
+
+
+def parallel_slices(fn, batch, parallel, leading, trailing, active=None):
     """fn(kernels, *leading, lo, hi, *trailing) over slices of the batch's cases, each run of one
     model with its kernel table: on threads when parallel (the compiled functions release the
-    GIL), else one call per run."""
+    GIL), else one call per run.  active: the cases that will do work (default: all).  A parallel
+    run is cut into CHUNKS_PER_WORKER slices per thread with equal numbers of active cases, taken by
+    the threads as they come free: the work balances when the active cases cluster (the slow,
+    non-periodic cases of a sweep sit side by side) or when some cases stop early."""
     B = len(batch)
+    active = np.ones(B, dtype=bool) if active is None else np.asarray(active, dtype=bool)
     workers = min(threads(), B) if parallel else 1
     tasks = []
     for kern, lo, hi in batch.runs:
-        parts = min(workers, hi - lo)
-        bounds = np.linspace(lo, hi, parts + 1).astype(int)
-        tasks += [(kern, int(a), int(b)) for a, b in zip(bounds[:-1], bounds[1:]) if b > a]
+        bounds = balanced_bounds(lo, hi, active, workers * CHUNKS_PER_WORKER if workers > 1 else 1)
+        tasks += [(kern, a, b) for a, b in zip(bounds[:-1], bounds[1:]) if b > a]
     if workers <= 1 or len(tasks) <= 1:
         for kern, lo, hi in tasks:
             call(fn, kern, *leading, lo, hi, *trailing)
@@ -256,7 +271,7 @@ def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False
     scheme = Scheme(float(beta), float(gamma), float(tol), int(max_iter))
     parallel_slices(_march_cases, batch, parallel, (cases, mesh, scheme),
                     (t0, step0, n_steps, D0, V0, A0, P, n_prev, keep_history, keep_rates, out_y, out_iter,
-                     status, fail_step, fail_res, Dh, Vh, Ah, D1, V1, A1))
+                     status, fail_step, fail_res, Dh, Vh, Ah, D1, V1, A1), active=status == OK)
     return MarchResult(y=out_y, iterations=out_iter, status=status, fail_step=fail_step,
                        fail_residual=fail_res, D=D1, V=V1, A=A1, previous=(P, n_prev),
                        D_history=Dh if keep_history else None, V_history=Vh if keep_rates else None,

@@ -284,7 +284,7 @@ def shoot(batch, X0, step0=0, active=None, parallel=None, beta=0.25, gamma=0.5, 
     scheme = Scheme(float(beta), float(gamma), float(tol), int(max_iter))
     parallel_slices(_revolution_cases, batch, parallel, (batch.records, batch.meshdata, scheme),
                     (step0, n_steps, batch.steps_per_rev, X0, active, minus, plus, h, bool(jacobian), with_p,
-                     X1, J, Y, XR, status))
+                     X1, J, Y, XR, status), active=active)
     return Revolution(X1=X1, J=J[:, :, :2 * N] if jacobian else None, Jp=J[:, :, 2 * N] if with_p else None,
                       y=Y, states=XR, status=status)
 
