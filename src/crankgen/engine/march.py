@@ -198,7 +198,7 @@ CHUNKS_PER_WORKER = 4     # a parallel batch is cut into this many slices per wo
 def balanced_bounds(lo, hi, active, parts):
     """Cut lo..hi into at most `parts` contiguous slices holding equal numbers of the cases marked in
     `active` (the others cost next to nothing: the compiled loops skip them) and covering every
-    case of lo..hi."""
+    case of lo..hi; the bounds increase strictly (no slice is empty)."""
     idx = lo + np.flatnonzero(active[lo:hi])
     parts = max(1, min(parts, len(idx)))
     return [lo] + [int(idx[(k * len(idx)) // parts]) for k in range(1, parts)] + [hi]
@@ -217,7 +217,7 @@ def parallel_slices(fn, batch, parallel, leading, trailing, active=None):
     tasks = []
     for kern, lo, hi in batch.runs:
         bounds = balanced_bounds(lo, hi, active, workers * CHUNKS_PER_WORKER if workers > 1 else 1)
-        tasks += [(kern, a, b) for a, b in zip(bounds[:-1], bounds[1:]) if b > a]
+        tasks += [(kern, a, b) for a, b in zip(bounds[:-1], bounds[1:])]
     if workers <= 1 or len(tasks) <= 1:
         for kern, lo, hi in tasks:
             call(fn, kern, *leading, lo, hi, *trailing)
