@@ -237,8 +237,7 @@ def continuation_time(n=16, steps_per_rev=100, max_period=2, repeats=2):
 
 
 def reproduce_times():
-    exe = Path(sys.executable).with_name("crankgen")
-    cmd = [str(exe)] if exe.exists() else [sys.executable, "-m", "crankgen.cli"]
+    cmd = _crankgen_command()
     out = {}
     with tempfile.TemporaryDirectory() as tmp:      # untimed: compiles what this cache still lacks
         subprocess.run(cmd + ["reproduce", "--out", tmp, "--force", "--quick", "--quiet"], capture_output=True)

@@ -31,7 +31,6 @@ from sympy.printing.numpy import NumPyPrinter
 from sympy.printing.pycode import PythonCodePrinter
 
 GENERATOR_VERSION = "5"
-VARIANT_SUFFIXES = ("_into", "_element")
 ELEMENT_MODES = ("full", "printed", "residual", "newmark")
 ELEMENT_ARGUMENTS = ("mode", "q", "qd", "qdd", "geo", "coef", "kin", "cv", "cd", "r", "K", "C", "M", "S")
 TANGENTS = ("K", "C", "M")   # d r / d q, d r / d qd, d r / d qdd

@@ -62,12 +62,13 @@ def _beyond_theory(ax, eps, v, strain):
     return f"\nBEYOND THE THEORY: {why} (shaded: |v|/L > {theory.DEFLECTION_LIMIT:g})" if why else ""
 
 
-def plot_deflection(result, path, failure=None, si=None, against="t"):
+def plot_deflection(result, path, failure=None, si=None, against="t", strain=None):
     """v* at x* = 1/2 against t* (against="t") or against the instantaneous crank speed Omega*
     (against="crank_speed": a run-up's passage through resonance), written atomically to path
     (returned).  failure: the ConvergenceError of a run that stopped, marked on the plot; a
     response beyond the range of the theory (crankgen.theory) is shaded and named in the title.
-    si: the result's SI view (crankgen.outputs.SIView): v in mm against t in s (or rad/s)."""
+    si: the result's SI view (crankgen.outputs.SIView): v in mm against t in s (or rad/s).
+    strain: theory.axial_strain(result, per_step=True) when the caller has it already."""
     from . import theory
     from .io import save_figure
     if against not in ("t", "crank_speed"):
@@ -100,16 +101,19 @@ def plot_deflection(result, path, failure=None, si=None, against="t"):
     ax.set_ylabel("v* at x* = 1/2" if si is None else "v at x = L/2 in the moving frame (mm)")
     # the range of the theory in the scale drawn: |v*| eps = |v| / L
     eps = result.settings["eps"] if si is None else 1e-3 / si.scales.L
-    note = _beyond_theory(ax, eps, v, theory.axial_strain(result, per_step=True))
+    if strain is None:
+        strain = theory.axial_strain(result, per_step=True)
+    note = _beyond_theory(ax, eps, v, strain)
     ax.set_title(_title(result.settings) + note, fontsize=9)
     ax.grid(alpha=0.3)
     return save_figure(fig, path)
 
 
-def plot_orbit(state, path):
+def plot_orbit(state, path, strain=None):
     """A steady revolution (crankgen.SteadyState): v* at x* = 1/2 and the extension delta*
     against the crank angle, written atomically to path (returned); beyond the range of the
-    theory: shaded and named in the title."""
+    theory: shaded and named in the title.  strain: theory.axial_strain(state, per_step=True)
+    when the caller has it already."""
     from . import theory
     from .io import save_figure
     fig, (a1, a2) = subplots(2, 1, figsize=(7, 5.4), sharex=True, constrained_layout=True)
@@ -125,7 +129,9 @@ def plot_orbit(state, path):
     s = dict(state.case.as_dict())
     mult = (f", largest |multiplier| {state.multiplier:.4f}"
             if state.multiplier is not None and np.isfinite(state.multiplier) else "")
-    note = _beyond_theory(a1, state.case.eps, state.v_mid, theory.axial_strain(state, per_step=True))
+    if strain is None:
+        strain = theory.axial_strain(state, per_step=True)
+    note = _beyond_theory(a1, state.case.eps, state.v_mid, strain)
     a1.set_title(f"steady state: {state.status}{mult}\n" + _title(s) + note, fontsize=9)
     return save_figure(fig, path)
 
@@ -183,7 +189,7 @@ def fit_panels(fig, pad=0.12):
     dpi = fig.dpi
     for ax in axes.flat:        # a legend below its panel starts just under the x axis' labels
         leg = ax.get_legend()
-        if leg is not None and getattr(leg, "_crankgen_outside", False):
+        if leg is not None and _legend_outside(ax):
             box, below = ax.get_window_extent(renderer), ax.xaxis.get_tightbbox(renderer)
             y = (below.y0 - box.y0 - 0.06 * dpi) / box.height
             leg.set_bbox_to_anchor((0.5, y), transform=ax.transAxes)

@@ -86,7 +86,7 @@ class BifurcationDiagram:
         amplitude and beyond_theory, crankgen.theory), special_points.csv and multipliers.csv
         (every multiplier of every point, long format) in folder; returns the paths.  A number
         that does not exist is an empty field."""
-        from ..theory import DEFLECTION_LIMIT
+        from ..theory import beyond
 
         folder = Path(folder)
         folder.mkdir(parents=True, exist_ok=True)
@@ -96,7 +96,7 @@ class BifurcationDiagram:
 
         def theory(p, amplitude):
             x = abs(self.eps_at(p) * float(amplitude))
-            return [_num(x), "" if not np.isfinite(x) else ("yes" if x > DEFLECTION_LIMIT else "no")]
+            return [_num(x), beyond(deflection=x)]
         with atomic_file(paths[0]) as fh:
             w = csv.writer(fh)
             w.writerow(["branch", "period", "point", name, "amplitude", "stable",

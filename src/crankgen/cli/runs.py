@@ -146,7 +146,8 @@ def _simulate(args, case, revolutions, steps, out, si=None):
         out.wrote(write_csv(out.path("nodes.csv"), node_columns, node_rows))
     # a run-up is drawn against the crank speed it passes (its resonances), other runs against time
     against = "crank_speed" if case.motion == "runup" and getattr(res, "states", None) is not None else "t"
-    out.wrote(plot_deflection(res, out.path("v_mid.png"), failure=failure, si=view, against=against))
+    out.wrote(plot_deflection(res, out.path("v_mid.png"), failure=failure, si=view, against=against,
+                              strain=strain))
     note = _theory_note(float(np.max(defl)) if len(defl) else math.nan,
                         float(np.max(strain)) if len(strain) else math.nan)
     if failure is not None:
@@ -194,7 +195,6 @@ def _theta_at(case, t):
 # ---- steady ------------------------------------------------------------------------------------
 STEADY_NAMES = ["steady.csv", "orbit.csv", "orbit.png"]
 ORBIT_COLUMNS = ["theta_deg", "t", "v_mid", "u_end", "extension", "deflection_over_L", "axial_strain"]
-THEORY_COLUMNS = ["deflection_over_L", "axial_strain", "beyond_theory", "strain_energy"]
 
 
 def _resolved(case, where=""):
@@ -249,18 +249,18 @@ def _steady(args, case, out):
                        method=args.method)[0]
     row = st.row()
     defl = theory.deflection_over_L(case.eps, st.amplitude)
-    strain = theory.axial_strain(st) if st.v_mid is not None else math.nan
+    steps = theory.axial_strain(st, per_step=True) if st.v_mid is not None else None   # per stored step
+    strain = float(steps.max()) if steps is not None and steps.size else math.nan
     row.update(deflection_over_L=defl, axial_strain=strain, beyond_theory=theory.beyond(defl, strain),
                strain_energy=theory.strain_energy(case.approach))
     if st.status == "failed":
         row["message"] = _failure_text(st.message, case.approach)
     out.wrote(write_csv(out.path("steady.csv"), *flat_table(list(row), [row])))
     if st.v_mid is not None:
-        steps = theory.axial_strain(st, per_step=True)
         rows = [dict(zip(ORBIT_COLUMNS, (np.degrees(th), t, v, u, e, theory.deflection_over_L(case.eps, v), a)))
                 for th, t, v, u, e, a in zip(st.theta, st.t, st.v_mid, st.u_end, st.extension, steps)]
         out.wrote(write_csv(out.path("orbit.csv"), ORBIT_COLUMNS, rows))
-        out.wrote(plot_orbit(st, out.path("orbit.png")))
+        out.wrote(plot_orbit(st, out.path("orbit.png"), strain=steps))
     else:                                    # no orbit: leave no orbit of an earlier run beside it
         for name in ("orbit.csv", "orbit.png"):
             out.path(name).unlink(missing_ok=True)

@@ -10,12 +10,12 @@ import numpy as np
 
 from .. import theory
 from . import findings as fd
+from .figures import DIVERGED    # a run of an ill-posed approach that failed
 
 REPRODUCED, PARTLY, NOT_REPRODUCED, NOT_COMPUTABLE = (
     "reproduced", "partly", "not reproduced", "not computable")
 VERDICTS = (REPRODUCED, PARTLY, NOT_REPRODUCED, NOT_COMPUTABLE)
 STABLE = "periodic"
-DIVERGED = "diverged"          # a run of an ill-posed approach that failed (figures.DIVERGED)
 ILL = f"diverged ({theory.ILL_POSED})"
 
 # tolerances (stated in findings.md beside the table)
@@ -163,10 +163,6 @@ def _by_parts(parts):
     if n == len(parts):
         return REPRODUCED
     return NOT_REPRODUCED if n == 0 else PARTLY
-
-
-def _diverged_rows(rows):
-    return [r for r in rows if r["status"] == DIVERGED]
 
 
 def _near(x, target, tol, partly_tol=None):
