@@ -19,7 +19,12 @@ says what it adds:
   eq. (37) (cv = gamma dt, cd = beta dt^2).
 One function per kernel keeps the engine's tables and the compilations per model few; each mode's
 branch is the straight-line code of its own common-subexpression elimination.  Structural zeros are
-skipped.
+skipped.  Beside it, `name_lanes(mode, b, coef, kin, cv, cd)` does the same for LANES elements at
+once: their q, qd, qdd, geo and r, K, C, M, S are rows of LANES values in one flat buffer b
+(`lane_rows`), every row at a constant offset, so that the compiler turns the loop over the
+elements into vector instructions; each element's statements are those of `name_element`, its
+numbers the same to the last bit.  (The engine runs the rod's families through their lane
+functions and the end node's through their one-element functions.)
 Every variant comes from the same specification and a common-subexpression elimination with a fixed
 prefix and canonical order, so the same derivation always gives byte-identical source.
 """
@@ -30,9 +35,12 @@ import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
 from sympy.printing.pycode import PythonCodePrinter
 
-GENERATOR_VERSION = "5"
+GENERATOR_VERSION = "6"
 ELEMENT_MODES = ("full", "printed", "residual", "newmark")
 ELEMENT_ARGUMENTS = ("mode", "q", "qd", "qdd", "geo", "coef", "kin", "cv", "cd", "r", "K", "C", "M", "S")
+LANE_ARGUMENTS = ("mode", "b", "coef", "kin", "cv", "cd")
+LANES = 8                       # elements per call of a lane function (one 512-bit vector of doubles)
+LANE_BLOCKS = ("q", "qd", "qdd", "geo", "r", "K", "C", "M", "S")     # the lane buffer's blocks, in order
 TANGENTS = ("K", "C", "M")   # d r / d q, d r / d qd, d r / d qdd
 CSE_PREFIX = "_c"
 
@@ -315,12 +323,86 @@ def emit_element(kernel):
     return "\n".join(lines) + "\n"
 
 
+def lane_rows(ndof, ngeo):
+    """{block: first row} of the lane buffer (rows of LANES values) and its number of rows: q, qd,
+    qdd (ndof rows each), geo (ngeo), r (ndof), K, C, M, S (ndof * ndof each, row-major)."""
+    sizes = {"q": ndof, "qd": ndof, "qdd": ndof, "geo": ngeo, "r": ndof,
+             "K": ndof * ndof, "C": ndof * ndof, "M": ndof * ndof, "S": ndof * ndof}
+    rows, at = {}, 0
+    for block in LANE_BLOCKS:
+        rows[block] = at
+        at += sizes[block]
+    return rows, at
+
+
+class _LanePrinter(_ScalarPrinter):
+    """x**(-n) printed 1/x**n: the same number (numba computes x**(-n) as 1.0 / x**n), but without
+    the call that keeps a loop from being vectorized."""
+
+    def _print_Pow(self, expr, rational=False):
+        if expr.exp.is_Integer and expr.exp < -1:
+            return f"1/{self.parenthesize(sp.Pow(expr.base, -expr.exp, evaluate=False), sp.printing.precedence.PRECEDENCE['Pow'])}"
+        return super()._print_Pow(expr, rational=rational)
+
+
+def _lane_branch(kernel, entries, rows):
+    """Statements of one mode of a lane function: for each element e < LANES, the inputs it uses
+    from its rows of b (or coef, kin), the common subexpressions, then b[row + e] += expr."""
+    printer = _LanePrinter()
+    entries = [(o, idx, e) for o, idx, e in entries if e != 0]
+    replacements, reduced = sp.cse([e for _, _, e in entries], symbols=sp.numbered_symbols(CSE_PREFIX),
+                                   order="canonical")
+    used = set().union(*(e.free_symbols for _, _, e in entries)) if entries else set()
+    ndof = len(kernel.inputs[0].symbols)
+
+    def at(row):
+        return f"b[{row * LANES} + e]" if row else "b[e]"
+    lines = [f"for e in range({LANES}):"]
+    for inp in kernel.inputs:
+        for k, sym in enumerate(inp.symbols):
+            if sym in used:
+                where = at(rows[inp.name] + k) if inp.name in rows else f"{inp.name}[{k}]"
+                lines.append(f"    {sym.name} = {where}")
+    for sym, expr in replacements:
+        lines.append(f"    {sym} = {printer.doprint(expr)}")
+    for (out, idx, _), value in zip(entries, reduced):
+        row = rows[out] + (idx[0] * ndof + idx[1] if len(idx) == 2 else idx[0])
+        lines.append(f"    {at(row)} += {printer.doprint(value)}")
+    return lines
+
+
+def emit_lanes(kernel):
+    """`<name>_lanes(mode, b, coef, kin, cv, cd)`: `<name>_element`, every mode, for LANES elements
+    at once (module docstring; b's layout: lane_rows)."""
+    by_name = {out.name: out.expr for out in kernel.outputs}
+    cv, cd = sp.Symbol("cv"), sp.Symbol("cd")
+    r = [("r", idx, e) for idx, e in _entries(by_name["r"])]
+
+    def tangents(stiffness):
+        return [(t, idx, e) for t in TANGENTS for idx, e in _entries(by_name[stiffness if t == "K" else t])]
+    S = by_name["M"] + cv * by_name["C"] + cd * by_name["K"]
+    printed = _has_printed(kernel)
+    branches = [("full", r + tangents("K"), (0,) if printed else (0, 1))]
+    if printed:
+        branches.append(("printed", r + tangents("K_printed"), (1,)))
+    branches += [("residual", r, (2,)), ("newmark", r + [("S", idx, e) for idx, e in _entries(S)], (3,))]
+    rows, _ = lane_rows(len(kernel.inputs[0].symbols), len(next(i for i in kernel.inputs if i.name == "geo").symbols))
+    lines = [f"def {kernel.name}_lanes({', '.join(LANE_ARGUMENTS)}):",
+             f'    """{kernel.name}_element for the {LANES} elements of the lane buffer b (same modes)."""']
+    for k, (label, entries, modes) in enumerate(branches):
+        test = f"mode == {modes[0]}" if len(modes) == 1 else f"mode <= {modes[-1]}"
+        keyword = "if" if k == 0 else ("elif" if k < len(branches) - 1 else "else")
+        lines.append(f"    {keyword}{' ' + test if keyword != 'else' else ''}:    # {label}")
+        lines += ["        " + line for line in _lane_branch(kernel, entries, rows)]
+    return "\n".join(lines) + "\n"
+
+
 def _names(kernel, accumulating, scalar):
     names = [kernel.name]
     if scalar:
         names.append(kernel.name + "_into")
     if accumulating and is_residual_kernel(kernel):
-        names.append(kernel.name + "_element")
+        names += [kernel.name + "_element", kernel.name + "_lanes"]
     return names
 
 
@@ -329,5 +411,5 @@ def _sources(kernel, accumulating, scalar):
     if scalar:
         parts.append(emit_scalar_kernel(kernel))
     if accumulating and is_residual_kernel(kernel):
-        parts.append(emit_element(kernel))
+        parts += [emit_element(kernel), emit_lanes(kernel)]
     return "\n\n".join(parts)

@@ -15,7 +15,8 @@ import sympy as sp
 from sympy.printing.pycode import PythonCodePrinter
 
 from . import representation as ir
-from .emit import ELEMENT_MODES
+from . import symbols as _symbols
+from .emit import ELEMENT_MODES, LANES, lane_rows
 from .guides import END_MAP_ROWS
 
 
@@ -71,6 +72,12 @@ def _table_source(rep):
     out.append(f"END_MAP_ROWS = {END_MAP_ROWS!r}")
     out.append("# what an element kernel's one-element function adds, by its mode argument (derive/emit.py)")
     out.append(f"ELEMENT_MODES = {ELEMENT_MODES!r}")
+    rows, size = lane_rows(rep.element_dofs, len(_symbols.GEOMETRY))
+    out.append("# an element kernel's lane function: LANES elements at once, on a buffer of LANE_SIZE values whose")
+    out.append("# blocks start at LANE_ROWS (rows of LANES values; derive/emit.py)")
+    out.append(f"LANES = {LANES!r}")
+    out.append(f"LANE_ROWS = {rows!r}")
+    out.append(f"LANE_SIZE = {size * LANES!r}")
     out.append(f"COEFFICIENTS = {tuple(c.name for c in rep.coefficients)!r}")
     out.append(f"SWITCHABLE_GROUPS = {rep.switchable_groups!r}")
     out.append("# crank motions: name, record title, parameters it reads, periodic in the crank angle, the record's")

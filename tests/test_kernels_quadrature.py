@@ -320,7 +320,7 @@ def test_paper_slider_damping(elems):
 # broadcasting: a leading batch axis behaves like a loop
 # --------------------------------------------------------------------------------------------
 
-VARIANTS = ("_into", "_element")   # one-element variants
+VARIANTS = ("_into", "_element", "_lanes")   # one-element and lane variants
 GENERATED = (gen_shape, gen_kinematics, gen_elements, gen_energy, gen_fields, gen_groups)
 ALL_KERNELS = [(mod.__name__.rsplit(".", 1)[-1], name, getattr(mod, name))
                for mod in GENERATED for name in mod.__all__ if not name.endswith(VARIANTS)]
@@ -552,3 +552,41 @@ def test_one_element_function_modes_match_vectorized(module, name, kernel):
             else:
                 np.testing.assert_allclose(g - x0, w, rtol=1e-11, atol=1e-13 * (1 + np.max(np.abs(w))),
                                            err_msg=mode)
+
+
+@pytest.mark.parametrize("module,name,kernel", RESIDUAL_KERNELS,
+                         ids=[f"{m}.{n}" for m, n, _ in RESIDUAL_KERNELS])
+def test_lane_function_is_the_one_element_function_on_each_lane(module, name, kernel):
+    """`<name>_lanes(mode, b, coef, kin, cv, cd)` adds, for each of the LANES elements of the lane
+    buffer b (its own q, qd, qdd, geo; coef and kin shared), what the vectorized kernel gives for
+    that element in each mode, into that element's lane of the rows LANE_ROWS names, and leaves every
+    other value of b alone."""
+    lanes = getattr(sys.modules[kernel.__module__], name + "_lanes")
+    L, rows = dispatch.LANES, dispatch.LANE_ROWS
+    per_lane = [_random_arguments(kernel, f"lanes.{module}.{name}.{j}") for j in range(L)]
+    coef, kin = per_lane[0][4], per_lane[0][5]
+    outputs = [dict(zip(("r", "K", "C", "M", "K_printed"), kernel(*a[:4], coef, kin))) for a in per_lane]
+    cv, cd = 0.037, 2.9e-4
+    rng = np.random.default_rng(zlib.crc32(("lanes" + name).encode()))
+    for mode in dispatch.ELEMENT_MODES:
+        b = rng.standard_normal(dispatch.LANE_SIZE)
+        for j, a in enumerate(per_lane):
+            for block, value in zip(("q", "qd", "qdd", "geo"), a[:4]):
+                for k, x in enumerate(value):
+                    b[(rows[block] + k) * L + j] = x
+        start = b.copy()
+        lanes(MODE[mode], b, coef, kin, cv, cd)
+        touched = np.zeros(b.size, dtype=bool)
+        for j, out in enumerate(outputs):
+            K = out.get("K_printed", out["K"]) if mode == "printed" else out["K"]
+            want = {"r": out["r"]}
+            if mode in ("full", "printed"):
+                want.update(K=K, C=out["C"], M=out["M"])
+            elif mode == "newmark":
+                want["S"] = out["M"] + cv * out["C"] + cd * out["K"]
+            for block, w in want.items():
+                at = (rows[block] + np.arange(w.size)) * L + j
+                touched[at] = True
+                np.testing.assert_allclose(b[at] - start[at], w.ravel(), rtol=1e-11,
+                                           atol=1e-13 * (1 + np.max(np.abs(w))), err_msg=f"{mode} {block} lane {j}")
+        assert np.array_equal(b[~touched], start[~touched]), mode

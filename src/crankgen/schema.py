@@ -23,6 +23,8 @@ ELEMENT_DOFS = _table.ELEMENT_DOFS
 END_SLOTS = _table.END_SLOTS
 END_MAP_ROWS = {name: k for k, name in enumerate(_table.END_MAP_ROWS)}
 ELEMENT_MODES = _table.ELEMENT_MODES          # what an element kernel's one-element function adds
+LANES, LANE_SIZE = _table.LANES, _table.LANE_SIZE       # an element kernel's lane function: elements at once,
+LANE_ROWS = _table.LANE_ROWS                            # its buffer's size and the first row of each block
 
 
 def _bracket(low, high, low_open, high_open):
