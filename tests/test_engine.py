@@ -320,3 +320,43 @@ def test_failed_cases_are_reported_not_hidden():
     assert res[0].status == "failed" and not res[0].ok
     assert "Newton did not converge in step" in res[0].message
     assert res[1].status == "periodic" and math.isfinite(res[1].amplitude)
+
+
+@pytest.mark.parametrize("name", ["inertia_lagrange", "elastic_lagrange_A"])
+def test_compiled_lane_function_gives_each_element_the_one_element_numbers_to_the_last_bit(name):
+    """The engine runs the rod's families on lanes of elements (the compiled, vectorized
+    `<name>_lanes`); each lane's numbers must be those of the compiled one-element function
+    `<name>_element` exactly, in every mode (elastic_lagrange_A: negative powers, printed
+    differently in the lane functions)."""
+    import numba
+
+    from crankgen import schema
+    from crankgen.engine.calls import address, call
+    from crankgen.engine.kernels import SIGNATURES, compiled
+
+    lane = np.array([address(compiled("lanes", name), SIGNATURES["lanes"])], dtype=np.int64)
+    one = np.array([address(compiled("element", name), SIGNATURES["element"])], dtype=np.int64)
+
+    @numba.njit
+    def run(table, args):
+        call(table, 0, args)
+
+    L, rows, n = schema.LANES, schema.LANE_ROWS, schema.ELEMENT_DOFS
+    rng = np.random.default_rng(11)
+    coef = np.array(Case().coefficients, dtype=float)
+    kin = rng.uniform(0.1, 1.0, len(schema.KINEMATICS))
+    for mode in range(len(schema.ELEMENT_MODES)):
+        b = np.zeros(schema.LANE_SIZE)
+        nodal = 1e-2 * rng.standard_normal((L, 3, n))
+        geo = np.stack([rng.uniform(0.05, 0.5, L), rng.uniform(0.0, 0.9, L)], axis=1)
+        for j in range(L):
+            for block, value in zip(("q", "qd", "qdd", "geo"), (*nodal[j], geo[j])):
+                b[(rows[block] + np.arange(value.size)) * L + j] = value
+        run(lane, (mode, b, coef, kin, 0.037, 2.9e-4))
+        for j in range(L):
+            one_out = [np.zeros(n)] + [np.zeros((n, n)) for _ in range(4)]
+            run(one, (mode, *nodal[j], geo[j], coef, kin, 0.037, 2.9e-4, *one_out))
+            for block, value in zip(("r", "K", "C", "M", "S"), one_out):
+                got = b[(rows[block] + np.arange(value.size)) * L + j]
+                assert np.array_equal(got, value.ravel()), (name, mode, block, j)
+            assert np.any(one_out[0] != 0)

@@ -25,7 +25,10 @@ from pathlib import Path
 
 from numba import njit
 from numba.core import caching
+from numba.core.compiler import CompilerBase, DefaultPassBuilder
+from numba.core.compiler_machinery import FunctionPass, register_pass
 from numba.core.errors import NumbaExperimentalFeatureWarning
+from numba.core.untyped_passes import TranslateByteCode
 
 from .._generated import schema as _table
 from ..compile_cache import CACHE, CODE_HASH, READ_ONLY, announce, is_warm  # noqa: F401
@@ -111,17 +114,43 @@ def _with_cache(dispatcher):
     return dispatcher
 
 
-def jit(fn=None, name=None, namespace=None, inline="never", signature=None, error_model="python", python=True):
+@register_pass(mutates_CFG=False, analysis_only=True)
+class _ArgumentsDoNotAlias(FunctionPass):
+    """Marks the compiled function's pointer arguments (the arrays' data among them) noalias."""
+    _name = "crankgen_arguments_do_not_alias"
+
+    def __init__(self):
+        FunctionPass.__init__(self)
+
+    def run_pass(self, state):
+        state.flags.noalias = True
+        return False
+
+
+class _NoAliasCompiler(CompilerBase):
+    """numba's nopython pipeline for a function whose array arguments never share memory: the
+    compiler may then vectorize its loops without checking at run time that they do not."""
+
+    def define_pipelines(self):
+        pm = DefaultPassBuilder.define_nopython_pipeline(self.state)
+        pm.add_pass_after(_ArgumentsDoNotAlias, TranslateByteCode)
+        pm.finalize()
+        return [pm]
+
+
+def jit(fn=None, name=None, namespace=None, inline="never", signature=None, error_model="python", python=True,
+        noalias=False):
     """fn compiled with numba (nopython, releasing the GIL, cached as above).  name: compile a copy
     under another name (numba's cache is keyed by the qualified name); namespace: globals to bind in
     the copy; inline="always" inlines fn into its callers at numba's IR level (small functions
     called per element); signature: compile now, for exactly this signature (the kernels the engine
     calls by address); error_model: numba's ("numpy": never raise, e.g. x / 0 is inf); python:
     False for a function only compiled code calls (no Python wrapper is compiled for it: less
-    compile time).  No function is used as a numba first-class function (no cfunc wrapper).  As a
-    decorator: @jit or @jit(python=False)."""
+    compile time); noalias: the function's array arguments never share memory (the lane kernels:
+    their loops are vectorized only so).  No function is used as a numba first-class function (no
+    cfunc wrapper).  As a decorator: @jit or @jit(python=False)."""
     if fn is None:
-        return lambda f: jit(f, name, namespace, inline, signature, error_model, python)
+        return lambda f: jit(f, name, namespace, inline, signature, error_model, python, noalias)
     if name is not None or namespace is not None:
         glob = dict(fn.__globals__)
         glob.update(namespace or {})
@@ -130,8 +159,9 @@ def jit(fn=None, name=None, namespace=None, inline="never", signature=None, erro
         copy.__doc__ = fn.__doc__
         copy.__module__ = fn.__module__
         fn = copy
+    options = dict(pipeline_class=_NoAliasCompiler) if noalias else {}
     dispatcher = _with_cache(njit(nogil=True, inline=inline, error_model=error_model, no_cfunc_wrapper=True,
-                                  no_cpython_wrapper=not python)(fn))
+                                  no_cpython_wrapper=not python, **options)(fn))
     if signature is not None and hasattr(dispatcher, "compile"):
         dispatcher.compile(signature)
         dispatcher.disable_compile()

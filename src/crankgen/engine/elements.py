@@ -1,12 +1,13 @@
-"""The element loop of the compiled engine: gather each element's nodal state, map the end node
+"""The element loop of the compiled engine: gather the elements' nodal states, map the end node
 through the guide's end map, call the case's term families (the model's table of compiled kernels,
-one per family slot: engine/kernels.py), project the end element's terms on the reduced
+one per family slot: engine/kernels.py), the rod's families on lanes of schema.LANES elements a
+call (their loop over the elements vectorized), project the end element's terms on the reduced
 co-ordinate (the exact constraint elimination of constraints.py), and the per-step outputs.
 
 Three modes: FULL (residual and tangents K, C, M), NEWMARK (residual and the iteration matrix
-S = M + cv C + cd K of eq. 37: each kernel's `_element` function in its newmark mode),
-RESIDUAL (residual only, for iterations that reuse a factorization).  Nothing here names a family,
-a guide or a motion.
+S = M + cv C + cd K of eq. 37: each kernel's newmark mode, except for the end element, whose
+separate matrices the projection needs), RESIDUAL (residual only, for iterations that reuse a
+factorization).  Nothing here names a family, a guide or a motion.
 """
 
 from .. import schema
@@ -24,6 +25,9 @@ _R = schema.END_MAP_ROWS
 Q, QD, QDD, G_S, DQD_DS, DQDD_DS, DQDD_DSD, G_SS = (_R[k] for k in (
     "q", "qd", "qdd", "g_s", "dqd_ds", "dqdd_ds", "dqdd_dsd", "g_ss"))
 PHI = schema.KIN["phi"]
+LANES = schema.LANES
+LQ, LQD, LQDD, LGEO, LR, LK, LC, LM, LS = (schema.LANE_ROWS[k] for k in (
+    "q", "qd", "qdd", "geo", "r", "K", "C", "M", "S"))
 
 
 @jit(python=False)
@@ -110,69 +114,116 @@ def _map_end(kern, sel, params, q, qd, qdd, w):
 _map_end = jit(_map_end, inline="always", python=False)
 
 
+def _lane_loop(add, form_s, e0, e1, kern, sel, coef, params, dofs, l, d, v, acc, cv, cd, w):
+    """The rod families' terms (their kernels' mode `add`) of the elements e0 <= e < e1, LANES at a
+    time: each group's nodal states gathered into a lane buffer of w.lanes (the end element's end
+    node through the end map, its state left in w.q, w.qd, w.qdd; unused lanes at rest), the lane
+    function of each family slot called once, the terms copied into w.rE[e] and (by add) w.SE[e]
+    or w.KE[e], w.CE[e], w.ME[e] (and w.SE[e] = M + cv C + cd K when form_s)."""
+    n = dofs.shape[0]
+    q, qd, qdd, kin, rod = w.q, w.qd, w.qdd, w.kin, kern.rod
+    rE, SE, KE, CE, ME = w.rE, w.SE, w.KE, w.CE, w.ME
+    for c in range(e0, e1, LANES):
+        b = w.lanes[(c - e0) // LANES]
+        m = min(LANES, e1 - c)
+        for j in range(LANES):
+            e = c + j
+            if j < m:
+                _gather(dofs, e, d, v, acc, q, qd, qdd)
+                if e == n - 1:
+                    _map_end(kern, sel, params, q, qd, qdd, w)
+                for k in range(NDOF):
+                    b[(LQ + k) * LANES + j] = q[k]
+                    b[(LQD + k) * LANES + j] = qd[k]
+                    b[(LQDD + k) * LANES + j] = qdd[k]
+            else:
+                for k in range(NDOF):
+                    b[(LQ + k) * LANES + j] = 0.0
+                    b[(LQD + k) * LANES + j] = 0.0
+                    b[(LQDD + k) * LANES + j] = 0.0
+            b[LGEO * LANES + j] = l
+            b[(LGEO + 1) * LANES + j] = e * l
+        for i in range(LR * LANES, (LR + NDOF) * LANES):
+            b[i] = 0.0
+        if add == ADD_NEWMARK:
+            for i in range(LS * LANES, (LS + NDOF * NDOF) * LANES):
+                b[i] = 0.0
+        elif add != ADD_RESIDUAL:
+            for block in (LK, LC, LM):
+                for i in range(block * LANES, (block + NDOF * NDOF) * LANES):
+                    b[i] = 0.0
+        for k in range(N_ROD):
+            if sel[k] >= 0:
+                call(rod, k, (add, b, coef, kin, cv, cd))
+        for j in range(m):
+            e = c + j
+            for i in range(NDOF):
+                rE[e, i] = b[(LR + i) * LANES + j]
+            if add == ADD_NEWMARK:
+                for i in range(NDOF * NDOF):
+                    SE[e, i // NDOF, i % NDOF] = b[(LS + i) * LANES + j]
+            elif add != ADD_RESIDUAL:
+                for i in range(NDOF * NDOF):
+                    kk, cc, mm = b[(LK + i) * LANES + j], b[(LC + i) * LANES + j], b[(LM + i) * LANES + j]
+                    KE[e, i // NDOF, i % NDOF] = kk
+                    CE[e, i // NDOF, i % NDOF] = cc
+                    ME[e, i // NDOF, i % NDOF] = mm
+                    if form_s:
+                        SE[e, i // NDOF, i % NDOF] = mm + cv * cc + cd * kk
+
+
+_lane_loop = jit(_lane_loop, python=False)
+
+
 @jit(python=False)
 def element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv, cd, w):
     """Element terms of one case into w.rE and (by mode) w.KE, w.CE, w.ME / w.SE, at w.kin; the
     end element's terms are projected on the reduced end co-ordinate.  printed: the one-pass
-    scheme's printed iteration matrices.  Every array is read once, on entry; one element's terms
-    are computed in the scratch arrays w.r1, w.K1, ... and copied into w.rE[e], w.KE[e], ... (a
-    view per element, rE[e], costs an atomic reference count increment and decrement)."""
+    scheme's printed iteration matrices.  The rod's families run on lanes of elements
+    (_lane_loop); the end element gets its separate matrices (for the projection), then the end
+    node's families and the projection, in the scratch arrays w.r1, w.K1, ..."""
     n = dofs.shape[0]
+    full = ADD_PRINTED if printed else ADD_FULL
+    if mode == RESIDUAL:
+        _lane_loop(ADD_RESIDUAL, False, 0, n, kern, sel, coef, params, dofs, l, d, v, acc, cv, cd, w)
+    elif mode == NEWMARK and not printed:
+        _lane_loop(ADD_NEWMARK, False, 0, n - 1, kern, sel, coef, params, dofs, l, d, v, acc, cv, cd, w)
+        _lane_loop(full, False, n - 1, n, kern, sel, coef, params, dofs, l, d, v, acc, cv, cd, w)
+    else:
+        _lane_loop(full, mode == NEWMARK, 0, n, kern, sel, coef, params, dofs, l, d, v, acc, cv, cd, w)
+    e = n - 1                           # the end element (its mapped nodal state in w.q, w.qd, w.qdd)
+    add = ADD_RESIDUAL if mode == RESIDUAL else full
     q, qd, qdd, geo, kin = w.q, w.qd, w.qdd, w.geo, w.kin
     rE, KE, CE, ME, SE = w.rE, w.KE, w.CE, w.ME, w.SE
     r, K, C, M, S = w.r1, w.K1, w.C1, w.M1, w.S1
-    rod, end = kern.rod, kern.end
+    end = kern.end
     geo[0] = l
-    full = ADD_PRINTED if printed else ADD_FULL
-    for e in range(n):
-        last = e == n - 1
-        _gather(dofs, e, d, v, acc, q, qd, qdd)
-        if last:
-            _map_end(kern, sel, params, q, qd, qdd, w)
-        geo[1] = e * l
+    geo[1] = e * l
+    for i in range(NDOF):
+        r[i] = rE[e, i]
+    if add != ADD_RESIDUAL:
         for i in range(NDOF):
-            r[i] = 0.0
-        if mode == RESIDUAL:
-            add = ADD_RESIDUAL
-        elif mode == NEWMARK and not last and not printed:
-            add = ADD_NEWMARK
-            for i in range(NDOF):
-                for j in range(NDOF):
-                    S[i, j] = 0.0
-        else:
-            add = full
-            for i in range(NDOF):
-                for j in range(NDOF):
-                    K[i, j] = 0.0
-                    C[i, j] = 0.0
-                    M[i, j] = 0.0
-        for k in range(N_ROD):
-            if sel[k] >= 0:
-                call(rod, k, (add, q, qd, qdd, geo, coef, kin, cv, cd, r, K, C, M, S))
-        if last:
-            for k in range(N_END):
-                if sel[N_ROD + k] >= 0:
-                    call(end, k, (add, q, qd, qdd, geo, coef, kin, cv, cd, r, K, C, M, S))
-            if add == ADD_RESIDUAL:
-                project_residual(w.E, r)
-            else:
-                project_last(w.E, r, K, C, M)
+            for j in range(NDOF):
+                K[i, j] = KE[e, i, j]
+                C[i, j] = CE[e, i, j]
+                M[i, j] = ME[e, i, j]
+    for k in range(N_END):
+        if sel[N_ROD + k] >= 0:
+            call(end, k, (add, q, qd, qdd, geo, coef, kin, cv, cd, r, K, C, M, S))
+    if add == ADD_RESIDUAL:
+        project_residual(w.E, r)
+    else:
+        project_last(w.E, r, K, C, M)
+    for i in range(NDOF):
+        rE[e, i] = r[i]
+    if add != ADD_RESIDUAL:
         for i in range(NDOF):
-            rE[e, i] = r[i]
-        if add == ADD_NEWMARK:
-            for i in range(NDOF):
-                for j in range(NDOF):
-                    SE[e, i, j] = S[i, j]
-        elif add != ADD_RESIDUAL:
-            for i in range(NDOF):
-                for j in range(NDOF):
-                    KE[e, i, j] = K[i, j]
-                    CE[e, i, j] = C[i, j]
-                    ME[e, i, j] = M[i, j]
-            if mode == NEWMARK:
-                for i in range(NDOF):
-                    for j in range(NDOF):
-                        SE[e, i, j] = M[i, j] + cv * C[i, j] + cd * K[i, j]
+            for j in range(NDOF):
+                KE[e, i, j] = K[i, j]
+                CE[e, i, j] = C[i, j]
+                ME[e, i, j] = M[i, j]
+                if mode == NEWMARK:
+                    SE[e, i, j] = M[i, j] + cv * C[i, j] + cd * K[i, j]
 
 
 @jit(python=False)

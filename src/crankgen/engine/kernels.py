@@ -1,9 +1,11 @@
 """The generated kernels, compiled one at a time when a case first needs them, and gathered into the
 tables of native addresses the engine calls (records.Kernels, engine/calls.py), one table per model: for each
-term family slot the selected variant's one-element function `<name>_element(mode, ...)`
-(derive/emit.py: the mode says whether it adds the residual and tangents, the printed iteration
-matrix, the residual only, or the Newmark iteration matrix), a no-op for an absent family; the
-guide's end map and kinematics; the crank motion.
+term family slot the selected variant's lane function `<name>_lanes(mode, b, ...)` (families acting
+on every element of the rod: schema.LANES elements a call, their loop vectorized) or one-element
+function `<name>_element(mode, ...)` (families acting on the end node), a no-op for an absent
+family (derive/emit.py: the mode says whether they add the residual and tangents, the printed
+iteration matrix, the residual only, or the Newmark iteration matrix); the guide's end map and
+kinematics; the crank motion.
 
 The engine itself is compiled once for every model: it receives the kernels as arguments (tables
 of the addresses of compiled functions, one signature per kind); a batch whose cases differ in
@@ -36,12 +38,15 @@ _F = types.float64
 SIGNATURES = {
     # name_element(mode, q, qd, qdd, geo, coef, kin, cv, cd, r, K, C, M, S): derive/emit.py
     "element": types.void(types.int64, _V, _V, _V, _V, _V, _V, _F, _F, _V, _M, _M, _M, _M),
+    # name_lanes(mode, b, coef, kin, cv, cd): the same for schema.LANES elements of the lane buffer b
+    "lanes": types.void(types.int64, _V, _V, _V, _F, _F),
     "end_map": types.void(_V, _V, _V, _M),
     "guide": types.void(_V, _V, _V),
     "motion": types.void(_F, _V, _V),
 }
 
 PARTS = ("rod", "end")
+PART_KIND = {"rod": "lanes", "end": "element"}      # the rod's families run on lanes of elements
 FAMILY_SLOTS = {part: [f for f in _table.FAMILIES if f[1] == part] for part in PARTS}
 # flat variant tables per part: (family name, variant index, element kernel name)
 VARIANTS = {part: [(f[0], k, v[1]) for f in FAMILY_SLOTS[part] for k, v in enumerate(f[5])] for part in PARTS}
@@ -69,6 +74,10 @@ def _noop_element(mode, q, qd, qdd, geo, coef, kin, cv, cd, r, K, C, M, S):
     pass
 
 
+def _noop_lanes(mode, b, coef, kin, cv, cd):
+    pass
+
+
 def _noop3(x, y, z):
     pass
 
@@ -81,7 +90,7 @@ def _noop_motion(t, params, crank):
     pass
 
 
-_NOOP_SOURCE = {"element": _noop_element, "end_map": _noop_end_map, "guide": _noop3, "motion": _noop_motion}
+_NOOP_SOURCE = {"element": _noop_element, "lanes": _noop_lanes, "end_map": _noop_end_map, "guide": _noop3, "motion": _noop_motion}
 _COMPILED = {}
 
 
@@ -95,17 +104,19 @@ def _noop(kind):
 
 def _source(kind, name):
     """The generated one-element function of a kernel of this kind."""
-    if kind == "element":
-        return getattr(_elements, f"{name}_element")
+    if kind in ("element", "lanes"):
+        return getattr(_elements, f"{name}_{kind}")
     return getattr(_kinematics, f"{kind}_{name}_into")
 
 
 def compiled(kind, name):
     """The compiled kernel `name` of this kind (compiled on first use, cached on disk;
-    engine/build.py compiles a run's kernels ahead, on two processes)."""
+    engine/build.py compiles a run's kernels ahead, on two processes).  The lane kernels' arrays
+    never share memory (noalias: their loop over the elements is vectorized)."""
     key = (kind, name)
     if key not in _COMPILED:
-        _COMPILED[key] = jit(_source(kind, name), signature=SIGNATURES[kind], error_model="numpy", python=False)
+        _COMPILED[key] = jit(_source(kind, name), signature=SIGNATURES[kind], error_model="numpy", python=False,
+                             noalias=kind == "lanes")
     return _COMPILED[key]
 
 
@@ -130,7 +141,7 @@ def needed(rows):
             for k in range(count):
                 i = row[offset + k]
                 if i >= 0:
-                    out.add(("element", VARIANTS[part][i][2]))
+                    out.add((PART_KIND[part], VARIANTS[part][i][2]))
         out.add(("end_map", GUIDE_NAMES[row[GUIDE_SLOT]]))
         out.add(("guide", GUIDE_NAMES[row[GUIDE_SLOT]]))
         out.add(("motion", MOTION_NAMES[row[MOTION_SLOT]]))
@@ -141,8 +152,9 @@ def tables(row):
     """records.Kernels of the cases with this select row: per family slot its variant's compiled
     element function (a no-op for an absent family), and the case's end map, guide and motion."""
     def slots(part, offset, count):
-        return _addresses("element", [compiled("element", VARIANTS[part][row[offset + k]][2])
-                                  if row[offset + k] >= 0 else _noop("element") for k in range(count)])
+        kind = PART_KIND[part]
+        return _addresses(kind, [compiled(kind, VARIANTS[part][row[offset + k]][2])
+                                 if row[offset + k] >= 0 else _noop(kind) for k in range(count)])
     guide, motion = GUIDE_NAMES[row[GUIDE_SLOT]], MOTION_NAMES[row[MOTION_SLOT]]
     return Kernels(slots("rod", 0, N_ROD), slots("end", N_ROD, N_END),
                    _addresses("end_map", [compiled("end_map", guide)]), _addresses("guide", [compiled("guide", guide)]),
@@ -151,7 +163,7 @@ def tables(row):
 
 def noop_tables():
     """records.Kernels with a no-op in every entry (the engine's types, nothing compiled)."""
-    return Kernels(_addresses("element", [_noop("element")] * N_ROD), _addresses("element", [_noop("element")] * N_END),
+    return Kernels(_addresses("lanes", [_noop("lanes")] * N_ROD), _addresses("element", [_noop("element")] * N_END),
                    _addresses("end_map", [_noop("end_map")]), _addresses("guide", [_noop("guide")]),
                    _addresses("motion", [_noop("motion")]))
 
@@ -163,7 +175,7 @@ def build_items(rows):
 
 def all_build_items():
     """The build items of every kernel of every model (crankgen compile)."""
-    items = {("element", name) for part in PARTS for _, _, name in VARIANTS[part]}
+    items = {(PART_KIND[part], name) for part in PARTS for _, _, name in VARIANTS[part]}
     items.update(("end_map", g) for g in GUIDE_NAMES)
     items.update(("guide", g) for g in GUIDE_NAMES)
     items.update(("motion", m) for m in MOTION_NAMES)

@@ -1,9 +1,10 @@
 """Named records the compiled engine passes around in place of positional vectors.
 
 - Kernels: a model's compiled kernels as tables of native addresses (engine/kernels.py, called by
-  engine/calls.py): per part ("rod": every element; "end": the rod's end node) the one-element
-  function of each family slot's variant (a mode argument says what it adds; a no-op for an
-  absent family), and the guide's end map and kinematics and the crank motion (one-entry tables).
+  engine/calls.py): per family slot the selected variant's lane function ("rod" families, acting
+  on every element: schema.LANES elements a call) or one-element function ("end" families, acting
+  on the rod's end node); a mode argument says what they add; a no-op for an absent family; and
+  the guide's end map and kinematics and the crank motion (one-entry tables).
 - Cases: one row per case of a batch: `select` (the table index of each family's variant, -1 when
   absent, then the guide and the motion), `coef` (the element kernels' coefficients), `params`
   (the kinematic parameters), the time step, eps, the Newmark scheme code (newton.SCHEMES), whether
@@ -26,11 +27,13 @@ from .banded import KB_FIXED
 from .compiled import jit
 
 NDOF = schema.ELEMENT_DOFS
+LANES, LANE_SIZE = schema.LANES, schema.LANE_SIZE
 N_KIN = len(schema.KINEMATICS)
 END_ROWS = len(schema.END_MAP_ROWS)
 
 Kernels = namedtuple("Kernels", [
-    "rod", "end",                       # per family slot acting on every element / on the end node
+    "rod", "end",                       # per family slot acting on every element (its lane function) /
+                                        # on the end node (its one-element function)
     "end_map", "guide", "motion",       # (one entry each)
 ])
 
@@ -49,6 +52,7 @@ Work = namedtuple("Work", [
     "q", "qd", "qdd", "geo",            # one element's nodal vectors and (l, x0)
     "send", "E",                        # the end map's (s, sd, sdd) and its (8, 2) values
     "r1", "S1", "K1", "C1", "M1",       # one element's residual and matrices (the element loop's scratch)
+    "lanes",                            # lane buffers of the elements, schema.LANES a buffer
 ])
 
 
@@ -60,7 +64,7 @@ def _make_work(n, N, kb):
                 np.zeros((N + KB_FIXED, 2 * KB_FIXED + 1)), np.zeros(N), np.zeros(N_KIN), np.zeros(3),
                 np.zeros(NDOF), np.zeros(NDOF), np.zeros(NDOF), np.zeros(2), np.zeros(3), np.zeros((END_ROWS, 2)),
                 np.zeros(NDOF), np.zeros((NDOF, NDOF)), np.zeros((NDOF, NDOF)), np.zeros((NDOF, NDOF)),
-                np.zeros((NDOF, NDOF)))
+                np.zeros((NDOF, NDOF)), np.zeros(((n + LANES - 1) // LANES, LANE_SIZE)))
 
 
 make_work = jit(_make_work, python=False)       # inside compiled code
