@@ -33,6 +33,7 @@ import hashlib
 
 import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
+from sympy.printing.precedence import PRECEDENCE
 from sympy.printing.pycode import PythonCodePrinter
 
 GENERATOR_VERSION = "6"
@@ -341,7 +342,8 @@ class _LanePrinter(_ScalarPrinter):
 
     def _print_Pow(self, expr, rational=False):
         if expr.exp.is_Integer and expr.exp < -1:
-            return f"1/{self.parenthesize(sp.Pow(expr.base, -expr.exp, evaluate=False), sp.printing.precedence.PRECEDENCE['Pow'])}"
+            power = sp.Pow(expr.base, -expr.exp, evaluate=False)
+            return f"1/{self.parenthesize(power, PRECEDENCE['Pow'])}"
         return super()._print_Pow(expr, rational=rational)
 
 
@@ -353,7 +355,7 @@ def _lane_branch(kernel, entries, rows):
     replacements, reduced = sp.cse([e for _, _, e in entries], symbols=sp.numbered_symbols(CSE_PREFIX),
                                    order="canonical")
     used = set().union(*(e.free_symbols for _, _, e in entries)) if entries else set()
-    ndof = len(kernel.inputs[0].symbols)
+    ndof = len(next(inp for inp in kernel.inputs if inp.name == "q").symbols)
 
     def at(row):
         return f"b[{row * LANES} + e]" if row else "b[e]"
@@ -386,7 +388,8 @@ def emit_lanes(kernel):
     if printed:
         branches.append(("printed", r + tangents("K_printed"), (1,)))
     branches += [("residual", r, (2,)), ("newmark", r + [("S", idx, e) for idx, e in _entries(S)], (3,))]
-    rows, _ = lane_rows(len(kernel.inputs[0].symbols), len(next(i for i in kernel.inputs if i.name == "geo").symbols))
+    sizes = {inp.name: len(inp.symbols) for inp in kernel.inputs}
+    rows, _ = lane_rows(sizes["q"], sizes["geo"])
     lines = [f"def {kernel.name}_lanes({', '.join(LANE_ARGUMENTS)}):",
              f'    """{kernel.name}_element for the {LANES} elements of the lane buffer b (same modes)."""']
     for k, (label, entries, modes) in enumerate(branches):

@@ -27,7 +27,9 @@ from numba import njit
 from numba.core import caching
 from numba.core.compiler import CompilerBase, DefaultPassBuilder
 from numba.core.compiler_machinery import FunctionPass, register_pass
+from numba.core import types as _types
 from numba.core.errors import NumbaExperimentalFeatureWarning
+from numba.core.extending import intrinsic, overload
 from numba.core.untyped_passes import TranslateByteCode
 
 from .._generated import schema as _table
@@ -166,6 +168,26 @@ def jit(fn=None, name=None, namespace=None, inline="never", signature=None, erro
         dispatcher.compile(signature)
         dispatcher.disable_compile()
     return dispatcher
+
+
+def plain(x):
+    """x, typed as a plain value in compiled code: numba compiles a function called with a constant
+    (a literal) once more for that constant; through plain, every call shares one compilation."""
+    return x
+
+
+@intrinsic
+def _plain(typingctx, x):
+    plain_type = _types.unliteral(x)
+
+    def codegen(context, builder, signature, args):
+        return context.cast(builder, args[0], x, plain_type)
+    return plain_type(x), codegen
+
+
+@overload(plain, jit_options={"nogil": True})
+def _plain_overload(x):
+    return lambda x: _plain(x)
 
 
 def _from_numba_cache(exc):

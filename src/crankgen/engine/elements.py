@@ -12,7 +12,7 @@ factorization).  Nothing here names a family, a guide or a motion.
 
 from .. import schema
 from .calls import call
-from .compiled import jit
+from .compiled import jit, plain
 from .kernels import N_END, N_ROD
 from .records import NDOF
 
@@ -175,8 +175,16 @@ def _lane_loop(add, form_s, e0, e1, kern, sel, coef, params, dofs, l, d, v, acc,
 _lane_loop = jit(_lane_loop, python=False)
 
 
-@jit(python=False)
 def element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv, cd, w):
+    """_element_loop, compiled once whether mode and printed are constants or not (plain)."""
+    _element_loop(plain(mode), kern, sel, coef, params, plain(printed), dofs, l, d, v, acc, cv, cd, w)
+
+
+element_loop = jit(element_loop, inline="always", python=False)
+
+
+@jit(python=False)
+def _element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv, cd, w):
     """Element terms of one case into w.rE and (by mode) w.KE, w.CE, w.ME / w.SE, at w.kin; the
     end element's terms are projected on the reduced end co-ordinate.  printed: the one-pass
     scheme's printed iteration matrices.  The rod's families run on lanes of elements
@@ -184,13 +192,17 @@ def element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv,
     node's families and the projection, in the scratch arrays w.r1, w.K1, ..."""
     n = dofs.shape[0]
     full = ADD_PRINTED if printed else ADD_FULL
-    if mode == RESIDUAL:
-        _lane_loop(ADD_RESIDUAL, False, 0, n, kern, sel, coef, params, dofs, l, d, v, acc, cv, cd, w)
-    elif mode == NEWMARK and not printed:
-        _lane_loop(ADD_NEWMARK, False, 0, n - 1, kern, sel, coef, params, dofs, l, d, v, acc, cv, cd, w)
-        _lane_loop(full, False, n - 1, n, kern, sel, coef, params, dofs, l, d, v, acc, cv, cd, w)
-    else:
-        _lane_loop(full, mode == NEWMARK, 0, n, kern, sel, coef, params, dofs, l, d, v, acc, cv, cd, w)
+    apart = mode == NEWMARK and not printed     # the end element's separate matrices on lanes of their own
+    split = n - 1 if apart else n
+    for part in range(2):               # one call site: one compilation of _lane_loop
+        if part == 0:
+            lo, hi = 0, split
+            add = ADD_RESIDUAL if mode == RESIDUAL else (ADD_NEWMARK if apart else full)
+        else:
+            lo, hi, add = split, n, full
+        if lo < hi:
+            _lane_loop(add, mode == NEWMARK and not apart, lo, hi, kern, sel, coef, params, dofs, l, d, v, acc,
+                       cv, cd, w)
     e = n - 1                           # the end element (its mapped nodal state in w.q, w.qd, w.qdd)
     add = ADD_RESIDUAL if mode == RESIDUAL else full
     q, qd, qdd, geo, kin = w.q, w.qd, w.qdd, w.geo, w.kin
@@ -259,7 +271,7 @@ def _element_terms(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, t
     """The kinematics at t, then the element loop (see element_loop): callable from Python, for
     tests and diagnostics (compiled only when first used)."""
     kinematics(kern, sel, params, t, w)
-    element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv, cd, w)
+    _element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv, cd, w)
 
 
 element_terms = jit(_element_terms)

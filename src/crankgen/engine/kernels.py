@@ -90,7 +90,8 @@ def _noop_motion(t, params, crank):
     pass
 
 
-_NOOP_SOURCE = {"element": _noop_element, "lanes": _noop_lanes, "end_map": _noop_end_map, "guide": _noop3, "motion": _noop_motion}
+_NOOP_SOURCE = {"element": _noop_element, "lanes": _noop_lanes, "end_map": _noop_end_map, "guide": _noop3,
+                "motion": _noop_motion}
 _COMPILED = {}
 
 
