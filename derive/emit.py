@@ -160,59 +160,43 @@ def is_residual_kernel(kernel):
     return names[0] == "r" and "K" in names and all(n in TANGENTS or n in ("r", "K_printed") for n in names)
 
 
-def _accumulating(kernel, name, entries, extra_args, out_args, doc):
-    """Source of `name(inputs..., extra_args..., out_args...)` doing `out[idx] += expr` for every
-    (out name, idx, expr) of entries whose expression is not identically zero."""
-    printer = _ScalarPrinter()
+def _reduced(entries):
+    """The (out name, idx, expr) entries whose expression is not identically zero, their common
+    subexpressions (canonical order, fixed prefix), the reduced expressions and the symbols used."""
     entries = [(o, idx, e) for o, idx, e in entries if e != 0]
     replacements, reduced = sp.cse([e for _, _, e in entries], symbols=sp.numbered_symbols(CSE_PREFIX),
                                    order="canonical")
     used = set().union(*(e.free_symbols for _, _, e in entries)) if entries else set()
-    args = [inp.name for inp in kernel.inputs] + list(extra_args) + list(out_args)
-    lines = [f"def {name}({', '.join(args)}):", f'    """{doc}"""']
-    lines += _scalar_prologue(kernel, used, replacements, printer)
-    for (out, idx, _), value in zip(entries, reduced):
-        index = ", ".join(str(i) for i in idx) if idx else "0"
-        lines.append(f"    {out}[{index}] += {printer.doprint(value)}")
+    return entries, replacements, reduced, used
+
+
+def _mode_branches(kernel):
+    """(mode label, (out name, idx, expr) entries it adds, ELEMENT_MODES indices it serves) of an
+    element kernel: "full" r, K, C, M; "printed" the same with K_printed (a kernel without one
+    serves it with "full"); "residual" r; "newmark" r and S = M + cv C + cd K (eq. 37)."""
+    by_name = {out.name: out.expr for out in kernel.outputs}
+    r = [("r", idx, e) for idx, e in _entries(by_name["r"])]
+
+    def tangents(stiffness):
+        return [(t, idx, e) for t in TANGENTS for idx, e in _entries(by_name[stiffness if t == "K" else t])]
+    S = by_name["M"] + sp.Symbol("cv") * by_name["C"] + sp.Symbol("cd") * by_name["K"]
+    printed = _has_printed(kernel)
+    branches = [("full", r + tangents("K"), (0,) if printed else (0, 1))]
+    if printed:
+        branches.append(("printed", r + tangents("K_printed"), (1,)))
+    return branches + [("residual", r, (2,)), ("newmark", r + [("S", idx, e) for idx, e in _entries(S)], (3,))]
+
+
+def _by_mode(head, branches, statements):
+    """Source of a function dispatching on `mode`: the lines of head (def line and docstring), then
+    one if/elif/else branch per (label, entries, modes) of branches with the lines statements(entries)."""
+    lines = list(head)
+    for k, (label, entries, modes) in enumerate(branches):
+        test = f"mode == {modes[0]}" if len(modes) == 1 else f"mode <= {modes[-1]}"
+        keyword = "if" if k == 0 else ("elif" if k < len(branches) - 1 else "else")
+        lines.append(f"    {keyword}{' ' + test if keyword != 'else' else ''}:    # {label}")
+        lines += ["        " + line for line in statements(entries) or ["pass"]]
     return "\n".join(lines) + "\n"
-
-
-def emit_residual_add(kernel):
-    """`<name>_residual_add(inputs..., r)`: r += residual of one element."""
-    r = next(out for out in kernel.outputs if out.name == "r")
-    entries = [("r", idx, e) for idx, e in _entries(r.expr)]
-    return _accumulating(kernel, f"{kernel.name}_residual_add", entries, (), ("r",),
-                         f"{kernel.name} for one element, residual only: r += r_e.")
-
-
-def emit_add(kernel, printed=False):
-    """`<name>_add(inputs..., r, K, C, M)`: r += r_e and each tangent += its element part
-    (`<name>_printed_add`: K += K_printed instead of the exact K)."""
-    by_name = {out.name: out.expr for out in kernel.outputs}
-    entries = []
-    for out in ("r",) + TANGENTS:
-        source = "K_printed" if printed and out == "K" else out
-        if source in by_name:
-            entries += [(out, idx, e) for idx, e in _entries(by_name[source])]
-    name = f"{kernel.name}_{'printed_' if printed else ''}add"
-    what = "r += r_e, K += K_printed (eq. 37 as printed), C += C_e, M += M_e" if printed else \
-        "r += r_e, K += K_e, C += C_e, M += M_e"
-    return _accumulating(kernel, name, entries, (), ("r",) + TANGENTS, f"{kernel.name} for one element: {what}.")
-
-
-def emit_newmark_add(kernel):
-    """`<name>_newmark_add(inputs..., cv, cd, r, S)`: r += r_e, S += M_e + cv C_e + cd K_e."""
-    cv, cd = sp.Symbol("cv"), sp.Symbol("cd")
-    weight = {"M": sp.Integer(1), "C": cv, "K": cd}
-    by_name = {out.name: out.expr for out in kernel.outputs}
-    r = by_name["r"]
-    S = sp.zeros(r.shape[0], r.shape[0])
-    for name, w in weight.items():
-        if name in by_name:
-            S += w * by_name[name]
-    entries = [("r", idx, e) for idx, e in _entries(r)] + [("S", idx, e) for idx, e in _entries(S)]
-    return _accumulating(kernel, f"{kernel.name}_newmark_add", entries, ("cv", "cd"), ("r", "S"),
-                         f"{kernel.name} for one element: r += r_e, S += M_e + cv C_e + cd K_e (eq. 37).")
 
 
 def emit_kernel(kernel):
@@ -296,32 +280,26 @@ def _has_printed(kernel):
     return any(out.name == "K_printed" for out in kernel.outputs)
 
 
-def _body(source):
-    """The statements of a function's source (after its def line and docstring)."""
-    lines = source.rstrip("\n").split("\n")
-    return lines[2:] if lines[1].lstrip().startswith('"""') else lines[1:]
+def _element_statements(kernel, entries):
+    """One element's statements: its inputs, the common subexpressions, then out[idx] += expr."""
+    printer = _ScalarPrinter()
+    entries, replacements, reduced, used = _reduced(entries)
+    lines = [line[4:] for line in _scalar_prologue(kernel, used, replacements, printer)]
+    for (out, idx, _), value in zip(entries, reduced):
+        index = ", ".join(str(i) for i in idx) if idx else "0"
+        lines.append(f"{out}[{index}] += {printer.doprint(value)}")
+    return lines
 
 
 def emit_element(kernel):
-    """`<name>_element(mode, ...)`: one function whose branches are the accumulating variants (the
-    module docstring); every argument of ELEMENT_ARGUMENTS is taken, each branch uses its own.  A
-    kernel without a printed stiffness serves "printed" with its "full" branch."""
+    """`<name>_element(mode, ...)`: one function whose branches add an element's terms by mode (the
+    module docstring); every argument of ELEMENT_ARGUMENTS is taken, each branch uses its own."""
     printed = _has_printed(kernel)
-    branches = [("full", emit_add(kernel), (0,) if printed else (0, 1))]
-    if printed:
-        branches.append(("printed", emit_add(kernel, printed=True), (1,)))
-    branches += [("residual", emit_residual_add(kernel), (2,)), ("newmark", emit_newmark_add(kernel), (3,))]
-    lines = [f"def {kernel.name}_element({', '.join(ELEMENT_ARGUMENTS)}):",
-             f'    """{kernel.name} for one element, by mode (ELEMENT_MODES {ELEMENT_MODES}): 0 r, K, C, M '
-             f'+= (exact K); 1 the same with the printed eq. (37) K{"" if printed else " (here: the exact K)"}; '
-             '2 r only; 3 r and S += M + cv C + cd K."""']
-    for k, (label, source, modes) in enumerate(branches):
-        test = f"mode == {modes[0]}" if len(modes) == 1 else f"mode <= {modes[-1]}"
-        keyword = "if" if k == 0 else ("elif" if k < len(branches) - 1 else "else")
-        lines.append(f"    {keyword}{' ' + test if keyword != 'else' else ''}:    # {label}")
-        body = _body(source)
-        lines += ["    " + line for line in body] if body else ["        pass"]
-    return "\n".join(lines) + "\n"
+    head = [f"def {kernel.name}_element({', '.join(ELEMENT_ARGUMENTS)}):",
+            f'    """{kernel.name} for one element, by mode (ELEMENT_MODES {ELEMENT_MODES}): 0 r, K, C, M '
+            f'+= (exact K); 1 the same with the printed eq. (37) K{"" if printed else " (here: the exact K)"}; '
+            '2 r only; 3 r and S += M + cv C + cd K."""']
+    return _by_mode(head, _mode_branches(kernel), lambda entries: _element_statements(kernel, entries))
 
 
 def lane_rows(ndof, ngeo):
@@ -347,14 +325,11 @@ class _LanePrinter(_ScalarPrinter):
         return super()._print_Pow(expr, rational=rational)
 
 
-def _lane_branch(kernel, entries, rows):
-    """Statements of one mode of a lane function: for each element e < LANES, the inputs it uses
-    from its rows of b (or coef, kin), the common subexpressions, then b[row + e] += expr."""
+def _lane_statements(kernel, entries, rows):
+    """The statements of _element_statements in a loop over the elements e < LANES of the lane
+    buffer b: the inputs from their rows of b (coef and kin shared), the outputs added into theirs."""
     printer = _LanePrinter()
-    entries = [(o, idx, e) for o, idx, e in entries if e != 0]
-    replacements, reduced = sp.cse([e for _, _, e in entries], symbols=sp.numbered_symbols(CSE_PREFIX),
-                                   order="canonical")
-    used = set().union(*(e.free_symbols for _, _, e in entries)) if entries else set()
+    entries, replacements, reduced, used = _reduced(entries)
     ndof = len(next(inp for inp in kernel.inputs if inp.name == "q").symbols)
 
     def at(row):
@@ -376,28 +351,11 @@ def _lane_branch(kernel, entries, rows):
 def emit_lanes(kernel):
     """`<name>_lanes(mode, b, coef, kin, cv, cd)`: `<name>_element`, every mode, for LANES elements
     at once (module docstring; b's layout: lane_rows)."""
-    by_name = {out.name: out.expr for out in kernel.outputs}
-    cv, cd = sp.Symbol("cv"), sp.Symbol("cd")
-    r = [("r", idx, e) for idx, e in _entries(by_name["r"])]
-
-    def tangents(stiffness):
-        return [(t, idx, e) for t in TANGENTS for idx, e in _entries(by_name[stiffness if t == "K" else t])]
-    S = by_name["M"] + cv * by_name["C"] + cd * by_name["K"]
-    printed = _has_printed(kernel)
-    branches = [("full", r + tangents("K"), (0,) if printed else (0, 1))]
-    if printed:
-        branches.append(("printed", r + tangents("K_printed"), (1,)))
-    branches += [("residual", r, (2,)), ("newmark", r + [("S", idx, e) for idx, e in _entries(S)], (3,))]
     sizes = {inp.name: len(inp.symbols) for inp in kernel.inputs}
     rows, _ = lane_rows(sizes["q"], sizes["geo"])
-    lines = [f"def {kernel.name}_lanes({', '.join(LANE_ARGUMENTS)}):",
-             f'    """{kernel.name}_element for the {LANES} elements of the lane buffer b (same modes)."""']
-    for k, (label, entries, modes) in enumerate(branches):
-        test = f"mode == {modes[0]}" if len(modes) == 1 else f"mode <= {modes[-1]}"
-        keyword = "if" if k == 0 else ("elif" if k < len(branches) - 1 else "else")
-        lines.append(f"    {keyword}{' ' + test if keyword != 'else' else ''}:    # {label}")
-        lines += ["        " + line for line in _lane_branch(kernel, entries, rows)]
-    return "\n".join(lines) + "\n"
+    head = [f"def {kernel.name}_lanes({', '.join(LANE_ARGUMENTS)}):",
+            f'    """{kernel.name}_element for the {LANES} elements of the lane buffer b (same modes)."""']
+    return _by_mode(head, _mode_branches(kernel), lambda entries: _lane_statements(kernel, entries, rows))
 
 
 def _names(kernel, accumulating, scalar):
