@@ -25,9 +25,9 @@ from pathlib import Path
 
 from numba import njit
 from numba.core import caching
+from numba.core import types as _types
 from numba.core.compiler import CompilerBase, DefaultPassBuilder
 from numba.core.compiler_machinery import FunctionPass, register_pass
-from numba.core import types as _types
 from numba.core.errors import NumbaExperimentalFeatureWarning
 from numba.core.extending import intrinsic, overload
 from numba.core.untyped_passes import TranslateByteCode

@@ -114,12 +114,12 @@ def _map_end(kern, sel, params, q, qd, qdd, w):
 _map_end = jit(_map_end, inline="always", python=False)
 
 
-def _lane_loop(add, form_s, e0, e1, kern, sel, coef, params, dofs, l, d, v, acc, cv, cd, w):
+def _lane_loop(add, e0, e1, kern, sel, coef, params, dofs, l, d, v, acc, cv, cd, w):
     """The rod families' terms (their kernels' mode `add`) of the elements e0 <= e < e1, LANES at a
     time: each group's nodal states gathered into a lane buffer of w.lanes (the end element's end
     node through the end map, its state left in w.q, w.qd, w.qdd; unused lanes at rest), the lane
     function of each family slot called once, the terms copied into w.rE[e] and (by add) w.SE[e]
-    or w.KE[e], w.CE[e], w.ME[e] (and w.SE[e] = M + cv C + cd K when form_s)."""
+    or w.KE[e], w.CE[e], w.ME[e]."""
     n = dofs.shape[0]
     q, qd, qdd, kin, rod = w.q, w.qd, w.qdd, w.kin, kern.rod
     rE, SE, KE, CE, ME = w.rE, w.SE, w.KE, w.CE, w.ME
@@ -164,15 +164,22 @@ def _lane_loop(add, form_s, e0, e1, kern, sel, coef, params, dofs, l, d, v, acc,
                     SE[e, i // NDOF, i % NDOF] = b[(LS + i) * LANES + j]
             elif add != ADD_RESIDUAL:
                 for i in range(NDOF * NDOF):
-                    kk, cc, mm = b[(LK + i) * LANES + j], b[(LC + i) * LANES + j], b[(LM + i) * LANES + j]
-                    KE[e, i // NDOF, i % NDOF] = kk
-                    CE[e, i // NDOF, i % NDOF] = cc
-                    ME[e, i // NDOF, i % NDOF] = mm
-                    if form_s:
-                        SE[e, i // NDOF, i % NDOF] = mm + cv * cc + cd * kk
+                    KE[e, i // NDOF, i % NDOF] = b[(LK + i) * LANES + j]
+                    CE[e, i // NDOF, i % NDOF] = b[(LC + i) * LANES + j]
+                    ME[e, i // NDOF, i % NDOF] = b[(LM + i) * LANES + j]
 
 
 _lane_loop = jit(_lane_loop, python=False)
+
+
+@jit(python=False)
+def iteration_matrices(ME, CE, KE, cv, cd, SE, e0, e1):
+    """SE[e] = M_e + cv C_e + cd K_e, the element part of the iteration matrix of eq. (37), for
+    e0 <= e < e1."""
+    for e in range(e0, e1):
+        for i in range(NDOF):
+            for j in range(NDOF):
+                SE[e, i, j] = ME[e, i, j] + cv * CE[e, i, j] + cd * KE[e, i, j]
 
 
 def element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv, cd, w):
@@ -201,8 +208,7 @@ def _element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv
         else:
             lo, hi, add = split, n, full
         if lo < hi:
-            _lane_loop(add, mode == NEWMARK and not apart, lo, hi, kern, sel, coef, params, dofs, l, d, v, acc,
-                       cv, cd, w)
+            _lane_loop(add, lo, hi, kern, sel, coef, params, dofs, l, d, v, acc, cv, cd, w)
     e = n - 1                           # the end element (its mapped nodal state in w.q, w.qd, w.qdd)
     add = ADD_RESIDUAL if mode == RESIDUAL else full
     q, qd, qdd, geo, kin = w.q, w.qd, w.qdd, w.geo, w.kin
@@ -234,8 +240,8 @@ def _element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv
                 KE[e, i, j] = K[i, j]
                 CE[e, i, j] = C[i, j]
                 ME[e, i, j] = M[i, j]
-                if mode == NEWMARK:
-                    SE[e, i, j] = M[i, j] + cv * C[i, j] + cd * K[i, j]
+    if mode == NEWMARK:                 # the end element's, and with printed matrices every element's
+        iteration_matrices(ME, CE, KE, cv, cd, SE, n - 1 if apart else 0, n)
 
 
 @jit(python=False)

@@ -104,7 +104,7 @@ def _noop(kind):
 
 
 def _source(kind, name):
-    """The generated one-element function of a kernel of this kind."""
+    """The generated function of a kernel of this kind (lane, one-element or `_into`)."""
     if kind in ("element", "lanes"):
         return getattr(_elements, f"{name}_{kind}")
     return getattr(_kinematics, f"{kind}_{name}_into")
@@ -151,7 +151,8 @@ def needed(rows):
 
 def tables(row):
     """records.Kernels of the cases with this select row: per family slot its variant's compiled
-    element function (a no-op for an absent family), and the case's end map, guide and motion."""
+    lane (rod) or one-element (end) function (a no-op for an absent family), and the case's end
+    map, guide and motion."""
     def slots(part, offset, count):
         kind = PART_KIND[part]
         return _addresses(kind, [compiled(kind, VARIANTS[part][row[offset + k]][2])

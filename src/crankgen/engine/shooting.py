@@ -16,7 +16,7 @@ from .banded import (KB_FIXED, assemble_band, assemble_fixed, assemble_vector, b
                      factor_fixed)
 from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
 from .compiled import jit
-from .elements import FULL, RESIDUAL, element_loop, kinematics, step_outputs
+from .elements import FULL, RESIDUAL, element_loop, iteration_matrices, kinematics, step_outputs
 from .march import parallel_slices
 from .records import Scheme, make_work
 from .step import OK, SINGULAR, initial_acceleration, newmark_step
@@ -78,16 +78,6 @@ def _solve_fixed_columns(F, B):
         piv = F[i, KB_FIXED]
         for c in range(m):
             B[i, c] /= piv
-
-
-@jit
-def _assemble_iteration_matrix(dofs, ME, CE, KE, cv, cd, SE, F, N):
-    """F = M + cv C + cd K in banded.assemble_fixed's storage (the element matrices combined in SE)."""
-    for e in range(dofs.shape[0]):
-        for i in range(dofs.shape[1]):
-            for j in range(dofs.shape[1]):
-                SE[e, i, j] = ME[e, i, j] + cv * CE[e, i, j] + cd * KE[e, i, j]
-    assemble_fixed(dofs, SE, F, N)
 
 
 @jit
@@ -180,7 +170,8 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
                 assemble_band(dofs, kb, w.ME, w.CE, w.KE, 0.0, 1.0, 0.0, Cb)
                 fixed = False
                 if kb == KB_FIXED:
-                    _assemble_iteration_matrix(dofs, w.ME, w.CE, w.KE, cv, cd, w.SE, w.F, N)
+                    iteration_matrices(w.ME, w.CE, w.KE, cv, cd, w.SE, 0, dofs.shape[0])
+                    assemble_fixed(dofs, w.SE, w.F, N)
                     fixed = factor_fixed(w.F, N, w.diag)
                 if not fixed:
                     assemble_band(dofs, kb, w.ME, w.CE, w.KE, 1.0, cv, cd, w.W)
