@@ -42,6 +42,24 @@ def _title(s):
             + ("\n" + ", ".join(extra) if extra else ""))
 
 
+def shade_beyond(ax, limit, color):
+    """Shade |y| > limit on ax (above limit and below -limit, within the current y limits, which
+    stay as they are): the deflections beyond the range of the theory."""
+    lo, hi = ax.get_ylim()
+    for a, b in ((limit, max(hi, limit)), (min(lo, -limit), -limit)):
+        if b > a:
+            ax.axhspan(a, b, color=color, zorder=0, lw=0)
+    ax.set_ylim(lo, hi)
+
+
+def beyond_patch(color):
+    """The legend entry of shade_beyond's band at theory.DEFLECTION_LIMIT."""
+    from matplotlib.patches import Patch
+
+    from .theory import DEFLECTION_LIMIT
+    return Patch(color=color, label=f"|v|/L > {DEFLECTION_LIMIT:g}: beyond the theory")
+
+
 def _beyond_theory(ax, eps, v, strain):
     """Shade |v*| beyond the theory's deflection limit where the data reach it; returns the note
     for the title ('' when the response stays in the range of the theory)."""
@@ -53,11 +71,7 @@ def _beyond_theory(ax, eps, v, strain):
     smax = float(np.nanmax(strain)) if strain is not None and np.size(strain) and np.any(np.isfinite(strain)) else float("nan")
     lim = theory.DEFLECTION_LIMIT / eps
     if np.isfinite(vmax) and vmax > lim:
-        lo, hi = ax.get_ylim()
-        for a, b in ((lim, max(hi, lim)), (min(lo, -lim), -lim)):
-            if b > a:
-                ax.axhspan(a, b, color="0.88", zorder=0, lw=0)
-        ax.set_ylim(lo, hi)
+        shade_beyond(ax, lim, "0.88")
     why = theory.reasons(eps * vmax, smax)
     return f"\nBEYOND THE THEORY: {why} (shaded: |v|/L > {theory.DEFLECTION_LIMIT:g})" if why else ""
 

@@ -133,9 +133,8 @@ class BifurcationDiagram:
         shaded.  Axis labels and title default to what the diagram holds; the legend sits below
         the axes."""
         from matplotlib.lines import Line2D
-        from matplotlib.patches import Patch
 
-        from ..plotting import fit_panels, panels, place_labels
+        from ..plotting import beyond_patch, fit_panels, panels, place_labels
         from ..theory import DEFLECTION_LIMIT
 
         own = ax is None
@@ -172,7 +171,7 @@ class BifurcationDiagram:
             lo, hi = ax.get_ylim()
             ax.axhspan(DEFLECTION_LIMIT / eps, max(hi, DEFLECTION_LIMIT / eps), color="0.88", lw=0, zorder=0)
             ax.set_ylim(lo, hi)
-            handles.append(Patch(color="0.88", label=f"|v|/L > {DEFLECTION_LIMIT:g}: beyond the theory"))
+            handles.append(beyond_patch("0.88"))
         place_labels(ax, [(s.parameter, s.amplitude, f"{LABELS[s.kind]} {s.parameter:.4g}", "black")
                           for s in sorted(self.special_points, key=lambda s: s.parameter)])
         mech = "eps" in self.info or self.parameter_name == "eps"

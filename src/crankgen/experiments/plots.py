@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from ..plotting import APPROACH_COLORS, fit_panels, mark_at_axis, panels
+from ..plotting import APPROACH_COLORS, beyond_patch, fit_panels, mark_at_axis, panels, shade_beyond
 from . import findings as fd
 
 from .config import APPROACHES, MODELS
@@ -52,17 +52,12 @@ def _theory_band(ax, eps, data_max):
     lim = THEORY_LIMIT / eps
     if not (math.isfinite(data_max) and data_max > lim):
         return False
-    lo, hi = ax.get_ylim()
-    for a, b in ((lim, max(hi, lim)), (min(lo, -lim), -lim)):
-        if b > a:
-            ax.axhspan(a, b, color="0.85", zorder=0, lw=0)
-    ax.set_ylim(lo, hi)
+    shade_beyond(ax, lim, "0.85")
     return True
 
 
 def _theory_handle():
-    from matplotlib.patches import Patch
-    return Patch(color="0.85", label=f"|v|/L > {THEORY_LIMIT:g}: beyond the theory")
+    return beyond_patch("0.85")
 
 
 def _legend(ax, handles=None, labels=None, ncol=1, extra=()):
