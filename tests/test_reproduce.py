@@ -629,3 +629,24 @@ def test_findings_rebuilt_from_the_recorded_bifurcations(tiny_run, tmp_path):
     res = reproduce(out, config=ReproduceConfig.tiny(), quiet=True)
     assert res["computed"] == ["findings"]
     assert _findings_body(out / "findings.md") == before
+
+
+def test_a_transient_is_still_growing_when_its_last_revolution_exceeds_the_one_before_by_5_percent():
+    """TransientCurve.still_growing, the note of the findings (report.py, report_figures.py): the
+    maxima of |v*| over the last two whole revolutions, given only when the last exceeds the one
+    before by more than 5 %, and never for less than two revolutions of history."""
+    from crankgen.experiments.figures import TransientCurve, TransientSpec
+
+    spec = TransientSpec("consistent", "A", 4, 0.8, 3, steps_per_rev=10)
+    theta = np.linspace(0.0, 6 * np.pi, 31)[:-1]          # three revolutions of 10 steps
+    envelope = np.repeat([1.0, 2.0, 2.0 * 1.06], 10)       # the maxima grow by 6 % at the end
+
+    def curve(v):
+        return TransientCurve(spec, t=np.arange(len(v), dtype=float), v_mid=v)
+    wave = -np.abs(np.sin(theta / 2 + 0.1)) - 0.5          # |v*| in [0.5, 1.5] each revolution
+    before, last = curve(envelope * wave).still_growing
+    assert before == pytest.approx(2.0 * np.max(np.abs(wave[10:20])))
+    assert last == pytest.approx(2.0 * 1.06 * np.max(np.abs(wave[20:])))
+    flat = np.repeat([1.0, 2.0, 2.0 * 1.04], 10) * wave    # 4 %: not growing
+    assert curve(flat).still_growing is None
+    assert curve((envelope * wave)[:20]).still_growing is None     # two revolutions: not enough history

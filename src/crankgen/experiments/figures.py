@@ -29,6 +29,8 @@ STRAIN_LIMIT = theory.STRAIN_LIMIT
 # window before is still growing (a run-off, not an irregular response, whose window maxima
 # differ by tens of per cent): it gives no envelope
 GROWTH = 2.0
+# the findings note of a transient whose max |v*| over its last revolution exceeds the one before by this factor
+STILL_GROWING = 1.05
 
 
 def failure_status(approach):
@@ -92,6 +94,17 @@ class TransientCurve:
     def max_abs(self):
         """max |v*| of the run (of its history up to the failure for a failed run)."""
         return float(np.max(np.abs(self.v_mid))) if self.has_history else math.nan
+
+    @property
+    def still_growing(self):
+        """(max |v*| over the revolution before the last, over the last) when the last is more than
+        STILL_GROWING times the one before (the findings say so of a transient from rest); None
+        otherwise, and for a run without two whole revolutions of history."""
+        k = self.spec.steps_per_rev
+        if not (self.has_history and len(self.v_mid) > 2 * k):
+            return None
+        last, before = np.max(np.abs(self.v_mid[-k:])), np.max(np.abs(self.v_mid[-2 * k:-k]))
+        return (before, last) if last > STILL_GROWING * before else None
 
     def label(self):
         return f"{self.spec.approach}, n = {self.spec.n_elements}"

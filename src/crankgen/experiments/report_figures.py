@@ -117,11 +117,9 @@ def _transient_note(c):
         why = F.theory.reasons(x, c.max_strain)
         if why:
             notes.append(f"beyond the theory: {why}")
-    k = c.spec.steps_per_rev
-    if c.ok and c.has_history and len(c.v_mid) > 2 * k:
-        last, before = np.max(np.abs(c.v_mid[-k:])), np.max(np.abs(c.v_mid[-2 * k:-k]))
-        if last > 1.05 * before:
-            notes.append(f"still growing: max |v*| {num(before)} then {num(last)} over the last two revolutions")
+    if c.ok and c.still_growing is not None:
+        before, last = c.still_growing
+        notes.append(f"still growing: max |v*| {num(before)} then {num(last)} over the last two revolutions")
     return "; ".join(notes)
 
 
