@@ -74,11 +74,13 @@ OPTIONS = (
 @dataclass(frozen=True)
 class Preset:
     """A named set of option values: a model.  Options a preset does not set keep their default;
-    an option given explicitly overrides the preset's value."""
+    an option given explicitly overrides the preset's value.  settings: defaults of run parameters
+    that go with the model (the time scheme's rho_inf), used where the run does not give them."""
 
     name: str
     options: dict
     doc: str
+    settings: dict = field(default_factory=dict)
 
 
 PRESETS = (
@@ -87,7 +89,8 @@ PRESETS = (
            "(free of membrane locking)"),
     Preset("paper", {"formulation": "paper", "damping": "paper", "membrane": "pointwise"},
            "the printed matrix form (eqs. 17-29, Appendix B, transcription problems corrected), the "
-           "printed damping of eq. (24), the element as derived from eq. (2)"),
+           "printed damping of eq. (24), the element as derived from eq. (2), integrated with the "
+           "paper's Newmark rule (rho_inf = 1)", {"rho_inf": 1.0}),
 )
 DEFAULT_PRESET = "consistent"
 
@@ -185,6 +188,11 @@ PARAMETERS = (
               "newton: Newton iterations on the exact tangent, its factorization reused while they "
               "converge fast; full-newton: the tangent refreshed at every iteration; one-pass: the "
               "paper's eqs. (34)-(39)", owner="run", choices=("newton", "full-newton", "one-pass")),
+    Parameter("rho_inf", "real", 0.8, "rho_inf (time scheme's spectral radius at infinite frequency)",
+              "the time scheme: 1 is Newmark's trapezoidal rule (beta 1/4, gamma 1/2, the paper's: no "
+              "numerical damping); below 1, generalized-alpha (Chung & Hulbert), second order, which "
+              "damps what a step cannot resolve: a mode's step factor tends to -rho_inf at high "
+              "frequency", owner="run", low=0.0, high=1.0, cli="rho-inf"),
 )
 
 # The kinematic parameters: the vector the kinematics and end map kernels receive, in this order.

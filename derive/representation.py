@@ -60,6 +60,7 @@ class PresetRecord:
     name: str
     options: tuple               # ((option, value), ...)
     doc: str
+    settings: tuple = ()         # ((run parameter, default value with this model), ...)
 
 
 @dataclass(frozen=True)
@@ -203,7 +204,14 @@ def _presets():
         for option, value in p.options.items():
             if value not in names[option].choices:
                 raise ValueError(f"preset {p.name}: {option}={value!r} is not a choice")
-    return tuple(PresetRecord(p.name, tuple(sorted(p.options.items())), p.doc) for p in model.PRESETS)
+        for name, value in p.settings.items():
+            par = next((q for q in model.PARAMETERS if q.name == name), None)
+            if par is None or par.owner != "run" or par.kind != "real" or not (
+                    (par.low is None or value >= par.low) and (par.high is None or value <= par.high)):
+                raise ValueError(f"preset {p.name}: {name}={value!r} is not a real run parameter's value")
+    return tuple(PresetRecord(p.name, tuple(sorted(p.options.items())), p.doc,
+                              tuple(sorted((k, float(v)) for k, v in p.settings.items())))
+                 for p in model.PRESETS)
 
 
 def _readers(owner):

@@ -49,10 +49,12 @@ def _table_source(rep):
         out.append(f"    {_record(dict(name=o.name, choices=o.choices, default=o.default, cli=o.cli))[:-1]},\n"
                    f"         doc={o.doc!r}),")
     out.append(")")
-    out.append("# named models: a set of option values each (explicit options override them)")
+    out.append("# named models: a set of option values each (explicit options override them), and the run")
+    out.append("# parameters' defaults that go with the model (settings)")
     out.append("PRESETS = (")
     for p in rep.presets:
-        out.append(f"    dict(name={p.name!r}, options={dict(p.options)!r},\n         doc={p.doc!r}),")
+        out.append(f"    dict(name={p.name!r}, options={dict(p.options)!r}, settings={dict(p.settings)!r},\n"
+                   f"         doc={p.doc!r}),")
     out.append(")")
     out.append(f"DEFAULT_PRESET = {rep.default_preset!r}")
     out.append("# every parameter of a case; owner: mechanism, guide, motion or run; readers: the guides or")

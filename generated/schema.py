@@ -24,12 +24,13 @@ OPTIONS = (
     dict(name='rotary_inertia', choices=(True, False), default=True, cli='rotary-inertia',
          doc='keep the rho*I (section rotation) terms of the kinetic energy, eq. (5)'),
 )
-# named models: a set of option values each (explicit options override them)
+# named models: a set of option values each (explicit options override them), and the run
+# parameters' defaults that go with the model (settings)
 PRESETS = (
-    dict(name='consistent', options={'damping': 'kelvin-voigt', 'formulation': 'lagrange', 'membrane': 'averaged'},
+    dict(name='consistent', options={'damping': 'kelvin-voigt', 'formulation': 'lagrange', 'membrane': 'averaged'}, settings={},
          doc='the exact Lagrange equations, strain-rate (Kelvin-Voigt) damping, averaged membrane strain (free of membrane locking)'),
-    dict(name='paper', options={'damping': 'paper', 'formulation': 'paper', 'membrane': 'pointwise'},
-         doc='the printed matrix form (eqs. 17-29, Appendix B, transcription problems corrected), the printed damping of eq. (24), the element as derived from eq. (2)'),
+    dict(name='paper', options={'damping': 'paper', 'formulation': 'paper', 'membrane': 'pointwise'}, settings={'rho_inf': 1.0},
+         doc="the printed matrix form (eqs. 17-29, Appendix B, transcription problems corrected), the printed damping of eq. (24), the element as derived from eq. (2), integrated with the paper's Newmark rule (rho_inf = 1)"),
 )
 DEFAULT_PRESET = 'consistent'
 # every parameter of a case; owner: mechanism, guide, motion or run; readers: the guides or
@@ -95,6 +96,9 @@ PARAMETERS = (
     dict(name='integrator', kind='choice', default='newton', owner='run', readers=(), low=None, high=None, low_open=False, high_open=False, units='1', cli='integrator', metavar=None, choices=('newton', 'full-newton', 'one-pass'), continuable=False, kinematic_index=-1,
          label='integrator',
          doc="newton: Newton iterations on the exact tangent, its factorization reused while they converge fast; full-newton: the tangent refreshed at every iteration; one-pass: the paper's eqs. (34)-(39)"),
+    dict(name='rho_inf', kind='real', default=0.8, owner='run', readers=(), low=0.0, high=1.0, low_open=False, high_open=False, units='1', cli='rho-inf', metavar=None, choices=(), continuable=False, kinematic_index=-1,
+         label="rho_inf (time scheme's spectral radius at infinite frequency)",
+         doc="the time scheme: 1 is Newmark's trapezoidal rule (beta 1/4, gamma 1/2, the paper's: no numerical damping); below 1, generalized-alpha (Chung & Hulbert), second order, which damps what a step cannot resolve: a mode's step factor tends to -rho_inf at high frequency"),
 )
 KINEMATICS = ('a', 'theta', 'thetad', 'phi', 'phid', 'phidd', 'thetadd', 'beta', 'betad', 'betadd')
 KINEMATIC_PARAMETERS = ('a', 'offset', 'c', 'd', 'branch', 'omega', 'omega0', 'ramp', 'fluctuation', 'order', 'theta0')

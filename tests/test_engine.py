@@ -200,11 +200,12 @@ def test_compiled_engine_equals_numpy_reference_with_the_new_ingredients(formula
 
 
 def test_chunked_marching_continues_the_starting_guess():
-    """march(..., previous=...) continues a run exactly: same states and iteration counts."""
+    """march(..., previous=...) continues a run exactly: same states and iteration counts (with
+    generalized-alpha's algorithmic accelerations G carried on)."""
     b = engine.Batch([Case(omega=0.7, n_elements=6, damping="kelvin-voigt")])
     whole = engine.march(b, 120)
     first = engine.march(b, 50)
-    rest = engine.march(b, 70, D0=first.D, V0=first.V, A0=first.A, step0=50, previous=first.previous)
+    rest = engine.march(b, 70, D0=first.D, V0=first.V, A0=first.A, G0=first.G, step0=50, previous=first.previous)
     assert np.array_equal(np.concatenate([first.iterations, rest.iterations], axis=1), whole.iterations)
     np.testing.assert_array_equal(rest.y[:, -1], whole.y[:, -1])
 
@@ -273,16 +274,20 @@ def test_a_batch_like_another_shares_its_mesh_and_tables_and_marches_the_same():
     assert engine.Batch([Case(omega=0.7, n_elements=5, steps_per_rev=50)], like=base).N != base.N
 
 
-def test_revolution_jacobian_matches_finite_differences():
-    case = Case(omega=0.8, n_elements=3, steps_per_rev=30, mu=0.2, damping="paper", membrane="pointwise")
+@pytest.mark.parametrize("rho_inf", [1.0, 0.7])
+def test_revolution_jacobian_matches_finite_differences(rho_inf):
+    """The exact Jacobian of the revolution map against central differences of the map: Newmark's
+    on (d, v), generalized-alpha's on (d, v, a) (its algorithmic accelerations' columns too)."""
+    case = Case(omega=0.8, n_elements=3, steps_per_rev=30, mu=0.2, damping="paper", membrane="pointwise",
+                rho_inf=rho_inf)
     b = engine.Batch([case])
     N = b.N
     warm = engine.march(b, 60)
-    X0 = np.concatenate([warm.D, warm.V], axis=1)
+    X0 = engine.join_state(warm, rho_inf < 1)
     X1, J, st = engine.revolution(b, X0)
-    assert st[0] == engine.OK
-    S = np.concatenate([b.scales[0], b.scales[0]])
-    for k in (0, 4, N + 1, 2 * N - 1):
+    assert st[0] == engine.OK and J.shape[1:] == (b.state_size, b.state_size)
+    S = np.concatenate([b.scales[0]] * (b.state_size // N))
+    for k in (0, 4, N + 1, 2 * N - 1) + ((2 * N, 3 * N - 2) if rho_inf < 1 else ()):
         h = 1e-6 * S[k]
         cols = []
         for sign in (1, -1):

@@ -137,6 +137,7 @@ class Option:
 class Preset:
     name: str
     options: dict
+    settings: dict               # run parameters' defaults with this model (rho_inf)
     doc: str
 
 

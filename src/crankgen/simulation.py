@@ -9,6 +9,7 @@ from typing import Optional
 import numpy as np
 
 from . import engine as _engine
+from . import time_scheme
 from . import kinematics as _kinematics
 from .cases import Case, run_case
 from .errors import ConvergenceError, ParameterError
@@ -131,9 +132,11 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
 
     initial: the rod's elastic state at t = 0, a crankgen.InitialState (displacement and velocity
     fields in the rigid moving frame at theta0, projected onto the mesh by nodal interpolation and
-    checked against the pin and the guide: crankgen.initial), a dict of its fields, or a pair (d0,
-    v0) of reduced vectors.  Default: the rigid mechanism with the rod undeformed and at rest in the
-    moving frame (the paper's initial conditions).
+    checked against the pin and the guide: crankgen.initial), a dict of its fields, a pair (d0,
+    v0) of reduced vectors, or a triple (d0, v0, a0) with generalized-alpha's algorithmic
+    accelerations (a SteadyState.state split in three: its orbit marched on exactly).  Default: the
+    rigid mechanism with the rod undeformed and at rest in the moving frame (the paper's initial
+    conditions).
 
     times: times at which to give the state and every output as well (`result.at_times`, a
     SimulationResult at those times, in the order given).  A time on a step of the run (within
@@ -168,7 +171,8 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     if revolutions is not None:
         revolutions = in_range("revolutions", revolutions, 0, None, True)
     case = run_case(mech, case, model=model, omega=omega, crank=crank, **fields)
-    settings = NewmarkSettings(scheme=case.integrator, tol=tol)
+    time_scheme.warn_steps([case])
+    settings = NewmarkSettings.of_case(case, tol=tol)
     model = Model.from_case(case)
     if times is not None:
         t_req = _requested_times(times, 1.0 if scales is None else scales.factor("1/omega_b"))
@@ -186,14 +190,15 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
         raise ParameterError(f"history must be True or False, got {history!r}")
     if store_nodes and not history:
         raise ParameterError("store_nodes needs the run's states: leave history=True")
-    d0, v0 = initial_state(case, initial, scales)
+    d0, v0, g0 = initial_state(case, initial, scales)
     info = dict(case.as_dict(), revolutions=revolutions, tol=tol, engine=engine)
     stops = sorted({k for k, _ in landing}) if landing is not None else []
     if engine == "numpy":
-        hist = integrate(model, d0, v0, 0.0, dt, n_steps, settings, progress=progress)
+        hist = integrate(model, d0, v0, 0.0, dt, n_steps, settings, progress=progress, g0=g0)
         result = _numpy_result(model, case, hist, info, store_nodes, scales)
         if landing is not None:
-            states = {k: (hist.d[k], hist.v[k], hist.a[k]) for k in stops}
+            g = hist.a if hist.g is None else hist.g
+            states = {k: (hist.d[k], hist.v[k], hist.a[k], g[k]) for k in stops}
             result = replace(result, at_times=_numpy_at_times(model, case, result, states, landing, t_req,
                                                               settings, store_nodes, info, scales))
         if not history:
@@ -203,7 +208,8 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     captured = {}
     y, iterations, status, fail_step, fail_res, D, V, A = _march_in_chunks(
         _engine.Batch([case]), d0[None], v0[None], n_steps, tol, history,
-        None if progress is None else (lambda done: progress(done, n_steps)), stops=stops, captured=captured)
+        None if progress is None else (lambda done: progress(done, n_steps)), stops=stops, captured=captured,
+        G0=None if g0 is None else g0[None])
     y, iterations = y[0], iterations[0].astype(np.int32)
     if history:
         D, V, A = D[0], V[0], A[0]
@@ -235,7 +241,7 @@ def _numpy_result(model, case, hist, info, store_nodes, scales):
 
 
 def _at_times_result(model, case, t_req, rows, info, store_nodes, scales):
-    """The SimulationResult at the requested times from rows (y (3,), iterations, d, v, a) each."""
+    """The SimulationResult at the requested times from rows (y (3,), iterations, d, v, a, ...) each."""
     y = np.array([r[0] for r in rows], dtype=float).reshape(len(rows), 3)
     D, V, A = (np.array([r[k] for r in rows], dtype=float) for k in (2, 3, 4))
     kin = _kinematics.case_state(case, t_req)
@@ -252,8 +258,8 @@ def _numpy_at_times(model, case, result, states, landing, t_req, settings, store
         if tau == 0.0:
             rows.append(((result.v_mid[k], result.u_end[k], result.extension[k]), 0) + states[k])
             continue
-        d, v, a = states[k]
-        hist = integrate(model, d, v, result.t[k], tau, 1, settings, a0=a)
+        d, v, a, g = states[k]
+        hist = integrate(model, d, v, result.t[k], tau, 1, settings, a0=a, g0=g)
         one = _numpy_result(model, case, hist, info, False, scales)
         rows.append(((one.v_mid[1], one.u_end[1], one.extension[1]), int(hist.iterations[0]), hist.d[1],
                      hist.v[1], hist.a[1]))
@@ -261,16 +267,17 @@ def _numpy_at_times(model, case, result, states, landing, t_req, settings, store
 
 
 def _compiled_at_times(model, case, result, states, landing, t_req, tol, store_nodes, info, scales):
-    """States at the requested times: steps of the run, or one Newmark step of the remaining length
-    from the step before (all such steps in one compiled batch).  states: {step: (d, v, a)}."""
+    """States at the requested times: steps of the run, or one step of the remaining length from the
+    step before (all such steps in one compiled batch).  states: {step: (d, v, a, g)}, g the
+    algorithmic accelerations of generalized-alpha (a for Newmark)."""
     between = [j for j, (_, tau) in enumerate(landing) if tau > 0.0]
     stepped = {}
     if between:
         ks = np.array([landing[j][0] for j in between])
         taus = np.array([landing[j][1] for j in between])
         batch = _engine.Batch([case] * len(between), dt=taus)
-        D0, V0, A0 = (np.array([states[k][c] for k in ks]) for c in range(3))
-        res = _engine.march(batch, 1, D0=D0, V0=V0, A0=A0, t0=result.t[ks], tol=tol)
+        D0, V0, A0, G0 = (np.array([states[k][c] for k in ks]) for c in range(4))
+        res = _engine.march(batch, 1, D0=D0, V0=V0, A0=A0, G0=G0, t0=result.t[ks], tol=tol)
         bad = np.nonzero(res.status != _engine.OK)[0]
         if bad.size:
             j = int(bad[0])
@@ -280,7 +287,7 @@ def _compiled_at_times(model, case, result, states, landing, t_req, tol, store_n
                 step=int(ks[j]) + 1, time=float(t_req[between[j]]), residual=float(res.fail_residual[j]),
                 partial=result)
         for i, j in enumerate(between):
-            stepped[j] = (res.y[i, 1], int(res.iterations[i, 0]), res.D[i], res.V[i], res.A[i])
+            stepped[j] = (res.y[i, 1], int(res.iterations[i, 0]), res.D[i], res.V[i], res.A[i], res.G[i])
     rows = []
     for j, (k, tau) in enumerate(landing):
         if j in stepped:
@@ -291,31 +298,32 @@ def _compiled_at_times(model, case, result, states, landing, t_req, tol, store_n
 
 
 def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progress=None,
-                     chunks=20, stops=(), captured=None):
+                     chunks=20, stops=(), captured=None, G0=None):
     """Run the compiled engine from (D0, V0) in a few chunks, so that progress(done_steps) can be
     shown; a case that fails stops alone.  Returns (y, iterations, status, fail_step,
     fail_residual, D, V, A) with y (B, n_steps + 1, 3) and the histories of the reduced
     displacements, velocities and accelerations (None unless keep_states).  stops: step indices
     whose states (D, V, A), each (B, N), are put in the dict `captured` (chunks end there; the
-    marching is the same as without them)."""
+    marching is the same as without them; with the algorithmic accelerations G of generalized-alpha
+    as a fourth entry)."""
     B = len(batch)
-    D, V, A, previous = np.array(D0, dtype=float), np.array(V0, dtype=float), None, None
+    D, V, A, G, previous = np.array(D0, dtype=float), np.array(V0, dtype=float), None, G0, None
     status = np.zeros(B, dtype=np.int64)
     fail_step, fail_res = np.zeros(B, dtype=np.int64), np.zeros(B)
     ys, its, hist = [], [], ([], [], [])
     size = max(1, -(-n_steps // chunks)) if progress is not None else n_steps
     stops = sorted(k for k in set(stops) if 0 <= k <= n_steps)
     if stops and stops[0] == 0:
-        first = _engine.march(batch, 0, D0=D, V0=V, tol=tol, status=status)
-        A, status = first.A, first.status
-        captured[0] = (D.copy(), V.copy(), A.copy())
+        first = _engine.march(batch, 0, D0=D, V0=V, G0=G, tol=tol, status=status)
+        A, G, status = first.A, first.G, first.status
+        captured[0] = (D.copy(), V.copy(), A.copy(), G.copy())
     done = 0
     while done < n_steps:
         k = min(size, n_steps - done)
         later = [s for s in stops if s > done]
         if later:
             k = min(k, later[0] - done)
-        res = _engine.march(batch, k, D0=D, V0=V, A0=A, step0=done, keep_history=bool(keep_states),
+        res = _engine.march(batch, k, D0=D, V0=V, A0=A, G0=G, step0=done, keep_history=bool(keep_states),
                             tol=tol, status=status, previous=previous)
         new_fail = (res.status != _engine.OK) & (status == _engine.OK)
         fail_step[new_fail], fail_res[new_fail] = res.fail_step[new_fail], res.fail_residual[new_fail]
@@ -325,10 +333,10 @@ def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progr
         if keep_states:
             for store, h in zip(hist, (res.D_history, res.V_history, res.A_history)):
                 store.append(h if done == 0 else h[:, 1:])
-        D, V, A, previous = res.D, res.V, res.A, res.previous
+        D, V, A, G, previous = res.D, res.V, res.A, res.G, res.previous
         done += k
         if done in stops:
-            captured[done] = (D.copy(), V.copy(), A.copy())
+            captured[done] = (D.copy(), V.copy(), A.copy(), G.copy())
         if progress is not None:
             progress(done)
     histories = tuple(np.concatenate(h, axis=1) if keep_states else None for h in hist)
@@ -367,6 +375,7 @@ def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=Fals
     (needed for the field outputs, e.g. axial_force)."""
     cases = [c if isinstance(c, Case) else Case.from_dict(c) for c in cases]
     revolutions = in_range("revolutions", revolutions, 0, None, True)
+    time_scheme.warn_steps(cases)
     groups = {}
     for i, c in enumerate(cases):
         groups.setdefault((c.n_elements, c.steps_per_rev, run_length(c, revolutions)[1]), []).append(i)

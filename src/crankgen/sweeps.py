@@ -67,6 +67,7 @@ from .errors import CrankgenError, ParameterError
 from .io import NotRegularFileError, OutputWriteError, atomic_file, check_target, kind_of
 from .limits import check_run_size
 from .provenance import code_version
+from . import time_scheme
 from .steady import SteadyState, _check_resolved, steady_states
 from .validation import in_range, integer
 
@@ -103,7 +104,8 @@ def _run_chunk(cases, tol=1e-8, max_revolutions=400, parallel=None):
     serially (parallel=False): the executor is the parallelism, and a worker forked from a process
     whose OpenMP threads are running must not start OpenMP threads of its own."""
     try:
-        states = steady_states(cases, tol=tol, max_revolutions=max_revolutions, parallel=parallel)
+        with time_scheme.quiet():            # the sweep warned once for all its cases
+            states = steady_states(cases, tol=tol, max_revolutions=max_revolutions, parallel=parallel)
         if len(states) != len(cases):
             raise RuntimeError(f"steady_states returned {len(states)} results for {len(cases)} cases")
         return [{k: _plain(v) for k, v in s.row().items()} for s in states]
@@ -452,6 +454,7 @@ def sweep(cases, executor=None, checkpoint=None, batch_size=BATCH_SIZE, tol=1e-8
         raise ParameterError(f"progress must be None or a function progress(done, total), got "
                              f"{progress!r}")
     cases = _as_cases(cases)
+    time_scheme.warn_steps(cases)
     batch_size = integer("batch_size", batch_size, 1)
     tol = in_range("tol", tol, 0, None, low_open=True)
     max_revolutions = integer("max_revolutions", max_revolutions, 1)

@@ -5,6 +5,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from .. import time_scheme
 from ..cases import run_case
 from ..errors import CrankgenError, ParameterError
 from ..validation import choice, in_range, integer
@@ -101,6 +102,7 @@ def poincare(mech=None, parameter="omega", values=None, direction="up", *, model
         make_case(None, parameter, v, c0)                      # validates every value
     transient = integer("transient", transient, 0)
     samples = integer("samples", samples, 2)
+    time_scheme.warn_steps([c0])
     max_period = integer("max_period", max_period, 1)
     t0 = time.perf_counter()
     fmap = MechanismMap(c0, parameter)

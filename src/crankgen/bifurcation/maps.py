@@ -8,7 +8,9 @@ Periodic orbits of period k are the fixed points of P^k.  A map supplies
   applications of P and the observable at each of them (its points on the Poincare section);
 - iterate(x, p, n): the states after 0..n applications and one observable sample each
   (the Poincare section of the brute-force sweeps);
-- physical(x): the state in the user's units (the core may work in scaled coordinates).
+- physical(x): the state in the user's units (the core may work in scaled coordinates);
+- reported (optional): how many multipliers, the largest, a branch reports (the mechanism's map
+  under generalized-alpha has algorithmic roots besides the mechanism's: crankgen.time_scheme).
 FunctionMap builds all of this from a one-application function f(x, p) -> (f, df/dx, df/dp).
 """
 

@@ -52,13 +52,13 @@ def borrowed_work(w):
         borrowed(w.rhs), borrowed(w.W), borrowed(w.piv), borrowed(w.ext), borrowed(w.F), borrowed(w.diag),
         borrowed(w.kin), borrowed(w.crank), borrowed(w.q), borrowed(w.qd), borrowed(w.qdd), borrowed(w.geo),
         borrowed(w.send), borrowed(w.E), borrowed(w.r1), borrowed(w.S1), borrowed(w.K1), borrowed(w.C1),
-        borrowed(w.M1), borrowed(w.lanes))
+        borrowed(w.M1), borrowed(w.lanes), borrowed(w.dp), borrowed(w.vp))
 
 
 @jit(python=False)
 def borrowed_cases(c):
     return Cases(borrowed(c.select), borrowed(c.coef), borrowed(c.params), borrowed(c.dt), borrowed(c.eps),
-                 borrowed(c.scheme), borrowed(c.printed), borrowed(c.scales))
+                 borrowed(c.scheme), borrowed(c.printed), borrowed(c.scales), borrowed(c.integ))
 
 
 @jit(python=False)
