@@ -429,7 +429,8 @@ class Output:
     kinematic parameters), q_end ((u, v) of the rod's end node in the moving frame), qd_end (their
     time derivatives), s (the end map's reduced co-ordinate), pin ((F_i, F_j): the force the crank
     pin applies to the rod, in the moving frame), end ((F_i, F_j): the force the guide applies to
-    the rod's end, with the end mass included), fiber.  units: the unit of the value (SI views multiply by it)."""
+    the rod's end with the end mass, i.e. to the end mass), rod_end ((F_i, F_j): the force the end
+    mass applies to the rod at B, the rod's own terms at its end node), fiber.  units: the unit of the value (SI views multiply by it)."""
 
     name: str
     kind: str
@@ -445,6 +446,7 @@ q_end = sp.Matrix(sp.symbols("qe0:2", real=True))
 qd_end = sp.Matrix(sp.symbols("qde0:2", real=True))
 pin = sp.Matrix(sp.symbols("pin0:2", real=True))
 end_force = sp.Matrix(sp.symbols("end0:2", real=True))
+rod_end = sp.Matrix(sp.symbols("rodend0:2", real=True))
 s_end = sp.Symbol("s", real=True)
 
 
@@ -534,16 +536,34 @@ OUTPUTS = (
            "driving torque the crank needs to hold its prescribed motion (counter-clockwise), "
            "a (e_r x F_pin), units of rho A L^3 omega_b^2", TORQUE,
            lambda o: s.a * (sp.cos(s.theta) * _inertial(pin)[1] - sp.sin(s.theta) * _inertial(pin)[0])),
-    Output("pin_force_x", "step", "X component of the force the crank pin applies to the rod", FORCE,
-           lambda o: _inertial(pin)[0]),
-    Output("pin_force_y", "step", "Y component of the force the crank pin applies to the rod", FORCE,
+    # the joint forces, named "<body>_on_<body>": who acts on whom (inertial X, Y components)
+    Output("crank_on_rod_x", "step",
+           "X component of the force the crank applies to the rod at the crank pin A (sizes the pin "
+           "and bearing at A)", FORCE, lambda o: _inertial(pin)[0]),
+    Output("crank_on_rod_y", "step", "Y component of the force the crank applies to the rod at A", FORCE,
            lambda o: _inertial(pin)[1]),
-    Output("end_force_x", "step",
-           "X component of the end reaction: the force the guide (the slider's guide normal force; the "
-           "rocker) applies at the rod's end, the end mass's inertia included", FORCE,
-           lambda o: _inertial(end_force)[0]),
-    Output("end_force_y", "step", "Y component of the end reaction (see end_force_x)", FORCE,
-           lambda o: _inertial(end_force)[1]),
+    Output("rod_on_slider_x", "step",
+           "X component of the force the rod applies to the slider at B, through the pin at B (sizes "
+           "that pin)", FORCE, lambda o: -_inertial(rod_end)[0], guides=("line",)),
+    Output("rod_on_slider_y", "step", "Y component of the force the rod applies to the slider at B", FORCE,
+           lambda o: -_inertial(rod_end)[1], guides=("line",)),
+    Output("guide_on_slider_x", "step",
+           "X component of the force the guide applies to the slider (normal to the guide, no "
+           "friction: zero on the line Y = e)", FORCE, lambda o: _inertial(end_force)[0], guides=("line",)),
+    Output("guide_on_slider_y", "step",
+           "Y component of the force the guide applies to the slider: the guide's normal force (sizes "
+           "the guide)", FORCE, lambda o: _inertial(end_force)[1], guides=("line",)),
+    Output("rod_on_tip_x", "step",
+           "X component of the force the coupler (the rod) applies to the rocker's tip at B, through "
+           "the pin at B (sizes that pin)", FORCE, lambda o: -_inertial(rod_end)[0], guides=("circle",)),
+    Output("rod_on_tip_y", "step", "Y component of the force the rod applies to the rocker's tip at B", FORCE,
+           lambda o: -_inertial(rod_end)[1], guides=("circle",)),
+    Output("rocker_on_tip_x", "step",
+           "X component of the force the rocker applies to its tip mass at B (along the rocker, a "
+           "massless two-force member: the force at its pivot D too)", FORCE,
+           lambda o: _inertial(end_force)[0], guides=("circle",)),
+    Output("rocker_on_tip_y", "step", "Y component of the force the rocker applies to its tip mass at B",
+           FORCE, lambda o: _inertial(end_force)[1], guides=("circle",)),
     Output("axial_force", "field", "N* = N L^2 / EI, N = EA times the approach's membrane strain", "EI/L^2",
            lambda o: membrane_strain(o) * s.EA / s.EI),
     Output("bending_moment", "field", "M* = M L / EI = v_xx (M = EI v_xx)", "EI/L",

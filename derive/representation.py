@@ -318,7 +318,7 @@ OUTPUT_INPUTS = (
     ("kin", s.KINEMATICS), ("params", tuple(x for x in KINEMATIC_SYMBOLS if x != s.a)),
     ("q_end", tuple(model.q_end)), ("qd_end", tuple(model.qd_end)),
     ("s", (model.s_end,)), ("pin", tuple(model.pin)), ("end", tuple(model.end_force)),
-    ("fiber", (model.fiber,)),
+    ("rod_end", tuple(model.rod_end)), ("fiber", (model.fiber,)),
 )
 # option cases that give every field output its distinct expressions
 FIELD_OPTION_CASES = ({"approach": "A", "membrane": "pointwise"}, {"approach": "A", "membrane": "averaged"},

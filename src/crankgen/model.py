@@ -104,9 +104,11 @@ class Model:
         p[..., -1, :], pd[..., -1, :], pdd[..., -1, :] = expand(E, p[..., -1, :], pd[..., -1, :], pdd[..., -1, :])
         return p, pd, pdd, E
 
-    def unprojected_terms(self, kin, d, v, a, secant=False):
+    def unprojected_terms(self, kin, d, v, a, secant=False, rod_end=None):
         """(q, E, r, K, C, M): the element terms before the end map's projection (the last
-        element's end node rows are the force the guide must apply, the end mass included)."""
+        element's end node rows are the force the guide must apply, the end mass included).
+        rod_end: an array (..., 2) that receives those rows of the rod's own families (before the
+        end mass's are added)."""
         q, qd, qdd, E = self.nodal_state(kin, d, v, a)
         geo, coef, kv = self.geometry, self.coefficients, kin.vector
         shape = q.shape[:-1]
@@ -117,6 +119,8 @@ class Model:
         parts = [("rod", lead + (slice(None),), (q, qd, qdd, geo), kb),
                  ("end", lead + (-1,), (q[..., -1, :], qd[..., -1, :], qdd[..., -1, :], geo[-1]), kv)]
         for part, where, args, kin_arg in parts:
+            if part == "end" and rod_end is not None:
+                rod_end[...] = r[..., -1, 3:5]
             for _name, kernel in self.selection.vectorized(part):
                 out = kernel(*args, coef, kin_arg)
                 r[where] += out[0]
@@ -134,12 +138,15 @@ class Model:
         return ElementTerms(r, K, C, M)
 
     def reactions(self, t, d, v, a):
-        """(pin, end), each (..., 2): the forces the crank pin and the guide apply to the rod, in
-        the moving frame (e_i, e_j), at time(s) t for reduced states d, v, a (..., N): the residual
-        rows of the constrained DOFs (the pin's u_0, v_0; the end node's u_n, v_n, whose reaction
-        is normal to the guide: g_s . end = 0 at a solution)."""
-        _, _, r, _, _, _ = self.unprojected_terms(self.kinematics(t), d, v, a)
-        return r[..., 0, 0:2].copy(), r[..., -1, 3:5].copy()
+        """(pin, end, rod_end), each (..., 2), in the moving frame (e_i, e_j), at time(s) t for
+        reduced states d, v, a (..., N): the residual rows of the constrained DOFs.  pin: the force
+        the crank pin applies to the rod (rows u_0, v_0); end: the force the guide applies to the
+        end mass (rows u_n, v_n of every family: the rod's end with the end mass; normal to the
+        guide, g_s . end = 0 at a solution); rod_end: the force the end mass applies to the rod at
+        B (the same rows of the rod's own families; the rod applies -rod_end to the end mass)."""
+        rod_end = np.zeros(np.shape(d)[:-1] + (2,))
+        _, _, r, _, _, _ = self.unprojected_terms(self.kinematics(t), d, v, a, rod_end=rod_end)
+        return r[..., 0, 0:2].copy(), r[..., -1, 3:5].copy(), rod_end
 
     def residual(self, t, d, v, a):
         """Reduced residual R(t, d, v, a)."""

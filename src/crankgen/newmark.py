@@ -141,13 +141,22 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
             else a0)
     if generalized:
         G[0] = A[0] if g0 is None else g0
+    starter = generalized and g0 is None       # a start: the first step is time_scheme.STARTER
     c_d, c_v = beta * dt**2 * ratio, gamma * dt * ratio
+    steady = (beta, gamma, am, af, ratio, c_d, c_v)
 
     for m in range(n_steps):
+        if starter and m == 0:
+            s = time_scheme.STARTER
+            beta, gamma, am, af, ratio = s.beta, s.gamma, s.alpha_m, s.alpha_f, s.ratio
+            c_d, c_v = beta * dt**2, gamma * dt
+        elif starter and m == 1:
+            beta, gamma, am, af, ratio, c_d, c_v = steady
         d, v, a, g = D[m], V[m], A[m], G[m]
         d_pred = d + dt * v + 0.5 * dt**2 * (1 - 2 * beta) * g            # eq. (35)
         v_pred = v + dt * (1 - gamma) * g                                  # eq. (36)
-        if generalized:
+        abar = 0.0
+        if generalized and not (starter and m == 0):
             abar = (af * a - am * g) / (1.0 - am)
             d_pred = d_pred + dt**2 * beta * abar
             v_pred = v_pred + dt * gamma * abar
@@ -199,7 +208,7 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
         V[m + 1] = v_new
         A[m + 1] = a_new
         if generalized:
-            G[m + 1] = abar + ratio * a_new
+            G[m + 1] = abar + ratio * a_new if not (starter and m == 0) else a_new
         iterations[m] = it
         if not (np.all(np.isfinite(D[m + 1])) and np.all(np.isfinite(V[m + 1]))):
             raise ConvergenceError(f"non-finite state in step {m + 1} (t* = {t[m + 1]:.6g})",

@@ -6,9 +6,10 @@ surface_strain, chord_deflection, ...).
 
 Each step or field output is a generated kernel whose inputs the schema names; StateHistory
 supplies them from the stored reduced states: the kinematics, the nodal vector of the element
-holding x*, the end node's (u, v), their rates and the reduced co-ordinate, and the reactions at the pin and the
-end (the residual rows of the constrained DOFs, which need the stored velocities and
-accelerations).  Quantities made of element-wise derivatives (u_x is constant in an element, v_xx
+holding x*, the end node's (u, v), their rates and the reduced co-ordinate, and the joint forces at
+the crank pin A and at B (the residual rows of the constrained DOFs, which need the stored
+velocities and accelerations: the crank's force on the rod, the guide's on the end mass and, from
+the rod's own families alone, the end mass's on the rod).  Quantities made of element-wise derivatives (u_x is constant in an element, v_xx
 linear) jump at the nodes; at an interior node crankgen returns the mean of the two elements'
 values (the average of the one-sided limits), inside an element the element's own value.
 """
@@ -23,6 +24,21 @@ from .mesh import Mesh
 from .validation import finite_number, in_range
 
 NODE_TOLERANCE = 1e-12      # x* closer than this (relative to an element) to a node is at the node
+
+# outputs renamed to say which body acts on which (crankgen 0.2): the old name -> the new one(s)
+RENAMED = {"pin_force_x": "crank_on_rod_x", "pin_force_y": "crank_on_rod_y",
+           "end_force_x": "guide_on_slider_x (rocker_on_tip_x on a four-bar)",
+           "end_force_y": "guide_on_slider_y (rocker_on_tip_y on a four-bar)"}
+
+
+def unknown_output(name):
+    """The ParameterError of an output name that does not exist (naming the new name of a renamed
+    one)."""
+    if name in RENAMED:
+        return ParameterError(f"{name} was renamed {RENAMED[name]}: the joint forces are named for who "
+                              f"acts on whom (crank_on_rod, rod_on_slider, guide_on_slider; rod_on_tip, "
+                              f"rocker_on_tip on a four-bar)")
+    return ParameterError(f"no output {name!r}; the outputs are {', '.join(schema.OUTPUTS)}")
 
 
 def element_history(mesh, d, phi):
@@ -110,7 +126,7 @@ class StateHistory:
         out = {}
         q_all = None
         for name in spec.inputs:
-            if name in ("q", "zeta", "geo", "fiber"):
+            if name in ("q", "zeta", "geo", "fiber") or name in out:
                 continue
             if name == "coef":
                 out[name] = self.case.coefficients
@@ -130,9 +146,8 @@ class StateHistory:
                 out[name] = E[..., schema.END_MAP_ROWS["qd"], :]
             elif name == "s":
                 out[name] = self.states[:, self.mesh.slider_dof]
-            elif name in ("pin", "end"):
-                pin, end = self._reactions()
-                out["pin"], out["end"] = pin, end
+            elif name in ("pin", "end", "rod_end"):
+                out["pin"], out["end"], out["rod_end"] = self._reactions()
         return out
 
     def _call(self, kernel, spec, values, element=None, extra=()):
@@ -178,7 +193,8 @@ class StateHistory:
 
 
 class DeclaredOutputs:
-    """Mixin of results that store their states: every declared output by name.
+    """Mixin of results that store their states: every declared output by name, and the range of
+    the theory (`beyond_theory`).
 
     `result.quantity(name, x=None, **arguments)` gives any declared output; each step output is also
     an attribute of its name (`result.torque`, `result.slider_position`, `result.chord_angle`) and
@@ -199,12 +215,25 @@ class DeclaredOutputs:
     def __getstate__(self):
         state = dict(self.__dict__)
         state.pop("_state_history", None)
+        state.pop("_beyond_theory", None)
         return state
+
+    @property
+    def beyond_theory(self):
+        """Whether the response leaves the range of the theory, as data (crankgen.theory.RangeFlag:
+        true when beyond; its measures deflection_over_L = eps max|v*| and the largest axial
+        strain over the stored steps, each with its value and limit, and those that tripped it)."""
+        flag = self.__dict__.get("_beyond_theory")
+        if flag is None:
+            from .theory import flag_of
+            flag = flag_of(self)
+            object.__setattr__(self, "_beyond_theory", flag)
+        return flag
 
     def quantity(self, name, x=None, **arguments):
         spec = schema.OUTPUTS.get(name)
         if spec is None:
-            raise ParameterError(f"no output {name!r}; the outputs are {', '.join(schema.OUTPUTS)}")
+            raise unknown_output(name)
         if self.case.guide not in spec.guides:
             raise ParameterError(f"{name} exists for the {' and '.join(spec.guides)} guide only "
                                  f"(this case's guide is {self.case.guide!r})")
@@ -229,6 +258,8 @@ class DeclaredOutputs:
             return lambda x, **arguments: self.quantity(name, x, **arguments)
         if spec is not None and spec.kind == "step":
             return self.quantity(name)
+        if name in RENAMED:
+            raise AttributeError(str(unknown_output(name)))
         raise AttributeError(f"{type(self).__name__} has no attribute {name!r}")
 
 
@@ -255,14 +286,14 @@ class SIView:
             return self.scales.si_name(self.BASE[name])
         spec = schema.OUTPUTS.get(name)
         if spec is None:
-            raise ParameterError(f"no output {name!r}; the outputs are {', '.join(schema.OUTPUTS)}")
+            raise unknown_output(name)
         return self.scales.si_name(spec.units)
 
     def quantity(self, name, x=None, **arguments):
         """The declared output `name` in SI (a field at x in metres)."""
         spec = schema.OUTPUTS.get(name)
         if spec is None:
-            raise ParameterError(f"no output {name!r}; the outputs are {', '.join(schema.OUTPUTS)}")
+            raise unknown_output(name)
         if x is not None:
             for xj in np.atleast_1d(np.asarray(x, dtype=float)):
                 in_range(f"x (position along the rod, m; the rod is {self.scales.L:g} m long)", xj, 0.0,
@@ -295,6 +326,8 @@ class SIView:
             return lambda x, **arguments: self.quantity(name, x, **arguments)
         if spec is not None:
             return self.quantity(name)
+        if name in RENAMED:
+            raise AttributeError(str(unknown_output(name)))
         raise AttributeError(f"SIView has no attribute {name!r}")
 
     def __repr__(self):

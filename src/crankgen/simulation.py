@@ -19,6 +19,7 @@ from .initial import initial_state
 from .newmark import NewmarkSettings, integrate
 from .outputs import DeclaredOutputs, SIView, StateHistory, end_axial, extension, mid_deflection
 from .parameters import SIMechanism
+from .theory import warn_beyond
 from .units import Scales, scales_of
 from .validation import choice, in_range
 
@@ -171,7 +172,7 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     if revolutions is not None:
         revolutions = in_range("revolutions", revolutions, 0, None, True)
     case = run_case(mech, case, model=model, omega=omega, crank=crank, **fields)
-    time_scheme.warn_steps([case])
+    time_scheme.warn_steps([case], omega_b=None if scales is None else scales.omega_b)
     settings = NewmarkSettings.of_case(case, tol=tol)
     model = Model.from_case(case)
     if times is not None:
@@ -203,6 +204,7 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
                                                               settings, store_nodes, info, scales))
         if not history:
             result = replace(result, states=None, rates=None, accelerations=None)
+        warn_beyond([result], "run")
         return result
 
     captured = {}
@@ -225,6 +227,7 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
         states = {k: tuple(x[0] for x in captured[k]) for k in stops}
         result = replace(result, at_times=_compiled_at_times(model, case, result, states, landing, t_req, tol,
                                                              store_nodes, info, scales))
+    warn_beyond([result], "run")
     return result
 
 
@@ -405,4 +408,5 @@ def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=Fals
             if status[j] != _engine.OK:
                 result = _failure(status[j], fail_step[j], fail_res[j], dt, result)
             out[i] = result
+    warn_beyond([r for r in out if isinstance(r, SimulationResult)], "run")
     return out

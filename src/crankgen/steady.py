@@ -47,6 +47,7 @@ from .cases import Case, run_case
 from .errors import ParameterError
 from .limits import check_run_size
 from .outputs import DeclaredOutputs
+from .theory import warn_beyond
 from .validation import choice, in_range, integer
 
 STATUSES = ("periodic", "not-periodic", "unstable", "failed")
@@ -153,11 +154,13 @@ class _BatchSolver:
         self.multiplier = [None] * B
         self.X = np.zeros((B, self.size))
 
-    def _march(self, revs, active):
-        """March the active cases revs revolutions from their current X (theta = 0)."""
+    def _march(self, revs, active, start=False):
+        """March the active cases revs revolutions from their current X (theta = 0); start: from
+        (d, v) alone (a run's start: generalized-alpha's first step is its starter)."""
         b, spr = self.batch, self.batch.steps_per_rev
         pre = np.where(active, engine.OK, engine.NOT_CONVERGED)
-        res = engine.march_state(b, revs * spr, self.X, status=pre, parallel=self.parallel)
+        X = self.X[:, :2 * b.N] if start else self.X
+        res = engine.march_state(b, revs * spr, X, status=pre, parallel=self.parallel)
         X1 = engine.join_state(res, self.generalized)
         for i in np.flatnonzero(active & (res.status != engine.OK)):
             self.status[i] = "failed"
@@ -168,7 +171,7 @@ class _BatchSolver:
         B = len(self.cases)
         active = np.ones(B, dtype=bool)
         # warm-up from the paper's zero initial conditions
-        X1, _ = self._march(self.warmup, active)
+        X1, _ = self._march(self.warmup, active, start=True)
         self.periods[:] = self.warmup
         can_shoot = np.array([c.integrator == "newton" for c in self.cases]) & (self.method == "shooting")
         # a warm-up that diverged still leaves its last state before the failure: a periodic orbit
@@ -391,6 +394,7 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
         done += len(idx)
         if progress is not None:
             progress(done, len(cases))
+    warn_beyond(results, "periodic response" if len(results) == 1 else "periodic response of a case")
     return results
 
 

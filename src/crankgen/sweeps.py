@@ -67,7 +67,7 @@ from .errors import CrankgenError, ParameterError
 from .io import NotRegularFileError, OutputWriteError, atomic_file, check_target, kind_of
 from .limits import check_run_size
 from .provenance import code_version
-from . import time_scheme
+from . import notices, time_scheme
 from .steady import SteadyState, _check_resolved, steady_states
 from .validation import in_range, integer
 
@@ -104,7 +104,7 @@ def _run_chunk(cases, tol=1e-8, max_revolutions=400, parallel=None):
     serially (parallel=False): the executor is the parallelism, and a worker forked from a process
     whose OpenMP threads are running must not start OpenMP threads of its own."""
     try:
-        with time_scheme.quiet():            # the sweep warned once for all its cases
+        with notices.quiet():                # the sweep warned once for all its cases
             states = steady_states(cases, tol=tol, max_revolutions=max_revolutions, parallel=parallel)
         if len(states) != len(cases):
             raise RuntimeError(f"steady_states returned {len(states)} results for {len(cases)} cases")

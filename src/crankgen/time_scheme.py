@@ -35,13 +35,13 @@ roots besides the mechanism's 2N (per step -alpha_m / (1 - alpha_m) at low frequ
 rho_inf in modulus): a continuation's branches report the 2N largest.
 """
 
-import contextlib
-import contextvars
 import math
 from dataclasses import dataclass
 
 import numpy as np
 
+from . import notices
+from .notices import StepWarning  # noqa: F401  (re-exported)
 from .validation import in_range
 
 NEWMARK_BETA, NEWMARK_GAMMA = 0.25, 0.5
@@ -69,6 +69,13 @@ class Coefficients:
     def as_array(self):
         """(beta, gamma, alpha_m, alpha_f): the row the compiled engine reads."""
         return np.array([self.beta, self.gamma, self.alpha_m, self.alpha_f])
+
+
+# The first step of a generalized-alpha run from a state without algorithmic accelerations (a start:
+# from rest or from an initial state): Newmark's beta = 1/2, gamma = 1, which damps every mode it
+# cannot resolve at once (step factor 0 at omega h -> infinity) and whose O(h^2) error, taken once,
+# keeps the run second order; a = qdd after it.
+STARTER = Coefficients(0.0, 0.0, 0.5, 1.0)
 
 
 def coefficients(rho_inf):
@@ -139,10 +146,6 @@ def first_axial_frequency(eps, ms):
     return lam / (math.pi ** 2 * eps)
 
 
-class StepWarning(UserWarning):
-    """A run's step leaves a mode of the rod unresolved and the time scheme does not damp it."""
-
-
 # a step-to-step oscillation that keeps more than this fraction of itself over a crank revolution
 # counts as undamped (the forces then alternate from step to step)
 SURVIVING = 0.01
@@ -167,17 +170,23 @@ def unresolved_modes(rho_inf, dt, steps_per_rev, eps, ms, mu):
     return out
 
 
-def step_warning(case):
+def step_warning(case, omega_b=None):
     """The one-line warning of a case whose step leaves the rod's first bending or axial mode
-    unresolved and undamped (unresolved_modes), or None."""
+    unresolved and undamped (unresolved_modes), or None.  omega_b: the unit of frequency in rad/s
+    (an SI run's), to state the modes' frequencies in rad/s too."""
     from . import kinematics
-    dt = kinematics.step_period(case) / case.steps_per_rev
+    from .errors import ParameterError
+    try:
+        dt = kinematics.step_period(case) / case.steps_per_rev
+    except ParameterError:                      # a crank at rest: the run says why
+        return None
     modes = unresolved_modes(case.rho_inf, dt, case.steps_per_rev, case.eps, case.ms, case.mu)
     if not modes:
         return None
     names = " and ".join(m[0] for m in modes)
-    shown = "; ".join(f"{m[0]}: omega = {m[1]:.3g} omega_b, omega dt = {m[2]:.3g}, {100 * min(m[3], 1.0):.0f} % "
-                      f"kept over a revolution" for m in modes)
+    si = (lambda w: f" = {w * omega_b:.3g} rad/s") if omega_b else (lambda w: "")
+    shown = "; ".join(f"{m[0]}: omega = {m[1]:.3g} omega_b{si(m[1])}, omega dt = {m[2]:.3g}, "
+                      f"{100 * min(m[3], 1.0):.0f} % kept over a revolution" for m in modes)
     scheme = "Newmark's trapezoidal rule" if case.rho_inf == 1.0 else f"rho_inf = {case.rho_inf:g}"
     return (f"the step leaves the rod's first {names} mode{'s' if len(modes) > 1 else ''} unresolved and "
             f"{scheme} does not damp the step-to-step oscillation ({shown}): accelerations and forces "
@@ -185,26 +194,11 @@ def step_warning(case):
             f"more steps per revolution, or damping")
 
 
-_QUIET = contextvars.ContextVar("crankgen_step_warnings_quiet", default=False)
-
-
-@contextlib.contextmanager
-def quiet():
-    """No StepWarning inside (a sweep warns once for all its cases, then runs them quietly)."""
-    token = _QUIET.set(True)
-    try:
-        yield
-    finally:
-        _QUIET.reset(token)
-
-
-def warn_steps(cases, stacklevel=3):
+def warn_steps(cases, stacklevel=3, omega_b=None):
     """Warn once (StepWarning) when the step of any of the cases leaves a mode unresolved and
-    undamped (step_warning): the first such case, and how many more.  Silent inside quiet()."""
-    import warnings
-    if _QUIET.get():
-        return
-    texts = [t for t in (step_warning(c) for c in cases) if t is not None]
+    undamped (step_warning): the first such case, and how many more.  Silent inside
+    crankgen.notices.quiet()."""
+    texts = [t for t in (step_warning(c, omega_b) for c in cases) if t is not None]
     if texts:
         more = f" (and {len(texts) - 1} more case(s))" if len(texts) > 1 else ""
-        warnings.warn(StepWarning(texts[0] + more), stacklevel=stacklevel)
+        notices.warn(StepWarning, texts[0] + more, stacklevel=stacklevel)

@@ -5,7 +5,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from .. import time_scheme
+from .. import notices, time_scheme
+from ..notices import BeyondTheoryWarning
 from ..cases import run_case
 from ..errors import CrankgenError, ParameterError
 from ..validation import choice, in_range, integer
@@ -62,7 +63,8 @@ def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, model=Non
     t0 = time.perf_counter()
     fmap = MechanismMap(c0, parameter, derivative=choice("derivative", derivative, ("exact", "central")))
     from ..steady import steady_states
-    first = steady_states([c0])[0]
+    with notices.quiet(BeyondTheoryWarning):            # the continuation warns once, for every point
+        first = steady_states([c0])[0]
     if first.state is None:
         raise CrankgenError(f"no periodic response to start from at {parameter} = {start:g}: "
                             f"{first.status}, {first.message}")
@@ -74,6 +76,12 @@ def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, model=Non
                 corrector=corrector, predictor=predictor, derivative=derivative,
                 map_evaluations=cont.evaluations, map_values=cont.values, wall_time=time.perf_counter() - t0)
     diagram.info = info
+    diagram.flag_range()
+    flag = diagram.beyond_theory
+    if flag:
+        notices.warn(BeyondTheoryWarning, f"branches of the continuation reach beyond the theory "
+                     f"({flag.reason}): their numbers there are the equations' output, not a prediction of the "
+                     f"rod; branch.beyond_theory marks the points", stacklevel=2)
     return diagram
 
 
@@ -106,7 +114,7 @@ def poincare(mech=None, parameter="omega", values=None, direction="up", *, model
     max_period = integer("max_period", max_period, 1)
     t0 = time.perf_counter()
     fmap = MechanismMap(c0, parameter)
-    x0 = np.zeros(fmap.dim)
+    x0 = fmap.rest()
     result = sweep_map(fmap, values, x0, direction, transient, samples, max_period,
                        in_range("tol", tol, 0, None, True),
                        in_range("lyapunov_tol", lyapunov_tol, 0, None, True), progress)

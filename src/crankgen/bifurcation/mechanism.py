@@ -121,8 +121,19 @@ class MechanismMap(Map):
         Xh = engine.join_state(res, self.generalized)
         return (Xh[1] - Xh[0]) / (2 * h) / self.s
 
+    def rest(self):
+        """The scaled state of the mechanism at rest at theta = 0 (the rod undeformed): zero, with
+        generalized-alpha's algorithmic accelerations None (NaN): a march from it starts the run
+        (the scheme's starter step)."""
+        y = np.zeros(self.dim)
+        if self.generalized:
+            y[2 * self.N:] = np.nan
+        return y
+
     def march(self, y, p, revolutions, history=False):
         X = np.asarray(y, dtype=float) * self.s
+        if self.generalized and np.isnan(X[2 * self.N:]).all():
+            X = X[:2 * self.N]                 # from rest: a start
         b = self._batch(("one", p), [p])
         res = engine.march_state(b, revolutions * self.spr, X[None], keep_history=history, parallel=False)
         if res.status[0] != engine.OK:

@@ -119,9 +119,9 @@ class MarchResult:
 
 
 @jit
-def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, A0, G0, P, n_prev, keep_history,
-                 keep_rates, keep_alg, out_y, out_iter, status, fail_step, fail_res, Dh, Vh, Ah, Gh, D1, V1, A1,
-                 G1):
+def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, A0, G0, start, P, n_prev,
+                 keep_history, keep_rates, keep_alg, out_y, out_iter, status, fail_step, fail_res, Dh, Vh, Ah, Gh,
+                 D1, V1, A1, G1):
     """Advance cases lo..hi-1 of the batch n_steps in lock step (see march)."""
     n = mesh.dofs.shape[0]
     N = D0.shape[1]
@@ -153,7 +153,7 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, 
                 break
             t_new = t0[b] + (step0 + m + 1) * dt
             st, it, rn = newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, alg, P[b], n_prev[b],
-                                      dn, vn, an, gn, w)
+                                      dn, vn, an, gn, w, start and m == 0)
             out_iter[b, m] = it
             if st == OK:
                 for i in range(N):
@@ -258,8 +258,9 @@ def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False
     origins (default 0).
 
     D0, V0: (B, N) initial reduced states (zero by default); A0 the accelerations, by default
-    solved from eq. (34); G0 the algorithmic accelerations of generalized-alpha, by default A0
-    (Arnold & Bruls' start; Newmark ignores them).  The result's G: their final values (A for
+    solved from eq. (34); G0 the algorithmic accelerations of generalized-alpha (Newmark ignores
+    them).  Without G0 the run starts: its first generalized-alpha step is the starter
+    (time_scheme.STARTER), after which a = qdd.  The result's G: their final values (A for
     Newmark).  previous: the `previous` of the MarchResult this run continues (the
     displacements of the steps before D0, for the Newton starting guess; none by default).
     keep_history: True stores the displacements, velocities and accelerations of every step
@@ -280,6 +281,7 @@ def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False
         parallel_slices(_initial_accelerations, batch, parallel, (cases, mesh), (t0, step0, D0, V0, A0, status))
     else:
         A0 = np.ascontiguousarray(A0, dtype=float)
+    start = G0 is None
     G0 = A0 if G0 is None else np.ascontiguousarray(G0, dtype=float)
     if previous is None:
         P, n_prev = np.zeros((B, HISTORY, N)), np.zeros(B, dtype=np.int64)
@@ -299,7 +301,7 @@ def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False
     D1, V1, A1, G1 = np.zeros((B, N)), np.zeros((B, N)), np.zeros((B, N)), np.zeros((B, N))
     scheme = Scheme(float(tol), int(max_iter))
     parallel_slices(_march_cases, batch, parallel, (cases, mesh, scheme),
-                    (t0, step0, n_steps, D0, V0, A0, G0, P, n_prev, keep_history, keep_rates, keep_alg, out_y,
+                    (t0, step0, n_steps, D0, V0, A0, G0, start, P, n_prev, keep_history, keep_rates, keep_alg, out_y,
                      out_iter, status, fail_step, fail_res, Dh, Vh, Ah, Gh, D1, V1, A1, G1), active=status == OK)
     return MarchResult(y=out_y, iterations=out_iter, status=status, fail_step=fail_step,
                        fail_residual=fail_res, D=D1, V=V1, A=A1, G=G1, previous=(P, n_prev),

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from .. import newton
+from .. import newton, time_scheme
 from .banded import (KB_FIXED, assemble_band, assemble_band_newmark, assemble_fixed, assemble_vector,
                      band_factor, band_lu_solve, band_solve, factor_fixed, solve_fixed)
 from .compiled import jit
@@ -22,6 +22,7 @@ STATUS_TEXT = {OK: "ok", NOT_CONVERGED: "Newton did not converge", SINGULAR: "si
                NOT_FINITE: "non-finite state", TOO_LARGE: newton.DIVERGED_TEXT}
 ONE_PASS = newton.ONE_PASS
 DIVERGED = newton.DIVERGED
+STARTER_BETA, STARTER_GAMMA = time_scheme.STARTER.beta, time_scheme.STARTER.gamma
 
 @jit(python=False)
 def initial_acceleration(kern, cases, b, mesh, t0, d, v, out, w):
@@ -45,7 +46,8 @@ def initial_acceleration(kern, cases, b, mesh, t0, d, v, out, w):
 
 
 @jit(python=False)
-def newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, alg, hist, n_prev, d_new, v_new, a_new, alg_new, w):
+def newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, alg, hist, n_prev, d_new, v_new, a_new, alg_new, w,
+                 start=False):
     """One step of case b from (d, v, acc, alg) to (d_new, v_new, a_new, alg_new) at t_new: Newmark,
     or generalized-alpha in Arnold & Bruls' form (crankgen.time_scheme; the case's row of
     cases.integ: beta, gamma, alpha_m, alpha_f).  acc: the accelerations qdd (R = 0 holds with
@@ -55,13 +57,18 @@ def newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, alg, hist, n_pr
     then Newton on a_new = qdd_{n+1}, d_new = dp + cd a_new, v_new = vp + cv a_new (eqs. 38-39),
     cd = beta r dt^2, cv = gamma r dt, r = (1 - alpha_f) / (1 - alpha_m); alg_new = abar + r a_new.
     hist[k]: the displacements k + 1 steps before d, of which the first n_prev (0 to HISTORY) are
-    known, for the starting guess.  Returns (status, iterations, residual norm)."""
+    known, for the starting guess.  start: the first step of a generalized-alpha run from a state
+    without algorithmic accelerations, taken with Newmark's beta = 1/2, gamma = 1 (STARTER:
+    crankgen.time_scheme), alg_new = a_new.  Returns (status, iterations, residual norm)."""
     N = d.shape[0]
     sel, coef, params, scales = cases.select[b], cases.coef[b], cases.params[b], cases.scales[b]
     dofs, kb, l = mesh.dofs, mesh.kb, mesh.l
     tol, max_iter = scheme.tol, scheme.max_iter
     beta, gamma, am, af = cases.integ[b, 0], cases.integ[b, 1], cases.integ[b, 2], cases.integ[b, 3]
     generalized = am != 0.0 or af != 0.0
+    if start and generalized:
+        beta, gamma, am, af = STARTER_BETA, STARTER_GAMMA, 0.0, 0.0
+        generalized = False
     ratio = (1.0 - af) / (1.0 - am)
     dt = cases.dt[b]
     code = cases.scheme[b]
