@@ -6,7 +6,7 @@ line) starts at once; the compiled engine and numba are imported only by what ne
 
 from importlib import import_module
 
-from .errors import ConvergenceError, CrankgenError, ParameterError
+from .errors import ConvergenceError, CrankgenError, NoResultError, ParameterError
 from .provenance import VERSION as __version__  # noqa: F401
 
 # public name -> module that defines it
@@ -26,7 +26,7 @@ _LAZY = {
 _CHOICE_NAMES = {"FORMULATIONS": "formulation", "APPROACHES": "approach", "DAMPING_MODELS": "damping",
                  "MEMBRANE_OPTIONS": "membrane"}
 
-__all__ = ["ConvergenceError", "CrankgenError", "ParameterError"] + list(_LAZY) + list(_CHOICE_NAMES)
+__all__ = ["ConvergenceError", "CrankgenError", "NoResultError", "ParameterError"] + list(_LAZY) + list(_CHOICE_NAMES)
 
 
 def __getattr__(name):

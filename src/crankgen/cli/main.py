@@ -1,7 +1,8 @@
 """Command-line interface: `crankgen simulate | steady | sweep | reproduce | audit | continue | poincare | compile`.
 
 Exit codes: 0 success; 1 a run that failed (simulate: the integration stopped, and what was
-computed up to the failure is written; steady: status "failed"; a file that could not be written);
+computed up to the failure is written; steady: status "failed"; continue: no periodic state to
+start from; a file that could not be written);
 2 a usage error (a bad option or parameter, an unusable --out, outputs already there without
 --force, a run too large for the machine's memory, a checkpoint in use), reported on one line
 before anything is computed or created; 130 interrupted (Ctrl-C), 143 terminated (SIGTERM).
@@ -12,7 +13,7 @@ import sys
 import warnings
 
 from ..audit import SECTIONS as AUDIT_SECTIONS
-from ..errors import ConvergenceError, CrankgenError
+from ..errors import ConvergenceError, CrankgenError, NoResultError
 from ..provenance import VERSION
 from .options import (_Parser, _add_mechanism_options, _add_model_options, _add_output_options,
                       _figure_list, _number_list)
@@ -28,8 +29,10 @@ def build_parser():
 
     parser = _Parser(
         prog="crankgen",
-        description="Dynamics of flexible slider-crank mechanisms (rigid crank at constant speed, "
-                    "flexible finite-element connecting rod, slider on a straight guide).",
+        description="Dynamics of flexible slider-crank mechanisms and four-bar linkages (a rigid "
+                    "crank with a prescribed motion: constant speed, a run-up or a speed "
+                    "fluctuation; a flexible finite-element connecting rod; its end mass on a "
+                    "straight guide, a slider, or on a rigid rocker, a four-bar).",
         epilog="Exit codes: 0 success; 1 a run that failed (what it computed before failing is "
                "written); 2 a usage error (bad option or parameter, unusable --out, outputs already "
                "there without --force, a run too large for this machine's memory); 130 interrupted, "
@@ -57,7 +60,9 @@ def build_parser():
     p.add_argument("--si", metavar="FILE", default=None,
                    help="the mechanism in SI from a JSON file: {\"L\": m, \"a\": m, \"E\": Pa, \"rho\": "
                         "kg/m^3, \"A\": m^2, \"I\": m^4, \"slider_mass\": kg, \"crank_speed\": rad/s, "
-                        "\"damping\": s (optional, mu of eq. 24; default 0)}; it replaces the mechanism "
+                        "\"damping\": s (optional, default 0: mu, the damping time constant of the "
+                        "model's damping, Kelvin-Voigt strain-rate damping by default, eq. 24 with "
+                        "--damping paper)}; it replaces the mechanism "
                         "options and --omega (the crank turns at crank_speed), and simulation.csv is "
                         "written in SI: t_s, theta_rad, v_mid_m, u_end_m, extension, slider_position_m, "
                         "chord_angle_rad (nodes.csv: u, v in m), v_mid.png in mm against s")
@@ -273,7 +278,7 @@ def _main(argv):
     set_quiet(getattr(args, "quiet", False))
     try:
         return args.func(args)
-    except ConvergenceError as exc:                          # a run that failed
+    except (ConvergenceError, NoResultError) as exc:         # a run that failed
         print(f"{name}: run failed: {exc}", file=sys.stderr)
         return 1
     except CrankgenError as exc:                             # parameters, --out, existing outputs

@@ -106,6 +106,10 @@ def _simulate(args, case, revolutions, steps, out, si=None):
     from ..simulation import simulate
 
     _say(args, f"simulate: {_describe(case)}, {revolutions:g} revolutions ({steps} steps)")
+    if case.motion == "runup" and revolutions < case.ramp:
+        _say(args, f"simulate: note: the run ends after {revolutions:g} revolutions, before the ramp of "
+                   f"{case.ramp:g} revolutions completes (the crank does not reach Omega* = "
+                   f"{case.omega:g}); --revolutions {case.ramp:g} or more runs the whole ramp")
     failure = None
     with Progress("simulate", steps, enabled=not args.quiet) as progress:
         try:
@@ -144,10 +148,15 @@ def _simulate(args, case, revolutions, steps, out, si=None):
         node_rows = (dict(zip(node_columns, (t, th, *row)))                          # streamed
                      for t, th, row in zip(values[0], values[1], nodes))
         out.wrote(write_csv(out.path("nodes.csv"), node_columns, node_rows))
-    # a run-up is drawn against the crank speed it passes (its resonances), other runs against time
-    against = "crank_speed" if case.motion == "runup" and getattr(res, "states", None) is not None else "t"
-    out.wrote(plot_deflection(res, out.path("v_mid.png"), failure=failure, si=view, against=against,
-                              strain=strain))
+    # a run-up is drawn against the crank speed it passes (its resonances) and against the
+    # revolutions, other runs against time
+    if case.motion == "runup" and getattr(res, "states", None) is not None:
+        from ..kinematics import time_of_revolutions
+        from ..plotting import plot_runup
+        out.wrote(plot_runup(res, out.path("v_mid.png"), time_of_revolutions(case, case.ramp),
+                             failure=failure, si=view, strain=strain))
+    else:
+        out.wrote(plot_deflection(res, out.path("v_mid.png"), failure=failure, si=view, strain=strain))
     note = _theory_note(float(np.max(defl)) if len(defl) else math.nan,
                         float(np.max(strain)) if len(strain) else math.nan)
     if failure is not None:
@@ -198,8 +207,18 @@ ORBIT_COLUMNS = ["theta_deg", "t", "v_mid", "u_end", "extension", "deflection_ov
 
 
 def _resolved(case, where=""):
-    """Steady states need Omega* * steps_per_rev >= 1 (crankgen.steady_states refuses coarser
-    steps); checked here, before any output or progress line, and said in one line."""
+    """Steady states need a crank motion periodic in the crank angle, a turning crank and
+    Omega* * steps_per_rev >= 1 (crankgen.steady_states refuses coarser steps); checked here,
+    before any output or progress line, and said in one line."""
+    if not case.periodic:
+        raise UsageError(
+            f"{where}a steady state needs a crank motion periodic in the crank angle; --crank "
+            f"{case.motion} is not (a run-up is a transient: `crankgen simulate` runs it)")
+    if case.omega == 0:
+        raise UsageError(
+            f"{where}a steady state needs a turning crank: --omega 0 is a crank at rest, which has no "
+            "revolution to repeat; give --omega > 0 (`crankgen modes --omega 0` gives the natural "
+            "frequencies of the mechanism at rest)")
     if case.omega * case.steps_per_rev < 1.0:
         raise UsageError(
             f"{where}a steady state at --omega {case.omega:g} needs --steps-per-rev >= "
