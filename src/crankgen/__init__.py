@@ -19,6 +19,7 @@ _LAZY = {
     "SweepTable": "sweeps", "sweep": "sweeps", "CheckpointError": "sweeps",
     "BifurcationDiagram": "bifurcation", "PoincareDiagram": "bifurcation",
     "continuation": "bifurcation", "poincare": "bifurcation",
+    "Modes": "vibration", "modes": "vibration", "campbell": "campbell_diagram", "CampbellDiagram": "campbell_diagram",
     # guides and crank motions (records made from the schema)
     "Line": "specs", "Circle": "specs", "Constant": "specs", "RunUp": "specs", "Fluctuation": "specs",
 }

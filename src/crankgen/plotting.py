@@ -278,6 +278,8 @@ def fit_panels(fig, pad=0.12):
         for j in range(cols):
             ax = axes[i, j]
             box, tight = ax.get_window_extent(renderer), ax.get_tightbbox(renderer)
+            if tight is None:                   # a hidden panel (an odd count on a grid) needs no room
+                continue
             ext[i, j] = [(box.x0 - tight.x0) / dpi, (tight.x1 - box.x1) / dpi,
                          (box.y0 - tight.y0) / dpi, (tight.y1 - box.y1) / dpi]
     ext = np.maximum(ext, 0.0)
