@@ -68,6 +68,7 @@ def build_parser():
                         "options and --omega (the crank turns at crank_speed), and simulation.csv is "
                         "written in SI: t_s, theta_rad, v_mid_m, u_end_m, extension, slider_position_m, "
                         "chord_angle_rad (nodes.csv: u, v in m), v_mid.png in mm against s")
+    _add_section_option(p)
     _add_output_options(p, "out", "simulation.csv, v_mid.png (and nodes.csv with --nodes)")
     p.set_defaults(func=_cmd_simulate)
 
@@ -85,6 +86,7 @@ def build_parser():
     _add_steady_options(g)
     g.add_argument("--method", choices=("shooting", "march"), default="shooting",
                    help="shooting: Newton on the revolution map; march: revolution by revolution (default shooting)")
+    _add_section_option(p)
     _add_output_options(p, "out", "steady.csv, orbit.csv and orbit.png")
     p.set_defaults(func=_cmd_steady)
 
@@ -209,6 +211,16 @@ def build_parser():
     p.set_defaults(func=_cmd_poincare)
     add_modes_commands(sub)
     return parser
+
+
+def _add_section_option(p):
+    p.add_argument("--section", metavar="SPEC", default=None,
+                   help="the rod's cross-section, to print the peak loads and the outer-fibre stresses "
+                        "(largest tension and compression with where and when, the largest range per "
+                        "revolution): rectangle:B,H (H in the plane of the mechanism), circle:D, "
+                        "tube:D,T or A,I,C (A,I,C_TOP,C_BOTTOM); in m with --si (stresses in Pa; the "
+                        "section must be the rod's of the file), otherwise only its shape counts "
+                        "(stresses in units of Young's modulus E, loads in crankgen's units)")
 
 
 def _add_steady_options(g):

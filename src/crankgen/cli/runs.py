@@ -82,6 +82,7 @@ def _cmd_simulate(args):
 
     si = None if args.si is None else _si_mechanism(args.si)
     case = _case(args) if si is None else _si_case(args, si)    # validates every parameter ...
+    section = _section(args, si)
     revolutions = in_range("revolutions", args.revolutions, 0, None, True)
     in_range("tol", args.tol, 0, None, True)
     from ..simulation import run_length
@@ -92,12 +93,38 @@ def _cmd_simulate(args):
     names = ["simulation.csv", "v_mid.png"] + (["nodes.csv"] if args.nodes else [])
     out = _Outputs(args.out, names, args.force)             # ... and the output folder, first
     try:
-        return _simulate(args, case, revolutions, steps, out, si)
+        return _simulate(args, case, revolutions, steps, out, si, section)
     finally:
         out.abandon()
 
 
-def _simulate(args, case, revolutions, steps, out, si=None):
+def _section(args, si):
+    """The --section of the command line, checked against the SI rod (None: not given)."""
+    if getattr(args, "section", None) is None:
+        return None
+    from ..sections import parse
+    from ..stresses import _scales
+    section = parse(args.section)
+    if si is not None:
+        class _Shape:                                       # the checks need no result yet
+            scales = None
+        _scales(_Shape(), section, si)
+    return section
+
+
+def _loads_and_stress(result, section, si):
+    """The summary lines of the peak loads and the outer-fibre stresses of a result."""
+    from ..stresses import peak_loads, stress
+    from ..units import scales_of
+    scales = None if si is None else scales_of(si)
+    loads = "; ".join(f"{p.name} {p.value:.4g} {p.units} (t{'' if scales else '*'} = {p.t:.4g}"
+                      f"{' s' if scales else ''}, crank angle {math.degrees(p.theta) % 360:.1f} deg)"
+                      for p in peak_loads(result, scales))
+    return [f"peak loads: {loads}", stress(result, section, si=si).summary()
+            + ("" if si is not None else " (units of E: the fibre's strain)")]
+
+
+def _simulate(args, case, revolutions, steps, out, si=None, section=None):
     import numpy as np
 
     from ..io import write_csv
@@ -167,6 +194,8 @@ def _simulate(args, case, revolutions, steps, out, si=None):
     last = (res.v_mid if view is None else view.v_mid)[-case.steps_per_rev:]
     print(f"wrote {', '.join(str(p) for p in out.written)}; max |v{'*' if view is None else ''}| "
           f"over the last revolution {np.max(np.abs(last)):.6g}{'' if view is None else ' m'}{note}")
+    if section is not None:
+        print("\n".join(_loads_and_stress(res, section, si)))
     return 0
 
 
@@ -231,6 +260,7 @@ def _cmd_steady(args):
     from ..validation import in_range, integer
 
     case = _case(args)
+    section = _section(args, None)
     in_range("tol", args.tol, 0, None, True)
     integer("max_revolutions", args.max_revolutions, 1)
     check_run_size(case.n_elements, case.steps_per_rev, stored="steady",
@@ -238,7 +268,7 @@ def _cmd_steady(args):
     _resolved(case)
     out = _Outputs(args.out, STEADY_NAMES, args.force)
     try:
-        return _steady(args, case, out)
+        return _steady(args, case, out, section)
     finally:
         out.abandon()
 
@@ -254,7 +284,7 @@ def _method_text(args, case):
             f"per revolution{why}")
 
 
-def _steady(args, case, out):
+def _steady(args, case, out, section=None):
     import numpy as np
 
     from .. import theory
@@ -291,6 +321,8 @@ def _steady(args, case, out):
           f"{num(st.multiplier, '{:.4f}')}; {st.iterations} shooting iterations, {st.periods} "
           f"revolutions marched, residual {num(st.residual, '{:.2e}')}"
           + (f"; {row['message']}" if row["message"] else "") + _theory_note(defl, strain))
+    if section is not None and st.states is not None:
+        print("\n".join(_loads_and_stress(st, section, None)))
     print(f"wrote {', '.join(str(p) for p in out.written)}")
     if st.status == "failed":
         print(f"crankgen steady: run failed: {row['message']}", file=sys.stderr)
