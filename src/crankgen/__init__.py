@@ -20,7 +20,7 @@ _LAZY = {
     "BifurcationDiagram": "bifurcation", "PoincareDiagram": "bifurcation",
     "continuation": "bifurcation", "poincare": "bifurcation",
     "Modes": "vibration", "modes": "vibration", "campbell": "campbell_diagram", "CampbellDiagram": "campbell_diagram",
-    "Section": "sections", "stress": "stresses", "peak_loads": "stresses", "StressHistory": "stresses",
+    "animate": "animation", "Section": "sections", "stress": "stresses", "peak_loads": "stresses", "StressHistory": "stresses",
     # guides and crank motions (records made from the schema)
     "Line": "specs", "Circle": "specs", "Constant": "specs", "RunUp": "specs", "Fluctuation": "specs",
 }

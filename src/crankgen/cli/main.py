@@ -1,5 +1,5 @@
 """Command-line interface: `crankgen simulate | steady | sweep | reproduce | audit | continue | poincare |
-modes | campbell | compile`.
+modes | campbell | animate | compile`.
 
 Exit codes: 0 success; 1 a run that failed (simulate: the integration stopped, and what was
 computed up to the failure is written; steady: status "failed"; continue: no periodic state to
@@ -19,6 +19,7 @@ from ..provenance import VERSION
 from .options import (_Parser, _add_mechanism_options, _add_model_options, _add_output_options,
                       _figure_list, _number_list)
 from .compile import _cmd_compile
+from .animate import add_command as add_animate_command
 from .modes import add_commands as add_modes_commands
 from .runs import _cmd_simulate, _cmd_steady, _cmd_sweep
 from .studies import (CONTINUE_NAMES, POINCARE_NAMES, _add_branch_model_options, _cmd_audit,
@@ -210,6 +211,7 @@ def build_parser():
                         + ", ".join(CONTINUE_NAMES[:3]) + ")")
     p.set_defaults(func=_cmd_poincare)
     add_modes_commands(sub)
+    add_animate_command(sub)
     return parser
 
 

@@ -168,12 +168,16 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
         n = nodes.shape[1] // 3
         # node i at x* = i / n: u, v (along and across the rigid rod; units of L, or m with --si)
         # and the slope psi = dv/dx (rad)
+        # then every node's inertial position X, Y (crankgen.animation.inertial_nodes)
+        from ..animation import inertial_nodes
         length, time = ("L", "t") if view is None else ("m", "t_s")
         node_columns = [time, columns[1]] + [f"{q}{i}_{unit}" for i in range(n)
                                              for q, unit in (("u", length), ("v", length),
                                                              ("psi", "rad"))]
-        node_rows = (dict(zip(node_columns, (t, th, *row)))                          # streamed
-                     for t, th, row in zip(values[0], values[1], nodes))
+        node_columns += [f"{q}{i}_{length}" for i in range(n) for q in ("X", "Y")]
+        where = inertial_nodes(res).reshape(len(res.t), -1) * (1.0 if view is None else view.scales.L)
+        node_rows = (dict(zip(node_columns, (t, th, *row, *xy)))                     # streamed
+                     for t, th, row, xy in zip(values[0], values[1], nodes, where))
         out.wrote(write_csv(out.path("nodes.csv"), node_columns, node_rows))
     # a run-up is drawn against the crank speed it passes (its resonances) and against the
     # revolutions, other runs against time
