@@ -247,3 +247,10 @@ def test_a_periodic_poincare_point_has_no_lyapunov_number_rather_than_nan():
     pc = sweep_map(logistic, [2.8, 3.2], np.array([0.3]), "up", 200, 16, 8, 1e-8, 0.01, None)
     assert [q.classification for q in pc.points] == ["period-1", "period-2"]
     assert all(q.lyapunov is None and q.repeat_residual is not None for q in pc.points)
+
+
+def test_the_readme_says_what_crankgen_models_and_what_it_does_not():
+    section = README.split("## What crankgen models, and what it does not")[1].split("\n## ")[0].lower()
+    for words in ("planar", "euler-bernoulli", "ideal joints", "prescribed crank motion",
+                  "rocker is massless", "point mass", "linear elastic", "shear deformation", "friction"):
+        assert words in section, words
