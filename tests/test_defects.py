@@ -158,7 +158,6 @@ def test_convergence_figure_spans_the_counts_computed_and_used():
 
 def test_poincare_figure_shades_the_range_beyond_the_theory(tmp_path):
     from crankgen.bifurcation.sweeps import PoincareDiagram, PoincarePoint
-    from crankgen.plotting import drawn_points  # noqa: F401  (the module the figure uses)
     seen = {}
     pc = PoincareDiagram("omega", [PoincarePoint("up", w, "irregular", 0, 0.1, 0.2, 30,
                                                  np.linspace(-40, 40, 30)) for w in (1.4, 1.5)],

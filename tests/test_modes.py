@@ -60,7 +60,7 @@ def _axial_force_and_rod_rate(a, omega, theta, ms, x):
         A = np.array([a * math.cos(th), a * math.sin(th)])
         B = np.array([a * math.cos(th) + math.sqrt(1 - (a * math.sin(th)) ** 2), 0.0])
         return A, B, math.atan2(B[1] - A[1], B[0] - A[0])
-    (A0, B0, p0), (A1, B1, p1), (A2, B2, p2) = points(-h), points(0.0), points(h)
+    (A0, B0, p0), (A1, B1, _), (A2, B2, p2) = points(-h), points(0.0), points(h)
     axis = (B1 - A1) / np.linalg.norm(B1 - A1)
     acc = lambda P0, P1, P2: (P0 - 2 * P1 + P2) / h ** 2        # noqa: E731
     accA, accB = acc(A0, A1, A2), acc(B0, B1, B2)

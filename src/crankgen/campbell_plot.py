@@ -7,10 +7,13 @@ import numpy as np
 from .plotting import fit_panels, panels
 
 
-def _describe(info, si):
+def _describe(info, scales):
     model = (f"approach {info['approach']}, {info['formulation']} / {info['damping']} / "
              f"{info['membrane']}, n = {info['n_elements']}")
-    parts = [f"eps = {info['eps']:g}", f"ms* = {info['ms']:g}", f"a* = {info['a']:g}"]
+    parts = [f"eps = {info['eps']:.4g}", f"ms* = {info['ms']:.4g}", f"a* = {info['a']:.4g}"]
+    si = ("" if scales is None else
+          f"\nin SI: L = {scales.L:.4g} m, omega_b = {scales.omega_b:.4g} rad/s "
+          f"({scales.omega_b / (2 * np.pi):.4g} Hz), the first pinned-pinned bending frequency")
     if info.get("guide") == "circle":
         parts.append(f"four-bar: rocker c/L = {info['c']:g}, ground pivot d/L = {info['d']:g}, "
                      f"branch {int(info['branch']):+d}")
@@ -21,7 +24,7 @@ def _describe(info, si):
     if not info.get("rotary_inertia", True):
         parts.append("no rotary inertia")
     return (f"Campbell diagram: the frozen mechanism's natural frequencies over a revolution "
-            f"({info['angles']} crank angles)\n{model}; " + ", ".join(parts))
+            f"({info['angles']} crank angles)\n{model}; " + ", ".join(parts) + si)
 
 
 def campbell_figure(diagram, title=None):
@@ -74,5 +77,5 @@ def campbell_figure(diagram, title=None):
     leg = ax.legend(handles=handles, fontsize=8, loc="upper center", ncol=2, frameon=False,
                     bbox_to_anchor=(0.5, -0.14))
     leg._crankgen_outside = True
-    ax.set_title(title or _describe(diagram.info, si), fontsize=9)
+    ax.set_title(title or _describe(diagram.info, diagram.scales), fontsize=9)
     return fit_panels(fig)

@@ -35,7 +35,6 @@ from .errors import ConvergenceError, ParameterError
 from .mesh import PSI, U, V
 from .model import Model
 from .parameters import SIMechanism
-from .schema import ELEMENT_DOFS as NDOF
 from .units import Scales, scales_of
 from .validation import choice, finite_number, integer
 
@@ -190,13 +189,14 @@ class FrozenModel:
         sign = np.sign(np.take_along_axis(flat, np.argmax(np.abs(flat), axis=2)[..., None], axis=2)[..., 0])
         return out / (big * np.where(sign == 0, 1.0, sign))[:, :, None, None]
 
-    def axial_force(self, d):
-        """N* = N L^2 / EI per element of the states d (T, N), from the declared output (element
-        midpoints, where the approach's membrane strain is the element's own)."""
+    def axial_force(self, d, theta):
+        """N* = N L^2 / EI per element of the states d (T, N) frozen at the angles theta (T,), from
+        the declared output (element midpoints, where the approach's membrane strain is the
+        element's own; the end node through the end map at each angle)."""
         from .outputs import StateHistory
-        history = StateHistory(self.case, np.zeros(d.shape[0]), d)
         mids = (np.arange(self.mesh.n_elements) + 0.5) / self.mesh.n_elements
-        return history.field("axial_force", mids)
+        return np.array([StateHistory(replace(self.case, theta0=float(th)), np.zeros(1), d[k:k + 1])
+                         .field("axial_force", mids)[0] for k, th in enumerate(np.atleast_1d(theta))])
 
 
 def frozen_case(mech=None, omega=None, *, model=None, case=None, units="crankgen", **fields):
@@ -241,5 +241,5 @@ def modes(mech=None, omega=None, theta=0.0, *, count=6, model=None, case=None, u
     return Modes(case=replace(c, theta0=theta), theta=theta, omega=c.omega,
                  frequencies=np.sqrt(np.maximum(lam, 0.0)), omega_squared=lam,
                  kinds=tuple("axial" if x > AXIAL_SHARE else "bending" for x in share), axial_share=share,
-                 shapes=fm.shapes(kin, d, vec[:, :, :count])[0], axial_force=fm.axial_force(d)[0],
+                 shapes=fm.shapes(kin, d, vec[:, :, :count])[0], axial_force=fm.axial_force(d, [theta])[0],
                  frozen=d[0], scales=scales)

@@ -108,8 +108,6 @@ def _cmd_modes(args):
 
 
 def _write_modes(m, out):
-    import numpy as np
-
     from ..io import write_csv
     from ..vibration_plot import plot_modes
 
