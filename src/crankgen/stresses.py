@@ -144,7 +144,13 @@ def _whole(turns):
 
 def _scales(result, section, si):
     """The SI scales of a result (None: crankgen's units), the section checked against the rod."""
-    scales = getattr(result, "scales", None)
+    return check_section(section, si, getattr(result, "scales", None))
+
+
+def check_section(section, si=None, scales=None):
+    """The SI scales to compute stresses with (None: crankgen's units): those of the
+    crankgen.SIMechanism si (whose A and I the section must have, within 0.1 %), else `scales`;
+    the section's radius of gyration must be the rod's."""
     if si is not None:
         if not isinstance(si, SIMechanism):
             raise ParameterError(f"si must be a crankgen.SIMechanism, got {type(si).__name__}")

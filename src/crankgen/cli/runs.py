@@ -103,12 +103,9 @@ def _section(args, si):
     if getattr(args, "section", None) is None:
         return None
     from ..sections import parse
-    from ..stresses import _scales
+    from ..stresses import check_section
     section = parse(args.section)
-    if si is not None:
-        class _Shape:                                       # the checks need no result yet
-            scales = None
-        _scales(_Shape(), section, si)
+    check_section(section, si)
     return section
 
 
