@@ -5,6 +5,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from .. import kinematics as _kinematics
 from ..cases import run_case
 from ..errors import CrankgenError, ParameterError
 from ..validation import choice, in_range, integer
@@ -14,9 +15,13 @@ from .mechanism import PARAMETERS, MechanismMap
 
 def make_case(mech, parameter, value, case, **fields):
     """The Case of the first point: case (if given) or mech + the run's fields and model, with
-    parameter = value."""
+    parameter = value; its time step checked against the crank motion (kinematics.check_crank_steps)."""
     choice("parameter", parameter, PARAMETERS)
-    return replace(run_case(mech, case, **fields), **{parameter: value})
+    out = replace(run_case(mech, case, **fields), **{parameter: value})
+    if out.periodic:
+        T = _kinematics.period(out)
+        _kinematics.check_crank_steps(out, T / out.steps_per_rev, T, f"{parameter} = {value:g}: ")
+    return out
 
 
 def _check_progress(progress):
