@@ -70,15 +70,19 @@ def choice(name, value, allowed):
 def numbers_array(name, values):
     """values (a number or a sequence of them) as a 1-d float array; text, booleans and other
     non-numbers are refused anywhere in it (NumPy would read "0.5" and True as numbers)."""
+    bad = ParameterError(f"{name} must be a number or a sequence of numbers, got {values!r}"[:200])
     if not_a_number(values):
-        raise ParameterError(f"{name} must be a number or a sequence of numbers, got {values!r}")
+        raise bad
+    if isinstance(values, np.ndarray) and values.dtype.kind in "iuf":
+        return values.astype(float).ravel()              # numbers already: no look at each one
     try:
-        arr = np.asarray(values)
-    except (TypeError, ValueError):
-        arr = None
-    if arr is not None and arr.dtype.kind in "iuf":
-        return arr.astype(float).ravel()
-    if arr is not None and arr.dtype.kind == "O":
-        return np.array([finite_number(f"{name}[{k}]", v) for k, v in enumerate(arr.ravel())],
+        items = np.asarray(values, dtype=object).ravel()  # each item as given (NumPy would turn
+    except (TypeError, ValueError):                       # [numpy.True_, 1.0] into [1.0, 1.0])
+        raise bad from None
+    if any(not_a_number(v) or isinstance(v, (list, tuple, dict, set)) for v in items):
+        raise bad
+    try:
+        return np.array([finite_number(name, v) if not isinstance(v, (float, int)) else v for v in items],
                         dtype=float)
-    raise ParameterError(f"{name} must be a number or a sequence of numbers, got {values!r}")
+    except ParameterError:
+        raise bad from None
