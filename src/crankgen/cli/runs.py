@@ -44,12 +44,12 @@ def _si_mechanism(path):
     """The crankgen.SIMechanism of a JSON file (UsageError naming what is wrong)."""
     import json
 
+    from ..io import read_regular
     from ..parameters import SIMechanism
     try:
-        with open(path) as fh:
-            data = json.load(fh)
+        data = json.loads(read_regular(path))
     except OSError as exc:
-        raise UsageError(f"--si {path}: {exc.strerror or exc}") from None
+        raise UsageError(f"--si {path}: {exc.strerror or exc}; give the path of a JSON file") from None
     except ValueError as exc:
         raise UsageError(f"--si {path}: not valid JSON ({exc})") from None
     if not isinstance(data, dict):
