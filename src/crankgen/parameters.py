@@ -69,11 +69,18 @@ def kinematic_parameters(values):
     return np.array([float(values.get(n, schema.PARAMETERS[n].default)) for n in schema.KINEMATIC_PARAMETERS])
 
 
+# A full-turn margin (a length, in units of L) must exceed this: the margins are differences of
+# lengths of order one, whose rounding (about 1e-16) could otherwise put a linkage exactly at its
+# locking limit on the accepted side, where its first step fails.
+MARGIN_TOLERANCE = 1e-9
+
+
 def check_full_turn(values):
-    """Refuse a geometry whose crank cannot turn a full revolution (the guide's margins)."""
+    """Refuse a geometry whose crank cannot turn a full revolution (the guide's margins, each of
+    which must exceed MARGIN_TOLERANCE)."""
     guide = values.get("guide", schema.PARAMETERS["guide"].default)
     margins = np.atleast_1d(getattr(_kinematics, f"margins_{guide}")(kinematic_parameters(values)))
-    failed = [text for m, text in zip(margins, schema.GUIDES[guide].margins) if not m > 0]
+    failed = [text for m, text in zip(margins, schema.GUIDES[guide].margins) if not m > MARGIN_TOLERANCE]
     if failed:
         shown = ", ".join(f"{n} = {values.get(n, schema.PARAMETERS[n].default):g}"
                           for n in ("a",) + schema.GUIDES[guide].parameters if n != "branch")
@@ -134,7 +141,9 @@ class _MechanismBase:
         """(Mechanism, Omega*) from SI quantities.
 
         L, a in m; E in Pa; rho in kg/m^3; A in m^2; I in m^4; slider_mass in kg; crank_speed in
-        rad/s; damping mu in s (eq. 24: C = mu K).
+        rad/s; damping mu in s: the time constant of the model's damping (Kelvin-Voigt strain-rate
+        damping D = (mu/2) int [EA (de/dt)^2 + EI (dv_xx/dt)^2] dx in the default model; eq. 24,
+        C = mu (K_lin + K_non), with damping="paper").
         """
         si = SIMechanism(L=L, a=a, E=E, rho=rho, A=A, I=I, slider_mass=slider_mass,
                          crank_speed=crank_speed, damping=damping)
@@ -146,6 +155,10 @@ Mechanism = make_dataclass(
     bases=(_MechanismBase,), frozen=True, namespace={"__doc__": _MechanismBase.__doc__,
                                                      "__module__": __name__})
 Mechanism.__module__ = __name__
+
+
+_SI_UNIT = {"L": "m", "a": "m", "E": "Pa", "rho": "kg/m^3", "A": "m^2", "I": "m^4", "slider_mass": "kg",
+            "crank_speed": "rad/s", "damping": "s"}
 
 
 @dataclass(frozen=True)
@@ -169,6 +182,37 @@ class SIMechanism:
         in_range("slider_mass (kg)", self.slider_mass, 0)
         in_range("crank_speed (rad/s)", self.crank_speed, 0)
         in_range("damping (mu, s)", self.damping, 0)
+        self._check_magnitudes()
+
+    # the scales and dimensionless numbers an SI mechanism gives, as powers of its fields:
+    # every one must lie within 10^-MAGNITUDE .. 10^MAGNITUDE (zero where a field may be zero)
+    MAGNITUDE = 50
+    DERIVED = (("L (the unit of length)", {"L": 1}),
+               ("omega_b = (pi/L)^2 sqrt(E I / (rho A))", {"L": -2, "E": 0.5, "I": 0.5, "rho": -0.5, "A": -0.5}),
+               ("rho A (the unit of mass per length)", {"rho": 1, "A": 1}),
+               ("eps = sqrt(I/A) / L", {"I": 0.5, "A": -0.5, "L": -1}),
+               ("a* = a / L", {"a": 1, "L": -1}),
+               ("ms* = slider_mass / (rho A L)", {"slider_mass": 1, "rho": -1, "A": -1, "L": -1}),
+               ("mu* = omega_b damping", {"damping": 1, "L": -2, "E": 0.5, "I": 0.5, "rho": -0.5, "A": -0.5}),
+               ("Omega* = crank_speed / omega_b", {"crank_speed": 1, "L": 2, "E": -0.5, "I": -0.5, "rho": 0.5,
+                                                   "A": 0.5}))
+
+    def _check_magnitudes(self):
+        """Refuse fields whose scales overflow or underflow in floating point (or come near it),
+        naming the field that weighs most; computed on logarithms, so nothing overflows here."""
+        for what, powers in self.DERIVED:
+            values = {name: float(getattr(self, name)) for name in powers}
+            if any(v == 0 for v in values.values()):
+                continue                  # a zero mass, damping or speed: the number is zero
+            terms = {name: p * math.log10(values[name]) for name, p in powers.items()}
+            exponent = sum(terms.values()) + (2 * math.log10(math.pi) if what.startswith(("omega_b", "mu*"))
+                                              else -2 * math.log10(math.pi) if what.startswith("Omega*") else 0.0)
+            if abs(exponent) > self.MAGNITUDE:
+                name = max(terms, key=lambda n: abs(terms[n]))
+                raise ParameterError(
+                    f"SIMechanism: {name} = {values[name]:g} makes {what} about 1e{exponent:+.0f}, beyond "
+                    f"1e-{self.MAGNITUDE} .. 1e{self.MAGNITUDE} (floating point would overflow or underflow); "
+                    f"give {name} in SI units ({_SI_UNIT[name]}) of a real mechanism")
 
     @property
     def omega_b(self):

@@ -34,12 +34,21 @@ def _bracket(low, high, low_open, high_open):
 
 
 def _real(label, value):
-    if isinstance(value, (bool, str, bytes, bytearray)) or not isinstance(value, (numbers.Real, np.generic)):
+    if isinstance(value, (bool, np.bool_, str, bytes, bytearray)) or not isinstance(value, (numbers.Real, np.generic)) \
+            or isinstance(value, np.complexfloating):
         raise ParameterError(f"{label} must be a number, got {value!r}")
     x = float(value)
     if not math.isfinite(x):
         raise ParameterError(f"{label} must be finite, got {value!r}")
     return x + 0.0                     # -0.0 -> 0.0: one canonical zero
+
+
+def reduced_angle(x):
+    """An angle beyond one turn either way, reduced to (-pi, pi]: the angle of the same crank
+    position.  The reduction is exact (the sine and cosine reduce their argument by 2 pi to full
+    precision), so a start angle of 1e17 rad gives the crank position of 1e17 rad, and the run's
+    theta0 + Omega* t keeps every digit of its time.  Angles within one turn are kept as given."""
+    return math.atan2(math.sin(x), math.cos(x)) + 0.0
 
 
 @dataclass(frozen=True)
@@ -84,6 +93,8 @@ class Parameter:
             bad_high = self.high is not None and (x >= self.high if self.high_open else x > self.high)
             if bad_low or bad_high:
                 raise ParameterError(f"{label} must be in {self.range_text}, got {x:g}")
+            if self.units == "rad" and abs(x) > 2 * math.pi:
+                x = reduced_angle(x)
             return x
         if self.kind == "pair":
             if isinstance(value, (str, bytes, dict, set, frozenset)) or not hasattr(value, "__len__") \
@@ -92,7 +103,8 @@ class Parameter:
                                      f"got {value!r}")
             return tuple(_real(f"{label}[{k}]", value[k]) for k in range(2))
         if self.kind in ("count", "sign"):
-            if isinstance(value, bool) or not isinstance(value, (numbers.Real, np.generic)):
+            if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.generic)) \
+                    or isinstance(value, (np.complexfloating, np.str_, np.bytes_)):
                 raise ParameterError(f"{label} must be {self.range_text}, got {value!r}")
             x = float(value)
             if not (math.isfinite(x) and x.is_integer()):

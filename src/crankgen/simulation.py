@@ -11,6 +11,7 @@ import numpy as np
 from . import engine as _engine
 from . import time_scheme
 from . import kinematics as _kinematics
+from .kinematics import check_crank_steps
 from .cases import Case, run_case
 from .errors import ConvergenceError, ParameterError
 from .limits import check_run_size
@@ -21,7 +22,7 @@ from .outputs import DeclaredOutputs, SIView, StateHistory, end_axial, extension
 from .parameters import SIMechanism
 from .theory import warn_beyond
 from .units import Scales, scales_of
-from .validation import choice, in_range
+from .validation import choice, in_range, numbers_array
 
 ENGINES = ("compiled", "numpy")
 UNITS = ("crankgen", "si")
@@ -31,7 +32,7 @@ UNITS = ("crankgen", "si")
 class SimulationResult(DeclaredOutputs):
     """Per-step outputs: t*, theta (rad, unwrapped), v* at x* = 1/2, u*(1), delta* (eq. 40), and
     every declared output by name (crankgen.outputs): step quantities as attributes
-    (`slider_position`, `crank_speed`, `chord_angle`, `torque`, `pin_force_x`, ...), fields as
+    (`slider_position`, `crank_speed`, `chord_angle`, `torque`, `crank_on_rod_x`, ...), fields as
     methods (`axial_force(x)`, `bending_moment(x)`, `surface_strain(x, fiber)`,
     `chord_deflection(x)`), any of them by `quantity(name, ...)`.
 
@@ -91,31 +92,46 @@ ON_STEP = 1e-9
 
 
 def _requested_times(times, factor):
-    """The requested times as a 1-d array in crankgen's units (times / factor), checked."""
-    try:
-        values = np.array(times, dtype=float).ravel()
-    except (TypeError, ValueError):
-        raise ParameterError(f"times must be a sequence of numbers, got {times!r}") from None
+    """The requested times as a 1-d array in crankgen's units (times / factor), checked: numbers
+    (text and booleans refused, as everywhere), finite and >= 0."""
+    values = numbers_array("times", times)
     if values.size == 0 or not np.all(np.isfinite(values)) or np.any(values < 0):
         raise ParameterError(f"times must be one or more finite numbers >= 0, got {times!r}")
     return values / factor
 
 
-def _landing(t_req, dt, n_steps):
-    """[(step k before the time, remaining time tau)] of each requested time; tau = 0: on step k."""
-    out = []
-    for tr in t_req:
-        k = int(np.floor(tr / dt))
-        tau = tr - k * dt
-        if tau <= ON_STEP * dt:
-            tau = 0.0
-        elif dt - tau <= ON_STEP * dt:
-            k, tau = k + 1, 0.0
-        if k > n_steps or (k == n_steps and tau > 0):
-            raise ParameterError(f"times: t* = {tr:.6g} is beyond the run's end t* = {n_steps * dt:.6g} "
-                                 "(give more revolutions, or leave revolutions out to run up to the last time)")
-        out.append((k, tau))
-    return out
+def _landing(t_req, dt):
+    """(k, tau): for each requested time the step k before it and the remaining time tau (0: on
+    step k), in one pass over the times."""
+    k = np.floor(t_req / dt)
+    tau = t_req - k * dt
+    on = tau <= ON_STEP * dt
+    up = ~on & (dt - tau <= ON_STEP * dt)
+    k = np.where(up, k + 1, k)
+    tau = np.where(on | up, 0.0, tau)
+    return k, tau
+
+
+def _check_steps_needed(t_req, dt):
+    """Refuse, before any array is made, a last time so far away that its step count is not even
+    a machine integer (the run-size check then gives the memory of what remains)."""
+    last = float(np.max(t_req)) / dt
+    if not last < 2.0 ** 62:
+        raise ParameterError(f"times: t* = {float(np.max(t_req)):.6g} needs about {last:.3g} time steps "
+                             f"of dt* = {dt:.3g}; ask for earlier times")
+
+
+def _steps_to_reach(k, tau):
+    """The steps a run needs to reach every requested time (one more past a time between steps)."""
+    return int(np.max(k + (tau > 0)))
+
+
+def _check_landing(k, tau, t_req, dt, n_steps):
+    beyond = (k > n_steps) | ((k == n_steps) & (tau > 0))
+    if np.any(beyond):
+        tr = float(t_req[np.argmax(beyond)])
+        raise ParameterError(f"times: t* = {tr:.6g} is beyond the run's end t* = {n_steps * dt:.6g} "
+                             "(give more revolutions, or leave revolutions out to run up to the last time)")
 
 
 def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolutions=None, times=None,
@@ -175,22 +191,33 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     time_scheme.warn_steps([case], omega_b=None if scales is None else scales.omega_b)
     settings = NewmarkSettings.of_case(case, tol=tol)
     model = Model.from_case(case)
+    if not isinstance(history, (bool, np.bool_)):
+        raise ParameterError(f"history must be True or False, got {history!r}")
+    history = bool(history)
+    if store_nodes and not history:
+        raise ParameterError("store_nodes needs the run's states: leave history=True")
+    landing = None
     if times is not None:
         t_req = _requested_times(times, 1.0 if scales is None else scales.factor("1/omega_b"))
     if revolutions is None and times is not None:
         dt = _kinematics.step_period(case) / case.steps_per_rev
-        n_steps = max(1, int(np.ceil(np.max(t_req) / dt * (1 - ON_STEP))))
+        _check_steps_needed(t_req, dt)
+        landing = _landing(t_req, dt)
+        n_steps = max(1, _steps_to_reach(*landing))
         revolutions = n_steps / case.steps_per_rev        # step periods: revolutions of a periodic crank
     else:
         revolutions = 10.0 if revolutions is None else revolutions
         dt, n_steps = run_length(case, revolutions)
-    check_run_size(case.n_elements, n_steps if history else 0, stored="nodes" if store_nodes else "states",
-                   names={"n_steps": "revolutions"})
-    landing = None if times is None else _landing(t_req, dt, n_steps)
-    if not isinstance(history, bool):
-        raise ParameterError(f"history must be True or False, got {history!r}")
-    if store_nodes and not history:
-        raise ParameterError("store_nodes needs the run's states: leave history=True")
+        if times is not None:
+            landing = _landing(t_req, dt)
+            _check_landing(*landing, t_req, dt, n_steps)
+    check_run_size(case.n_elements, n_steps, stored=("nodes" if store_nodes else "states") if history else "outputs",
+                   n_times=0 if times is None else len(t_req),
+                   names={"n_steps": "revolutions" if times is None else "revolutions (or the last of times)",
+                          "n_times": "times"})
+    check_crank_steps(case, dt, n_steps * dt)
+    if landing is not None:
+        landing = list(zip(landing[0].astype(np.int64).tolist(), landing[1].tolist()))
     d0, v0, g0 = initial_state(case, initial, scales)
     info = dict(case.as_dict(), revolutions=revolutions, tol=tol, engine=engine)
     stops = sorted({k for k, _ in landing}) if landing is not None else []
@@ -198,8 +225,11 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
         hist = integrate(model, d0, v0, 0.0, dt, n_steps, settings, progress=progress, g0=g0)
         result = _numpy_result(model, case, hist, info, store_nodes, scales)
         if landing is not None:
+            # g: generalized-alpha's algorithmic accelerations; None at a start (step 0 without
+            # them: a step from there is the run's starter step too)
             g = hist.a if hist.g is None else hist.g
-            states = {k: (hist.d[k], hist.v[k], hist.a[k], g[k]) for k in stops}
+            states = {k: (hist.d[k], hist.v[k], hist.a[k], None if k == 0 and g0 is None else g[k])
+                      for k in stops}
             result = replace(result, at_times=_numpy_at_times(model, case, result, states, landing, t_req,
                                                               settings, store_nodes, info, scales))
         if not history:
@@ -224,7 +254,7 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     if status[0] != _engine.OK:
         raise _failure(status[0], fail_step[0], fail_res[0], dt, result)
     if landing is not None:
-        states = {k: tuple(x[0] for x in captured[k]) for k in stops}
+        states = {k: tuple(None if x is None else x[0] for x in captured[k]) for k in stops}
         result = replace(result, at_times=_compiled_at_times(model, case, result, states, landing, t_req, tol,
                                                              store_nodes, info, scales))
     warn_beyond([result], "run")
@@ -271,25 +301,30 @@ def _numpy_at_times(model, case, result, states, landing, t_req, settings, store
 
 def _compiled_at_times(model, case, result, states, landing, t_req, tol, store_nodes, info, scales):
     """States at the requested times: steps of the run, or one step of the remaining length from the
-    step before (all such steps in one compiled batch).  states: {step: (d, v, a, g)}, g the
-    algorithmic accelerations of generalized-alpha (a for Newmark)."""
+    step before (such steps in one compiled batch, those from a start in another: its step is the
+    starter).  states: {step: (d, v, a, g)}, g generalized-alpha's algorithmic accelerations (a for
+    Newmark; None at a start)."""
     between = [j for j, (_, tau) in enumerate(landing) if tau > 0.0]
     stepped = {}
-    if between:
-        ks = np.array([landing[j][0] for j in between])
-        taus = np.array([landing[j][1] for j in between])
-        batch = _engine.Batch([case] * len(between), dt=taus)
-        D0, V0, A0, G0 = (np.array([states[k][c] for k in ks]) for c in range(4))
+    for group in ([j for j in between if states[landing[j][0]][3] is not None],
+                  [j for j in between if states[landing[j][0]][3] is None]):
+        if not group:
+            continue
+        ks = np.array([landing[j][0] for j in group])
+        taus = np.array([landing[j][1] for j in group])
+        batch = _engine.Batch([case] * len(group), dt=taus)
+        D0, V0, A0 = (np.array([states[k][c] for k in ks]) for c in range(3))
+        G0 = None if states[ks[0]][3] is None else np.array([states[k][3] for k in ks])
         res = _engine.march(batch, 1, D0=D0, V0=V0, A0=A0, G0=G0, t0=result.t[ks], tol=tol)
         bad = np.nonzero(res.status != _engine.OK)[0]
         if bad.size:
             j = int(bad[0])
             raise ConvergenceError(
-                f"the step to the requested time t* = {t_req[between[j]]:.6g}: "
+                f"the step to the requested time t* = {t_req[group[j]]:.6g}: "
                 f"{_engine.STATUS_TEXT[int(res.status[j])]} (residual norm {res.fail_residual[j]:.3e})",
-                step=int(ks[j]) + 1, time=float(t_req[between[j]]), residual=float(res.fail_residual[j]),
+                step=int(ks[j]) + 1, time=float(t_req[group[j]]), residual=float(res.fail_residual[j]),
                 partial=result)
-        for i, j in enumerate(between):
+        for i, j in enumerate(group):
             stepped[j] = (res.y[i, 1], int(res.iterations[i, 0]), res.D[i], res.V[i], res.A[i], res.G[i])
     rows = []
     for j, (k, tau) in enumerate(landing):
@@ -300,46 +335,70 @@ def _compiled_at_times(model, case, result, states, landing, t_req, tol, store_n
     return _at_times_result(model, case, t_req, rows, info, store_nodes, scales)
 
 
+# the most memory a chunk's states may take while the states at requested times are picked from it
+CHUNK_BYTES = 64 * 2**20
+
+
 def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progress=None,
                      chunks=20, stops=(), captured=None, G0=None):
     """Run the compiled engine from (D0, V0) in a few chunks, so that progress(done_steps) can be
     shown; a case that fails stops alone.  Returns (y, iterations, status, fail_step,
     fail_residual, D, V, A) with y (B, n_steps + 1, 3) and the histories of the reduced
     displacements, velocities and accelerations (None unless keep_states).  stops: step indices
-    whose states (D, V, A), each (B, N), are put in the dict `captured` (chunks end there; the
-    marching is the same as without them; with the algorithmic accelerations G of generalized-alpha
-    as a fourth entry)."""
+    whose states (D, V, A), each (B, N), are put in the dict `captured`: taken from the states of
+    the chunk that holds them (a chunk with stops keeps its states, and is at most CHUNK_BYTES of
+    them long), so the work grows linearly with the stops; the marching is the same as without
+    them (chunks continue from the state and history where the last one ended).  G0: generalized-
+    alpha's algorithmic accelerations (None: the run starts, its first step the starter); the
+    captured states hold them as a fourth entry (None at step 0 of a start)."""
     B = len(batch)
     D, V, A, G, previous = np.array(D0, dtype=float), np.array(V0, dtype=float), None, G0, None
     status = np.zeros(B, dtype=np.int64)
     fail_step, fail_res = np.zeros(B, dtype=np.int64), np.zeros(B)
     ys, its, hist = [], [], ([], [], [])
     size = max(1, -(-n_steps // chunks)) if progress is not None else n_steps
-    stops = sorted(k for k in set(stops) if 0 <= k <= n_steps)
-    if stops and stops[0] == 0:
+    stops = np.unique(np.asarray([k for k in stops if 0 <= k <= n_steps], dtype=np.int64))
+    if not keep_states and stops.size:
+        size = min(size, max(1, CHUNK_BYTES // (3 * 8 * B * max(1, batch.N))))
+    if stops.size and stops[0] == 0:
         first = _engine.march(batch, 0, D0=D, V0=V, G0=G, tol=tol, status=status)
-        A, G, status = first.A, first.G, first.status
-        captured[0] = (D.copy(), V.copy(), A.copy(), G.copy())
-    done = 0
+        A, status = first.A, first.status
+        captured[0] = (D.copy(), V.copy(), A.copy(), None if G is None else G.copy())
+    done, next_stop = 0, int(np.searchsorted(stops, 1))
     while done < n_steps:
         k = min(size, n_steps - done)
-        later = [s for s in stops if s > done]
-        if later:
-            k = min(k, later[0] - done)
-        res = _engine.march(batch, k, D0=D, V0=V, A0=A, G0=G, step0=done, keep_history=bool(keep_states),
+        last_stop = int(np.searchsorted(stops, done + k, side="right"))
+        holds = last_stop > next_stop                          # stops in (done, done + k]
+        res = _engine.march(batch, k, D0=D, V0=V, A0=A, G0=G, step0=done, keep_history=bool(keep_states or holds),
                             tol=tol, status=status, previous=previous)
         new_fail = (res.status != _engine.OK) & (status == _engine.OK)
         fail_step[new_fail], fail_res[new_fail] = res.fail_step[new_fail], res.fail_residual[new_fail]
         status = res.status
         ys.append(res.y if done == 0 else res.y[:, 1:])
         its.append(res.iterations)
+        for stop in stops[next_stop:last_stop]:
+            j = int(stop) - done
+            captured[int(stop)] = (res.D_history[:, j].copy(), res.V_history[:, j].copy(),
+                                   res.A_history[:, j].copy(),
+                                   (res.A_history if res.G_history is None else res.G_history)[:, j].copy())
+        next_stop = last_stop
         if keep_states:
             for store, h in zip(hist, (res.D_history, res.V_history, res.A_history)):
                 store.append(h if done == 0 else h[:, 1:])
         D, V, A, G, previous = res.D, res.V, res.A, res.G, res.previous
         done += k
-        if done in stops:
-            captured[done] = (D.copy(), V.copy(), A.copy(), G.copy())
+        if not np.any(status == _engine.OK):
+            # every case has stopped: the rest would be NaN rows (what the engine writes for a
+            # case that does not advance), and progress must not count steps never computed
+            if progress is not None:
+                progress(int(np.max(fail_step)) - 1)
+            rest = n_steps - done
+            ys.append(np.full((B, rest, 3), np.nan))
+            its.append(np.zeros((B, rest), dtype=its[-1].dtype))
+            if keep_states:
+                for store in hist:
+                    store.append(np.full(store[-1].shape[:1] + (rest,) + store[-1].shape[2:], np.nan))
+            break
         if progress is not None:
             progress(done)
     histories = tuple(np.concatenate(h, axis=1) if keep_states else None for h in hist)
@@ -386,6 +445,9 @@ def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=Fals
     for (n, _, n_steps), idx in groups.items():
         check_run_size(n, n_steps, n_cases=len(idx), stored="states" if keep_states else "outputs",
                        names={"n_steps": "revolutions", "n_cases": "cases"})
+    for i, c in enumerate(cases):
+        dt, n_steps = run_length(c, revolutions)
+        check_crank_steps(c, dt, n_steps * dt, f"cases[{i}]: " if len(cases) > 1 else "")
     out = [None] * len(cases)
     done_total = 0
     for (n, spr, n_steps), idx in sorted(groups.items()):

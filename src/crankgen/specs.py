@@ -23,7 +23,7 @@ class Spec:
     declaration = None
 
     def __init__(self, **kwargs):
-        values = {}
+        values, given_as = {}, {}
         aliases = dict(self.declaration.aliases)
         for key, value in kwargs.items():
             if key in aliases:
@@ -33,13 +33,18 @@ class Spec:
                                        or len(value) != len(names)):
                     raise ParameterError(f"{type(self).__name__}: {key} must be a sequence of "
                                          f"{len(names)} numbers ({', '.join(names)}), got {value!r}")
-                values.update(zip(names, parts))
+                pairs = list(zip(names, parts))
             elif key in self.declaration.parameters:
-                values[key] = value
+                pairs = [(key, value)]
             else:
                 accepted = list(aliases) + [p for p in self.declaration.parameters]
                 raise ParameterError(f"{type(self).__name__} takes no argument {key!r}; it takes "
                                      f"{', '.join(dict.fromkeys(accepted))}")
+            for name, part in pairs:             # one value per parameter: c=... and radius=... is two
+                if name in values:
+                    raise ParameterError(f"{type(self).__name__}: {name} is given twice ({given_as[name]} "
+                                         f"and {key}={value!r}); give it once")
+                values[name], given_as[name] = part, f"{key}={kwargs[key]!r}"
         self.values = values
 
     def __repr__(self):
