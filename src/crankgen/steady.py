@@ -358,7 +358,7 @@ def _check_resolved(case, where=""):
 
 
 def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="shooting",
-                  warmup=3, max_shooting=12, parallel=None):
+                  warmup=3, max_shooting=12, parallel=None, _stacklevel=3):
     """Steady states of many cases (list in, list out, same order), batched: cases that share
     n_elements and steps_per_rev run together in the compiled engine.  A failing case comes back
     with status "failed" and its message; it does not stop the others.
@@ -370,7 +370,7 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
     cases = [c if isinstance(c, Case) else Case.from_dict(c) for c in cases]
     for i, c in enumerate(cases):
         _check_resolved(c, f"cases[{i}]: " if len(cases) > 1 else "")
-    time_scheme.warn_steps(cases)
+    time_scheme.warn_steps(cases, stacklevel=_stacklevel)
     tol = in_range("tol", tol, 0, None, True)
     max_revolutions = integer("max_revolutions", max_revolutions, 1)
     warmup = integer("warmup", warmup, 1)
@@ -395,7 +395,8 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
         done += len(idx)
         if progress is not None:
             progress(done, len(cases))
-    warn_beyond(results, "periodic response" if len(results) == 1 else "periodic response of a case")
+    warn_beyond(results, "periodic response" if len(results) == 1 else "periodic response of a case",
+                stacklevel=_stacklevel)
     return results
 
 
@@ -405,4 +406,4 @@ def steady_state(mech=None, omega=None, *, model=None, case=None, crank=None, to
     with the run's settings (omega, any Case field, the model `model` with explicit options
     overriding it, a periodic crank motion `crank`), or case=Case(...)."""
     case = run_case(mech, case, model=model, omega=omega, crank=crank, **fields)
-    return steady_states([case], tol=tol, max_revolutions=max_revolutions, method=method)[0]
+    return steady_states([case], tol=tol, max_revolutions=max_revolutions, method=method, _stacklevel=4)[0]

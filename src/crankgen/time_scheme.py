@@ -118,13 +118,10 @@ def spectral_radius(coef, omega_h, zeta=0.0):
     return float(np.max(np.abs(np.linalg.eigvals(amplification(coef, omega_h, zeta)))))
 
 
-def describe(rho_inf):
-    """The scheme in words, for messages and files."""
-    if float(rho_inf) == 1.0:
-        return "Newmark's trapezoidal rule (beta = 1/4, gamma = 1/2, no numerical damping)"
-    c = coefficients(rho_inf)
-    return (f"generalized-alpha, rho_inf = {float(rho_inf):g} (alpha_m = {c.alpha_m:.4g}, "
-            f"alpha_f = {c.alpha_f:.4g}, beta = {c.beta:.4g}, gamma = {c.gamma:.4g})")
+def label(rho_inf):
+    """The scheme in a few words, for the command line's lines."""
+    return ("Newmark's trapezoidal rule" if float(rho_inf) == 1.0
+            else f"generalized-alpha, rho_inf = {float(rho_inf):g}")
 
 
 def first_axial_frequency(eps, ms):

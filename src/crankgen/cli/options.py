@@ -255,9 +255,10 @@ def _describe(case):
     if case.motion != schema.PARAMETERS["motion"].default:
         extra += f", {case.motion} crank (" + ", ".join(
             f"{n} = {getattr(case, n):g}" for n in schema.MOTIONS[case.motion].parameters) + ")"
+    from ..time_scheme import label
     return (f"approach {case.approach}, {case.formulation} formulation, {case.damping} damping, "
             f"{case.membrane} membrane, Omega* = {case.omega:g}, eps = {case.eps:g}, "
-            f"n = {case.n_elements}{extra}")
+            f"n = {case.n_elements}{extra}; {label(case.rho_inf)}")
 
 
 def _say(args, text):
