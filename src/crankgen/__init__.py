@@ -6,7 +6,7 @@ line) starts at once; the compiled engine and numba are imported only by what ne
 
 from importlib import import_module
 
-from .errors import ConvergenceError, CrankgenError, ParameterError
+from .errors import ConvergenceError, CrankgenError, NoResultError, ParameterError
 from .provenance import VERSION as __version__  # noqa: F401
 
 # public name -> module that defines it
@@ -19,6 +19,8 @@ _LAZY = {
     "SweepTable": "sweeps", "sweep": "sweeps", "CheckpointError": "sweeps",
     "BifurcationDiagram": "bifurcation", "PoincareDiagram": "bifurcation",
     "continuation": "bifurcation", "poincare": "bifurcation",
+    "Modes": "vibration", "modes": "vibration", "campbell": "campbell_diagram", "CampbellDiagram": "campbell_diagram",
+    "animate": "animation", "Section": "sections", "stress": "stresses", "peak_loads": "stresses", "StressHistory": "stresses",
     # guides and crank motions (records made from the schema)
     "Line": "specs", "Circle": "specs", "Constant": "specs", "RunUp": "specs", "Fluctuation": "specs",
 }
@@ -26,11 +28,18 @@ _LAZY = {
 _CHOICE_NAMES = {"FORMULATIONS": "formulation", "APPROACHES": "approach", "DAMPING_MODELS": "damping",
                  "MEMBRANE_OPTIONS": "membrane"}
 
-__all__ = ["ConvergenceError", "CrankgenError", "ParameterError"] + list(_LAZY) + list(_CHOICE_NAMES)
+__all__ = (["ConvergenceError", "CrankgenError", "NoResultError", "ParameterError"] + list(_LAZY)
+           + list(_CHOICE_NAMES) + ["sections"])
+
+
+# public modules, loaded on first use too: crankgen.sections.rectangle(b, h), ...
+_MODULES = ("sections",)
 
 
 def __getattr__(name):
-    if name in _LAZY:
+    if name in _MODULES:
+        value = import_module(f".{name}", __name__)
+    elif name in _LAZY:
         value = getattr(import_module(f".{_LAZY[name]}", __name__), name)
     elif name in _CHOICE_NAMES:
         value = import_module(".ingredients", __name__).CHOICES[_CHOICE_NAMES[name]]

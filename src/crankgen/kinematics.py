@@ -51,6 +51,17 @@ def case_state(case, t):
     return _state(getattr(_kinematics, f"guide_{case.guide}")(crank, params))
 
 
+def frozen_state(case, theta):
+    """Kinematics of a case's guide with the crank at angle(s) theta turning at the constant speed
+    case.omega (thetadd = 0): the mechanism frozen at those angles (crankgen.modes)."""
+    theta = np.asarray(theta, dtype=float)
+    params = np.array(np.broadcast_to(case.kinematic_parameters,
+                                      theta.shape + (len(schema.KINEMATIC_PARAMETERS),)))
+    params[..., schema.KINEMATIC_PARAMETERS.index("theta0")] = theta
+    crank = _kinematics.motion_constant(0.0, params)
+    return _state(getattr(_kinematics, f"guide_{case.guide}")(crank, params))
+
+
 def crank_state(a, omega, t, offset=0.0):
     """Kinematics of the constant-speed slider-crank (line guide) at time(s) t for crank ratio a
     (= a*), crank speed omega (= Omega*) and guide offset."""

@@ -14,18 +14,39 @@ LABELS = {"fold": "F", "period-doubling": "PD", "neimark-sacker": "NS"}
 # branch colours by period (the reproduce figures use the same): black, purple, green, olive,
 # none near the approaches' blue, orange and red (crankgen.plotting.APPROACH_COLORS)
 PERIOD_COLORS = {1: "black", 2: "#7b2d8e", 4: "#2ca02c", 8: "#6b6b00"}
-AXIS = {"omega": "Omega*", "eps": "eps", "ms": "ms*", "mu": "mu*", "a": "a*", "offset": "offset e/L"}
+AXIS = {"omega": "Omega*", "eps": "eps", "ms": "ms*", "mu": "mu*", "a": "a*", "offset": "offset e/L",
+        "c": "rocker length c/L", "d": "ground pivot d/L", "fluctuation": "speed fluctuation k"}
 
 
 def describe(info, what, parameter):
-    """A title from a diagram's info (the model and settings it was computed for)."""
+    """A two-line title from a diagram's info (the model and settings it was computed for): what
+    and the parameter varied, the model; then every fixed parameter that sets the response (the
+    crank speed, eps, ms*, mu*, a*) and the linkage (a four-bar's rocker and ground pivot, a
+    guide offset, gravity, a fluctuating crank), the varied parameter left out."""
     if not info:
         return f"{what} in {parameter}"
     parts = [f"approach {info['approach']}" if "approach" in info else None,
              " / ".join(str(info[k]) for k in ("formulation", "damping", "membrane") if k in info) or None,
              f"n = {info['n_elements']}" if "n_elements" in info else None]
-    fixed = [f"{AXIS.get(k, k)} = {info[k]:g}" for k in ("omega", "eps") if k in info and k != parameter]
-    return f"{what} in {AXIS.get(parameter, parameter)}: " + ", ".join(p for p in parts + fixed if p)
+    fixed = [f"{AXIS.get(k, k)} = {info[k]:g}" for k in ("omega", "eps", "ms", "mu", "a")
+             if k in info and k != parameter]
+    if info.get("guide") == "circle":
+        fixed.append("four-bar: " + ", ".join(
+            [f"rocker c/L = {info['c']:g}" for _ in (1,) if parameter != "c"]
+            + [f"ground pivot d/L = {info['d']:g}" for _ in (1,) if parameter != "d"]
+            + [f"pivot height {info.get('offset', 0.0):g}" for _ in (1,)
+               if parameter != "offset" and info.get("offset")]
+            + [f"branch {int(info.get('branch', 1)):+d}"]))
+    elif info.get("offset") and parameter != "offset":
+        fixed.append(f"guide offset e/L = {info['offset']:g}")
+    gravity = info.get("gravity")
+    if gravity is not None and any(gravity):
+        fixed.append(f"gravity ({gravity[0]:g}, {gravity[1]:g})")
+    if info.get("motion") == "fluctuation":
+        k = "k" if parameter == "fluctuation" else f"{info['fluctuation']:g}"
+        fixed.append(f"crank speed Omega* (1 + {k} sin({info['order']} theta))")
+    head = f"{what} in {AXIS.get(parameter, parameter)}: " + ", ".join(p for p in parts if p)
+    return head + ("\n" + ", ".join(fixed) if fixed else "")
 
 
 def _num(x):
