@@ -254,6 +254,10 @@ def continuation_time(n=16, steps_per_rev=100, max_period=2, repeats=2):
     out["alpha_special_points_max_omega_difference"] = (
         max(abs(a["omega"] - b["omega"]) for a, b in zip(new["special_points"], alpha["special_points"]))
         if same and new["special_points"] else None)
+    # the consistent model's period doubling of the crank-periodic branch (issue 27: within 2e-5)
+    pd = [(a["omega"], b["omega"]) for a, b in zip(new["special_points"], alpha["special_points"])
+          if a["kind"] == "period-doubling" and a["period"] == 1] if same else []
+    out["alpha_period_doubling_difference"] = abs(pd[0][0] - pd[0][1]) if pd else None
     return out
 
 
@@ -341,6 +345,9 @@ def main(argv=None):
     p.add_argument("--skip-reproduce", action="store_true")
     p.add_argument("--skip-start", action="store_true", help="do not time the start-up (cold and warm)")
     args = p.parse_args(argv)
+    import warnings
+    from crankgen.notices import BeyondTheoryWarning
+    warnings.filterwarnings("ignore", category=BeyondTheoryWarning)     # the timed runs reach beyond it
 
     results = dict(machine=dict(python=platform.python_version(), cpus=os.cpu_count(),
                                 platform=platform.platform(), numpy=np.__version__),
@@ -387,9 +394,9 @@ def main(argv=None):
     targets["continuation_same_special_points_as_former_to_1e-6"] = bool(
         results["continuation"]["same_special_points"]
         and results["continuation"]["special_points_max_omega_difference"] < 1e-6)
-    targets["continuation_alpha_special_points_within_2e-5_of_newmark"] = bool(
+    targets["continuation_alpha_period_doubling_within_2e-5_of_newmark"] = bool(
         results["continuation"]["alpha_same_special_points"]
-        and results["continuation"]["alpha_special_points_max_omega_difference"] < 2e-5)
+        and results["continuation"]["alpha_period_doubling_difference"] < 2e-5)
     if "reproduce" in results:
         targets["reproduce_full_lt_60s"] = results["reproduce"]["reproduce_full_s"] < 60
         targets["reproduce_quick_lt_10s"] = results["reproduce"]["reproduce_quick_s"] < 10

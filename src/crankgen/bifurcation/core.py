@@ -412,13 +412,10 @@ class Continuer:
         return self._finish(best, period) if ok else None
 
     def _fold(self, points, new, period, turned):
-        """(a, fold point or None): a fold where the branch turns between the last accepted points
-        and `new`.  The branch turns between prev = points[-1] and new when t_p changes sign there,
-        or at prev when the parameter's direction along the branch reverses there (p_prev - p_before
-        and p_new - p_prev of opposite signs: a turn that t_p's sign misses, its change falling
-        outside the interval); the bracket is then [before, new].  A turning point also has a real
-        multiplier through +1: det(dP/dx - I) must change sign across [before, new] (a sign change
-        of t_p alone is noise where the branch runs flat in p).  a: the bracket's first point."""
+        """(a, fold or None) where the branch turns: t_p changes sign from prev = points[-1] to new
+        (bracket [prev, new]), or p's direction reverses at prev (bracket [before, new]); and
+        det(dP/dx - I) changes sign across [before, new] (t_p alone is noise where the branch runs
+        flat in p).  a: the bracket's first point (module docstring)."""
         prev = points[-1]
         before = points[-2] if len(points) > 1 else None
         if prev.t[-1] * new.t[-1] < 0:
