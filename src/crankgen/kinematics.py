@@ -162,7 +162,7 @@ def rigid_end_line(kin, offset):
 # drives the rod, too coarsely to be a result; they are refused, naming the steps_per_rev needed.
 MAX_TURN_PER_STEP = np.pi / 2
 MAX_SPEED_CHANGE_PER_STEP = 0.25         # of the motion's top speed
-_SAMPLES = 4096
+_SAMPLES = 1024
 
 
 def crank_step_extremes(case, t_end):

@@ -85,9 +85,11 @@ def _cmd_simulate(args):
     section = _section(args, si)
     revolutions = in_range("revolutions", args.revolutions, 0, None, True)
     in_range("tol", args.tol, 0, None, True)
+    from ..kinematics import check_crank_steps
     from ..simulation import run_length
 
-    steps = run_length(case, revolutions)[1]
+    dt, steps = run_length(case, revolutions)
+    check_crank_steps(case, dt, steps * dt)
     check_run_size(case.n_elements, steps, stored="nodes" if args.nodes else "states",
                    names={"n_steps": "--revolutions", "n_elements": "--elements"})
     names = ["simulation.csv", "v_mid.png"] + (["nodes.csv"] if args.nodes else [])
