@@ -54,7 +54,7 @@ END_MAP_ROWS = ("q", "qd", "qdd", "g_s", "dqd_ds", "dqdd_ds", "dqdd_dsd", "g_ss"
 class Guide:
     name: str
     title: str                   # the runtime's record of this guide (crankgen.Line, ...)
-    parameters: tuple            # parameter names it reads besides a (derive/model.py PARAMETERS)
+    parameters: tuple            # parameter names it reads besides a (derive/declaration.py PARAMETERS)
     curve: sp.Matrix             # C(beta)
     step: sp.Matrix              # C(beta + s) - C(beta), written without cancellation for small s
     phi: sp.Expr                 # rigid position analysis: phi(theta), beta(theta)

@@ -167,7 +167,7 @@ def group_kernels():
 MODULES = {
     "shape": ("Shape functions of Appendix A.", shape_kernels),
     "kinematics": ("Rigid kinematics: the crank motions, the guides' closures and end maps.", kinematics_kernels),
-    "elements": ("Element kernels of every term family variant declared in derive/model.py.", element_kernels),
+    "elements": ("Element kernels of every term family variant declared in derive/declaration.py.", element_kernels),
     "energy": ("Element energies T_i, T_s, U_i, V_i and the Kelvin-Voigt dissipation function.", energy_kernels),
     "fields": ("The declared outputs: step quantities and fields along the rod.", output_kernels),
     "groups": ("Element forces of the consistent model split by kind (symbolic audit).", group_kernels),

@@ -8,7 +8,7 @@ time that thetad and thetadd are the time derivatives of theta (by differentiati
 where the closed form is not differentiated symbolically) and that theta(0) = theta0.
 
 Every motion starts at the crank angle theta0 (the parameter `theta0`, declared in
-derive/model.py; default 0) at t = 0.  It enters only as the constant of integration of theta(t),
+derive/declaration.py; default 0) at t = 0.  It enters only as the constant of integration of theta(t),
 written so that theta0 = 0 evaluates to exactly the floating-point numbers of the motion without
 it (an added 0.0 changes no sum).
 
@@ -34,7 +34,7 @@ import sympy as sp
 
 from . import symbols as s
 
-# The crank angle at t = 0 (the parameter theta0 of derive/model.py).
+# The crank angle at t = 0 (the parameter theta0 of derive/declaration.py).
 theta0 = sp.Symbol("theta0", real=True)
 
 
@@ -42,7 +42,7 @@ theta0 = sp.Symbol("theta0", real=True)
 class Motion:
     name: str
     title: str                  # the runtime's record of this motion (crankgen.Constant, ...)
-    parameters: tuple           # the parameter names it reads (derive/model.py PARAMETERS)
+    parameters: tuple           # the parameter names it reads (derive/declaration.py PARAMETERS)
     theta: sp.Expr              # theta(t)
     thetad: sp.Expr             # in t and theta
     thetadd: sp.Expr            # in t, theta and thetad

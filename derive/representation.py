@@ -1,7 +1,7 @@
 """Stage 6: the model representation, typed immutable records between the declaration and code
 generation.
 
-`representation()` turns the declaration (derive/model.py, with the derivations it names:
+`representation()` turns the declaration (derive/declaration.py, with the derivations it names:
 energies, printed form, guides, motions) into the records below.  Code generation needs nothing
 else: derive/kernels.py makes the kernel specifications of a record from that record alone, and
 derive/schema.py prints the runtime's schema (generated/schema.py) from the records; neither
@@ -32,7 +32,7 @@ import sympy as sp
 
 from . import energies as en
 from . import guides as gd
-from . import model
+from . import declaration as model
 from . import motions as mo
 from . import symbols as s
 from .euler_lagrange import gradient, kinetic_residual

@@ -22,7 +22,7 @@ _LAZY = {
     # guides and crank motions (records made from the schema)
     "Line": "specs", "Circle": "specs", "Constant": "specs", "RunUp": "specs", "Fluctuation": "specs",
 }
-# the choices of the model options (declared in derive/model.py), read from the generated table
+# the choices of the model options (declared in derive/declaration.py), read from the generated table
 _CHOICE_NAMES = {"FORMULATIONS": "formulation", "APPROACHES": "approach", "DAMPING_MODELS": "damping",
                  "MEMBRANE_OPTIONS": "membrane"}
 

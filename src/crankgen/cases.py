@@ -1,6 +1,6 @@
 """A case: every parameter of one run, as one frozen record (the unit of sweeps and checkpoints).
 
-Its fields come from the schema (derive/model.py): the mechanism's and its guide's parameters, the
+Its fields come from the schema (derive/declaration.py): the mechanism's and its guide's parameters, the
 run's (the crank motion and its parameters, n_elements, steps_per_rev, integrator), the model
 options (formulation, approach, membrane, damping, rotary_inertia) and the audit's switched-off
 term groups.  The model is chosen by preset and options, checked once: `Case(model="paper")`, or

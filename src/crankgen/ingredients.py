@@ -1,4 +1,4 @@
-"""The model's ingredients as the runtime sees them: the generated table of derive/model.py.
+"""The model's ingredients as the runtime sees them: the generated table of derive/declaration.py.
 
 Everything that depends on which options a case chose goes through here: validation of the
 options, the selection of each term family's variant (`Selection.families`, an index per family,

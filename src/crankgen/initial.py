@@ -44,7 +44,7 @@ from .errors import ParameterError
 from .mesh import PSI, U, V, Mesh
 
 COMPLEX_STEP = 1e-20
-# the unit of each field (derive/model.py's units strings; crankgen.units)
+# the unit of each field (derive/declaration.py's units strings; crankgen.units)
 FIELD_UNITS = {"u": "L", "v": "L", "v_x": "1", "u_t": "L omega_b", "v_t": "L omega_b", "v_xt": "omega_b"}
 _SLOPE_OF = {"v_x": "v", "v_xt": "v_t"}
 

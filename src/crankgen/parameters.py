@@ -5,7 +5,7 @@ omega_b = (pi/L)^2 sqrt(EI / (rho A)) the lowest bending frequency of the pinned
 In these units rho*A = 1, E*I = 1/pi^4, E*A = 1/(pi^4 eps^2), rho*I = eps^2 (I = A r^2), and the
 paper's scaled outputs are  v* = v / eps,  u* = u / eps^2  (v, u in units of L).
 
-`Mechanism`'s fields are the schema's mechanism and guide parameters (derive/model.py PARAMETERS):
+`Mechanism`'s fields are the schema's mechanism and guide parameters (derive/declaration.py PARAMETERS):
 a, eps, ms, mu, gravity, the guide (line or circle) and the guide's parameters (offset; c, d,
 branch).  `settle` gives every parameter its canonical form (crankgen.schema.Parameter.canonical),
 expands a guide or motion record (crankgen.Line, crankgen.Circle, crankgen.RunUp, ...) into its

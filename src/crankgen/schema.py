@@ -1,7 +1,7 @@
 """The model schema as the runtime sees it: typed records of the generated tables (generated/schema.py).
 
 Every parameter of a case, every option, preset, guide, motion and output is declared once, in
-derive/model.py; this module gives the runtime their records and the rules that follow from them:
+derive/declaration.py; this module gives the runtime their records and the rules that follow from them:
 a parameter's check and canonical form (`Parameter.canonical`), the model options of a preset with
 explicit options overriding it (`resolve_options`), the parameters a guide or motion reads.
 Mechanism, Case, the command line's flags and the continuation's parameters are built from here.

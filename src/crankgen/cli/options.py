@@ -1,4 +1,4 @@
-"""Options shared by the commands, made from the schema (derive/model.py): a flag per parameter of
+"""Options shared by the commands, made from the schema (derive/declaration.py): a flag per parameter of
 a case (its kind, range, units and help; --model and the options' flags from the presets and
 options), the output folder; argument types; the Case a command line describes."""
 
