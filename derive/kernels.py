@@ -63,7 +63,7 @@ def vector(name, column):
 
 Q, QD, QDD = vector("q", s.q), vector("qd", s.qd), vector("qdd", s.qdd)
 GEO = vector("geo", s.GEOMETRY)
-COEF = vector("coef", s.COEFFICIENTS)
+COEF = vector("coef", ir.COEFFICIENT_SYMBOLS)
 KIN = vector("kin", s.KINEMATICS)
 PARAMS = vector("params", ir.KINEMATIC_SYMBOLS)
 # the same vector beside kin, which already carries a: its slot holds an unused stand-in
@@ -92,7 +92,7 @@ def element_kernels():
     kernels = []
     for family in ir.representation().families:
         for variant in family.variants:
-            kernels.append(Kernel(variant.kernel, f"{family.doc}: {variant.doc}.", ELEMENT_INPUTS,
+            kernels.append(Kernel(variant.record.kernel, f"{family.record.doc}: {variant.record.doc}.", ELEMENT_INPUTS,
                                   _residual_outputs(variant.residual, variant.printed_stiffness)))
     return tuple(kernels)
 
@@ -109,9 +109,10 @@ def energy_kernels():
 
 def output_kernels():
     kernels = {}
-    for o in ir.representation().outputs:
+    for form in ir.representation().outputs:
+        o = form.record
         inputs = tuple(OUTPUT_INPUT[name] for name in o.inputs)
-        for v in o.variants:
+        for v in form.variants:
             if v.kernel not in kernels:
                 where = " (at zeta = x / l of the element)" if o.kind == "field" else ""
                 kernels[v.kernel] = Kernel(v.kernel, f"{o.doc}{where}.", inputs,
@@ -123,27 +124,29 @@ def kinematics_kernels():
     rep = ir.representation()
     t = scalar(s.t)
     out = []
-    for m in rep.motions:
+    for form in rep.motions:
+        m = form.record
         out.append(Kernel(f"motion_{m.name}", f"Crank angle, speed and acceleration at time t: {m.doc}.",
-                          (t, PARAMS), (Output("crank", m.crank, "(theta, thetad, thetadd)"),)))
-        period = m.period if m.period is not None else sp.Integer(0)
+                          (t, PARAMS), (Output("crank", form.crank, "(theta, thetad, thetadd)"),)))
+        period = form.period if form.period is not None else sp.Integer(0)
         out.append(Kernel(f"period_{m.name}", "Time of one crank revolution (0: not periodic).", (PARAMS,),
                           (Output("T", sp.Matrix([period]), "period"),)))
         out.append(Kernel(f"step_period_{m.name}", "The time steps_per_rev steps divide.", (PARAMS,),
-                          (Output("T", sp.Matrix([m.step_period]), "step period"),)))
-    for g in rep.guides:
+                          (Output("T", sp.Matrix([form.step_period]), "step period"),)))
+    for form in rep.guides:
+        g = form.record
         out.append(Kernel(f"guide_{g.name}", f"Rigid kinematics kin of the {g.name} guide: {g.doc}.",
-                          (CRANK, PARAMS), (Output("kin", g.kinematics, "kinematics vector"),)))
+                          (CRANK, PARAMS), (Output("kin", form.kinematics, "kinematics vector"),)))
         out.append(Kernel(f"end_map_{g.name}", f"End map of the {g.name} guide: (u, v) of the rod's end "
                           "and its rates and derivatives in (s, sd, sdd) (rows guides.END_MAP_ROWS).",
-                          (SEND, KIN, PARAMS_BESIDE_KIN), (Output("E", g.end_map, "end map"),)))
+                          (SEND, KIN, PARAMS_BESIDE_KIN), (Output("E", form.end_map, "end map"),)))
         out.append(Kernel(f"rigid_end_{g.name}", f"(X, Y) of the rigid end point on the {g.name} guide.",
-                          (KIN, PARAMS_BESIDE_KIN), (Output("X", g.rigid_end, "rigid end point"),)))
+                          (KIN, PARAMS_BESIDE_KIN), (Output("X", form.rigid_end, "rigid end point"),)))
         out.append(Kernel(f"margins_{g.name}", "Full-turn margins (each > 0 iff the crank turns a full "
-                          "revolution): " + "; ".join(g.margin_texts) + ".", (PARAMS,),
-                          (Output("m", g.margins, "margins"),)))
+                          "revolution): " + "; ".join(g.margins) + ".", (PARAMS,),
+                          (Output("m", form.margins, "margins"),)))
         out.append(Kernel(f"end_scale_{g.name}", "Natural size of the end map's reduced co-ordinate.",
-                          (scalar(s.eps), PARAMS), (Output("scale", sp.Matrix([g.end_scale]), "scale"),)))
+                          (scalar(s.eps), PARAMS), (Output("scale", sp.Matrix([form.end_scale]), "scale"),)))
     return tuple(out)
 
 

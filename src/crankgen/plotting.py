@@ -19,27 +19,16 @@ def subplots(nrows=1, ncols=1, **kwargs):
 
 
 def _title(s):
-    """Two lines naming the model and the case; a third for what differs from the paper's slider
-    crank (gravity, guide offset, rotary inertia off, a four-bar's circle guide)."""
-    extra = []
-    gravity = tuple(s.get("gravity", (0.0, 0.0)))
-    if any(gravity):
-        extra.append(f"gravity ({gravity[0]:g}, {gravity[1]:g})")
-    if s.get("offset", 0.0):
-        extra.append(f"offset {s['offset']:g}")
+    """Two lines naming the model and the case (the mechanism's parameters and the crank's, from
+    their records); a third for the rest that differs from the defaults (gravity, a guide offset,
+    a four-bar's circle guide, rotary inertia off)."""
+    from . import schema
+    main, other = schema.describe(s)
     if not s.get("rotary_inertia", True):
-        extra.append("no rotary inertia")
-    if s.get("guide") == "circle":
-        extra.append(f"four-bar: rocker c* = {s['c']:g}, ground d* = {s['d']:g}, branch {s['branch']:+d}")
-    speed = f"Omega* = {s['omega']:g}"
-    if s.get("motion") == "runup":
-        speed = f"run-up Omega* {s['omega0']:g} -> {s['omega']:g} over {s['ramp']:g} rev"
-    elif s.get("motion") == "fluctuation":
-        speed = f"Omega* = {s['omega']:g} (1 + {s['fluctuation']:g} sin({s['order']} theta))"
+        other.append("no rotary inertia")
     return (f"approach {s['approach']}, {s['formulation']} formulation, {s['damping']} damping, "
-            f"{s.get('membrane', 'pointwise')} membrane\n{speed}, eps = {s['eps']:g}, "
-            f"ms* = {s['ms']:g}, mu* = {s['mu']:g}, n = {s['n_elements']}"
-            + ("\n" + ", ".join(extra) if extra else ""))
+            f"{s.get('membrane', 'pointwise')} membrane\n" + ", ".join(main + [f"n = {s['n_elements']}"])
+            + ("\n" + ", ".join(other) if other else ""))
 
 
 def shade_beyond(ax, limit, color):

@@ -14,18 +14,23 @@ LABELS = {"fold": "F", "period-doubling": "PD", "neimark-sacker": "NS"}
 # branch colours by period (the reproduce figures use the same): black, purple, green, olive,
 # none near the approaches' blue, orange and red (crankgen.plotting.APPROACH_COLORS)
 PERIOD_COLORS = {1: "black", 2: "#7b2d8e", 4: "#2ca02c", 8: "#6b6b00"}
-AXIS = {"omega": "Omega*", "eps": "eps", "ms": "ms*", "mu": "mu*", "a": "a*", "offset": "offset e/L"}
+def axis(parameter):
+    """The axis text of a parameter: its record's label and units (the name itself otherwise)."""
+    from .. import schema
+    p = schema.PARAMETERS.get(parameter)
+    return parameter if p is None else p.axis
 
 
 def describe(info, what, parameter):
     """A title from a diagram's info (the model and settings it was computed for)."""
+    from .. import schema
     if not info:
         return f"{what} in {parameter}"
     parts = [f"approach {info['approach']}" if "approach" in info else None,
              " / ".join(str(info[k]) for k in ("formulation", "damping", "membrane") if k in info) or None,
              f"n = {info['n_elements']}" if "n_elements" in info else None]
-    fixed = [f"{AXIS.get(k, k)} = {info[k]:g}" for k in ("omega", "eps") if k in info and k != parameter]
-    return f"{what} in {AXIS.get(parameter, parameter)}: " + ", ".join(p for p in parts + fixed if p)
+    main, other = schema.describe({k: v for k, v in info.items() if k in schema.PARAMETERS}, skip=(parameter,))
+    return f"{what} in {parameter}: " + ", ".join(p for p in parts if p) + "\n" + ", ".join(main + other)
 
 
 def _num(x):
@@ -175,7 +180,7 @@ class BifurcationDiagram:
         place_labels(ax, [(s.parameter, s.amplitude, f"{LABELS[s.kind]} {s.parameter:.4g}", "black")
                           for s in sorted(self.special_points, key=lambda s: s.parameter)])
         mech = "eps" in self.info or self.parameter_name == "eps"
-        ax.set_xlabel(xlabel or AXIS.get(self.parameter_name, self.parameter_name))
+        ax.set_xlabel(xlabel or axis(self.parameter_name))
         ax.set_ylabel(ylabel or ("max |v*(1/2)| over the orbit" if mech else "amplitude"))
         ax.grid(alpha=0.3)
         leg = ax.legend(handles=handles, fontsize=8, loc="upper center", ncol=3, frameon=False,

@@ -83,7 +83,7 @@ class PoincareDiagram:
         from matplotlib.lines import Line2D
 
         from ..plotting import fit_panels, panels, place_labels
-        from .diagram import AXIS, LABELS, PERIOD_COLORS, describe
+        from .diagram import LABELS, PERIOD_COLORS, axis, describe
 
         fig, axes = panels(1, 1, width=7.5, height=4.2)
         ax = axes[0, 0]
@@ -136,7 +136,7 @@ class PoincareDiagram:
             handles.append(Line2D([], [], color="grey", lw=0.6, ls=":",
                                   label="dotted: special points of the continuation"))
         mech = "eps" in self.info or self.parameter_name == "eps"
-        ax.set_xlabel(xlabel or AXIS.get(self.parameter_name, self.parameter_name))
+        ax.set_xlabel(xlabel or axis(self.parameter_name))
         ax.set_ylabel(ylabel or ("v*(1/2) at theta = 0, once per revolution" if mech
                                  else "observable, once per application of the map"))
         ax.grid(alpha=0.3)

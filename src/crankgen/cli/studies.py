@@ -104,7 +104,7 @@ def _cmd_continue(args):
                          max_period=args.max_period, progress=log)
         paths = [folder.wrote(p) for p in d.to_csv(folder.folder)]
         png = folder.wrote(d.plot(folder.path("continuation.png"), title=_title(args, "continuation"),
-                                  ylabel="max |v*(1/2)| over the orbit", xlabel=_AXIS[args.parameter]))
+                                  ylabel="max |v*(1/2)| over the orbit", xlabel=_axis(args.parameter)))
     finally:
         folder.abandon()
     for s in d.special_points:
@@ -116,15 +116,18 @@ def _cmd_continue(args):
     return 0
 
 
-_AXIS = {"omega": "Omega*", "eps": "eps", "ms": "ms*", "mu": "mu*", "a": "a*", "offset": "offset e/L",
-         "c": "rocker length c/L", "d": "ground pivot d/L", "fluctuation": "speed fluctuation k"}
+def _axis(name):
+    """The axis text of a continued parameter (its record's label and units)."""
+    from .. import schema
+    return schema.PARAMETERS[name].axis
 
 
 def _title(args, what):
+    from .. import schema
     c = _branch_model(args)
-    other = f"eps = {c.eps:g}" if args.parameter != "eps" else f"Omega* = {c.omega:g}"
+    main, other = schema.describe(c.parameters(), skip=(args.parameter,))
     return (f"{what} in {args.parameter}: approach {c.approach}, {c.formulation} / {c.damping} damping, "
-            f"{c.membrane} membrane, n = {c.n_elements}, {other}")
+            f"{c.membrane} membrane, n = {c.n_elements}\n" + ", ".join(main + other))
 
 
 def _cmd_poincare(args):
@@ -160,7 +163,7 @@ def _cmd_poincare(args):
         paths = [folder.wrote(p) for p in pc.to_csv(folder.folder)]
         png = folder.wrote(pc.plot(folder.path("poincare.png"), diagram, title=_title(args, "Poincare sweep"),
                                    ylabel="v*(1/2) at theta = 0, once per revolution",
-                                   xlabel=_AXIS[args.parameter]))
+                                   xlabel=_axis(args.parameter)))
     finally:
         folder.abandon()
     counts = {}
