@@ -159,6 +159,11 @@ PARAMETERS = (
               "paper's eqs. (34)-(39)", owner="run", choices=("newton", "full-newton", "one-pass")),
 )
 
+# The crank's (nominal) speed: simulate's `omega` argument, the default continued parameter.
+CRANK_SPEED = "omega"
+# The units that are parameters: the radius of gyration r = eps L (outputs in units of r, e.g. v*).
+UNIT_PARAMETERS = {"r": "eps"}
+
 # Indicators usable in coefficient formulas: 1 when a case's option has a value, else 0
 # (INDICATORS: symbol -> (option, value)), and 1 when the audit switches a term group off.
 INDICATORS = {}

@@ -59,10 +59,13 @@ class Schema:
     printed_iteration: dict
     switchable_groups: tuple
     parameter_vector: Layout     # every parameter entering an equation, one slot each (a pair: two)
+    parameter_symbols: Layout    # the symbol of each slot (kernels' arguments are named after them)
     kinematic_parameters: Layout  # the slots the guides' and motions' kernels read (params)
     kinematics: Layout           # the kinematics vector kin
     coefficients: Layout         # the element kernels' coefficient vector coef
     indicators: tuple            # ((symbol, option, value), ...) usable in the coefficients' formulas
+    crank_speed: str             # the crank's (nominal) speed parameter
+    unit_parameters: dict        # {unit: the parameter giving its value in L}
     element_dofs: int
     end_slots: tuple
 
@@ -180,6 +183,16 @@ def _family_record(f):
     return project(f, records.Family, variants=variants)
 
 
+def _parameter_name(name):
+    if name not in {p.name for p in model.PARAMETERS}:
+        raise ValueError(f"{name!r} is not a parameter")
+    return name
+
+
+def _unit_parameters():
+    return {unit: _parameter_name(name) for unit, name in sorted(model.UNIT_PARAMETERS.items())}
+
+
 def _indicators():
     return tuple((sym.name, option, value) for sym, (option, value) in model.INDICATORS.items())
 
@@ -205,8 +218,12 @@ def schema():
         motions=tuple(_motion_record(m) for m in model.MOTIONS),
         families=tuple(_family_record(f) for f in model.FAMILIES), outputs=_outputs_records(),
         printed_iteration=dict(sorted(model.PRINTED_ITERATION.items())),
-        switchable_groups=s.SWITCHABLE_GROUPS, parameter_vector=vector, kinematic_parameters=kinematic,
+        switchable_groups=s.SWITCHABLE_GROUPS, parameter_vector=vector,
+        parameter_symbols=Layout("parameter symbols", tuple(sym.name for sym in parameter_symbols().values()),
+                                 "the symbol of each slot of the parameter vector in the derivation"),
+        kinematic_parameters=kinematic,
         kinematics=kin, coefficients=coefficients, indicators=_indicators(),
+        crank_speed=_parameter_name(model.CRANK_SPEED), unit_parameters=_unit_parameters(),
         element_dofs=ELEMENT_DOFS, end_slots=END_SLOTS)
 
 

@@ -461,11 +461,19 @@ PARAMETERS = (
         selects=None,
         axis='integrator'),
 )
+# the crank's (nominal) speed (simulate's omega, the default continued parameter); the units that
+# are parameters ({unit: the parameter that is its value in L})
+CRANK_SPEED = 'omega'
+UNIT_PARAMETERS = {'r': 'eps'}
 # the vectors the kernels read
 PARAMETER_VECTOR = Layout(
     name='parameters',
     entries=('a', 'eps', 'ms', 'mu', 'gravity[0]', 'gravity[1]', 'offset', 'c', 'd', 'branch', 'omega', 'omega0', 'ramp', 'fluctuation', 'order', 'theta0'),
     doc='every parameter that enters an equation, one slot each (a pair: two), in the order of the declaration')
+PARAMETER_SYMBOLS = Layout(
+    name='parameter symbols',
+    entries=('a', 'eps', 'ms', 'mu', 'gX', 'gY', 'e', 'c', 'd', 'branch', 'omega', 'omega0', 'ramp', 'k', 'j', 'theta0'),
+    doc='the symbol of each slot of the parameter vector in the derivation')
 KINEMATIC_PARAMETERS = Layout(
     name='params',
     entries=('a', 'offset', 'c', 'd', 'branch', 'omega', 'omega0', 'ramp', 'fluctuation', 'order', 'theta0'),

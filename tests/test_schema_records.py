@@ -12,9 +12,10 @@ from crankgen._generated import schema as generated
 TABLES = {"OPTIONS": "options", "PRESETS": "presets", "DEFAULT_PRESET": "default_preset",
           "PARAMETERS": "parameters", "GUIDES": "guides", "MOTIONS": "motions", "FAMILIES": "families",
           "OUTPUTS": "outputs", "PRINTED_ITERATION": "printed_iteration",
-          "SWITCHABLE_GROUPS": "switchable_groups", "PARAMETER_VECTOR": "parameter_vector",
+          "SWITCHABLE_GROUPS": "switchable_groups", "PARAMETER_VECTOR": "parameter_vector", "PARAMETER_SYMBOLS": "parameter_symbols",
           "KINEMATIC_PARAMETERS": "kinematic_parameters", "KINEMATICS": "kinematics",
-          "COEFFICIENTS": "coefficients", "ELEMENT_DOFS": "element_dofs", "END_SLOTS": "end_slots"}
+          "COEFFICIENTS": "coefficients", "ELEMENT_DOFS": "element_dofs", "END_SLOTS": "end_slots",
+          "CRANK_SPEED": "crank_speed", "UNIT_PARAMETERS": "unit_parameters"}
 
 
 def test_the_generated_schema_holds_the_declarations_records():

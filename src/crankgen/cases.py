@@ -156,7 +156,7 @@ def run_case(mech=None, case=None, *, model=None, omega=None, crank=None, **fiel
     the run's fields (omega, the crank motion `crank` as a record, any Case field) and the model
     (a preset name; explicit options override it)."""
     if case is not None:
-        extra = [name for name, value in (("mech", mech), ("model", model), ("omega", omega),
+        extra = [name for name, value in (("mech", mech), ("model", model), (schema.CRANK_SPEED, omega),
                                           ("crank", crank)) if value is not None] + sorted(fields)
         if extra:
             raise ParameterError(f"give either case= or a mechanism and its settings, not both "
@@ -167,7 +167,7 @@ def run_case(mech=None, case=None, *, model=None, omega=None, crank=None, **fiel
     if mech is None:
         mech = Mechanism()
     if crank is not None:
-        fields["motion"] = crank
+        fields[schema.SELECTOR["motion"]] = crank
     if omega is not None:
-        fields["omega"] = omega
+        fields[schema.CRANK_SPEED] = omega
     return Case.from_mechanism(mech, model=model, **fields)

@@ -47,39 +47,31 @@ def _state(kin):
 def case_state(case, t):
     """Kinematics of a case (its guide, crank motion and their parameters) at time(s) t."""
     params = case.kinematic_parameters
-    crank = getattr(_kinematics, f"motion_{case.motion}")(np.asarray(t, dtype=float), params)
-    return _state(getattr(_kinematics, f"guide_{case.guide}")(crank, params))
-
-
-def crank_state(a, omega, t, offset=0.0):
-    """Kinematics of the constant-speed slider-crank (line guide) at time(s) t for crank ratio a
-    (= a*), crank speed omega (= Omega*) and guide offset."""
-    params = np.array([float({"a": a, "omega": omega, "offset": offset}.get(n, schema.PARAMETERS[n].default))
-                       for n in schema.KINEMATIC_PARAMETERS])
-    crank = _kinematics.motion_constant(np.asarray(t, dtype=float), params)
-    return _state(_kinematics.guide_line(crank, params))
+    crank = getattr(_kinematics, f"motion_{case.motion_record.name}")(np.asarray(t, dtype=float), params)
+    return _state(getattr(_kinematics, f"guide_{case.guide_record.name}")(crank, params))
 
 
 def _finite_time(case, value):
     if not (np.isfinite(value) and value > 0):
-        raise ParameterError(f"omega (crank speed Omega*) must be > 0 for a run measured in crank "
-                             f"revolutions, got {case.omega:g} (a crank at rest does not turn)")
+        speed = schema.PARAMETERS[schema.CRANK_SPEED]
+        raise ParameterError(f"{speed.label} must be > 0 for a run measured in crank revolutions, got "
+                             f"{getattr(case, speed.name):g} (a crank at rest does not turn)")
     return value
 
 
 def step_period(case):
     """The time steps_per_rev steps divide (a revolution, or a run-up's fastest one)."""
     with np.errstate(divide="ignore"):
-        value = float(getattr(_kinematics, f"step_period_{case.motion}")(case.kinematic_parameters))
+        value = float(getattr(_kinematics, f"step_period_{case.motion_record.name}")(case.kinematic_parameters))
     return _finite_time(case, value)
 
 
 def period(case):
     """Time of one crank revolution of a periodic crank motion (None for a run-up)."""
-    if not schema.MOTIONS[case.motion].periodic:
+    if not case.periodic:
         return None
     with np.errstate(divide="ignore"):
-        value = float(getattr(_kinematics, f"period_{case.motion}")(case.kinematic_parameters))
+        value = float(getattr(_kinematics, f"period_{case.motion_record.name}")(case.kinematic_parameters))
     return _finite_time(case, value)
 
 
@@ -89,7 +81,7 @@ def time_of_revolutions(case, revolutions):
     T = period(case)
     if T is not None:
         return T * revolutions
-    fn = getattr(_kinematics, f"motion_{case.motion}")
+    fn = getattr(_kinematics, f"motion_{case.motion_record.name}")
     params = case.kinematic_parameters
     target = fn(0.0, params)[0] + 2 * np.pi * revolutions
     hi = step_period(case) * max(revolutions, 1.0)
@@ -109,28 +101,33 @@ def time_of_revolutions(case, revolutions):
 
 def end_scale(case):
     """Natural size of the end map's reduced co-ordinate (eps^2 on a line)."""
-    return float(getattr(_kinematics, f"end_scale_{case.guide}")(case.eps, case.kinematic_parameters))
+    return float(call(f"end_scale_{case.guide_record.name}", case))
+
+
+def call(name, case, **inputs):
+    """The kinematics kernel `name` of a case: its arguments by name, the kinematic parameter vector
+    for `params`, a parameter's value for an argument named after it (the end scale's eps), the
+    given `inputs` for the others."""
+    import inspect
+    kernel = getattr(_kinematics, name)
+    vector = case.parameter_vector
+    args = []
+    for arg in inspect.signature(kernel).parameters:
+        if arg == "params":
+            args.append(case.kinematic_parameters)
+        elif arg in inputs:
+            args.append(inputs[arg])
+        else:
+            args.append(float(vector[schema.PARAMETER_SYMBOLS.index(arg)]))
+    return kernel(*args)
 
 
 def end_map(case, kin, s, sd=0.0, sdd=0.0):
     """The end map (..., 8, 2) (rows schema.END_MAP_ROWS) at kin and (s, sd, sdd)."""
     send = np.stack(np.broadcast_arrays(np.asarray(s, float), sd, sdd), axis=-1)
-    return getattr(_kinematics, f"end_map_{case.guide}")(send, kin, case.kinematic_parameters)
+    return getattr(_kinematics, f"end_map_{case.guide_record.name}")(send, kin, case.kinematic_parameters)
 
 
 def rigid_end(case, kin):
     """(..., 2): (X, Y) of the rigid mechanism's end point."""
-    return getattr(_kinematics, f"rigid_end_{case.guide}")(kin, case.kinematic_parameters)
-
-
-def slider_position(a, theta, offset=0.0):
-    """X co-ordinate of the rigid slider, a cos theta + L cos phi (L = 1), constant-speed slider-crank."""
-    theta = np.asarray(theta, dtype=float)
-    kin = crank_state(a, 1.0, theta, offset).vector
-    return rigid_end_line(kin, offset)[..., 0]
-
-
-def rigid_end_line(kin, offset):
-    params = np.array([float(offset if n == "offset" else schema.PARAMETERS[n].default)
-                       for n in schema.KINEMATIC_PARAMETERS])
-    return _kinematics.rigid_end_line(kin, params)
+    return getattr(_kinematics, f"rigid_end_{case.guide_record.name}")(kin, case.kinematic_parameters)

@@ -69,7 +69,8 @@ def _sides(mesh, x):
     return [(e, min(max(zeta, 0.0), 1.0))]
 
 
-_PARAMS_BESIDE_KIN = [k for k, n in enumerate(schema.KINEMATIC_PARAMETERS) if n != "a"]
+# the kinematic parameters an output kernel reads beside kin (those kin does not carry already)
+_PARAMS_BESIDE_KIN = [k for k, n in enumerate(schema.KINEMATIC_PARAMETERS) if n not in schema.KINEMATICS]
 
 
 class StateHistory:

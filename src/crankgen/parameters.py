@@ -163,8 +163,8 @@ class SIMechanism:
 
     def __post_init__(self):
         from .validation import in_range
-        for name in ("L", "a", "E", "rho", "A", "I"):
-            in_range(f"{name} (SI)", getattr(self, name), 0, None, True)
+        for f in fields(self)[:6]:              # the lengths and the material: positive
+            in_range(f"{f.name} (SI)", getattr(self, f.name), 0, None, True)
         in_range("slider_mass (kg)", self.slider_mass, 0)
         in_range("crank_speed (rad/s)", self.crank_speed, 0)
         in_range("damping (mu, s)", self.damping, 0)

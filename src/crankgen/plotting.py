@@ -3,6 +3,9 @@ measured, so that nothing is clipped and no legend or label covers data or anoth
 
 import numpy as np
 
+from . import schema
+from .units import in_L
+
 
 _FIGURE_KEYS = ("figsize", "dpi", "constrained_layout", "layout", "facecolor")
 
@@ -102,8 +105,8 @@ def plot_deflection(result, path, failure=None, si=None, against="t", strain=Non
         ax.legend(fontsize=8, loc="best")
     ax.set_xlabel(unit)
     ax.set_ylabel("v* at x* = 1/2" if si is None else "v at x = L/2 in the moving frame (mm)")
-    # the range of the theory in the scale drawn: |v*| eps = |v| / L
-    eps = result.settings["eps"] if si is None else 1e-3 / si.scales.L
+    # the range of the theory in the scale drawn: |v*| eps = |v| / L (v* in units of r = eps L)
+    eps = in_L(schema.OUTPUTS["v_mid"].units, result.settings) if si is None else 1e-3 / si.scales.L
     if strain is None:
         strain = theory.axial_strain(result, per_step=True)
     note = _beyond_theory(ax, eps, v, strain)

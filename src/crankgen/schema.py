@@ -24,6 +24,7 @@ FAMILIES = _table.FAMILIES
 # the layouts of the vectors the kernels read, as tuples of entry names
 PARAMETER_VECTOR = _table.PARAMETER_VECTOR.entries        # every parameter entering an equation
 KINEMATIC_PARAMETERS = _table.KINEMATIC_PARAMETERS.entries  # the slots the guides and motions read
+PARAMETER_SYMBOLS = _table.PARAMETER_SYMBOLS.entries       # the symbol of each slot in the derivation
 KINEMATIC_SLOTS = tuple(PARAMETER_VECTOR.index(n) for n in KINEMATIC_PARAMETERS)
 KINEMATICS = _table.KINEMATICS.entries
 KIN = {name: k for k, name in enumerate(KINEMATICS)}         # place of each entry of kin
@@ -35,6 +36,8 @@ ELEMENT_MODES = _table.ELEMENT_MODES          # what an element kernel's one-ele
 LANES, LANE_SIZE = _table.LANES, _table.LANE_SIZE       # an element kernel's lane function: elements at once,
 LANE_ROWS = _table.LANE_ROWS                            # its buffer's size and the first row of each block
 
+CRANK_SPEED = _table.CRANK_SPEED             # the crank's (nominal) speed parameter
+UNIT_PARAMETERS = _table.UNIT_PARAMETERS      # {unit: the parameter giving its value in L}
 # the choice parameters that select the guide and the crank motion: {"guide": name, "motion": name}
 SELECTOR = {p.selects: p.name for p in PARAMETERS.values() if p.selects}
 MECHANISM_PARAMETERS = tuple(n for n, p in PARAMETERS.items() if p.owner in ("mechanism", "guide"))

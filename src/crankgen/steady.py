@@ -40,7 +40,7 @@ from typing import Optional
 
 import numpy as np
 
-from . import engine
+from . import engine, schema
 from . import kinematics as _kinematics
 from .cases import Case, run_case
 from .errors import ParameterError
@@ -299,14 +299,17 @@ def _check_resolved(case, where=""):
     if not case.periodic:
         raise ParameterError(
             f"{where}a steady state needs a crank motion periodic in the crank angle; the "
-            f"{case.motion!r} motion is not (a run-up is a transient: simulate runs it)")
+            f"{case.motion_record.name!r} motion is not (a transient: simulate runs it)")
     T = _kinematics.period(case)
     dt = T / case.steps_per_rev
     if dt > 2 * math.pi:
+        speed = schema.PARAMETERS[schema.CRANK_SPEED]
+        value = getattr(case, speed.name)
+        nominal = T == 2 * math.pi / value            # one revolution at the crank speed: T = 2 pi / Omega*
         raise ParameterError(
-            f"{where}steps_per_rev must be at least {'1/Omega* = ' if case.motion == 'constant' else ''}"
+            f"{where}steps_per_rev must be at least {f'1/{speed.axis} = ' if nominal else ''}"
             f"{math.ceil(T / (2 * math.pi) * (1 - 1e-12)):d} for a "
-            f"steady state at Omega* = {case.omega:g} (got {case.steps_per_rev}): the time step "
+            f"steady state at {speed.axis} = {value:g} (got {case.steps_per_rev}): the time step "
             f"dt* = {dt:.3g} would exceed the period 2 pi of the rod's first bending mode, and with "
             f"such steps the Floquet multipliers, hence the stability verdict, are set by the time "
             f"step instead of the mechanism; simulate() marches such slow, quasi-static runs")

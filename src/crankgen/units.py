@@ -105,3 +105,19 @@ def scales_of(si_mechanism):
         raise ParameterError(f"expected a crankgen.SIMechanism, got {type(si_mechanism).__name__}")
     return Scales(L=float(si_mechanism.L), eps=si_mechanism.radius_of_gyration / si_mechanism.L,
                   omega_b=si_mechanism.omega_b, rhoA=float(si_mechanism.rho * si_mechanism.A))
+
+
+def in_L(units, values):
+    """The value in crankgen's length L of one unit `units` made of lengths ("r", "r^2/L", "L"),
+    for a case's parameter values (a mapping; absent ones at their default): a unit that is a
+    parameter (the radius of gyration r = eps L) takes that parameter's value (schema.UNIT_PARAMETERS)."""
+    from . import schema
+    out = 1.0
+    for name, power in parse(units).items():
+        if name == "L":
+            continue
+        if name not in schema.UNIT_PARAMETERS:
+            raise ValueError(f"{name} is not a length (units {units!r})")
+        p = schema.PARAMETERS[schema.UNIT_PARAMETERS[name]]
+        out *= float(values.get(p.name, p.default)) ** power
+    return out

@@ -5,6 +5,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from .. import schema
 from ..cases import run_case
 from ..errors import CrankgenError, ParameterError
 from ..validation import choice, in_range, integer
@@ -24,7 +25,7 @@ def _check_progress(progress):
         raise ParameterError(f"progress must be None or a function, got {progress!r}")
 
 
-def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, model=None, max_period=4, ds=0.05,
+def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *, model=None, max_period=4, ds=0.05,
                  ds_min=1e-4, ds_max=100.0, dp_max=None, max_points=400, tol=1e-9, switch_step=0.05,
                  case=None, progress=None, corrector="broyden", predictor="quadratic", derivative="exact",
                  **fields):
@@ -76,7 +77,7 @@ def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, model=Non
     return diagram
 
 
-def poincare(mech=None, parameter="omega", values=None, direction="up", *, model=None, transient=100,
+def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up", *, model=None, transient=100,
              samples=64, max_period=8, tol=1e-8, lyapunov_tol=0.01, case=None, progress=None, **fields):
     """Brute-force bifurcation diagram (a PoincareDiagram): for each value of `parameter` in
     `values`, swept "up", "down" or "both" (up, then down from where up ended), march `transient`

@@ -6,7 +6,9 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import schema
 from ..io import atomic_file, save_figure
+from ..units import in_L
 
 LABELS = {"fold": "F", "period-doubling": "PD", "neimark-sacker": "NS"}
 
@@ -15,15 +17,13 @@ LABELS = {"fold": "F", "period-doubling": "PD", "neimark-sacker": "NS"}
 # none near the approaches' blue, orange and red (crankgen.plotting.APPROACH_COLORS)
 PERIOD_COLORS = {1: "black", 2: "#7b2d8e", 4: "#2ca02c", 8: "#6b6b00"}
 def axis(parameter):
-    """The axis text of a parameter: its record's label and units (the name itself otherwise)."""
-    from .. import schema
+    """The axis text of a parameter: its record's axis (the name itself otherwise)."""
     p = schema.PARAMETERS.get(parameter)
     return parameter if p is None else p.axis
 
 
 def describe(info, what, parameter):
     """A title from a diagram's info (the model and settings it was computed for)."""
-    from .. import schema
     if not info:
         return f"{what} in {parameter}"
     parts = [f"approach {info['approach']}" if "approach" in info else None,
@@ -80,11 +80,10 @@ class BifurcationDiagram:
     info: dict = field(default_factory=dict)   # the model and settings it was computed for
 
     def eps_at(self, p):
-        """Slenderness of the mechanism at parameter value p (None: not a mechanism diagram)."""
-        if self.parameter_name == "eps":
-            return float(p)
-        eps = self.info.get("eps")
-        return None if eps is None else float(eps)
+        """The amplitude's unit (v* = v / r: the radius of gyration r) in L at parameter value p, the
+        slenderness (None: not a mechanism diagram)."""
+        values = dict(self.info, **{self.parameter_name: float(p)})
+        return in_L("r", values) if schema.UNIT_PARAMETERS["r"] in values else None
 
     def to_csv(self, folder):
         """branches.csv (one row per point; for the mechanism with deflection_over_L = eps
@@ -170,7 +169,7 @@ class BifurcationDiagram:
                        facecolor="white", edgecolor="black", zorder=5)
             handles.append(Line2D([], [], ls="none", marker=m, markerfacecolor="white",
                                   color="black", label=f"{LABELS[kind]}: {kind}"))
-        eps = self.info.get("eps") if self.parameter_name != "eps" else None
+        eps = self.eps_at(0.0) if self.parameter_name != schema.UNIT_PARAMETERS["r"] else None
         amps = [a for br in self.branches for a in np.asarray(br.amplitude, dtype=float) if np.isfinite(a)]
         if eps and amps and max(amps) * eps > DEFLECTION_LIMIT:
             lo, hi = ax.get_ylim()
@@ -179,7 +178,7 @@ class BifurcationDiagram:
             handles.append(beyond_patch("0.88"))
         place_labels(ax, [(s.parameter, s.amplitude, f"{LABELS[s.kind]} {s.parameter:.4g}", "black")
                           for s in sorted(self.special_points, key=lambda s: s.parameter)])
-        mech = "eps" in self.info or self.parameter_name == "eps"
+        mech = self.eps_at(0.0) is not None
         ax.set_xlabel(xlabel or axis(self.parameter_name))
         ax.set_ylabel(ylabel or ("max |v*(1/2)| over the orbit" if mech else "amplitude"))
         ax.grid(alpha=0.3)

@@ -23,6 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import schema
 from ..errors import CrankgenError, ParameterError
 from ._blas import single_thread
 from .maps import MapError
@@ -135,7 +136,7 @@ class PoincareDiagram:
                 for sp in sorted(diagram.special_points, key=lambda s: s.parameter)])
             handles.append(Line2D([], [], color="grey", lw=0.6, ls=":",
                                   label="dotted: special points of the continuation"))
-        mech = "eps" in self.info or self.parameter_name == "eps"
+        mech = schema.UNIT_PARAMETERS["r"] in dict(self.info, **{self.parameter_name: 0.0})
         ax.set_xlabel(xlabel or axis(self.parameter_name))
         ax.set_ylabel(ylabel or ("v*(1/2) at theta = 0, once per revolution" if mech
                                  else "observable, once per application of the map"))

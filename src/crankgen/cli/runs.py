@@ -36,8 +36,12 @@ def _theory_note(deflection, strain):
 
 
 # the SI file of `simulate --si`: crankgen.SIMechanism's fields
-SI_FIELDS = ("L", "a", "E", "rho", "A", "I", "slider_mass", "crank_speed", "damping")
-SI_REQUIRED = SI_FIELDS[:-1]
+def _si_fields():
+    from dataclasses import MISSING, fields
+
+    from ..parameters import SIMechanism
+    every = tuple(f.name for f in fields(SIMechanism))
+    return every, tuple(f.name for f in fields(SIMechanism) if f.default is MISSING)
 
 
 def _si_mechanism(path):
@@ -45,6 +49,7 @@ def _si_mechanism(path):
     import json
 
     from ..parameters import SIMechanism
+    si_fields, si_required = _si_fields()
     try:
         with open(path) as fh:
             data = json.load(fh)
@@ -53,12 +58,12 @@ def _si_mechanism(path):
     except ValueError as exc:
         raise UsageError(f"--si {path}: not valid JSON ({exc})") from None
     if not isinstance(data, dict):
-        raise UsageError(f"--si {path}: expected a JSON object with the fields {', '.join(SI_FIELDS)}")
-    unknown = sorted(set(data) - set(SI_FIELDS))
-    missing = [k for k in SI_REQUIRED if k not in data]
+        raise UsageError(f"--si {path}: expected a JSON object with the fields {', '.join(si_fields)}")
+    unknown = sorted(set(data) - set(si_fields))
+    missing = [k for k in si_required if k not in data]
     if unknown or missing:
         what = (f"unknown field {unknown[0]!r}" if unknown else f"missing field {missing[0]!r}")
-        raise UsageError(f"--si {path}: {what}; the fields are {', '.join(SI_FIELDS)} (damping optional)")
+        raise UsageError(f"--si {path}: {what}; the fields are {', '.join(si_fields)} (damping optional)")
     return SIMechanism(**data)
 
 
@@ -68,13 +73,14 @@ def _si_case(args, si):
     from .. import schema
     from ..cases import make_case
     given = _explicit(args)
-    clash = [n for n in schema.MECHANISM_PARAMETERS + ("omega",) if n in given]
+    clash = [n for n in schema.MECHANISM_PARAMETERS + (schema.CRANK_SPEED,) if n in given]
     if clash:
         flag = schema.PARAMETERS[clash[0]].cli
         raise UsageError(f"--si gives the mechanism and its crank speed: leave out --{flag}")
-    if given.get("motion", "constant") != "constant":
-        raise UsageError("--si: the crank turns at the file's constant crank_speed (--crank constant)")
-    return make_case(model=args.model, **si.mechanism.values(), omega=si.omega, **given)
+    motion = schema.PARAMETERS[schema.SELECTOR["motion"]]
+    if given.get(motion.name, motion.default) != motion.default:
+        raise UsageError(f"--si: the crank turns at the file's constant crank_speed (--{motion.cli} {motion.default})")
+    return make_case(model=args.model, **si.mechanism.values(), **{schema.CRANK_SPEED: si.omega}, **given)
 
 
 def _cmd_simulate(args):
@@ -145,7 +151,7 @@ def _simulate(args, case, revolutions, steps, out, si=None):
                      for t, th, row in zip(values[0], values[1], nodes))
         out.wrote(write_csv(out.path("nodes.csv"), node_columns, node_rows))
     # a run-up is drawn against the crank speed it passes (its resonances), other runs against time
-    against = "crank_speed" if case.motion == "runup" and getattr(res, "states", None) is not None else "t"
+    against = "crank_speed" if not case.periodic and getattr(res, "states", None) is not None else "t"
     out.wrote(plot_deflection(res, out.path("v_mid.png"), failure=failure, si=view, against=against,
                               strain=strain))
     note = _theory_note(float(np.max(defl)) if len(defl) else math.nan,

@@ -52,8 +52,8 @@ def _add_branch_model_options(p):
     g = _add_model_options(p, integrator=False)
     g.title = "model (the option of the continued parameter is replaced by its range)"
     from .. import schema
-    g.add_argument("--parameter", choices=schema.CONTINUABLE, default="omega",
-                   help="the parameter varied (default omega)")
+    g.add_argument("--parameter", choices=schema.CONTINUABLE, default=schema.CRANK_SPEED,
+                   help=f"the parameter varied (default {schema.CRANK_SPEED})")
     g.add_argument("--from", dest="start", type=float, required=True, help="first value of the parameter")
     g.add_argument("--to", dest="stop", type=float, required=True, help="last value of the parameter")
 
@@ -71,6 +71,7 @@ def _checked_branch_model(args, continuation, values=()):
     """Every option of continue / poincare checked before anything is created or computed: the
     case at both ends of the range (and at every swept value), the continuation's own settings
     when it runs, and the steady state it starts from.  Returns the case of the first point."""
+    from .. import schema
     from ..bifurcation.api import make_case
     from ..validation import in_range, integer
     from .runs import _resolved
@@ -83,9 +84,10 @@ def _checked_branch_model(args, continuation, values=()):
         if start == stop:
             raise UsageError(f"--from and --to must differ for a continuation, got {start:g} twice")
         integer("--max-period", args.max_period, 1)
-        first = min(start, stop) if args.parameter == "omega" else start
+        speed = args.parameter == schema.CRANK_SPEED
+        first = min(start, stop) if speed else start
         _resolved(make_case(None, args.parameter, first, case),
-                  "the continuation starts from a steady state: " if args.parameter == "omega" else "")
+                  "the continuation starts from a steady state: " if speed else "")
     return case
 
 
