@@ -83,10 +83,20 @@ def time_of_revolutions(case, revolutions):
         return T * revolutions
     fn = getattr(_kinematics, f"motion_{case.motion_record.name}")
     params = case.kinematic_parameters
-    target = fn(0.0, params)[0] + 2 * np.pi * revolutions
+    start = fn(0.0, params)[0]
+    target = start + 2 * np.pi * revolutions
     hi = step_period(case) * max(revolutions, 1.0)
-    while fn(hi, params)[0] < target:
+    for _ in range(64):
+        if fn(hi, params)[0] >= target:
+            break
         hi *= 2.0
+    else:          # the crank comes to rest (a run-down) before it has turned that far
+        turned = (fn(hi, params)[0] - start) / (2 * np.pi)
+        speed = schema.PARAMETERS[schema.CRANK_SPEED]
+        raise ParameterError(f"revolutions: the crank turns only {turned:.6g} revolutions in all (its "
+                             f"{case.motion_record.name} motion ends at rest, {speed.name} = "
+                             f"{getattr(case, speed.name):g}); ask for at most {turned:.6g} revolutions, "
+                             f"or give the motion a final speed {speed.name} > 0")
     lo = 0.0
     for _ in range(200):
         mid = 0.5 * (lo + hi)
@@ -131,3 +141,45 @@ def end_map(case, kin, s, sd=0.0, sdd=0.0):
 def rigid_end(case, kin):
     """(..., 2): (X, Y) of the rigid mechanism's end point."""
     return getattr(_kinematics, f"rigid_end_{case.guide_record.name}")(kin, case.kinematic_parameters)
+
+
+# The one rule for the time step of a crank motion (every analysis: simulate, steady states,
+# sweeps, continuation, Poincare sections): a step may turn the crank by at most a quarter turn
+# (what a constant speed allows at its fewest steps per revolution, 4), and change the crank speed
+# by at most a quarter of the motion's top speed.  Coarser steps sample the crank's motion, which
+# drives the rod, too coarsely to be a result; they are refused, naming the steps_per_rev needed.
+MAX_TURN_PER_STEP = np.pi / 2
+MAX_SPEED_CHANGE_PER_STEP = 0.25         # of the motion's top speed
+_SAMPLES = 4096
+
+
+def crank_step_extremes(case, t_end):
+    """(largest crank speed, largest |crank acceleration|) of the case's motion over [0, t_end]
+    (one period for a periodic motion), sampled finely over the run and over its first 64 step
+    periods (a run-up's ramp)."""
+    T = period(case)
+    span = T if T is not None else max(float(t_end), 0.0)
+    early = min(span, 64 * step_period(case))
+    t = np.concatenate([np.linspace(0.0, span, _SAMPLES + 1), np.linspace(0.0, early, _SAMPLES + 1)])
+    crank = getattr(_kinematics, f"motion_{case.motion_record.name}")(t, case.kinematic_parameters)
+    return float(np.max(np.abs(crank[..., 1]))), float(np.max(np.abs(crank[..., 2])))
+
+
+def check_crank_steps(case, dt, t_end=None, where=""):
+    """Refuse (ParameterError, naming the steps_per_rev needed) a time step dt that turns the crank
+    by more than MAX_TURN_PER_STEP or changes its speed by more than MAX_SPEED_CHANGE_PER_STEP of
+    its top speed, anywhere over the run (t_end; default one period or step period)."""
+    if t_end is None:
+        t_end = period(case) or step_period(case)
+    speed, acceleration = crank_step_extremes(case, t_end)
+    turn, change = speed * dt, acceleration * dt
+    excess = max(turn / MAX_TURN_PER_STEP, change / (MAX_SPEED_CHANGE_PER_STEP * speed) if speed > 0 else 0.0)
+    if excess > 1.0 + 1e-12:
+        need = int(np.ceil(case.steps_per_rev * excess * (1 - 1e-12)))
+        what = (f"turns the crank by up to {turn:.3g} rad (at most pi/2 per step)" if
+                turn / MAX_TURN_PER_STEP >= change / (MAX_SPEED_CHANGE_PER_STEP * speed) else
+                f"changes the crank speed by up to {change:.3g} ({change / speed:.0%} of its top speed "
+                f"{speed:.3g}; at most 25 % per step)")
+        raise ParameterError(f"{where}steps_per_rev = {case.steps_per_rev} is too coarse for the "
+                             f"{case.motion_record.name} crank motion: one step of dt* = {dt:.3g} {what}; use "
+                             f"steps_per_rev >= {need}")

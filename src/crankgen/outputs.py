@@ -206,9 +206,9 @@ class DeclaredOutputs:
         spec = schema.OUTPUTS.get(name)
         if spec is None:
             raise ParameterError(f"no output {name!r}; the outputs are {', '.join(schema.OUTPUTS)}")
-        if self.case.guide not in spec.guides:
+        if self.case.guide_record.name not in spec.guides:
             raise ParameterError(f"{name} exists for the {' and '.join(spec.guides)} guide only "
-                                 f"(this case's guide is {self.case.guide!r})")
+                                 f"(this case's guide is {self.case.guide_record.name!r})")
         if spec.kind == "field":
             if x is None:
                 raise ParameterError(f"{name} is a field: give x (x* in [0, 1])")

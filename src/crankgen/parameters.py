@@ -70,11 +70,18 @@ def kinematic_parameters(values):
     return schema.parameter_vector(values)[list(schema.KINEMATIC_SLOTS)]
 
 
+# A full-turn margin (a length, in units of L) must exceed this: the margins are differences of
+# lengths of order one, whose rounding (about 1e-16) could otherwise put a linkage exactly at its
+# locking limit on the accepted side, where its first step fails.
+MARGIN_TOLERANCE = 1e-9
+
+
 def check_full_turn(values):
-    """Refuse a geometry whose crank cannot turn a full revolution (the guide's margins)."""
+    """Refuse a geometry whose crank cannot turn a full revolution (the guide's margins, each of
+    which must exceed MARGIN_TOLERANCE)."""
     guide = schema.GUIDES[schema.selected(values, "guide")]
     margins = np.atleast_1d(getattr(_kinematics, f"margins_{guide.name}")(kinematic_parameters(values)))
-    failed = [text for m, text in zip(margins, guide.margins) if not m > 0]
+    failed = [text for m, text in zip(margins, guide.margins) if not m > MARGIN_TOLERANCE]
     if failed:
         shown = ", ".join(f"{n} = {values.get(n, schema.PARAMETERS[n].default):g}"
                           for n in schema.KINEMATIC_PARAMETERS
@@ -147,6 +154,10 @@ class Mechanism(MechanismRules, _classes.MechanismFields):
     __doc__ = MechanismRules.__doc__
 
 
+_SI_UNIT = {"L": "m", "a": "m", "E": "Pa", "rho": "kg/m^3", "A": "m^2", "I": "m^4", "slider_mass": "kg",
+            "crank_speed": "rad/s", "damping": "s"}
+
+
 @dataclass(frozen=True)
 class SIMechanism:
     """A mechanism in SI units; `.mechanism` and `.omega` give the paper's dimensionless form."""
@@ -168,6 +179,37 @@ class SIMechanism:
         in_range("slider_mass (kg)", self.slider_mass, 0)
         in_range("crank_speed (rad/s)", self.crank_speed, 0)
         in_range("damping (mu, s)", self.damping, 0)
+        self._check_magnitudes()
+
+    # the scales and dimensionless numbers an SI mechanism gives, as powers of its fields:
+    # every one must lie within 10^-MAGNITUDE .. 10^MAGNITUDE (zero where a field may be zero)
+    MAGNITUDE = 50
+    DERIVED = (("L (the unit of length)", {"L": 1}),
+               ("omega_b = (pi/L)^2 sqrt(E I / (rho A))", {"L": -2, "E": 0.5, "I": 0.5, "rho": -0.5, "A": -0.5}),
+               ("rho A (the unit of mass per length)", {"rho": 1, "A": 1}),
+               ("eps = sqrt(I/A) / L", {"I": 0.5, "A": -0.5, "L": -1}),
+               ("a* = a / L", {"a": 1, "L": -1}),
+               ("ms* = slider_mass / (rho A L)", {"slider_mass": 1, "rho": -1, "A": -1, "L": -1}),
+               ("mu* = omega_b damping", {"damping": 1, "L": -2, "E": 0.5, "I": 0.5, "rho": -0.5, "A": -0.5}),
+               ("Omega* = crank_speed / omega_b", {"crank_speed": 1, "L": 2, "E": -0.5, "I": -0.5, "rho": 0.5,
+                                                   "A": 0.5}))
+
+    def _check_magnitudes(self):
+        """Refuse fields whose scales overflow or underflow in floating point (or come near it),
+        naming the field that weighs most; computed on logarithms, so nothing overflows here."""
+        for what, powers in self.DERIVED:
+            values = {name: float(getattr(self, name)) for name in powers}
+            if any(v == 0 for v in values.values()):
+                continue                  # a zero mass, damping or speed: the number is zero
+            terms = {name: p * math.log10(values[name]) for name, p in powers.items()}
+            exponent = sum(terms.values()) + (2 * math.log10(math.pi) if what.startswith(("omega_b", "mu*"))
+                                              else -2 * math.log10(math.pi) if what.startswith("Omega*") else 0.0)
+            if abs(exponent) > self.MAGNITUDE:
+                name = max(terms, key=lambda n: abs(terms[n]))
+                raise ParameterError(
+                    f"SIMechanism: {name} = {values[name]:g} makes {what} about 1e{exponent:+.0f}, beyond "
+                    f"1e-{self.MAGNITUDE} .. 1e{self.MAGNITUDE} (floating point would overflow or underflow); "
+                    f"give {name} in SI units ({_SI_UNIT[name]}) of a real mechanism")
 
     @property
     def omega_b(self):

@@ -31,8 +31,10 @@ def _bracket(low, high, low_open, high_open):
 
 
 def _is_number(value):
+    """A real number (a NumPy boolean, complex number or string is none)."""
     import numpy as np
-    return not isinstance(value, (bool, str, bytes, bytearray)) and isinstance(value, (numbers.Real, np.generic))
+    return (not isinstance(value, (bool, np.bool_, str, bytes, bytearray, np.complexfloating, np.str_, np.bytes_))
+            and isinstance(value, (numbers.Real, np.generic)))
 
 
 def _real(label, value):
@@ -42,6 +44,14 @@ def _real(label, value):
     if not math.isfinite(x):
         raise ParameterError(f"{label} must be finite, got {value!r}")
     return x + 0.0                     # -0.0 -> 0.0: one canonical zero
+
+
+def reduced_angle(x):
+    """An angle beyond one turn either way, reduced to (-pi, pi]: the angle of the same crank
+    position.  The reduction is exact (the sine and cosine reduce their argument by 2 pi to full
+    precision), so a start angle of 1e17 rad gives the crank position of 1e17 rad, and the run's
+    theta0 + Omega* t keeps every digit of its time.  Angles within one turn are kept as given."""
+    return math.atan2(math.sin(x), math.cos(x)) + 0.0
 
 
 def _plain(value):
@@ -132,6 +142,8 @@ class Parameter:
             bad_high = self.high is not None and (x >= self.high if self.high_open else x > self.high)
             if bad_low or bad_high:
                 raise ParameterError(f"{label} must be in {self.range_text}, got {x:g}")
+            if self.units == "rad" and abs(x) > 2 * math.pi:
+                x = reduced_angle(x)
             return x
         if self.kind == "pair":
             if isinstance(value, (str, bytes, dict, set, frozenset)) or not hasattr(value, "__len__") \
@@ -140,7 +152,7 @@ class Parameter:
                                      f"got {value!r}")
             return tuple(_real(f"{label}[{k}]", value[k]) for k in range(2))
         if self.kind in ("count", "sign"):
-            if isinstance(value, bool) or not _is_number(value):
+            if not _is_number(value):
                 raise ParameterError(f"{label} must be {self.range_text}, got {value!r}")
             x = float(value)
             if not (math.isfinite(x) and x.is_integer()):
@@ -285,7 +297,7 @@ class Spec:
     declaration = None       # its Guide or Motion record
 
     def __init__(self, **kwargs):
-        values = {}
+        values, given_as = {}, {}
         aliases = dict(self.declaration.aliases)
         for key, value in kwargs.items():
             if key in aliases:
@@ -295,13 +307,18 @@ class Spec:
                                        or len(value) != len(names)):
                     raise ParameterError(f"{type(self).__name__}: {key} must be a sequence of "
                                          f"{len(names)} numbers ({', '.join(names)}), got {value!r}")
-                values.update(zip(names, parts))
+                pairs = list(zip(names, parts))
             elif key in self.declaration.parameters:
-                values[key] = value
+                pairs = [(key, value)]
             else:
                 accepted = list(aliases) + list(self.declaration.parameters)
                 raise ParameterError(f"{type(self).__name__} takes no argument {key!r}; it takes "
                                      f"{', '.join(dict.fromkeys(accepted))}")
+            for name, part in pairs:             # one value per parameter: c=... and radius=... is two
+                if name in values:
+                    raise ParameterError(f"{type(self).__name__}: {name} is given twice ({given_as[name]} "
+                                         f"and {key}={value!r}); give it once")
+                values[name], given_as[name] = part, f"{key}={kwargs[key]!r}"
         self.values = values
 
     @classmethod

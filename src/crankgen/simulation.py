@@ -10,6 +10,7 @@ import numpy as np
 
 from . import engine as _engine
 from . import kinematics as _kinematics
+from .kinematics import check_crank_steps
 from .cases import Case, run_case
 from .errors import ConvergenceError, ParameterError
 from .limits import check_run_size
@@ -19,7 +20,7 @@ from .newmark import NewmarkSettings, integrate
 from .outputs import DeclaredOutputs, SIView, StateHistory, end_axial, extension, mid_deflection
 from .parameters import SIMechanism
 from .units import Scales, scales_of
-from .validation import choice, in_range
+from .validation import choice, in_range, numbers_array
 
 ENGINES = ("compiled", "numpy")
 UNITS = ("crankgen", "si")
@@ -89,31 +90,46 @@ ON_STEP = 1e-9
 
 
 def _requested_times(times, factor):
-    """The requested times as a 1-d array in crankgen's units (times / factor), checked."""
-    try:
-        values = np.array(times, dtype=float).ravel()
-    except (TypeError, ValueError):
-        raise ParameterError(f"times must be a sequence of numbers, got {times!r}") from None
+    """The requested times as a 1-d array in crankgen's units (times / factor), checked: numbers
+    (text and booleans refused, as everywhere), finite and >= 0."""
+    values = numbers_array("times", times)
     if values.size == 0 or not np.all(np.isfinite(values)) or np.any(values < 0):
         raise ParameterError(f"times must be one or more finite numbers >= 0, got {times!r}")
     return values / factor
 
 
-def _landing(t_req, dt, n_steps):
-    """[(step k before the time, remaining time tau)] of each requested time; tau = 0: on step k."""
-    out = []
-    for tr in t_req:
-        k = int(np.floor(tr / dt))
-        tau = tr - k * dt
-        if tau <= ON_STEP * dt:
-            tau = 0.0
-        elif dt - tau <= ON_STEP * dt:
-            k, tau = k + 1, 0.0
-        if k > n_steps or (k == n_steps and tau > 0):
-            raise ParameterError(f"times: t* = {tr:.6g} is beyond the run's end t* = {n_steps * dt:.6g} "
-                                 "(give more revolutions, or leave revolutions out to run up to the last time)")
-        out.append((k, tau))
-    return out
+def _landing(t_req, dt):
+    """(k, tau): for each requested time the step k before it and the remaining time tau (0: on
+    step k), in one pass over the times."""
+    k = np.floor(t_req / dt)
+    tau = t_req - k * dt
+    on = tau <= ON_STEP * dt
+    up = ~on & (dt - tau <= ON_STEP * dt)
+    k = np.where(up, k + 1, k)
+    tau = np.where(on | up, 0.0, tau)
+    return k, tau
+
+
+def _check_steps_needed(t_req, dt):
+    """Refuse, before any array is made, a last time so far away that its step count is not even
+    a machine integer (the run-size check then gives the memory of what remains)."""
+    last = float(np.max(t_req)) / dt
+    if not last < 2.0 ** 62:
+        raise ParameterError(f"times: t* = {float(np.max(t_req)):.6g} needs about {last:.3g} time steps "
+                             f"of dt* = {dt:.3g}; ask for earlier times")
+
+
+def _steps_to_reach(k, tau):
+    """The steps a run needs to reach every requested time (one more past a time between steps)."""
+    return int(np.max(k + (tau > 0)))
+
+
+def _check_landing(k, tau, t_req, dt, n_steps):
+    beyond = (k > n_steps) | ((k == n_steps) & (tau > 0))
+    if np.any(beyond):
+        tr = float(t_req[np.argmax(beyond)])
+        raise ParameterError(f"times: t* = {tr:.6g} is beyond the run's end t* = {n_steps * dt:.6g} "
+                             "(give more revolutions, or leave revolutions out to run up to the last time)")
 
 
 def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolutions=None, times=None,
@@ -170,22 +186,33 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     case = run_case(mech, case, model=model, omega=omega, crank=crank, **fields)
     settings = NewmarkSettings(scheme=case.integrator, tol=tol)
     model = Model.from_case(case)
+    if not isinstance(history, (bool, np.bool_)):
+        raise ParameterError(f"history must be True or False, got {history!r}")
+    history = bool(history)
+    if store_nodes and not history:
+        raise ParameterError("store_nodes needs the run's states: leave history=True")
+    landing = None
     if times is not None:
         t_req = _requested_times(times, 1.0 if scales is None else scales.factor("1/omega_b"))
     if revolutions is None and times is not None:
         dt = _kinematics.step_period(case) / case.steps_per_rev
-        n_steps = max(1, int(np.ceil(np.max(t_req) / dt * (1 - ON_STEP))))
+        _check_steps_needed(t_req, dt)
+        landing = _landing(t_req, dt)
+        n_steps = max(1, _steps_to_reach(*landing))
         revolutions = n_steps / case.steps_per_rev        # step periods: revolutions of a periodic crank
     else:
         revolutions = 10.0 if revolutions is None else revolutions
         dt, n_steps = run_length(case, revolutions)
-    check_run_size(case.n_elements, n_steps if history else 0, stored="nodes" if store_nodes else "states",
-                   names={"n_steps": "revolutions"})
-    landing = None if times is None else _landing(t_req, dt, n_steps)
-    if not isinstance(history, bool):
-        raise ParameterError(f"history must be True or False, got {history!r}")
-    if store_nodes and not history:
-        raise ParameterError("store_nodes needs the run's states: leave history=True")
+        if times is not None:
+            landing = _landing(t_req, dt)
+            _check_landing(*landing, t_req, dt, n_steps)
+    check_run_size(case.n_elements, n_steps, stored=("nodes" if store_nodes else "states") if history else "outputs",
+                   n_times=0 if times is None else len(t_req),
+                   names={"n_steps": "revolutions" if times is None else "revolutions (or the last of times)",
+                          "n_times": "times"})
+    check_crank_steps(case, dt, n_steps * dt)
+    if landing is not None:
+        landing = list(zip(landing[0].astype(np.int64).tolist(), landing[1].tolist()))
     d0, v0 = initial_state(case, initial, scales)
     info = dict(case.as_dict(), revolutions=revolutions, tol=tol, engine=engine)
     stops = sorted({k for k, _ in landing}) if landing is not None else []
@@ -290,45 +317,55 @@ def _compiled_at_times(model, case, result, states, landing, t_req, tol, store_n
     return _at_times_result(model, case, t_req, rows, info, store_nodes, scales)
 
 
+# the most memory a chunk's states may take while the states at requested times are picked from it
+CHUNK_BYTES = 64 * 2**20
+
+
 def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progress=None,
                      chunks=20, stops=(), captured=None):
     """Run the compiled engine from (D0, V0) in a few chunks, so that progress(done_steps) can be
     shown; a case that fails stops alone.  Returns (y, iterations, status, fail_step,
     fail_residual, D, V, A) with y (B, n_steps + 1, 3) and the histories of the reduced
     displacements, velocities and accelerations (None unless keep_states).  stops: step indices
-    whose states (D, V, A), each (B, N), are put in the dict `captured` (chunks end there; the
-    marching is the same as without them)."""
+    whose states (D, V, A), each (B, N), are put in the dict `captured`: taken from the states of
+    the chunk that holds them (a chunk with stops keeps its states, and is at most CHUNK_BYTES of
+    them long), so the work grows linearly with the stops; the marching is the same as without
+    them (chunks continue from the state and history where the last one ended)."""
     B = len(batch)
     D, V, A, previous = np.array(D0, dtype=float), np.array(V0, dtype=float), None, None
     status = np.zeros(B, dtype=np.int64)
     fail_step, fail_res = np.zeros(B, dtype=np.int64), np.zeros(B)
     ys, its, hist = [], [], ([], [], [])
     size = max(1, -(-n_steps // chunks)) if progress is not None else n_steps
-    stops = sorted(k for k in set(stops) if 0 <= k <= n_steps)
-    if stops and stops[0] == 0:
+    stops = np.unique(np.asarray([k for k in stops if 0 <= k <= n_steps], dtype=np.int64))
+    if not keep_states and stops.size:
+        size = min(size, max(1, CHUNK_BYTES // (3 * 8 * B * max(1, batch.N))))
+    if stops.size and stops[0] == 0:
         first = _engine.march(batch, 0, D0=D, V0=V, tol=tol, status=status)
         A, status = first.A, first.status
         captured[0] = (D.copy(), V.copy(), A.copy())
-    done = 0
+    done, next_stop = 0, int(np.searchsorted(stops, 1))
     while done < n_steps:
         k = min(size, n_steps - done)
-        later = [s for s in stops if s > done]
-        if later:
-            k = min(k, later[0] - done)
-        res = _engine.march(batch, k, D0=D, V0=V, A0=A, step0=done, keep_history=bool(keep_states),
+        last_stop = int(np.searchsorted(stops, done + k, side="right"))
+        holds = last_stop > next_stop                          # stops in (done, done + k]
+        res = _engine.march(batch, k, D0=D, V0=V, A0=A, step0=done, keep_history=bool(keep_states or holds),
                             tol=tol, status=status, previous=previous)
         new_fail = (res.status != _engine.OK) & (status == _engine.OK)
         fail_step[new_fail], fail_res[new_fail] = res.fail_step[new_fail], res.fail_residual[new_fail]
         status = res.status
         ys.append(res.y if done == 0 else res.y[:, 1:])
         its.append(res.iterations)
+        for stop in stops[next_stop:last_stop]:
+            j = int(stop) - done
+            captured[int(stop)] = (res.D_history[:, j].copy(), res.V_history[:, j].copy(),
+                                   res.A_history[:, j].copy())
+        next_stop = last_stop
         if keep_states:
             for store, h in zip(hist, (res.D_history, res.V_history, res.A_history)):
                 store.append(h if done == 0 else h[:, 1:])
         D, V, A, previous = res.D, res.V, res.A, res.previous
         done += k
-        if done in stops:
-            captured[done] = (D.copy(), V.copy(), A.copy())
         if progress is not None:
             progress(done)
     histories = tuple(np.concatenate(h, axis=1) if keep_states else None for h in hist)
@@ -374,6 +411,9 @@ def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=Fals
     for (n, _, n_steps), idx in groups.items():
         check_run_size(n, n_steps, n_cases=len(idx), stored="states" if keep_states else "outputs",
                        names={"n_steps": "revolutions", "n_cases": "cases"})
+    for i, c in enumerate(cases):
+        dt, n_steps = run_length(c, revolutions)
+        check_crank_steps(c, dt, n_steps * dt, f"cases[{i}]: " if len(cases) > 1 else "")
     out = [None] * len(cases)
     done_total = 0
     for (n, spr, n_steps), idx in sorted(groups.items()):

@@ -313,6 +313,7 @@ def _check_resolved(case, where=""):
             f"dt* = {dt:.3g} would exceed the period 2 pi of the rod's first bending mode, and with "
             f"such steps the Floquet multipliers, hence the stability verdict, are set by the time "
             f"step instead of the mechanism; simulate() marches such slow, quasi-static runs")
+    _kinematics.check_crank_steps(case, dt, T, where)
 
 
 def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="shooting",

@@ -5,8 +5,10 @@ from dataclasses import replace
 
 import numpy as np
 
+from .. import kinematics as _kinematics
 from .. import schema
 from ..cases import run_case
+from ..parameters import check_full_turn
 from ..errors import CrankgenError, ParameterError
 from ..validation import choice, in_range, integer
 from .core import CORRECTORS, PREDICTORS, Continuer, Settings
@@ -15,9 +17,38 @@ from .mechanism import PARAMETERS, MechanismMap
 
 def make_case(mech, parameter, value, case, **fields):
     """The Case of the first point: case (if given) or mech + the run's fields and model, with
-    parameter = value."""
+    parameter = value; its time step checked against the crank motion (kinematics.check_crank_steps)."""
     choice("parameter", parameter, PARAMETERS)
-    return replace(run_case(mech, case, **fields), **{parameter: value})
+    out = replace(run_case(mech, case, **fields), **{parameter: value})
+    if out.periodic:
+        T = _kinematics.period(out)
+        _kinematics.check_crank_steps(out, T / out.steps_per_rev, T, f"{parameter} = {value:g}: ")
+    return out
+
+
+def locking_limit(case, parameter, start, stop, samples=400):
+    """(value, the guide's condition that fails) of the first value of `parameter` from start
+    towards stop at which the crank cannot turn a full revolution (the guide's margins,
+    parameters.check_full_turn), to 1e-12 of the range by bisection; None when there is none.
+    A four-bar that locks for |d| < 0.3 continued from d = -1 to 1 stops short of -0.3: this
+    names why."""
+    def fails(p):
+        try:
+            check_full_turn(dict(case.parameters(), **{parameter: float(p)}))
+            return None
+        except ParameterError as exc:
+            return str(exc)
+    values = np.linspace(start, stop, samples + 1)
+    bad = next((k for k, p in enumerate(values) if fails(p)), None)
+    if bad is None or bad == 0:
+        return None
+    lo, hi = float(values[bad - 1]), float(values[bad])
+    while abs(hi - lo) > 1e-12 * abs(stop - start):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if fails(mid) else (mid, hi)
+    why = fails(hi)
+    needs = why.split("needs ", 1)[-1].split("; got", 1)[0]
+    return hi, f"the {case.guide_record.name} guide needs {needs}"
 
 
 def _check_progress(progress):
@@ -68,6 +99,13 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
                             f"{first.status}, {first.message}")
     cont = Continuer(fmap, start, stop, settings, log=progress)
     diagram = cont.diagram(first.state / fmap.s, start, 1.0 if stop > start else -1.0)
+    lock = locking_limit(c0, parameter, start, stop)
+    if lock is not None:
+        value, why = lock
+        for br in diagram.branches:
+            if not br.stop_reason.startswith("reached"):
+                br.stop_reason += (f"; {parameter} = {value:.6g} is the locking limit: beyond it the crank "
+                                   f"cannot turn a full revolution ({why})")
     info = c0.as_dict()
     info.pop(parameter)
     info.update(parameter=parameter, start=start, stop=stop, max_period=max_period,

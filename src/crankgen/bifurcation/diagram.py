@@ -86,7 +86,8 @@ class BifurcationDiagram:
         return in_L("r", values) if schema.UNIT_PARAMETERS["r"] in values else None
 
     def to_csv(self, folder):
-        """branches.csv (one row per point; for the mechanism with deflection_over_L = eps
+        """branches.csv (one row per point, with its branch's origin and stop_reason, why the
+        branch ends; for the mechanism with deflection_over_L = eps
         amplitude and beyond_theory, crankgen.theory), special_points.csv and multipliers.csv
         (every multiplier of every point, long format) in folder; returns the paths.  A number
         that does not exist is an empty field."""
@@ -104,12 +105,13 @@ class BifurcationDiagram:
         with atomic_file(paths[0]) as fh:
             w = csv.writer(fh)
             w.writerow(["branch", "period", "point", name, "amplitude", "stable",
-                        "max_abs_multiplier", "origin"]
+                        "max_abs_multiplier", "origin", "stop_reason"]
                        + (["deflection_over_L", "beyond_theory"] if flags else []))
             for b, br in enumerate(self.branches):
                 for i in range(len(br)):
                     w.writerow([b, br.period, i, _num(br.parameter[i]), _num(br.amplitude[i]),
-                                int(br.stable[i]), _num(np.abs(br.multipliers[i]).max()), br.origin]
+                                int(br.stable[i]), _num(np.abs(br.multipliers[i]).max()), br.origin,
+                                br.stop_reason]
                                + (theory(br.parameter[i], br.amplitude[i]) if flags else []))
         with atomic_file(paths[1]) as fh:
             w = csv.writer(fh)

@@ -36,7 +36,7 @@ class MechanismMap(Map):
         choice("derivative", derivative, ("exact", "central"))
         if not case.periodic:
             raise ParameterError(f"continuation and poincare follow the crank-revolution map, which needs a "
-                                 f"crank motion periodic in the crank angle; the {case.motion!r} motion is "
+                                 f"crank motion periodic in the crank angle; the {case.motion_record.name!r} motion is "
                                  f"not (a run-up is a transient: simulate runs it)")
         if case.integrator != "newton":
             raise ParameterError(f"continuation needs integrator='newton' (the converged step map "

@@ -48,13 +48,13 @@ def _si_mechanism(path):
     """The crankgen.SIMechanism of a JSON file (UsageError naming what is wrong)."""
     import json
 
+    from ..io import read_regular
     from ..parameters import SIMechanism
     si_fields, si_required = _si_fields()
     try:
-        with open(path) as fh:
-            data = json.load(fh)
+        data = json.loads(read_regular(path))
     except OSError as exc:
-        raise UsageError(f"--si {path}: {exc.strerror or exc}") from None
+        raise UsageError(f"--si {path}: {exc.strerror or exc}; give the path of a JSON file") from None
     except ValueError as exc:
         raise UsageError(f"--si {path}: not valid JSON ({exc})") from None
     if not isinstance(data, dict):
@@ -178,7 +178,7 @@ def _simulation_columns(res, case, view):
     names = ["v_mid", "u_end", "extension"]
     if getattr(res, "states", None) is not None:
         names += [name for name, spec in schema.OUTPUTS.items()
-                  if spec.kind == "step" and case.guide in spec.guides]
+                  if spec.kind == "step" and case.guide_record.name in spec.guides]
     if view is None:
         values = [res.t, np.degrees(res.theta)] + [np.asarray(getattr(res, name), dtype=float)
                                                     for name in names]

@@ -112,6 +112,9 @@ def _cmd_continue(args):
     for s in d.special_points:
         print(f"{s.kind} on the period-{s.period} branch at {args.parameter} = {s.parameter:.7g}, "
               f"amplitude {s.amplitude:.6g}, multiplier {s.multiplier.real:.6g}{s.multiplier.imag:+.6g}j")
+    for k, b in enumerate(d.branches):
+        print(f"branch {k} (period {b.period}, {b.origin}): {len(b)} points, {args.parameter} from "
+              f"{b.parameter[0]:.6g} to {b.parameter[-1]:.6g}; ends: {b.stop_reason}")
     print(f"{len(d.branches)} branches, {sum(len(b) for b in d.branches)} points, "
           f"{len(d.special_points)} special points in {d.info['wall_time']:.1f} s; wrote "
           f"{', '.join(str(p) for p in paths)} and {png}")
