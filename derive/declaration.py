@@ -445,16 +445,53 @@ MOTIONS = motions.MOTIONS
 @dataclass(frozen=True)
 class Output(records.Output):
     """A quantity a result can give (crankgen.records.Output: name, kind, doc, units, arguments,
-    guides) with `build(options)`, its expression in the inputs it names.  kind: "engine"
-    (computed by the engine at every step: v_mid, u_end, extension), "step" (one value per stored
-    step) or "field" (per stored step at any x* in [0, 1]).  Inputs a build may use: q (the nodal
-    vector of the element holding x*), zeta (x / l in it), geo, coef, kin, params (the kinematic
-    parameters), q_end ((u, v) of the rod's end node in the moving frame), qd_end (their time
-    derivatives), s (the end map's reduced co-ordinate), pin ((F_i, F_j): the force the crank pin
-    applies to the rod, in the moving frame), end ((F_i, F_j): the force the guide applies to the
-    rod's end, with the end mass included), fiber.  guides None: every guide."""
+    guides, options, engine) with `build(options)`, its expression in the inputs it names.  kind:
+    "step" (one value per stored step), "field" (per stored step at any x* in [0, 1]) or
+    "reduction" (per stored step, the sum over the rod's elements of the element expression the
+    build gives: an integral over the rod).  Inputs a build may use: q, qd (the nodal vector of the
+    element holding x*, or of each element for a reduction, and its rate), zeta (x / l in it), geo,
+    coef, kin, the parameters' symbols, q_end ((u, v) of the rod's end node in the moving frame),
+    qd_end (their time derivatives), s (the end map's reduced co-ordinate), pin ((F_i, F_j): the
+    force the crank pin applies to the rod, in the moving frame), end ((F_i, F_j): the force the
+    guide applies to the rod's end, with the end mass included), fiber, and the engine's
+    primitives (at_point, over_rod).  options: the model options the expression depends on (its
+    kernels by their values).  engine: the engine computes it at every step (its build may use
+    q_end, the parameters and the primitives only).  guides None: every guide."""
 
     build: Callable = None
+
+
+@dataclass(frozen=True)
+class Primitive(records.Primitive):
+    """A quantity of the nodal state the engine accumulates at every step for its outputs
+    (crankgen.records.Primitive: name, kind, field, at) with its symbol in the outputs' builds and,
+    for an integral, its integrand (quadratic in the element's nodal vector q)."""
+
+    symbol: sp.Symbol = None
+    integrand: sp.Expr = None
+
+
+PRIMITIVES = {}
+
+
+def at_point(field, x):
+    """The interpolated field u, v or psi (eqs. 8-10) at x* (in the element holding it)."""
+    name = f"{field}_at_{str(sp.nsimplify(x)).replace('/', '_')}"
+    if name not in PRIMITIVES:
+        PRIMITIVES[name] = Primitive(name, "point", field=field, at=float(x), symbol=sp.Symbol(name, real=True))
+    return PRIMITIVES[name].symbol
+
+
+def over_rod(name, integrand):
+    """int_0^1 integrand dx over the rod, the integrand quadratic in the element's nodal vector q."""
+    if name not in PRIMITIVES:
+        PRIMITIVES[name] = Primitive(name, "integral", kernel=f"gram_{name}", symbol=sp.Symbol(name, real=True),
+                                     integrand=integrand)
+    return PRIMITIVES[name].symbol
+
+
+V_AT_MIDSPAN = at_point("v", sp.Rational(1, 2))
+SLOPE_SQUARED = over_rod("slope_squared", en.fields(s.q, s.q)["v_x"] ** 2)
 
 
 fiber = sp.Symbol("fiber", real=True)
@@ -519,13 +556,17 @@ def chord_deflection():
     return ((1 + q_end[0]) * f["v"] - q_end[1] * (x + f["u"])) / length
 
 
+# the options the membrane strain depends on
+MEMBRANE_OPTIONS = ("approach", "membrane")
 # N* = N L^2/EI = EA e / EI = e / eps^2 = e EA/EI;  M* = M L / EI = v_xx (L = 1).  Forces in rho A L^2
 # omega_b^2 and torques in rho A L^3 omega_b^2 are crankgen's units (rho A = L = omega_b = 1).
 FORCE, TORQUE = "rhoA L^2 omega_b^2", "rhoA L^3 omega_b^2"
 OUTPUTS = (
-    Output("v_mid", "engine", "v* = v/r at x* = 1/2 (shape-function interpolation)", "r"),
-    Output("u_end", "engine", "u*(1) = L u(L) / r^2", "r^2/L"),
-    Output("extension", "engine", "delta* = u(L)/L + (1/2) int (dv/dx)^2 dx / L, eq. (40)", "1"),
+    Output("v_mid", "step", "v* = v/r at x* = 1/2 (shape-function interpolation)", "r", engine=True,
+           build=lambda o: V_AT_MIDSPAN / eps),
+    Output("u_end", "step", "u*(1) = L u(L) / r^2", "r^2/L", engine=True, build=lambda o: q_end[0] / eps**2),
+    Output("extension", "step", "delta* = u(L)/L + (1/2) int (dv/dx)^2 dx / L, eq. (40)", "1", engine=True,
+           build=lambda o: q_end[0] + SLOPE_SQUARED / 2),
     Output("crank_speed", "step", "crank speed theta' (units of omega_b)", "omega_b", build=lambda o: s.thetad),
     Output("slider_position", "step", "X/L of the rod's end (the slider; the rocker's tip)", "L",
            build=lambda o: end_position()[0]),
@@ -562,15 +603,15 @@ OUTPUTS = (
     Output("end_force_y", "step", "Y component of the end reaction (see end_force_x)", FORCE,
            build=lambda o: _inertial(end_force)[1]),
     Output("axial_force", "field", "N* = N L^2 / EI, N = EA times the approach's membrane strain", "EI/L^2",
-           build=lambda o: membrane_strain(o) * s.EA / s.EI),
+           options=MEMBRANE_OPTIONS, build=lambda o: membrane_strain(o) * s.EA / s.EI),
     Output("bending_moment", "field", "M* = M L / EI = v_xx (M = EI v_xx)", "EI/L",
-           build=lambda o: _curvature()),
+           options=MEMBRANE_OPTIONS, build=lambda o: _curvature()),
     Output("surface_strain", "field",
            "axial strain of the fibre at distance fiber*r from the neutral axis (towards e_j), "
-           "e_m - fiber r v_xx (eq. 1 with y = fiber r)", "1",
-           build=lambda o: membrane_strain(o) - fiber * sp.sqrt(s.EI / s.EA) * _curvature(),
-           arguments=("fiber",)),
+           "e_m - fiber r v_xx (eq. 1 with y = fiber r)", "1", arguments=("fiber",), options=MEMBRANE_OPTIONS,
+           build=lambda o: membrane_strain(o) - fiber * sp.sqrt(s.EI / s.EA) * _curvature()),
     Output("chord_deflection", "field",
            "signed distance of the rod's point at x* from its chord (the line from the crank pin to "
-           "the rod's end), positive counter-clockwise", "L", build=lambda o: chord_deflection()),
+           "the rod's end), positive counter-clockwise", "L", options=MEMBRANE_OPTIONS,
+           build=lambda o: chord_deflection()),
 )

@@ -51,6 +51,7 @@ class Kernel:
     doc: str
     inputs: tuple
     outputs: tuple
+    cse: bool = True             # False: each output printed as it stands (no common subexpressions)
 
 
 def scalar(sym):
@@ -74,7 +75,6 @@ SEND = vector("send", ir.END_COORDINATES)
 ELEMENT_INPUTS = (Q, QD, QDD, GEO, COEF, KIN)
 OUTPUT_INPUT = {name: (vector(name, syms) if len(syms) > 1 else scalar(syms[0]))
                 for name, syms in ir.OUTPUT_INPUTS}
-OUTPUT_INPUT["params"] = PARAMS_BESIDE_KIN
 
 
 def _residual_outputs(r, printed_stiffness="exact"):
@@ -111,6 +111,8 @@ def output_kernels():
     kernels = {}
     for form in ir.representation().outputs:
         o = form.record
+        if o.engine:
+            continue
         inputs = tuple(OUTPUT_INPUT[name] for name in o.inputs)
         for v in form.variants:
             if v.kernel not in kernels:
@@ -150,6 +152,23 @@ def kinematics_kernels():
     return tuple(out)
 
 
+def per_step_kernels():
+    """The engine's outputs (Output.engine) from its primitives: per_step(prims, q_end, parameters),
+    every output printed as it stands (the engine's arithmetic: v / eps, u / eps**2, ...), and the
+    Gram matrix of each integral primitive."""
+    rep = ir.representation()
+    engine = [form for form in rep.outputs if form.record.engine]
+    values = sp.Matrix([form.variants[0].expr for form in engine])
+    inputs = tuple(vector(name, syms) for name, syms in ir.ENGINE_INPUTS)
+    out = [Kernel("per_step", "The outputs the engine computes at every step, in the order of the schema's "
+                  "engine outputs: " + ", ".join(form.record.name for form in engine) + ".", inputs,
+                  (Output("out", values, "the engine's outputs"),), cse=False)]
+    for g in rep.grams:
+        out.append(Kernel(g.name, "Gram matrix G of an integral over the rod: its element part is q^T G q.",
+                          (scalar(s.l),), (Output("G", g.matrix, "Gram matrix"),)))
+    return tuple(out)
+
+
 def shape_kernels():
     shapes = ir.SHAPES
     return (
@@ -172,11 +191,12 @@ MODULES = {
     "kinematics": ("Rigid kinematics: the crank motions, the guides' closures and end maps.", kinematics_kernels),
     "elements": ("Element kernels of every term family variant declared in derive/declaration.py.", element_kernels),
     "energy": ("Element energies T_i, T_s, U_i, V_i and the Kelvin-Voigt dissipation function.", energy_kernels),
-    "fields": ("The declared outputs: step quantities and fields along the rod.", output_kernels),
+    "fields": ("The declared outputs: step quantities, fields along the rod, reductions over it.", output_kernels),
+    "per_step": ("The outputs the engine computes at every step, from what it accumulates.", per_step_kernels),
     "groups": ("Element forces of the consistent model split by kind (symbolic audit).", group_kernels),
 }
 # modules whose element kernels also get the accumulating one-element variants (emit.py)
 ACCUMULATING = ("elements",)
 # modules whose kernels also get a one-element `_into` variant (the engine compiles those of
 # motion_, guide_ and end_map_)
-SCALAR = ("kinematics",)
+SCALAR = ("kinematics", "per_step")

@@ -56,6 +56,7 @@ class Schema:
     motions: tuple
     families: tuple
     outputs: tuple
+    primitives: tuple            # what the engine accumulates for its outputs (crankgen.records.Primitive)
     printed_iteration: dict
     switchable_groups: tuple
     parameter_vector: Layout     # every parameter entering an equation, one slot each (a pair: two)
@@ -217,6 +218,7 @@ def schema():
         parameters=_parameters(vector.entries), guides=tuple(_guide_record(g) for g in model.GUIDES),
         motions=tuple(_motion_record(m) for m in model.MOTIONS),
         families=tuple(_family_record(f) for f in model.FAMILIES), outputs=_outputs_records(),
+        primitives=_primitive_records(),
         printed_iteration=dict(sorted(model.PRINTED_ITERATION.items())),
         switchable_groups=s.SWITCHABLE_GROUPS, parameter_vector=vector,
         parameter_symbols=Layout("parameter symbols", tuple(sym.name for sym in parameter_symbols().values()),
@@ -295,6 +297,7 @@ class Representation:
     families: tuple              # FamilyForm
     energies: tuple              # EnergyForm
     outputs: tuple               # OutputForm
+    grams: tuple                 # GramForm, of the engine's integral primitives
 
 
 def _motions():
@@ -357,66 +360,87 @@ def _coefficients():
 
 # ---- outputs ------------------------------------------------------------------------------------------
 
+# The parameters' symbols as an output kernel's input `parameters` (the parameter vector; the crank
+# length's slot holds an unused stand-in, kin carries it)
+PARAMETERS_BESIDE_KIN = tuple(sp.Symbol(f"{sym.name}_param") if sym in s.KINEMATICS else sym
+                              for sym in parameter_symbols().values())
 # The inputs an output kernel may read, in the order of its arguments, with the symbols of each.
 OUTPUT_INPUTS = (
-    ("q", tuple(s.q)), ("zeta", (s.zeta,)), ("geo", s.GEOMETRY), ("coef", COEFFICIENT_SYMBOLS),
-    ("kin", s.KINEMATICS), ("params", tuple(x for x in KINEMATIC_SYMBOLS if x != s.a)),
+    ("q", tuple(s.q)), ("qd", tuple(s.qd)), ("zeta", (s.zeta,)), ("geo", s.GEOMETRY), ("coef", COEFFICIENT_SYMBOLS),
+    ("kin", s.KINEMATICS), ("parameters", PARAMETERS_BESIDE_KIN),
     ("q_end", tuple(model.q_end)), ("qd_end", tuple(model.qd_end)),
     ("s", (model.s_end,)), ("pin", tuple(model.pin)), ("end", tuple(model.end_force)),
     ("fiber", (model.fiber,)),
 )
-# option cases that give every field output its distinct expressions
-FIELD_OPTION_CASES = ({"approach": "A", "membrane": "pointwise"}, {"approach": "A", "membrane": "averaged"},
-                      {"approach": "C", "membrane": "pointwise"})
+# what a kind of output always reads (a field: its element and the point in it; a reduction: each element)
+KIND_INPUTS = {"field": ("q", "zeta", "geo", "coef"), "reduction": ("q", "geo"), "step": ()}
+# the engine's outputs: one kernel, per_step(prims, q_end, parameters), all of them at once
+PRIMITIVE_SYMBOLS = tuple(p.symbol for p in model.PRIMITIVES.values())
+ENGINE_INPUTS = (("prims", PRIMITIVE_SYMBOLS), ("q_end", tuple(model.q_end)),
+                 ("parameters", tuple(parameter_symbols().values())))
 
 
-def _output_inputs(expr, name):
+def _output_inputs(expr, name, inputs=OUTPUT_INPUTS):
     used = expr.free_symbols
-    inputs = [n for n, syms in OUTPUT_INPUTS if used & set(syms)]
-    known = set().union(*(set(syms) for _, syms in OUTPUT_INPUTS))
+    names = [n for n, syms in inputs if used & set(syms)]
+    known = set().union(*(set(syms) for _, syms in inputs))
     if used - known:
         raise ValueError(f"output {name}: symbols outside the output inputs: {used - known}")
-    return inputs
+    return names
 
 
-def _field_key(options):
-    if options["approach"] == "C":
+def _option_cases(names):
+    """Every combination of the choices of the options `names` ({} for none)."""
+    cases = [{}]
+    for name in names:
+        option = next(o for o in model.OPTIONS if o.name == name)
+        cases = [dict(c, **{name: v}) for c in cases for v in option.choices]
+    return cases
+
+
+def _coarse_key(options):
+    """The membrane strain's three cases: linear (approach C), pointwise or averaged."""
+    if options.get("approach") == "C":
         return "linear"
-    return "averaged" if options["membrane"] == "averaged" else "pointwise"
+    return "averaged" if options.get("membrane") == "averaged" else "pointwise"
 
 
 def _output_forms(o):
-    """(inputs, variants) of a declared output with a build."""
-    cases = FIELD_OPTION_CASES if o.kind == "field" else ({"approach": "A", "membrane": "pointwise"},)
-    exprs = {}
-    for options in cases:
-        exprs.setdefault(sp.expand(o.build(options)), []).append(options)
-    variants, inputs = [], set()
-    distinct = len(exprs) > 1
-    for expr, option_sets in exprs.items():
-        suffix = f"_{_field_key(option_sets[0])}" if distinct else ""
+    """(inputs, variants) of a declared output with a build: its expression for every combination
+    of the options it depends on, one kernel per distinct expression (named by the membrane strain's
+    case when that tells them apart, else by the option values)."""
+    if o.engine:
+        expr = sp.expand(o.build({}))
+        if o.options or o.kind != "step":
+            raise ValueError(f"output {o.name}: an engine output is a step output of no option")
+        _output_inputs(expr, o.name, ENGINE_INPUTS)
+        return (), (OutputVariant({}, "per_step", expr),)
+    groups = {}
+    for options in _option_cases(o.options):
+        groups.setdefault(sp.expand(o.build(options)), []).append(options)
+    coarse = {_coarse_key(cases[0]) for cases in groups.values()}
+    by_coarse = len(groups) > 1 and len(coarse) == len(groups) and all(
+        len({_coarse_key(c) for c in cases}) == 1 for cases in groups.values())
+    variants, inputs = [], set(KIND_INPUTS[o.kind])
+    for expr, cases in groups.items():
+        suffix = "" if len(groups) == 1 else "_" + (_coarse_key(cases[0]) if by_coarse else
+                                                     "_".join(str(v) for v in cases[0].values()))
         kernel = f"{o.kind}_{o.name}{suffix}"
-        for ap in ("A", "B", "C"):
-            for membrane in ("pointwise", "averaged"):
-                opts = {"approach": ap, "membrane": membrane}
-                if not distinct or _field_key(opts) == _field_key(option_sets[0]):
-                    variants.append(OutputVariant(dict(sorted(opts.items())), kernel, expr))
+        variants += [OutputVariant(dict(sorted(c.items())), kernel, expr) for c in cases]
         inputs.update(_output_inputs(expr, o.name))
-    if o.kind == "field":
-        inputs.update({"q", "zeta", "geo", "coef"})
     return tuple(n for n, _ in OUTPUT_INPUTS if n in inputs), tuple(variants)
 
 
 def _output_record(o, forms):
     guides = o.guides or tuple(g.name for g in model.GUIDES)
     inputs, variants = forms
-    return project(o, records.Output, guides=guides, inputs=inputs,
-                   kernels=tuple((v.when, v.kernel) for v in variants))
+    kernels = () if o.engine else tuple((v.when, v.kernel) for v in variants)
+    return project(o, records.Output, guides=guides, inputs=inputs, kernels=kernels)
 
 
 @lru_cache(maxsize=None)
 def _all_output_forms():
-    return tuple((o, _output_forms(o) if o.build is not None else ((), ())) for o in model.OUTPUTS)
+    return tuple((o, _output_forms(o)) for o in model.OUTPUTS)
 
 
 def _outputs_records():
@@ -427,11 +451,36 @@ def _outputs():
     return tuple(OutputForm(_output_record(o, forms), forms[1]) for o, forms in _all_output_forms())
 
 
+@dataclass(frozen=True)
+class GramForm:
+    name: str                    # the kernel gram_<primitive>(l)
+    matrix: sp.Matrix            # G: the element's int integrand dx = q^T G q
+
+
+def _primitive_records():
+    return tuple(project(p, records.Primitive) for p in model.PRIMITIVES.values())
+
+
+def _grams():
+    """The Gram matrix of each integral primitive: int_element integrand dx = q^T G q."""
+    out = []
+    for p in model.PRIMITIVES.values():
+        if p.kind != "integral":
+            continue
+        total = integrate_element(sp.expand(p.integrand))
+        G = sp.hessian(total, s.q) / 2
+        if G.free_symbols - {s.l} or sp.expand(total - (s.q.T * G * s.q)[0, 0]) != 0:
+            raise ValueError(f"primitive {p.name}: the integrand is not a quadratic form in q with "
+                             f"coefficients in the element length")
+        out.append(GramForm(p.kernel, G))
+    return tuple(out)
+
+
 @lru_cache(maxsize=None)
 def representation():
     """The model representation of the declaration (built once per process)."""
     return Representation(schema=schema(), coefficients=_coefficients(), motions=_motions(), guides=_guides(),
-                          families=_families(), energies=_energies(), outputs=_outputs())
+                          families=_families(), energies=_energies(), outputs=_outputs(), grams=_grams())
 
 
 # ---- the audit's group kernels (the consistent model's forces split by kind) -------------------------

@@ -22,7 +22,8 @@ from . import symbols as _symbols
 from .emit import ELEMENT_MODES, LANES, lane_rows
 from .guides import END_MAP_ROWS
 
-RECORD_CLASSES = ("Family", "Guide", "Layout", "Motion", "Option", "Output", "Parameter", "Preset", "Variant")
+RECORD_CLASSES = ("Family", "Guide", "Layout", "Motion", "Option", "Output", "Parameter", "Preset", "Primitive",
+                  "Variant")
 
 
 def _printer():
@@ -106,9 +107,12 @@ def _table_source(schema):
         f"GUIDES = {literal(schema.guides)}",
         "# term families ('rod': every element; 'end': the rod's end node) with their variants",
         f"FAMILIES = {literal(schema.families)}",
-        "# outputs: kind step or field (engine: computed by the engine), units, the guides it exists for,",
-        "# the kernels' inputs, its kernels by option values",
+        "# outputs: kind step, field or reduction (engine: computed by the engine at every step, all of them",
+        "# by the kernel per_step), units, the guides it exists for, the options it depends on, the",
+        "# kernels' inputs, its kernels by option values",
         f"OUTPUTS = {literal(schema.outputs)}",
+        "# what the engine accumulates at every step for its outputs (per_step's prims, in this order)",
+        f"PRIMITIVES = {literal(schema.primitives)}",
         "# option values under which the one-pass scheme iterates with the printed eq. (37) matrices",
         f"PRINTED_ITERATION = {schema.printed_iteration!r}",
     ]

@@ -11,7 +11,7 @@ from crankgen._generated import schema as generated
 
 TABLES = {"OPTIONS": "options", "PRESETS": "presets", "DEFAULT_PRESET": "default_preset",
           "PARAMETERS": "parameters", "GUIDES": "guides", "MOTIONS": "motions", "FAMILIES": "families",
-          "OUTPUTS": "outputs", "PRINTED_ITERATION": "printed_iteration",
+          "OUTPUTS": "outputs", "PRIMITIVES": "primitives", "PRINTED_ITERATION": "printed_iteration",
           "SWITCHABLE_GROUPS": "switchable_groups", "PARAMETER_VECTOR": "parameter_vector", "PARAMETER_SYMBOLS": "parameter_symbols",
           "KINEMATIC_PARAMETERS": "kinematic_parameters", "KINEMATICS": "kinematics",
           "COEFFICIENTS": "coefficients", "ELEMENT_DOFS": "element_dofs", "END_SLOTS": "end_slots",

@@ -117,8 +117,8 @@ def coefficients(vector, options, switched_off=()):
 def output_kernel(output, options):
     """The vectorized kernel of a declared step or field output for the options."""
     spec = OUTPUTS.get(output)
-    if spec is None or spec.kind == "engine":
-        names = ", ".join(n for n, o in OUTPUTS.items() if o.kind != "engine")
+    if spec is None or spec.engine:
+        names = ", ".join(n for n, o in OUTPUTS.items() if not o.engine)
         raise ParameterError(f"no output {output!r} with a kernel; those outputs are {names}")
     for when, kernel in spec.kernels:
         if _matches(when, options):

@@ -137,7 +137,7 @@ def plot_orbit(state, path, strain=None):
             if state.multiplier is not None and np.isfinite(state.multiplier) else "")
     if strain is None:
         strain = theory.axial_strain(state, per_step=True)
-    note = _beyond_theory(a1, state.case.eps, state.v_mid, strain)
+    note = _beyond_theory(a1, in_L(schema.OUTPUTS["v_mid"].units, state.case.parameters()), state.v_mid, strain)
     a1.set_title(f"steady state: {state.status}{mult}\n" + _title(s) + note, fontsize=9)
     return save_figure(fig, path)
 

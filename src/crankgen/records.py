@@ -13,6 +13,7 @@ generated code.
     Guide, Motion         the curve the rod's end travels on; the crank's prescribed motion
     Family, Variant       a term family of the equations of motion and its option-selected variants
     Output                a quantity a result can give, with its kernels by option values
+    Primitive             what the engine accumulates for its outputs (a field at a point, an integral)
     Layout                the entries of a vector a kernel reads (parameters, coefficients, ...)
     Spec                  a guide or motion with values of its parameters (crankgen.Line(...), ...)
 """
@@ -249,11 +250,12 @@ class Family:
 @dataclass(frozen=True)
 class Output:
     """A quantity a result can give.  kind: "step" (one value per stored step), "field" (per stored
-    step at any x* in [0, 1]) or "reduction" (a sum or integral over the rod, per stored step);
-    engine: the engine computes it at every step (v_mid, u_end, extension), for results that keep
-    no states.  units: its unit (SI views multiply by it); arguments: a field's extra arguments;
-    guides: the guides it exists for; inputs: the inputs its kernels read; kernels: ((option
-    values, kernel name), ...)."""
+    step at any x* in [0, 1]) or "reduction" (per stored step, a sum or integral over the rod: its
+    kernel gives each element's part); engine: the engine computes it at every step (v_mid, u_end,
+    extension: every result has it, with or without states; its kernel is the generated
+    `per_step`).  units: its unit (SI views multiply by it); arguments: a field's extra arguments;
+    guides: the guides it exists for; options: the model options its expression depends on;
+    inputs: the inputs its kernels read; kernels: ((option values, kernel name), ...)."""
 
     name: str
     kind: str
@@ -261,9 +263,25 @@ class Output:
     units: str
     arguments: tuple = ()
     guides: tuple = None
+    options: tuple = ()
+    engine: bool = False
     inputs: tuple = ()
     kernels: tuple = ()
-    engine: bool = False
+
+
+@dataclass(frozen=True)
+class Primitive:
+    """A quantity of the nodal state the engine accumulates at every step for the outputs it
+    computes: kind "point", the interpolated `field` (u, v or psi) at x* = `at` (the shape
+    functions of the element holding it); kind "integral", an integral over the rod of a quadratic
+    form in each element's nodal vector, sum of q^T G q with G the generated `kernel` (of the
+    element length)."""
+
+    name: str
+    kind: str
+    field: str = None
+    at: float = None
+    kernel: str = None
 
 
 @dataclass(frozen=True)
@@ -351,5 +369,5 @@ def project(obj, cls, **changes):
     return cls(**values)
 
 
-__all__ = ["Option", "Preset", "Parameter", "Guide", "Motion", "Variant", "Family", "Output", "Layout", "Spec",
-           "project"]
+__all__ = ["Option", "Preset", "Parameter", "Guide", "Motion", "Variant", "Family", "Output", "Primitive", "Layout",
+           "Spec", "project"]

@@ -19,6 +19,8 @@ DEFAULT_PRESET = _table.DEFAULT_PRESET
 GUIDES = {g.name: g for g in _table.GUIDES}
 MOTIONS = {m.name: m for m in _table.MOTIONS}
 OUTPUTS = {o.name: o for o in _table.OUTPUTS}
+ENGINE_OUTPUTS = tuple(o.name for o in _table.OUTPUTS if o.engine)   # computed by the engine at every step
+PRIMITIVES = _table.PRIMITIVES                # what the engine accumulates for them (per_step's prims)
 FAMILIES = _table.FAMILIES
 
 # the layouts of the vectors the kernels read, as tuples of entry names

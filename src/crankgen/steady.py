@@ -45,17 +45,19 @@ from . import kinematics as _kinematics
 from .cases import Case, run_case
 from .errors import ParameterError
 from .limits import check_run_size
-from .outputs import DeclaredOutputs
+from .outputs import DeclaredOutputs, engine_columns, takes_engine_outputs
 from .validation import choice, in_range, integer
 
 STATUSES = ("periodic", "not-periodic", "unstable", "failed")
 METHODS = ("shooting", "march")
 
 
+@takes_engine_outputs
 @dataclass(frozen=True)
 class SteadyState(DeclaredOutputs):
     """One steady revolution of a case (arrays over steps_per_rev + 1 points, theta from 0 to 2 pi),
-    with every declared output by name (crankgen.outputs: `slider_position`, `axial_force(x)`, ...).
+    with the engine's outputs (`outputs`, by name: v_mid, u_end, extension, each an attribute) and
+    every declared output by name (crankgen.outputs: `slider_position`, `axial_force(x)`, ...).
 
     Numbers that do not exist for a result are None (never NaN); status and message say why.
     """
@@ -72,9 +74,7 @@ class SteadyState(DeclaredOutputs):
     multiplier: Optional[float] = None  # largest |Floquet multiplier| (None: not computed, see message)
     theta: np.ndarray = field(default=None, repr=False)
     t: np.ndarray = field(default=None, repr=False)
-    v_mid: np.ndarray = field(default=None, repr=False)
-    u_end: np.ndarray = field(default=None, repr=False)
-    extension: np.ndarray = field(default=None, repr=False)
+    outputs: dict = field(default=None, repr=False)       # the engine's outputs over the revolution, by name
     state: np.ndarray = field(default=None, repr=False)   # reduced (d, v) at theta = 0, (2 N,)
     states: np.ndarray = field(default=None, repr=False)  # reduced displacements over the revolution
     rates: np.ndarray = field(default=None, repr=False)   # reduced velocities over the revolution
@@ -269,15 +269,15 @@ class _BatchSolver:
         out = []
         for i, case in enumerate(self.cases):
             if show[i] and res.status[i] == engine.OK:
-                y = res.y[i]
-                v = y[:, 0]
+                outputs = engine_columns(res.y[i])
+                v = outputs["v_mid"]
                 t = float(b.dt[i]) * np.arange(spr + 1)
                 out.append(SteadyState(
                     case, self.status[i], float(np.max(np.abs(v))), float((v.max() - v.min()) / 2),
                     int(self.periods[i]), int(self.iterations[i]), self.residual[i],
                     self.message[i], multiplier=self.multiplier[i],
-                    theta=_kinematics.case_state(case, t).theta, t=t, v_mid=v, u_end=y[:, 1],
-                    extension=y[:, 2], state=self.X[i].copy(), states=res.D_history[i],
+                    theta=_kinematics.case_state(case, t).theta, t=t, outputs=outputs,
+                    state=self.X[i].copy(), states=res.D_history[i],
                     rates=res.V_history[i], accelerations=res.A_history[i]))
             else:
                 status = self.status[i] if self.status[i] != "pending" else "failed"

@@ -23,6 +23,8 @@ from ..errors import ParameterError
 from ..validation import choice
 from .maps import Map, MapError
 
+V_MID = schema.ENGINE_OUTPUTS.index("v_mid")     # the observable: v* at x* = 1/2, in the engine's outputs
+
 # the parameters a continuation may vary: those the schema declares continuable
 PARAMETERS = schema.CONTINUABLE
 
@@ -79,7 +81,7 @@ class MechanismMap(Map):
             self._orbits.clear()
         idx = np.arange(period + 1) * self.spr
         self._orbits[(np.asarray(y, dtype=float).tobytes(), float(p), period)] = (
-            float(np.max(np.abs(r.y[0, :, 0]))), r.states[0] / self.s, r.y[0, idx, 0])
+            float(np.max(np.abs(r.y[0, :, V_MID]))), r.states[0] / self.s, r.y[0, idx, V_MID])
         return X, r
 
     def evaluate(self, y, p, period=1, dp=True):
@@ -137,7 +139,7 @@ class MechanismMap(Map):
         res = self.march(y, p, period, history=True)
         idx = np.arange(period + 1) * self.spr
         states = np.concatenate([res.D_history[0, idx], res.V_history[0, idx]], axis=1) / self.s
-        return float(np.max(np.abs(res.y[0, :, 0]))), states, res.y[0, idx, 0]
+        return float(np.max(np.abs(res.y[0, :, V_MID]))), states, res.y[0, idx, V_MID]
 
     def iterate(self, y, p, n, jacobian=False):
         res = self.march(y, p, n, history=True)
@@ -146,7 +148,7 @@ class MechanismMap(Map):
         jacs = None
         if jacobian:
             jacs = np.array([self.evaluate(states[j], p, 1, dp=False)[1] for j in range(n)])
-        return states, res.y[0, idx, 0], jacs
+        return states, res.y[0, idx, V_MID], jacs
 
     def physical(self, y):
         return np.asarray(y, dtype=float) * self.s

@@ -124,7 +124,7 @@ def _simulate(args, case, revolutions, steps, out, si=None):
     from .. import theory
 
     strain = theory.axial_strain(res, per_step=True)
-    defl = np.abs(np.asarray(res.v_mid, dtype=float)) * case.eps
+    defl = np.abs(np.asarray(res.v_mid, dtype=float)) * _in_L(res, case)
     view = None if si is None else res.si_view(si)
     columns, values = _simulation_columns(res, case, view)
     rows = (dict(zip(columns, row), deflection_over_L=d, axial_strain=st,
@@ -167,18 +167,34 @@ def _simulate(args, case, revolutions, steps, out, si=None):
     return 0
 
 
-def _simulation_columns(res, case, view):
-    """simulation.csv's columns and their per-step values: t, the crank angle (degrees, or rad with
-    --si), v_mid, u_end, extension, then every declared step output of the case's guide
-    (crankgen.outputs; scaled units, or SI with --si, each column named with its unit)."""
-    import numpy as np
+def _in_L(res, case):
+    """The unit of v_mid (the radius of gyration r) in L: |v_mid| times it is the deflection over L."""
+    from .. import schema
+    from ..units import in_L
+    return in_L(schema.OUTPUTS["v_mid"].units, case.parameters())
 
+
+def output_names(res, case):
+    """The declared outputs a result gives per step, in the schema's order: the engine's (every
+    result), then, for a result with stored states, every step and reduction output of the case's
+    guide (one list for every CSV and SI view of per-step values)."""
     from .. import schema
 
-    names = ["v_mid", "u_end", "extension"]
+    names = [name for name, spec in schema.OUTPUTS.items() if spec.engine]
     if getattr(res, "states", None) is not None:
         names += [name for name, spec in schema.OUTPUTS.items()
-                  if spec.kind == "step" and case.guide_record.name in spec.guides]
+                  if not spec.engine and spec.kind in ("step", "reduction")
+                  and case.guide_record.name in spec.guides]
+    return names
+
+
+def _simulation_columns(res, case, view):
+    """simulation.csv's columns and their per-step values: t, the crank angle (degrees, or rad with
+    --si), then every output of output_names (crankgen.outputs; scaled units, or SI with --si, each
+    column named with its unit)."""
+    import numpy as np
+
+    names = output_names(res, case)
     if view is None:
         values = [res.t, np.degrees(res.theta)] + [np.asarray(getattr(res, name), dtype=float)
                                                     for name in names]
@@ -200,7 +216,6 @@ def _theta_at(case, t):
 
 # ---- steady ------------------------------------------------------------------------------------
 STEADY_NAMES = ["steady.csv", "orbit.csv", "orbit.png"]
-ORBIT_COLUMNS = ["theta_deg", "t", "v_mid", "u_end", "extension", "deflection_over_L", "axial_strain"]
 
 
 def _resolved(case, where=""):
@@ -254,7 +269,8 @@ def _steady(args, case, out):
     st = steady_states([case], tol=args.tol, max_revolutions=args.max_revolutions,
                        method=args.method)[0]
     row = st.row()
-    defl = theory.deflection_over_L(case.eps, st.amplitude)
+    scale = _in_L(st, case)
+    defl = theory.deflection_over_L(scale, st.amplitude)
     steps = theory.axial_strain(st, per_step=True) if st.v_mid is not None else None   # per stored step
     strain = float(steps.max()) if steps is not None and steps.size else math.nan
     row.update(deflection_over_L=defl, axial_strain=strain, beyond_theory=theory.beyond(defl, strain),
@@ -263,9 +279,12 @@ def _steady(args, case, out):
         row["message"] = _failure_text(st.message, case.approach)
     out.wrote(write_csv(out.path("steady.csv"), *flat_table(list(row), [row])))
     if st.v_mid is not None:
-        rows = [dict(zip(ORBIT_COLUMNS, (np.degrees(th), t, v, u, e, theory.deflection_over_L(case.eps, v), a)))
-                for th, t, v, u, e, a in zip(st.theta, st.t, st.v_mid, st.u_end, st.extension, steps)]
-        out.wrote(write_csv(out.path("orbit.csv"), ORBIT_COLUMNS, rows))
+        names = output_names(st, case)
+        columns = ["theta_deg", "t"] + names + ["deflection_over_L", "axial_strain"]
+        values = [np.degrees(st.theta), st.t] + [np.asarray(getattr(st, n), dtype=float) for n in names]
+        rows = [dict(zip(columns, (*row, theory.deflection_over_L(scale, row[2 + names.index("v_mid")]), a)))
+                for *row, a in zip(*values, steps)]
+        out.wrote(write_csv(out.path("orbit.csv"), columns, rows))
         out.wrote(plot_orbit(st, out.path("orbit.png"), strain=steps))
     else:                                    # no orbit: leave no orbit of an earlier run beside it
         for name in ("orbit.csv", "orbit.png"):
