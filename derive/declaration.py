@@ -159,8 +159,10 @@ PARAMETERS = (
               "paper's eqs. (34)-(39)", owner="run", choices=("newton", "full-newton", "one-pass")),
 )
 
-# The crank's (nominal) speed: simulate's `omega` argument, the default continued parameter.
+# The crank's (nominal) speed: simulate's `omega` argument, the default continued parameter; the
+# crank's angle at t = 0 (where a frozen mechanism is frozen).
 CRANK_SPEED = "omega"
+CRANK_ANGLE = "theta0"
 # The units that are parameters: the radius of gyration r = eps L (outputs in units of r, e.g. v*).
 UNIT_PARAMETERS = {"r": "eps"}
 

@@ -67,13 +67,14 @@ class Guide(records.Guide):
     beta: sp.Expr = None
     margin: tuple = ()
     end_scale: sp.Expr = None
+    pivot: sp.Matrix = None      # the ground pivot of a link carrying the end (a rocker), if any
 
 
 def line():
     sin_phi = s.a * sp.sin(s.theta) - s.e
     phi = sp.asin(sin_phi)
     return Guide(
-        "line", "Line", ("offset",), "straight guide Y = e: a slider (the end mass ms) on the line",
+        "line", "Line", ("offset",), "straight guide Y = e: a slider (the end mass ms) on the line", label="slider",
         curve=sp.Matrix([s.beta, s.e]), step=sp.Matrix([sp_s, 0]), phi=phi,
         beta=s.a * sp.cos(s.theta) + sp.sqrt(1 - sin_phi**2),
         margin=((1 - s.a - sp.Abs(s.e), "a* + |offset| < 1 (the rod must reach the guide Y = offset at "
@@ -94,7 +95,7 @@ def circle():
         "circle", "Circle", ("offset", "c", "d", "branch"),
         "circle of radius c about D = (d, e): a rigid massless rocker DB carrying the end mass ms "
         "(a four-bar linkage with a flexible coupler)",
-        aliases=(("center", ("d", "offset")), ("radius", ("c",))),
+        aliases=(("center", ("d", "offset")), ("radius", ("c",))), label="four-bar",
         curve=D + s.c * sp.Matrix([sp.cos(s.beta), sp.sin(s.beta)]),
         step=2 * s.c * sp.sin(sp_s / 2) * sp.Matrix([-sp.sin(s.beta + sp_s / 2), sp.cos(s.beta + sp_s / 2)]),
         phi=sp.atan2(-chord[1], chord[0]), beta=sp.atan2(end[1] - s.e, end[0] - s.d),
@@ -102,7 +103,7 @@ def circle():
                                                          "reach each other when the crank pin is nearest D)"),
                 (1 + s.c - ground - s.a, "|D| + a* < 1 + c (they reach each other when the crank points "
                                          "away from D)")),
-        end_scale=s.eps**2 / s.c)
+        end_scale=s.eps**2 / s.c, pivot=D)
 
 
 GUIDES = (line(), circle())

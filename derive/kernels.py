@@ -149,6 +149,7 @@ def kinematics_kernels():
                           (Output("m", form.margins, "margins"),)))
         out.append(Kernel(f"end_scale_{g.name}", "Natural size of the end map's reduced co-ordinate.",
                           (scalar(s.eps), PARAMS), (Output("scale", sp.Matrix([form.end_scale]), "scale"),)))
+
     return tuple(out)
 
 
@@ -166,6 +167,22 @@ def per_step_kernels():
     for g in rep.grams:
         out.append(Kernel(g.name, "Gram matrix G of an integral over the rod: its element part is q^T G q.",
                           (scalar(s.l),), (Output("G", g.matrix, "Gram matrix"),)))
+    return tuple(out)
+
+
+def geometry_kernels():
+    """The mechanism's geometry for figures: the crank pin, each guide's curve C(beta) and the pivot
+    of a link carrying the end."""
+    from .guides import PIN
+    out = [Kernel("crank_pin", "(X, Y) of the crank pin A = a (cos theta, sin theta).", (KIN,),
+                  (Output("X", PIN, "crank pin"),))]
+    for form in ir.representation().guides:
+        g = form.record
+        out.append(Kernel(f"curve_{g.name}", f"(X, Y) of the {g.name} guide's curve C(beta).",
+                          (scalar(s.beta), PARAMS), (Output("X", form.curve, "point of the curve"),)))
+        if form.pivot is not None:
+            out.append(Kernel(f"pivot_{g.name}", "(X, Y) of the ground pivot of the link carrying the end.",
+                              (PARAMS,), (Output("X", form.pivot, "pivot"),)))
     return tuple(out)
 
 
@@ -193,6 +210,7 @@ MODULES = {
     "energy": ("Element energies T_i, T_s, U_i, V_i and the Kelvin-Voigt dissipation function.", energy_kernels),
     "fields": ("The declared outputs: step quantities, fields along the rod, reductions over it.", output_kernels),
     "per_step": ("The outputs the engine computes at every step, from what it accumulates.", per_step_kernels),
+    "geometry": ("The guides' geometry, for figures: their curves and the pivots of links.", geometry_kernels),
     "groups": ("Element forces of the consistent model split by kind (symbolic audit).", group_kernels),
 }
 # modules whose element kernels also get the accumulating one-element variants (emit.py)

@@ -61,6 +61,7 @@ def _wrap(z):
 
 def constant():
     return Motion("constant", "Constant", ("omega", "theta0"), "constant crank speed Omega*: theta = theta0 + Omega* t",
+                  label="constant crank speed",
                   theta=theta0 + s.omega * s.t, thetad=s.omega, thetadd=sp.Integer(0),
                   period=2 * sp.pi / s.omega, step_period=2 * sp.pi / s.omega)
 
@@ -79,7 +80,7 @@ def runup():
     return Motion("runup", "RunUp", ("omega0", "omega", "ramp", "theta0"),
                   "run-up: the crank speed rises smoothly (quintic smooth step in time) from Omega0 "
                   "to Omega* over `ramp` revolutions, then stays at Omega*",
-                  (("start", ("omega0",)), ("stop", ("omega",)), ("revolutions", ("ramp",))),
+                  (("start", ("omega0",)), ("stop", ("omega",)), ("revolutions", ("ramp",))), transient="ramp", label="run-up",
                   theta=theta, thetad=thetad, thetadd=thetadd, period=None,
                   step_period=4 * sp.pi / (s.omega0 + s.omega + sp.Abs(s.omega - s.omega0)))   # 2 pi / max
 
@@ -100,7 +101,7 @@ def fluctuation():
     period = 2 * sp.pi / (m * s.omega)
     return Motion("fluctuation", "Fluctuation", ("omega", "fluctuation", "order", "theta0"),
                   "cyclic speed fluctuation: thetad = Omega* (1 + k sin(j theta)), |k| < 1, j a positive "
-                  "integer", (("amplitude", ("fluctuation",)),),
+                  "integer", (("amplitude", ("fluctuation",)),), label="fluctuating crank speed",
                   theta=theta, thetad=thetad, thetadd=thetadd, period=period, step_period=period)
 
 

@@ -66,6 +66,7 @@ class Schema:
     coefficients: Layout         # the element kernels' coefficient vector coef
     indicators: tuple            # ((symbol, option, value), ...) usable in the coefficients' formulas
     crank_speed: str             # the crank's (nominal) speed parameter
+    crank_angle: str             # the crank's angle at t = 0
     unit_parameters: dict        # {unit: the parameter giving its value in L}
     element_dofs: int
     end_slots: tuple
@@ -167,7 +168,8 @@ def _parameters(vector):
 
 def _guide_record(g):
     closure = "closed-form" if g.phi is not None else "numerical"
-    return project(g, records.Guide, margins=tuple(text for _, text in g.margin), closure=closure)
+    return project(g, records.Guide, margins=tuple(text for _, text in g.margin), closure=closure,
+                   pivot=g.pivot is not None)
 
 
 def _motion_record(m):
@@ -225,7 +227,8 @@ def schema():
                                  "the symbol of each slot of the parameter vector in the derivation"),
         kinematic_parameters=kinematic,
         kinematics=kin, coefficients=coefficients, indicators=_indicators(),
-        crank_speed=_parameter_name(model.CRANK_SPEED), unit_parameters=_unit_parameters(),
+        crank_speed=_parameter_name(model.CRANK_SPEED), crank_angle=_parameter_name(model.CRANK_ANGLE),
+        unit_parameters=_unit_parameters(),
         element_dofs=ELEMENT_DOFS, end_slots=END_SLOTS)
 
 
@@ -253,6 +256,8 @@ class GuideForm:
     rigid_end: sp.Matrix         # (X, Y) of the rigid end point in kin and the parameters
     margins: sp.Matrix           # each > 0 iff the crank turns a full revolution
     end_scale: sp.Expr           # natural size of the reduced co-ordinate s, in eps and the parameters
+    curve: sp.Matrix             # C(beta), the guide's curve
+    pivot: sp.Matrix             # the ground pivot of the link carrying the end, or None
 
 
 @dataclass(frozen=True)
@@ -317,7 +322,7 @@ def _guides():
     for g in model.GUIDES:
         margins = sp.Matrix([m for m, _ in g.margin])
         out.append(GuideForm(_guide_record(g), gd.kinematics(g), gd.end_map(g), gd.rigid_end(g), margins,
-                             g.end_scale))
+                             g.end_scale, g.curve, g.pivot))
         assert all(names.get(sym, "?") in g.parameters + ("a",) for sym in margins.free_symbols), g.name
     return tuple(out)
 

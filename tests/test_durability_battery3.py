@@ -101,6 +101,14 @@ def test_a_crank_motion_stepped_too_coarsely_is_refused_in_every_analysis():
     kinematics.check_crank_steps(resolved, kinematics.period(resolved) / asked)        # accepted
 
 
+def test_the_command_line_refuses_a_coarse_crank_step_before_anything(tmp_path, capsys):
+    rc = main(["simulate", "--crank", "fluctuation", "--fluctuation", "0.999", "--omega", "0.5",
+               "--steps-per-rev", "40", "--elements", "2", "--out", str(tmp_path / "o")])
+    captured = capsys.readouterr()
+    assert rc == 2 and captured.out == "" and len(captured.err.strip().splitlines()) == 1
+    assert "use steps_per_rev >= " in captured.err and not (tmp_path / "o").exists()
+
+
 @pytest.mark.parametrize("revolutions", [5, None])
 def test_a_run_down_asked_for_more_revolutions_than_the_crank_turns_is_refused(revolutions):
     """A run-down to rest over 2 revolutions (main: OverflowError traceback; 10 by default)."""

@@ -24,7 +24,10 @@ STUDIES = ("experiments", "audit")
 HOMONYMS = {("bifurcation/diagram.py", "branch"): "a branch of periodic orbits of a continuation (a CSV column), "
                                                    "not the four-bar's closure",
             ("parameters.py", "a"): "the SI crank length in metres, a field of SIMechanism (its a* = a / L is "
-                                    "the parameter)"}
+                                    "the parameter)",
+            ("animation.py", "branch"): "a branch of periodic orbits of a continuation",
+            ("campbell_diagram.py", "order"): "a crank order (k Omega) of a Campbell diagram (a CSV column)",
+            ("sections.py", "circle"): "a circular cross-section of the rod"}
 
 
 def forbidden():

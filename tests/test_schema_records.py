@@ -15,7 +15,7 @@ TABLES = {"OPTIONS": "options", "PRESETS": "presets", "DEFAULT_PRESET": "default
           "SWITCHABLE_GROUPS": "switchable_groups", "PARAMETER_VECTOR": "parameter_vector", "PARAMETER_SYMBOLS": "parameter_symbols",
           "KINEMATIC_PARAMETERS": "kinematic_parameters", "KINEMATICS": "kinematics",
           "COEFFICIENTS": "coefficients", "ELEMENT_DOFS": "element_dofs", "END_SLOTS": "end_slots",
-          "CRANK_SPEED": "crank_speed", "UNIT_PARAMETERS": "unit_parameters"}
+          "CRANK_SPEED": "crank_speed", "CRANK_ANGLE": "crank_angle", "UNIT_PARAMETERS": "unit_parameters"}
 
 
 def test_the_generated_schema_holds_the_declarations_records():

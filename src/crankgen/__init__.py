@@ -7,7 +7,7 @@ line) starts at once; the compiled engine and numba are imported only by what ne
 from importlib import import_module
 
 from ._generated import classes as _classes
-from .errors import ConvergenceError, CrankgenError, ParameterError
+from .errors import ConvergenceError, CrankgenError, NoResultError, ParameterError
 from .provenance import VERSION as __version__  # noqa: F401
 
 # public name -> module that defines it
@@ -20,6 +20,8 @@ _LAZY = {
     "SweepTable": "sweeps", "sweep": "sweeps", "CheckpointError": "sweeps",
     "BifurcationDiagram": "bifurcation", "PoincareDiagram": "bifurcation",
     "continuation": "bifurcation", "poincare": "bifurcation",
+    "Modes": "vibration", "modes": "vibration", "campbell": "campbell_diagram", "CampbellDiagram": "campbell_diagram",
+    "animate": "animation", "Section": "sections", "stress": "stresses", "peak_loads": "stresses", "StressHistory": "stresses",
 }
 # the record class of each guide and crank motion (crankgen.Line, ...: generated/classes.py)
 _RECORDS = tuple(cls.__name__ for cls in _classes.GUIDE_CLASSES + _classes.MOTION_CLASSES)
@@ -27,11 +29,18 @@ _RECORDS = tuple(cls.__name__ for cls in _classes.GUIDE_CLASSES + _classes.MOTIO
 _CHOICE_NAMES = {"FORMULATIONS": "formulation", "APPROACHES": "approach", "DAMPING_MODELS": "damping",
                  "MEMBRANE_OPTIONS": "membrane"}
 
-__all__ = ["ConvergenceError", "CrankgenError", "ParameterError"] + list(_LAZY) + list(_RECORDS) + list(_CHOICE_NAMES)
+__all__ = (["ConvergenceError", "CrankgenError", "NoResultError", "ParameterError"] + list(_LAZY) + list(_RECORDS)
+           + list(_CHOICE_NAMES) + ["sections"])
+
+
+# public modules, loaded on first use too: crankgen.sections.rectangle(b, h), ...
+_MODULES = ("sections",)
 
 
 def __getattr__(name):
-    if name in _LAZY:
+    if name in _MODULES:
+        value = import_module(f".{name}", __name__)
+    elif name in _LAZY:
         value = getattr(import_module(f".{_LAZY[name]}", __name__), name)
     elif name in _RECORDS:
         value = getattr(_classes, name)

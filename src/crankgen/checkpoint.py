@@ -28,8 +28,9 @@ this sweep.
 Why JSON Lines and not SQLite.  The checkpoint's faults found so far (a file deleted while a sweep
 runs, a second opener repairing a torn line another sweep was writing, locking) were about who
 may open the file and whether it is still the same file, which SQLite does not settle either: it
-serializes two writers instead of refusing the second (the sidecar lock would stay), and a
-database deleted while open keeps taking writes into the unlinked file (the identity check would
+makes a second writer wait for the first's transaction and then interleaves their batches instead
+of refusing it (the sidecar lock would stay), and a database deleted while open keeps taking
+writes into the unlinked file (SQLite 3.40.1 in WAL mode, checked; the identity check would
 stay).  What SQLite would remove is the torn-line repair, a dozen lines here: one writer appends
 whole batches with one write and one fsync, so only the last line can tear, and it is dropped.
 Against that, SQLite's write-ahead log (WAL) does not work on network file systems, where sweeps

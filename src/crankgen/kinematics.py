@@ -51,6 +51,17 @@ def case_state(case, t):
     return _state(getattr(_kinematics, f"guide_{case.guide_record.name}")(crank, params))
 
 
+def frozen_state(case, theta):
+    """Kinematics of a case's guide with the crank at angle(s) theta turning at the constant speed
+    of the case's crank speed parameter (thetadd = 0): the mechanism frozen at those angles
+    (crankgen.modes)."""
+    theta = np.asarray(theta, dtype=float)
+    speed = float(getattr(case, schema.CRANK_SPEED))
+    crank = np.stack(np.broadcast_arrays(theta, speed, 0.0), axis=-1)
+    params = np.broadcast_to(case.kinematic_parameters, theta.shape + (len(schema.KINEMATIC_PARAMETERS),))
+    return _state(getattr(_kinematics, f"guide_{case.guide_record.name}")(crank, params))
+
+
 def _finite_time(case, value):
     if not (np.isfinite(value) and value > 0):
         speed = schema.PARAMETERS[schema.CRANK_SPEED]
@@ -150,7 +161,7 @@ def rigid_end(case, kin):
 # drives the rod, too coarsely to be a result; they are refused, naming the steps_per_rev needed.
 MAX_TURN_PER_STEP = np.pi / 2
 MAX_SPEED_CHANGE_PER_STEP = 0.25         # of the motion's top speed
-_SAMPLES = 4096
+_SAMPLES = 1024
 
 
 def crank_step_extremes(case, t_end):

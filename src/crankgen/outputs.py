@@ -294,6 +294,12 @@ class DeclaredOutputs:
     def slider_position(self):
         return self.quantity("slider_position")
 
+    def animate(self, path, **options):
+        """Write the deforming mechanism's motion to path (.gif, or .mp4 with ffmpeg): see
+        crankgen.animation.animate for the options (magnification, frames, fps, title)."""
+        from .animation import animate
+        return animate(self, path, **options)
+
     def __getattr__(self, name):
         spec = schema.OUTPUTS.get(name)
         if spec is not None and spec.engine:

@@ -142,7 +142,9 @@ class MechanismRules:
         """(Mechanism, Omega*) from SI quantities.
 
         L, a in m; E in Pa; rho in kg/m^3; A in m^2; I in m^4; slider_mass in kg; crank_speed in
-        rad/s; damping mu in s (eq. 24: C = mu K).
+        rad/s; damping mu in s: the time constant of the model's damping (Kelvin-Voigt strain-rate
+        damping D = (mu/2) int [EA (de/dt)^2 + EI (dv_xx/dt)^2] dx in the default model; eq. 24,
+        C = mu (K_lin + K_non), with damping="paper").
         """
         si = SIMechanism(L=L, a=a, E=E, rho=rho, A=A, I=I, slider_mass=slider_mass,
                          crank_speed=crank_speed, damping=damping)

@@ -203,12 +203,16 @@ class Guide:
     aliases: tuple = ()
     margins: tuple = ()
     closure: str = "closed-form"
+    label: str = None            # how titles name the mechanism it makes (a slider, a four-bar)
+    pivot: bool = False          # a link from a ground pivot carries the end (a rocker; kernel pivot_<name>)
 
 
 @dataclass(frozen=True)
 class Motion:
     """A prescribed crank motion.  title: the class name of its record (crankgen.Constant, ...);
-    parameters: those it reads; periodic: periodic in the crank angle (a period, steady states)."""
+    parameters: those it reads; periodic: periodic in the crank angle (a period, steady states);
+    transient: the parameter that is the number of revolutions over which its speed changes before
+    it settles (a run-up's ramp; None: none)."""
 
     name: str
     title: str
@@ -216,6 +220,8 @@ class Motion:
     doc: str
     aliases: tuple = ()
     periodic: bool = True
+    transient: str = None
+    label: str = None            # how titles name it        # the parameter giving the revolutions over which its speed changes
 
 
 @dataclass(frozen=True)

@@ -39,6 +39,7 @@ LANES, LANE_SIZE = _table.LANES, _table.LANE_SIZE       # an element kernel's la
 LANE_ROWS = _table.LANE_ROWS                            # its buffer's size and the first row of each block
 
 CRANK_SPEED = _table.CRANK_SPEED             # the crank's (nominal) speed parameter
+CRANK_ANGLE = _table.CRANK_ANGLE             # the crank's angle at t = 0
 UNIT_PARAMETERS = _table.UNIT_PARAMETERS      # {unit: the parameter giving its value in L}
 # the choice parameters that select the guide and the crank motion: {"guide": name, "motion": name}
 SELECTOR = {p.selects: p.name for p in PARAMETERS.values() if p.selects}
@@ -92,28 +93,27 @@ def parameter_vector(values):
 
 
 def describe(values, skip=()):
-    """A case's parameters as text, from their records: (main, other), two lists of "name = value".
+    """A case's parameters as text, from their records: (main, other), two lists of "axis = value".
     main: the mechanism's real parameters and the continuable parameters of the crank motion;
-    other: the guide or motion when not the default one, with every parameter it reads, and any
-    other parameter entering an equation that is not at its default (gravity, an offset, a start
-    angle).  The run's settings (mesh, steps, integrator) are left to the caller; `skip`: names
-    left out."""
-    guide, motion = selected(values, "guide"), selected(values, "motion")
-    chosen = {"guide": guide, "motion": motion}
-    main, other = [], []
+    other: the guide or motion when not the default one, named by its record's label with every
+    parameter it reads ("four-bar: rocker length c/L = 0.8, ..."), and any other parameter entering
+    an equation that is not at its default (gravity, an offset, a start angle).  The run's settings
+    (mesh, steps, integrator) are left to the caller; `skip`: names left out."""
+    chosen = {"guide": selected(values, "guide"), "motion": selected(values, "motion")}
+    records = {"guide": GUIDES[chosen["guide"]], "motion": MOTIONS[chosen["motion"]]}
+    main, other, groups = [], [], {"guide": [], "motion": []}
     for p in PARAMETERS.values():
-        if p.name in skip or not p.read_by(guide, motion):
+        if p.name in skip or p.selects or not p.read_by(chosen["guide"], chosen["motion"]):
             continue
         value = p.canonical(values.get(p.name, p.default))        # a pair from JSON: a list
-        item = f"{p.name} = {p.text(value)}"
-        selector_default = PARAMETERS[SELECTOR[p.owner]].default if p.owner in SELECTOR else None
+        item = f"{p.axis} = {p.text(value)}"
         if (p.owner == "mechanism" and p.kind == "real") or (p.owner == "motion" and p.continuable):
             main.append(item)
-        elif p.selects:
-            if value != p.default:
-                other.append(item)
-        elif p.owner in SELECTOR and chosen[p.owner] != selector_default:
-            other.append(item)
+        elif p.owner in groups and chosen[p.owner] != PARAMETERS[SELECTOR[p.owner]].default:
+            groups[p.owner].append(item)
         elif p.slots and value != p.default:
             other.append(item)
+    for kind, items in groups.items():
+        if chosen[kind] != PARAMETERS[SELECTOR[kind]].default:
+            other.append(f"{records[kind].label or records[kind].name}" + (": " + ", ".join(items) if items else ""))
     return main, other

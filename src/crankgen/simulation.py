@@ -371,6 +371,18 @@ def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progr
                 store.append(h if done == 0 else h[:, 1:])
         D, V, A, previous = res.D, res.V, res.A, res.previous
         done += k
+        if not np.any(status == _engine.OK):
+            # every case has stopped: the rest would be NaN rows (what the engine writes for a
+            # case that does not advance), and progress must not count steps never computed
+            if progress is not None:
+                progress(int(np.max(fail_step)) - 1)
+            rest = n_steps - done
+            ys.append(np.full((B, rest, 3), np.nan))
+            its.append(np.zeros((B, rest), dtype=its[-1].dtype))
+            if keep_states:
+                for store in hist:
+                    store.append(np.full(store[-1].shape[:1] + (rest,) + store[-1].shape[2:], np.nan))
+            break
         if progress is not None:
             progress(done)
     histories = tuple(np.concatenate(h, axis=1) if keep_states else None for h in hist)

@@ -8,8 +8,8 @@ import numpy as np
 from .. import kinematics as _kinematics
 from .. import schema
 from ..cases import run_case
+from ..errors import NoResultError, ParameterError
 from ..parameters import check_full_turn
-from ..errors import CrankgenError, ParameterError
 from ..validation import choice, in_range, integer
 from .core import CORRECTORS, PREDICTORS, Continuer, Settings
 from .mechanism import PARAMETERS, MechanismMap
@@ -19,7 +19,13 @@ def make_case(mech, parameter, value, case, **fields):
     """The Case of the first point: case (if given) or mech + the run's fields and model, with
     parameter = value; its time step checked against the crank motion (kinematics.check_crank_steps)."""
     choice("parameter", parameter, PARAMETERS)
-    out = replace(run_case(mech, case, **fields), **{parameter: value})
+    base = run_case(mech, case, **fields)
+    p = schema.PARAMETERS[parameter]
+    if not p.read_by(base.guide, base.motion):
+        current = base.guide if p.owner == "guide" else base.motion
+        raise ParameterError(f"cannot vary {p.label}: it belongs to the "
+                             f"{' and '.join(p.readers)} {p.owner}; this case's {p.owner} is {current!r}")
+    out = replace(base, **{parameter: value})
     if out.periodic:
         T = _kinematics.period(out)
         _kinematics.check_crank_steps(out, T / out.steps_per_rev, T, f"{parameter} = {value:g}: ")
@@ -60,13 +66,18 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
                  ds_min=1e-4, ds_max=100.0, dp_max=None, max_points=400, tol=1e-9, switch_step=0.05,
                  case=None, progress=None, corrector="broyden", predictor="quadratic", derivative="exact",
                  **fields):
-    """Follow the periodic response of the mechanism as `parameter` (omega, eps, ms, mu, a or offset) goes
-    from start to stop, by pseudo-arclength continuation of the fixed points of the crank-revolution
-    map, and return a BifurcationDiagram: branches (period, parameter, amplitude = max |v*(1/2)|
-    over the orbit, stable, Floquet multipliers, states) and special points (fold, period-doubling,
+    """Follow the periodic response of the mechanism as `parameter` goes from start to stop, by
+    pseudo-arclength continuation of the fixed points of the crank-revolution map, and return a
+    BifurcationDiagram: branches (period, parameter, amplitude = max |v*(1/2)| over the orbit,
+    stable, Floquet multipliers, states) and special points (fold, period-doubling,
     neimark-sacker), with the period-2 (then 4, ... up to max_period) branches born at period
-    doublings.  The case as in steady_state (a Mechanism with the run's fields and model=, or
-    case=Case(...)); the value of `parameter` given among them is replaced by start.  Steps ds, ds_min, ds_max are arclengths in the metric
+    doublings.  parameter: any continuable parameter of the schema (crankgen.schema.CONTINUABLE):
+    omega, eps, ms, mu, a, offset, a four-bar's rocker length c and ground pivot abscissa d
+    (guide=crankgen.Circle(...)), and a fluctuating crank's amplitude fluctuation
+    (crank=crankgen.Fluctuation(...)).  The case as in steady_state (a Mechanism with the run's
+    fields and model=, or case=Case(...)); the value of `parameter` given among them is replaced
+    by start.  The start must have a periodic response (NoResultError otherwise; a continuation
+    can start from either end of its range).  Steps ds, ds_min, ds_max are arclengths in the metric
     |dy|^2 / dim + dp^2, y the state in v*-like units; no step changes the parameter by more than
     dp_max (default |stop - start| / 50).  progress(text) receives progress lines.
     corrector ("broyden" or "newton"), predictor ("quadratic" or "tangent") and derivative
@@ -95,8 +106,10 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
     from ..steady import steady_states
     first = steady_states([c0])[0]
     if first.state is None:
-        raise CrankgenError(f"no periodic response to start from at {parameter} = {start:g}: "
-                            f"{first.status}, {first.message}")
+        other = ("; a continuation can start from the other end of the range (swap its start and "
+                 f"stop: from {stop:g} to {start:g})" if first.status != "failed" else "")
+        raise NoResultError(f"no periodic response to start from at {parameter} = {start:g}: "
+                            f"{first.status}, {first.message}{other}")
     cont = Continuer(fmap, start, stop, settings, log=progress)
     diagram = cont.diagram(first.state / fmap.s, start, 1.0 if stop > start else -1.0)
     lock = locking_limit(c0, parameter, start, stop)

@@ -49,7 +49,7 @@ import numpy as np
 from ._blas import single_thread
 from .diagram import BifurcationDiagram, Branch, SpecialPoint
 from .maps import MapError
-from ..errors import CrankgenError, ParameterError
+from ..errors import CrankgenError, NoResultError, ParameterError
 
 KINDS = ("fold", "period-doubling", "neimark-sacker")
 CORRECTORS = ("broyden", "newton")
@@ -397,7 +397,7 @@ class Continuer:
         try:
             return self._finish(self.correct(np.append(x0, p0), e_p, period), period)
         except _Failed as exc:
-            raise CrankgenError(f"no periodic orbit of period {period} found near the starting "
+            raise NoResultError(f"no periodic orbit of period {period} found near the starting "
                                 f"state at {self.map.parameter} = {p0:g}: {exc}") from None
 
     def branch(self, start, t0, period, merge=None):

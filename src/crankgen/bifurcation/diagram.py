@@ -23,14 +23,18 @@ def axis(parameter):
 
 
 def describe(info, what, parameter):
-    """A title from a diagram's info (the model and settings it was computed for)."""
+    """A two-line title from a diagram's info (the model and settings it was computed for): what
+    and the parameter varied, the model; then every fixed parameter that sets the response (the
+    crank speed, eps, ms*, mu*, a*) and the linkage (a four-bar's rocker and ground pivot, a
+    guide offset, gravity, a fluctuating crank), the varied parameter left out."""
     if not info:
         return f"{what} in {parameter}"
     parts = [f"approach {info['approach']}" if "approach" in info else None,
              " / ".join(str(info[k]) for k in ("formulation", "damping", "membrane") if k in info) or None,
              f"n = {info['n_elements']}" if "n_elements" in info else None]
     main, other = schema.describe({k: v for k, v in info.items() if k in schema.PARAMETERS}, skip=(parameter,))
-    return f"{what} in {parameter}: " + ", ".join(p for p in parts if p) + "\n" + ", ".join(main + other)
+    head = f"{what} in {axis(parameter)}: " + ", ".join(p for p in parts if p)
+    return head + "\n" + ", ".join(main + other)
 
 
 def _num(x):

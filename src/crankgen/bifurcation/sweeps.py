@@ -20,6 +20,7 @@ import csv
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Optional
 
 import numpy as np
 
@@ -40,8 +41,10 @@ class PoincarePoint:
     parameter: float
     classification: str            # "period-k", "quasi-periodic", "irregular", "unsettled", "failed"
     period: int                    # k of "period-k", else 0
-    repeat_residual: float         # scaled max |x_{j+k} - x_j| for that k (smallest over k otherwise)
-    lyapunov: float                # largest Lyapunov exponent per application (nan when periodic)
+    repeat_residual: Optional[float]   # scaled max |x_{j+k} - x_j| for that k (smallest over k
+    #                                    otherwise); None when the march failed
+    lyapunov: Optional[float]      # largest Lyapunov exponent per application; None when periodic
+    #                                (not computed) or failed
     distinct: int                  # distinct sampled values
     samples: np.ndarray = field(repr=False)   # the observable once per application
     message: str = ""
@@ -83,7 +86,8 @@ class PoincareDiagram:
         legend sits below the axes."""
         from matplotlib.lines import Line2D
 
-        from ..plotting import fit_panels, panels, place_labels
+        from ..plotting import beyond_patch, fit_panels, panels, place_labels, shade_beyond
+        from ..theory import DEFLECTION_LIMIT
         from .diagram import LABELS, PERIOD_COLORS, axis, describe
 
         fig, axes = panels(1, 1, width=7.5, height=4.2)
@@ -136,7 +140,17 @@ class PoincareDiagram:
                 for sp in sorted(diagram.special_points, key=lambda s: s.parameter)])
             handles.append(Line2D([], [], color="grey", lw=0.6, ls=":",
                                   label="dotted: special points of the continuation"))
-        mech = schema.UNIT_PARAMETERS["r"] in dict(self.info, **{self.parameter_name: 0.0})
+        r_unit = schema.UNIT_PARAMETERS["r"]          # v* is in units of r: the slenderness gives it in L
+        mech = r_unit in self.info or self.parameter_name == r_unit
+        # the range beyond the theory, |v|/L > 0.1, shaded as in every other figure (over a sweep
+        # of the slenderness the limit changes along the axis: drawn for its largest value, the
+        # smallest band)
+        eps = (self.info.get(r_unit) if self.parameter_name != r_unit
+               else max((q.parameter for q in self.points), default=None))
+        samples = [abs(float(v)) for q in self.points for v in q.samples if np.isfinite(v)]
+        if mech and eps and samples and max(samples) * eps > DEFLECTION_LIMIT:
+            shade_beyond(ax, DEFLECTION_LIMIT / eps, "0.88")
+            handles.append(beyond_patch("0.88"))
         ax.set_xlabel(xlabel or axis(self.parameter_name))
         ax.set_ylabel(ylabel or ("v*(1/2) at theta = 0, once per revolution" if mech
                                  else "observable, once per application of the map"))
@@ -231,7 +245,7 @@ def _sweep(fmap, passes, x0, transient, samples, max_period, tol, lyapunov_tol, 
                         break
                     states, smp, _ = fmap.iterate(states[-1], p, samples)
                     k, r = _classify(states, tol, max_period)
-                lyap = math.nan
+                lyap = None
                 if k:
                     cls = f"period-{k}"
                 else:
@@ -239,10 +253,11 @@ def _sweep(fmap, passes, x0, transient, samples, max_period, tol, lyapunov_tol, 
                     lyap = _lyapunov(jacs)
                     cls = ("irregular" if lyap > lyapunov_tol else
                            "quasi-periodic" if lyap >= -lyapunov_tol else "unsettled")
-                points.append(PoincarePoint(d, p, cls, k, r, lyap, _distinct(smp[1:]), smp[1:]))
+                points.append(PoincarePoint(d, p, cls, k, r if math.isfinite(r) else None, lyap,
+                                            _distinct(smp[1:]), smp[1:]))
                 x, p_last = states[-1], p
             except (MapError, CrankgenError) as exc:
-                points.append(PoincarePoint(d, p, "failed", 0, math.nan, math.nan, 0,
+                points.append(PoincarePoint(d, p, "failed", 0, None, None, 0,
                                             np.zeros(0), str(exc)))
             done += 1
             if progress is not None:

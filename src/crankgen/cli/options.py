@@ -85,12 +85,14 @@ def _add_mechanism_options(p, grid=False):
         _add_parameter(g, schema.PARAMETERS[name], grid)
 
 
-def _add_model_options(p, grid=False, integrator=True):
-    g = p.add_argument_group("crank motion, model and integration"
-                             + (" (lists allowed: A,B or 8,16)" if grid else ""))
+def _add_model_options(p, grid=False, integrator=True, run=None, title=None):
+    """The run's parameters (run: the names to offer; default all, the integrator only when
+    `integrator`), --model and the options' flags."""
+    g = p.add_argument_group(title or ("crank motion, model and integration"
+                                       + (" (lists allowed: A,B or 8,16)" if grid else "")))
     many = " (a list of them allowed)" if grid else ""
     for name in schema.RUN_PARAMETERS:
-        if name == "integrator" and not integrator:
+        if (name == "integrator" and not integrator) or (run is not None and name not in run):
             continue
         _add_parameter(g, schema.PARAMETERS[name], grid)
     g.add_argument("--model", type=_choices("model", tuple(schema.PRESETS), grid), default=None,

@@ -10,6 +10,7 @@ import os
 import sys
 from pathlib import Path
 
+from .. import schema
 from ..errors import ConvergenceError
 from ..limits import check_run_size
 from .options import CASE_FIELDS, UsageError, _Outputs, _case, _describe, _explicit, _flag, _say
@@ -88,22 +89,48 @@ def _cmd_simulate(args):
 
     si = None if args.si is None else _si_mechanism(args.si)
     case = _case(args) if si is None else _si_case(args, si)    # validates every parameter ...
+    section = _section(args, si)
     revolutions = in_range("revolutions", args.revolutions, 0, None, True)
     in_range("tol", args.tol, 0, None, True)
+    from ..kinematics import check_crank_steps
     from ..simulation import run_length
 
-    steps = run_length(case, revolutions)[1]
+    dt, steps = run_length(case, revolutions)
+    check_crank_steps(case, dt, steps * dt)
     check_run_size(case.n_elements, steps, stored="nodes" if args.nodes else "states",
                    names={"n_steps": "--revolutions", "n_elements": "--elements"})
     names = ["simulation.csv", "v_mid.png"] + (["nodes.csv"] if args.nodes else [])
     out = _Outputs(args.out, names, args.force)             # ... and the output folder, first
     try:
-        return _simulate(args, case, revolutions, steps, out, si)
+        return _simulate(args, case, revolutions, steps, out, si, section)
     finally:
         out.abandon()
 
 
-def _simulate(args, case, revolutions, steps, out, si=None):
+def _section(args, si):
+    """The --section of the command line, checked against the SI rod (None: not given)."""
+    if getattr(args, "section", None) is None:
+        return None
+    from ..sections import parse
+    from ..stresses import check_section
+    section = parse(args.section)
+    check_section(section, si)
+    return section
+
+
+def _loads_and_stress(result, section, si):
+    """The summary lines of the peak loads and the outer-fibre stresses of a result."""
+    from ..stresses import peak_loads, stress
+    from ..units import scales_of
+    scales = None if si is None else scales_of(si)
+    loads = "; ".join(f"{p.name} {p.value:.4g} {p.units} (t{'' if scales else '*'} = {p.t:.4g}"
+                      f"{' s' if scales else ''}, crank angle {math.degrees(p.theta) % 360:.1f} deg)"
+                      for p in peak_loads(result, scales))
+    return [f"peak loads: {loads}", stress(result, section, si=si).summary()
+            + ("" if si is not None else " (units of E: the fibre's strain)")]
+
+
+def _simulate(args, case, revolutions, steps, out, si=None, section=None):
     import numpy as np
 
     from ..io import write_csv
@@ -112,6 +139,12 @@ def _simulate(args, case, revolutions, steps, out, si=None):
     from ..simulation import simulate
 
     _say(args, f"simulate: {_describe(case)}, {revolutions:g} revolutions ({steps} steps)")
+    transient = case.motion_record.transient
+    if transient and revolutions < getattr(case, transient):
+        ramp, speed = getattr(case, transient), schema.PARAMETERS[schema.CRANK_SPEED]
+        _say(args, f"simulate: note: the run ends after {revolutions:g} revolutions, before the ramp of "
+                   f"{ramp:g} revolutions completes (the crank does not reach {speed.axis} = "
+                   f"{getattr(case, speed.name):g}); --revolutions {ramp:g} or more runs the whole ramp")
     failure = None
     with Progress("simulate", steps, enabled=not args.quiet) as progress:
         try:
@@ -143,17 +176,27 @@ def _simulate(args, case, revolutions, steps, out, si=None):
         n = nodes.shape[1] // 3
         # node i at x* = i / n: u, v (along and across the rigid rod; units of L, or m with --si)
         # and the slope psi = dv/dx (rad)
+        # then every node's inertial position X, Y (crankgen.animation.inertial_nodes)
+        from ..animation import inertial_nodes
         length, time = ("L", "t") if view is None else ("m", "t_s")
         node_columns = [time, columns[1]] + [f"{q}{i}_{unit}" for i in range(n)
                                              for q, unit in (("u", length), ("v", length),
                                                              ("psi", "rad"))]
-        node_rows = (dict(zip(node_columns, (t, th, *row)))                          # streamed
-                     for t, th, row in zip(values[0], values[1], nodes))
+        node_columns += [f"{q}{i}_{length}" for i in range(n) for q in ("X", "Y")]
+        where = inertial_nodes(res).reshape(len(res.t), -1) * (1.0 if view is None else view.scales.L)
+        node_rows = (dict(zip(node_columns, (t, th, *row, *xy)))                     # streamed
+                     for t, th, row, xy in zip(values[0], values[1], nodes, where))
         out.wrote(write_csv(out.path("nodes.csv"), node_columns, node_rows))
-    # a run-up is drawn against the crank speed it passes (its resonances), other runs against time
-    against = "crank_speed" if not case.periodic and getattr(res, "states", None) is not None else "t"
-    out.wrote(plot_deflection(res, out.path("v_mid.png"), failure=failure, si=view, against=against,
-                              strain=strain))
+    # a motion whose speed changes over its first revolutions (a run-up) is drawn against the crank
+    # speed it passes (its resonances) and against the revolutions, other runs against time
+    transient = case.motion_record.transient
+    if transient and getattr(res, "states", None) is not None:
+        from ..kinematics import time_of_revolutions
+        from ..plotting import plot_runup
+        out.wrote(plot_runup(res, out.path("v_mid.png"), time_of_revolutions(case, getattr(case, transient)),
+                             failure=failure, si=view, strain=strain))
+    else:
+        out.wrote(plot_deflection(res, out.path("v_mid.png"), failure=failure, si=view, strain=strain))
     note = _theory_note(float(np.max(defl)) if len(defl) else math.nan,
                         float(np.max(strain)) if len(strain) else math.nan)
     if failure is not None:
@@ -164,6 +207,8 @@ def _simulate(args, case, revolutions, steps, out, si=None):
     last = (res.v_mid if view is None else view.v_mid)[-case.steps_per_rev:]
     print(f"wrote {', '.join(str(p) for p in out.written)}; max |v{'*' if view is None else ''}| "
           f"over the last revolution {np.max(np.abs(last)):.6g}{'' if view is None else ' m'}{note}")
+    if section is not None:
+        print("\n".join(_loads_and_stress(res, section, si)))
     return 0
 
 
@@ -219,8 +264,18 @@ STEADY_NAMES = ["steady.csv", "orbit.csv", "orbit.png"]
 
 
 def _resolved(case, where=""):
-    """Steady states need Omega* * steps_per_rev >= 1 (crankgen.steady_states refuses coarser
-    steps); checked here, before any output or progress line, and said in one line."""
+    """Steady states need a crank motion periodic in the crank angle, a turning crank and
+    Omega* * steps_per_rev >= 1 (crankgen.steady_states refuses coarser steps); checked here,
+    before any output or progress line, and said in one line."""
+    if not case.periodic:
+        raise UsageError(
+            f"{where}a steady state needs a crank motion periodic in the crank angle; --crank "
+            f"{case.motion} is not (a run-up is a transient: `crankgen simulate` runs it)")
+    if case.omega == 0:
+        raise UsageError(
+            f"{where}a steady state needs a turning crank: --omega 0 is a crank at rest, which has no "
+            "revolution to repeat; give --omega > 0 (`crankgen modes --omega 0` gives the natural "
+            "frequencies of the mechanism at rest)")
     if case.omega * case.steps_per_rev < 1.0:
         raise UsageError(
             f"{where}a steady state at --omega {case.omega:g} needs --steps-per-rev >= "
@@ -233,6 +288,7 @@ def _cmd_steady(args):
     from ..validation import in_range, integer
 
     case = _case(args)
+    section = _section(args, None)
     in_range("tol", args.tol, 0, None, True)
     integer("max_revolutions", args.max_revolutions, 1)
     check_run_size(case.n_elements, case.steps_per_rev, stored="steady",
@@ -240,7 +296,7 @@ def _cmd_steady(args):
     _resolved(case)
     out = _Outputs(args.out, STEADY_NAMES, args.force)
     try:
-        return _steady(args, case, out)
+        return _steady(args, case, out, section)
     finally:
         out.abandon()
 
@@ -256,7 +312,7 @@ def _method_text(args, case):
             f"per revolution{why}")
 
 
-def _steady(args, case, out):
+def _steady(args, case, out, section=None):
     import numpy as np
 
     from .. import theory
@@ -297,6 +353,8 @@ def _steady(args, case, out):
           f"{num(st.multiplier, '{:.4f}')}; {st.iterations} shooting iterations, {st.periods} "
           f"revolutions marched, residual {num(st.residual, '{:.2e}')}"
           + (f"; {row['message']}" if row["message"] else "") + _theory_note(defl, strain))
+    if section is not None and st.states is not None:
+        print("\n".join(_loads_and_stress(st, section, None)))
     print(f"wrote {', '.join(str(p) for p in out.written)}")
     if st.status == "failed":
         print(f"crankgen steady: run failed: {row['message']}", file=sys.stderr)

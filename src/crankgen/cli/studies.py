@@ -2,6 +2,7 @@
 
 import sys
 
+from .. import schema
 from .options import UsageError, _Outputs, _add_model_options, _explicit, _model_options, _say
 
 
@@ -50,19 +51,47 @@ def _cmd_audit(args):
 def _add_branch_model_options(p):
     """Model options of continue and poincare (the continued parameter's own option is ignored)."""
     g = _add_model_options(p, integrator=False)
-    g.title = "model (the option of the continued parameter is replaced by its range)"
-    from .. import schema
-    g.add_argument("--parameter", choices=schema.CONTINUABLE, default=schema.CRANK_SPEED,
-                   help=f"the parameter varied (default {schema.CRANK_SPEED})")
+    g.title = "model (the continued parameter takes its values from --from and --to)"
+    g.add_argument("--parameter", choices=schema.CONTINUABLE + tuple(PARAMETER_FLAGS), default=schema.CRANK_SPEED,
+                   metavar="{" + ",".join(schema.CONTINUABLE) + "}",
+                   help=f"the parameter varied (default {schema.CRANK_SPEED}); a parameter whose flag has "
+                        "another name is also accepted by its flag's name (" + ", ".join(
+                            f"{flag} for {name}" for flag, name in PARAMETER_FLAGS.items()) + ")")
     g.add_argument("--from", dest="start", type=float, required=True, help="first value of the parameter")
     g.add_argument("--to", dest="stop", type=float, required=True, help="last value of the parameter")
 
 
+# the continuable parameters whose flag has another name (--rocker for c, --ground for d): accepted
+# by --parameter under either name
+PARAMETER_FLAGS = {p.cli: name for name, p in schema.PARAMETERS.items()
+                   if p.continuable and p.cli != name}
+
+
+def _parameter(args):
+    """The continued parameter's name (c for --parameter rocker, d for ground)."""
+    return PARAMETER_FLAGS.get(args.parameter, args.parameter)
+
+
 def _branch_model(args):
-    """The case of the first point, checked (the continued parameter set to the range's start)."""
+    """The case of the first point, checked (the continued parameter set to the range's start).
+    Refused: the continued parameter also given by its own flag (its values are --from/--to), and
+    a parameter the case's guide or crank motion does not read."""
     from ..cases import make_case
 
+    args.parameter = _parameter(args)
     fields = _explicit(args)
+    p = schema.PARAMETERS[args.parameter]
+    if args.parameter in fields:
+        raise UsageError(f"--{p.cli} is the parameter varied (--parameter {args.parameter}): its values "
+                         "are --from and --to; leave out --" + p.cli)
+    guide = fields.get("guide", schema.PARAMETERS["guide"].default)
+    motion = fields.get("motion", schema.PARAMETERS["motion"].default)
+    if not p.read_by(guide, motion):
+        owner = "--guide" if p.owner == "guide" else "--crank"
+        current = guide if p.owner == "guide" else motion
+        raise UsageError(f"--parameter {args.parameter} ({p.label.split('(', 1)[-1].rstrip(')')}) belongs "
+                         f"to the {' and '.join(p.readers)} {p.owner} ({owner} {' or '.join(p.readers)}); "
+                         f"this case's {p.owner} is {current}")
     fields[args.parameter] = args.start
     return make_case(model=args.model, **fields)
 
@@ -78,13 +107,16 @@ def _checked_branch_model(args, continuation, values=()):
 
     start, stop = in_range("--from", args.start), in_range("--to", args.stop)
     case = _branch_model(args)
+    speed = args.parameter == schema.CRANK_SPEED
+    if speed and min(start, stop) <= 0:
+        raise UsageError(f"--parameter {args.parameter}: the range must stay above 0 (a crank at rest has no "
+                         f"revolution to follow), got --from {start:g} --to {stop:g}")
     for value in (start, stop, *values):
         make_case(None, args.parameter, value, case)
     if continuation:
         if start == stop:
             raise UsageError(f"--from and --to must differ for a continuation, got {start:g} twice")
         integer("--max-period", args.max_period, 1)
-        speed = args.parameter == schema.CRANK_SPEED
         first = min(start, stop) if speed else start
         _resolved(make_case(None, args.parameter, first, case),
                   "the continuation starts from a steady state: " if speed else "")
@@ -121,18 +153,15 @@ def _cmd_continue(args):
     return 0
 
 
-def _axis(name):
-    """The axis text of a continued parameter (its record's label and units)."""
-    from .. import schema
-    return schema.PARAMETERS[name].axis
+def _axis(parameter):
+    from ..bifurcation.diagram import axis
+    return axis(parameter)
 
 
 def _title(args, what):
-    from .. import schema
+    from ..bifurcation.diagram import describe
     c = _branch_model(args)
-    main, other = schema.describe(c.parameters(), skip=(args.parameter,))
-    return (f"{what} in {args.parameter}: approach {c.approach}, {c.formulation} / {c.damping} damping, "
-            f"{c.membrane} membrane, n = {c.n_elements}\n" + ", ".join(main + other))
+    return describe(c.as_dict(), what, args.parameter)
 
 
 def _cmd_poincare(args):

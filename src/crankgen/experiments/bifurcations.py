@@ -125,10 +125,15 @@ def _beyond(ctx, mech, m, n, spr, edge, label):
         return out
     for q in pc.points:
         out["points"].append(dict(omega=float(q.parameter), classification=q.classification,
-                                  period=int(q.period), repeat_residual=float(q.repeat_residual),
-                                  lyapunov=float(q.lyapunov), distinct=int(q.distinct),
+                                  period=int(q.period), repeat_residual=_float(q.repeat_residual),
+                                  lyapunov=_float(q.lyapunov), distinct=int(q.distinct),
                                   message=q.message))
     return out
+
+
+def _float(x):
+    """A number, or NaN for one that does not exist (None), as the recorded data hold it."""
+    return math.nan if x is None else float(x)
 
 
 def stability_segments(branch, specials=()):
