@@ -173,7 +173,8 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
     out.wrote(write_csv(out.path("simulation.csv"), columns, rows))
     if args.nodes and res.nodes is not None:
         nodes = res.nodes if view is None else view.nodes
-        n = nodes.shape[1] // 3
+        from ..mesh import NODE_DOFS
+        n = nodes.shape[1] // NODE_DOFS
         # node i at x* = i / n: u, v (along and across the rigid rod; units of L, or m with --si)
         # and the slope psi = dv/dx (rad)
         # then every node's inertial position X, Y (crankgen.animation.inertial_nodes)
