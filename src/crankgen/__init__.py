@@ -19,7 +19,7 @@ _LAZY = {
     "SteadyState": "steady", "steady_state": "steady", "steady_states": "steady",
     "SweepTable": "sweeps", "sweep": "sweeps", "CheckpointError": "sweeps",
     "BifurcationDiagram": "bifurcation", "PoincareDiagram": "bifurcation",
-    "continuation": "bifurcation", "poincare": "bifurcation",
+    "continuation": "bifurcation", "poincare": "bifurcation", "follow": "bifurcation", "Curve": "bifurcation",
     "Modes": "vibration", "modes": "vibration", "campbell": "campbell_diagram", "CampbellDiagram": "campbell_diagram",
     "animate": "animation", "Section": "sections", "stress": "stresses", "peak_loads": "stresses", "StressHistory": "stresses",
 }

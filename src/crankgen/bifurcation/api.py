@@ -119,6 +119,8 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
             if not br.stop_reason.startswith("reached"):
                 br.stop_reason += (f"; {parameter} = {value:.6g} is the locking limit: beyond it the crank "
                                    f"cannot turn a full revolution ({why})")
+    for sp in diagram.special_points:
+        sp.case = fmap.case_at(sp.parameter)
     info = c0.as_dict()
     info.pop(parameter)
     info.update(parameter=parameter, start=start, stop=stop, max_period=max_period,

@@ -518,7 +518,8 @@ class Continuer:
                 specials.append(SpecialPoint(
                     kind=kind, parameter=sp.p, amplitude=float(sp.amplitude), period=period,
                     branch=index, multiplier=self.critical(kind, sp),
-                    state=self.map.physical(sp.x)))
+                    state=self.map.physical(sp.x), multipliers=np.array(sp.mu),
+                    parameter_name=self.map.parameter, range=(self.lo, self.hi)))
                 if kind == "period-doubling" and 2 * period <= self.s.max_period:
                     pt, t_e, h = self.switch(sp, period)
                     if pt is None:

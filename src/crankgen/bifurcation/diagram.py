@@ -74,6 +74,10 @@ class SpecialPoint:
     branch: int                    # index into diagram.branches
     multiplier: complex            # the critical multiplier (+1, -1, on the unit circle)
     state: np.ndarray = field(default=None, repr=False)
+    multipliers: np.ndarray = field(default=None, repr=False)   # all of them (of P^period)
+    parameter_name: str = ""       # the parameter continued
+    case: object = field(default=None, repr=False)   # the mechanism's Case at the point (crankgen.follow)
+    range: tuple = None            # the continuation's range of the parameter
 
 
 @dataclass
