@@ -271,16 +271,18 @@ def _resolved(case, where=""):
     if not case.periodic:
         raise UsageError(
             f"{where}a steady state needs a crank motion periodic in the crank angle; --crank "
-            f"{case.motion} is not (a run-up is a transient: `crankgen simulate` runs it)")
-    if case.omega == 0:
+            f"{case.motion_record.name} is not (a transient: `crankgen simulate` runs it)")
+    speed = schema.PARAMETERS[schema.CRANK_SPEED]
+    omega = getattr(case, speed.name)
+    if omega == 0:
         raise UsageError(
-            f"{where}a steady state needs a turning crank: --omega 0 is a crank at rest, which has no "
-            "revolution to repeat; give --omega > 0 (`crankgen modes --omega 0` gives the natural "
-            "frequencies of the mechanism at rest)")
-    if case.omega * case.steps_per_rev < 1.0:
+            f"{where}a steady state needs a turning crank: --{speed.cli} 0 is a crank at rest, which has "
+            f"no revolution to repeat; give --{speed.cli} > 0 (`crankgen modes --{speed.cli} 0` gives the "
+            "natural frequencies of the mechanism at rest)")
+    if omega * case.steps_per_rev < 1.0:
         raise UsageError(
-            f"{where}a steady state at --omega {case.omega:g} needs --steps-per-rev >= "
-            f"{math.ceil(1 / case.omega)} (got {case.steps_per_rev}): a time step longer than the "
+            f"{where}a steady state at --{speed.cli} {omega:g} needs --steps-per-rev >= "
+            f"{math.ceil(1 / omega)} (got {case.steps_per_rev}): a time step longer than the "
             "rod's first bending period would make the stability verdict depend on the step; "
             "`crankgen simulate` marches such slow runs")
 
