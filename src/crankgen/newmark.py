@@ -40,7 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import kinematics as _kinematics
-from . import newton, time_scheme
+from . import newton, schema, time_scheme
 from .errors import ConvergenceError
 from .newton import ESTIMATE_FRACTION, HISTORY, REFRESH_RATE, SCHEMES  # noqa: F401  (re-exported)
 from .validation import choice, in_range, integer
@@ -126,7 +126,7 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
     generalized = settings.generalized
     am, af = settings.alpha_m, settings.alpha_f
     ratio = (1.0 - af) / (1.0 - am)
-    scales = model.mesh.dof_scales(model.mechanism.eps, _kinematics.end_scale(model.case))
+    scales = model.mesh.dof_scales(schema.natural_sizes(model.case.parameters()), _kinematics.end_scale(model.case))
     scheme = SCHEMES.index(settings.scheme)
     secant = scheme == newton.ONE_PASS and model.selection.printed_iteration
     one_pass = scheme == newton.ONE_PASS

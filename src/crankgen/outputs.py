@@ -28,7 +28,7 @@ from . import kinematics as _kinematics
 from ._generated import per_step as _per_step
 from ._generated.shape import shape_functions
 from .errors import ParameterError
-from .mesh import Mesh
+from .mesh import MAPPED, NODE_DOFS, U, V, Mesh
 from .validation import finite_number, in_range
 
 NODE_TOLERANCE = 1e-12      # x* closer than this (relative to an element) to a node is at the node
@@ -73,8 +73,8 @@ def engine_outputs(mesh, q, parameters):
         prims[..., k] = q[..., e, :] @ weights
     for k, G in grams:
         prims[..., k] = np.einsum("...ei,ij,...ej->...", q, G, q)
-    end = q[..., -1, list(schema.END_SLOTS)]
-    return _per_step.per_step(prims, end, parameters)
+    e, slots, _ = mesh.holders()[0]
+    return _per_step.per_step(prims, q[..., e, list(slots)], parameters)
 
 
 def deflection_at(mesh, q, x):
@@ -129,6 +129,7 @@ class StateHistory:
         self.mesh = Mesh(case.n_elements)
         self._kin = None
         self._pin_end = None
+        self._constraints = tuple(c.name for c in schema.CONSTRAINTS)
 
     def kinematics(self):
         if self._kin is None:
@@ -142,9 +143,9 @@ class StateHistory:
         S = self.mesh.slider_dof
         E = _kinematics.end_map(self.case, self.kinematics().vector, self.states[:, S],
                                 0.0 if rates is None else rates[:, S])
-        iu, iv = schema.END_SLOTS
-        q[..., -1, iu] = E[..., schema.END_MAP_ROWS[row], 0]
-        q[..., -1, iv] = E[..., schema.END_MAP_ROWS[row], 1]
+        for e, slots, _ in self.mesh.holders():
+            for a, slot in enumerate(slots):
+                q[..., e, slot] = E[..., schema.END_MAP_ROWS[row], a]
         return q
 
     def element_vectors(self):
@@ -164,9 +165,9 @@ class StateHistory:
         if self.rates is None or self.accelerations is None:
             raise ParameterError("the reactions need the stored velocities and accelerations, which "
                                  "this result does not hold")
-        if self._pin_end is None:            # torque, pin and end forces all read them
+        if self._pin_end is None:            # torque and every joint force read them
             from .model import Model
-            self._pin_end = Model(self.case).reactions(self.t, self.states, self.rates, self.accelerations)
+            self._pin_end = Model(self.case).joint_forces(self.t, self.states, self.rates, self.accelerations)
         return self._pin_end
 
     def _inputs(self, spec):
@@ -182,15 +183,16 @@ class StateHistory:
                 out[name] = self.kinematics().vector
             elif name == "parameters":
                 out[name] = self.case.parameter_vector
-            elif name == "q_end":
-                out[name] = self.element_vectors()[:, -1, list(schema.END_SLOTS)]
-            elif name == "qd_end":
-                self._need_rates(spec.name)
-                out[name] = self.element_rates()[:, -1, list(schema.END_SLOTS)]
+            elif name in ("q_end", "qd_end"):      # the mapped node's eliminated components
+                e, slots, _ = self.mesh.holders()[0]
+                values = self.element_vectors() if name == "q_end" else self.element_rates()
+                out[name] = values[:, e, list(slots)]
             elif name == "s":
                 out[name] = self.states[:, self.mesh.slider_dof]
-            elif name in ("pin", "end", "rod_end"):
-                out["pin"], out["end"], out["rod_end"] = self._reactions()
+            elif name in self._constraints:          # the force a constraint applies (pin, end)
+                out.update(zip(self._constraints, self._reactions()[0]))
+            elif name == "rod_end":                  # the force the end mass applies to the rod at B
+                out[name] = dict(zip(self._constraints, self._reactions()[1]))[MAPPED.name]
         return out
 
     def _call(self, kernel, spec, values, element=None, extra=()):
@@ -388,8 +390,8 @@ class SIView:
         if nodes is None:
             return None
         out = np.array(nodes, dtype=float)
-        out[..., 0::3] *= self.scales.L
-        out[..., 1::3] *= self.scales.L
+        for comp in (U, V):                      # u and v in m (psi, a slope, is dimensionless)
+            out[..., comp::NODE_DOFS] *= self.scales.L
         return out
 
     @property

@@ -94,11 +94,11 @@ class Curve:
             return self.values[name]
         if name == "critical":
             return self._critical()
-        if name == "deflection_over_L":
-            r = schema.UNIT_PARAMETERS["r"]          # the slenderness: the amplitude's unit r in L
+        if name == "deflection_over_L":         # v* is in units of r: the slenderness gives it in L
+            r = schema.UNIT_PARAMETERS["r"]
             eps = self.values[r] if r in self.values else self.info.get(r)
             if eps is None:
-                raise KeyError("deflection_over_L needs the mechanism's eps (this curve has none)")
+                raise KeyError(f"deflection_over_L needs the mechanism's {r} (this curve has none)")
             return np.abs(np.asarray(eps, dtype=float) * self.values["amplitude"])
         raise KeyError(f"{name!r}: a curve has {', '.join(list(self.values) + ['critical'])}")
 

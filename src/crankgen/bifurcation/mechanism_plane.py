@@ -21,7 +21,7 @@ import numpy as np
 from .. import engine
 from ..errors import ParameterError
 from .maps import MapError
-from .mechanism import PARAMETERS, orbit_peak
+from .mechanism import PARAMETERS, V_MID, orbit_peak
 from .plane_maps import PlaneMap
 
 
@@ -38,7 +38,7 @@ class MechanismPlaneMap(PlaneMap):
             raise ParameterError(f"the two parameters must differ, got {names[0]!r} twice")
         if not case.periodic:
             raise ParameterError(f"a two-parameter continuation follows the crank-revolution map, which "
-                                 f"needs a crank motion periodic in the crank angle; the {case.motion!r} "
+                                 f"needs a crank motion periodic in the crank angle; the {case.motion_record.name!r} "
                                  f"motion is not")
         if case.integrator != "newton":
             raise ParameterError(f"a two-parameter continuation needs integrator='newton', got "
@@ -112,7 +112,7 @@ class MechanismPlaneMap(PlaneMap):
             if len(self._orbits) > 32:
                 self._orbits.clear()
             self._orbits[(y.tobytes(), p.tobytes(), period)] = (
-                orbit_peak(r.y[b, :, 0]), r.states[b] / self.s, r.y[b, idx, 0])
+                orbit_peak(r.y[b, :, V_MID]), r.states[b] / self.s, r.y[b, idx, V_MID])
             out.append((r.X1[b] / self.s, jy, jp))
         return out
 
@@ -140,7 +140,7 @@ class MechanismPlaneMap(PlaneMap):
             raise MapError(f"march at {self._where(p)} failed: {engine.STATUS_TEXT[int(res.status[0])]}")
         idx = np.arange(period + 1) * self.spr
         states = engine.join_state(res, self.generalized, idx) / self.s
-        return orbit_peak(res.y[0, :, 0]), states, res.y[0, idx, 0]
+        return orbit_peak(res.y[0, :, V_MID]), states, res.y[0, idx, V_MID]
 
     def multipliers(self, jx):
         """By decreasing modulus; for generalized-alpha the 2N largest (its map on (d, v, a) has N
