@@ -2,8 +2,8 @@
 plane of two parameters, and its regions named in words.
 
 1. Lines: a continuation in x (crankgen.continuation, period-doubling branches up to max_period) at
-   `lines` values of y, the centres of equal bands of [y_lo, y_hi] (from the other end of the x
-   range where the first has no periodic start).
+   `lines` values of y, the centres of equal bands of [y_lo, y_hi], over the x range widened by
+   `margin` on both sides (from the other end where the first has no periodic start).
 2. Curves: every special point the lines found that lies on no curve found before (of its kind and
    period, within a hundredth of the box) is followed in y (crankgen.follow) inside the box.
 3. Regions (regions.py): the curves cut the box into pieces, each named by the verdict of the
@@ -66,7 +66,8 @@ def _near(curve, point, xn, yn, box):
 
 
 def stability_chart(mech=None, x=("omega", 0.2, 1.6), y=("eps", 0.005, 0.05), *, model=None, lines=6,
-                    max_lines=10, max_period=2, case=None, progress=None, follow_settings=None, **fields):
+                    max_lines=10, max_period=2, margin=0.25, case=None, progress=None, follow_settings=None,
+                    **fields):
     """The stability chart of the mechanism in the plane of x = (parameter, low, high) and y = (...),
     two continuable parameters (crankgen.schema.CONTINUABLE): a StabilityChart with its curves
     (crankgen.Curve), the regions named in words, the codimension-two points, the lines of
@@ -74,6 +75,9 @@ def stability_chart(mech=None, x=("omega", 0.2, 1.6), y=("eps", 0.005, 0.05), *,
     as in continuation (a Mechanism with the run's fields and model=, or case=); lines: the first
     lines of constant y; max_lines: with the lines added for pieces no line crosses;
     max_period: the period-doubling branches followed (and the periods the regions count);
+    margin: the lines run beyond the box by this share of its width on each side (halfway to a
+    bound of the parameter at most), so that a branch folding back just outside still shows its
+    stable orbits inside;
     follow_settings: keywords for crankgen.follow (ds, dq_max, max_points, tol);
     progress(text) receives progress lines."""
     if progress is not None and not callable(progress):
@@ -83,6 +87,7 @@ def stability_chart(mech=None, x=("omega", 0.2, 1.6), y=("eps", 0.005, 0.05), *,
     if xn == yn:
         raise ParameterError(f"x and y must be two different parameters, got {xn!r} twice")
     lines = integer("lines", lines, 1)
+    margin = in_range("margin", margin, 0, None)
     max_lines = max(integer("max_lines", max_lines, 1), lines)
     max_period = integer("max_period", max_period, 1)
     follow_settings = dict(follow_settings or {})
@@ -97,11 +102,18 @@ def stability_chart(mech=None, x=("omega", 0.2, 1.6), y=("eps", 0.005, 0.05), *,
     eps_of = (lambda level: (lambda xv: level)) if yn == "eps" else (
         (lambda level: (lambda xv: xv)) if xn == "eps" else (lambda level: (lambda xv: base.eps)))
 
+    record = schema.PARAMETERS[xn]
+    ext_lo, ext_hi = x_lo - margin * (x_hi - x_lo), x_hi + margin * (x_hi - x_lo)
+    if record.low is not None:
+        ext_lo = max(ext_lo, 0.5 * (record.low + x_lo))
+    if record.high is not None:
+        ext_hi = min(ext_hi, 0.5 * (record.high + x_hi))
+
     def add_line(level):
         c = replace(base, **{yn: float(level)})
         log(f"line {len(chart_lines) + 1}: continuation in {xn} at {yn} = {level:.6g}")
         line = None
-        for start, stop in ((x_lo, x_hi), (x_hi, x_lo)):
+        for start, stop in ((ext_lo, ext_hi), (ext_hi, ext_lo)):
             try:
                 d = continuation(None, xn, start, stop, case=c, max_period=max_period,
                                  progress=lambda text: log(f"  {yn} = {level:.4g}: {text}"))
@@ -121,7 +133,8 @@ def stability_chart(mech=None, x=("omega", 0.2, 1.6), y=("eps", 0.005, 0.05), *,
         if line.diagram is None:
             return
         for sp in line.diagram.special_points:
-            if sp.period > max_period or any(_near(cv, sp, xn, yn, box) < ON_CURVE for cv in curves):
+            if sp.period > max_period or not x_lo <= sp.parameter <= x_hi or any(
+                    _near(cv, sp, xn, yn, box) < ON_CURVE for cv in curves):
                 continue
             log(f"curve {len(curves) + 1}: the {sp.kind} of the period-{sp.period} orbits at {xn} = "
                 f"{sp.parameter:.6g}, {yn} = {line.level:.6g}, followed in {yn}")
@@ -168,7 +181,8 @@ def stability_chart(mech=None, x=("omega", 0.2, 1.6), y=("eps", 0.005, 0.05), *,
     info = base.as_dict()
     for n in (xn, yn):
         info.pop(n, None)
-    info.update(x=xn, y=yn, lines=len(chart_lines), max_period=max_period, wall_time=time.perf_counter() - t0)
+    info.update(x=xn, y=yn, lines=len(chart_lines), max_period=max_period, margin=margin,
+                wall_time=time.perf_counter() - t0)
     chart = StabilityChart((xn, x_lo, x_hi), (yn, y_lo, y_hi), curves, chart_lines, found, labels,
                            _regions.deflection_field(raster, [ln.level for ln in chart_lines], defl),
                            max_period, notes, info)

@@ -70,7 +70,7 @@ def chart_figure(chart, title=None):
     # each verdict once in the legend, with a letter for the pieces too narrow for its words
     handles, letters = [], {}
     for g in sorted(chart.regions, key=lambda g: -g.area):
-        if g.words not in letters:
+        if g.words not in letters and (g.key is not None or g.area >= MIN_NAMED):
             letters[g.words] = "abcdefghijklmnopqrstuvwxyz"[len(letters) % 26]
             handles.append(Patch(facecolor=fill_color(g), edgecolor="0.6", lw=0.5,
                                  label=f"{letters[g.words]}: {g.words}"))
