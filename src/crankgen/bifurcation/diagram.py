@@ -22,7 +22,8 @@ def describe(info, what, parameter):
     """A two-line title from a diagram's info (the model and settings it was computed for): what
     and the parameter varied, the model; then every fixed parameter that sets the response (the
     crank speed, eps, ms*, mu*, a*) and the linkage (a four-bar's rocker and ground pivot, a
-    guide offset, gravity, a fluctuating crank), the varied parameter left out."""
+    guide offset, gravity, a fluctuating crank), the varied parameter and any the info lacks (a
+    stability chart's second axis) left out."""
     if not info:
         return f"{what} in {parameter}"
     parts = [f"approach {info['approach']}" if "approach" in info else None,
@@ -32,8 +33,8 @@ def describe(info, what, parameter):
              if k in info and k != parameter]
     if info.get("guide") == "circle":
         fixed.append("four-bar: " + ", ".join(
-            [f"rocker c/L = {info['c']:g}" for _ in (1,) if parameter != "c"]
-            + [f"ground pivot d/L = {info['d']:g}" for _ in (1,) if parameter != "d"]
+            [f"rocker c/L = {info['c']:g}" for _ in (1,) if parameter != "c" and "c" in info]
+            + [f"ground pivot d/L = {info['d']:g}" for _ in (1,) if parameter != "d" and "d" in info]
             + [f"pivot height {info.get('offset', 0.0):g}" for _ in (1,)
                if parameter != "offset" and info.get("offset")]
             + [f"branch {int(info.get('branch', 1)):+d}"]))
@@ -43,7 +44,7 @@ def describe(info, what, parameter):
     if gravity is not None and any(gravity):
         fixed.append(f"gravity ({gravity[0]:g}, {gravity[1]:g})")
     if info.get("motion") == "fluctuation":
-        k = "k" if parameter == "fluctuation" else f"{info['fluctuation']:g}"
+        k = "k" if parameter == "fluctuation" or "fluctuation" not in info else f"{info['fluctuation']:g}"
         fixed.append(f"crank speed Omega* (1 + {k} sin({info['order']} theta))")
     head = f"{what} in {AXIS.get(parameter, parameter)}: " + ", ".join(p for p in parts if p)
     return head + ("\n" + ", ".join(fixed) if fixed else "")

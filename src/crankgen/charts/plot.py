@@ -100,6 +100,13 @@ def chart_figure(chart, title=None):
         if inside.size:
             i = int(inside[len(inside) // 2])
             labels.append((float(c[xn][i]), float(c[yn][i]), c.label, color))
+    # a curve that ends inside the box (its stop reason is not an edge): its end marked
+    ends = [(c[xn][k], c[yn][k]) for c in chart.curves
+            for k, reason in ((0, c.stop_reasons[0]), (-1, c.stop_reasons[-1])) if not reason.startswith("reached")]
+    if ends:
+        ax.scatter([e[0] for e in ends], [e[1] for e in ends], marker="x", s=40, color="black", lw=1.2, zorder=6)
+        handles.append(Line2D([], [], ls="none", marker="x", color="black",
+                              label="a curve ends here (why: the summary, chart.json)"))
     for kind, period in sorted(kinds, key=lambda k: (k[1], k[0])):
         handles.append(Line2D([], [], color=KIND_COLORS[kind], ls=PERIOD_STYLES.get(period, "-."), lw=1.8,
                               label=f"{LABELS[kind]}{period}: {kind} of the period-{period} orbits"))

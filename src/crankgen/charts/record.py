@@ -92,7 +92,9 @@ class StabilityChart:
         out = [f"stability chart in ({xn}, {yn}): {xn} {self.x[1]:g}..{self.x[2]:g}, {yn} "
                f"{self.y[1]:g}..{self.y[2]:g}; {len(self.lines)} lines of constant {yn}, "
                f"{len(self.curves)} curves"]
-        out += ["  " + c.describe() for c in self.curves]
+        for c in self.curves:
+            out.append("  " + c.describe())
+            out += [f"    ends: {r}" for r in c.stop_reasons if not r.startswith("reached")]
         out += [f"  {p.label} ({p.kind}) at {xn} = {p[xn]:.5g}, {yn} = {p[yn]:.5g}" for p in self.codim2]
         for g in sorted(self.regions, key=lambda g: -g.area):
             if g.key is not None:

@@ -24,6 +24,8 @@ def _axis_spec(which):
             lo, hi = float(parts[1]), float(parts[2])
         except ValueError:
             raise argparse.ArgumentTypeError(f"LOW and HIGH must be numbers, got {parts[1]!r}, {parts[2]!r}")
+        if not lo < hi:
+            raise argparse.ArgumentTypeError(f"LOW must be below HIGH, got {lo:g}, {hi:g}")
         return (name, lo, hi)
     parse.__name__ = f"{which} axis"
     return parse
