@@ -106,10 +106,13 @@ def _entries(expr):
 
 
 def _cse(kernel):
-    """Common subexpressions of all outputs of a kernel, canonical order, fixed prefix."""
+    """Common subexpressions of all outputs of a kernel, canonical order, fixed prefix (none for a
+    kernel whose outputs are printed as they stand)."""
     flat = []
     for out in kernel.outputs:
         flat.extend(e for _, e in _entries(out.expr))
+    if not getattr(kernel, "cse", True):
+        return [], flat
     return sp.cse(flat, symbols=sp.numbered_symbols(CSE_PREFIX), order="canonical")
 
 

@@ -2,7 +2,7 @@
 centrifugal, forcing, stiffness, cubic and quartic elastic terms, damping by order).
 
 The classification is a derivation stage of its own: the kernel specifications use it to weight the
-switchable groups (term masks, derive/model.py) and the symbolic audit uses it to report what each
+switchable groups (term masks, derive/declaration.py) and the symbolic audit uses it to report what each
 formulation keeps.
 """
 

@@ -74,6 +74,6 @@ j_fl = sp.Symbol("j", positive=True, integer=True)
 SWITCHABLE_GROUPS = ("gyroscopic", "phidd", "centrifugal", "cubic_axial", "cubic_transverse", "quartic")
 WEIGHT = {g: sp.Symbol(f"w_{g}", real=True) for g in SWITCHABLE_GROUPS}
 
-# The three vector arguments every element kernel takes besides q, qd, qdd (one calling convention):
+# The element data every element kernel takes besides q, qd, qdd and the kinematics (the coefficient
+# vector's layout is the declaration's COEFFICIENTS):
 GEOMETRY = (l, x0)                                   # element length and first-node abscissa
-COEFFICIENTS = (rhoA, rhoI, EA, EI, mu, ms, gX, gY) + tuple(WEIGHT.values())

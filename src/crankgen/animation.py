@@ -9,10 +9,10 @@ gives, at every stored step, the rod's nodes in the inertial frame:
 (crankgen's moving frame of the rigid rod, phi from the guide's closure), the deflections u, v
 magnified by m (m = 1: the true positions, `inertial_nodes`; nodes.csv's X, Y columns).  Between
 the nodes the rod is drawn with its element's cubic (v and the slope psi) and linear u.  Each frame
-draws the crank (from the origin to the crank pin A), the rod, the end mass (a slider block on its
-guide line Y = e, or a rigid rocker from its ground pivot D = (d, e) to the rod's end, with the arc
-its tip travels), the guide, and the step's time and crank angle; the title states the
-magnification.  GIF through matplotlib's PillowWriter (Pillow comes with matplotlib); MP4 through
+draws the crank (from the origin to the crank pin A), the rod, the end mass, the guide's curve
+where the end travels (generated/geometry.py) and, for a guide whose end a link carries from a
+ground pivot (a four-bar's rocker), that link; and the step's time and crank angle; the title
+states the magnification.  GIF through matplotlib's PillowWriter (Pillow comes with matplotlib); MP4 through
 ffmpeg where it is installed.
 """
 
@@ -21,6 +21,7 @@ import math
 import numpy as np
 
 from . import kinematics as _kinematics
+from ._generated import geometry as _geometry
 from .errors import ParameterError
 from .validation import in_range, integer
 
@@ -48,9 +49,9 @@ def inertial_nodes(result, magnification=1.0):
 def _place(case, kin, along, across):
     """Inertial (X, Y) of rod points at (along, across) in the rigid rod's frame (arrays (steps, P))."""
     phi = kin.phi[:, None]
-    theta = np.asarray(kin.theta)[:, None]
-    X = case.a * np.cos(theta) + along * np.cos(phi) + across * np.sin(phi)
-    Y = case.a * np.sin(theta) - along * np.sin(phi) + across * np.cos(phi)
+    pin = _geometry.crank_pin(kin.vector)
+    X = pin[:, 0, None] + along * np.cos(phi) + across * np.sin(phi)
+    Y = pin[:, 1, None] - along * np.sin(phi) + across * np.cos(phi)
     return np.stack([X, Y], axis=-1)
 
 
@@ -104,8 +105,14 @@ class Frames:
         self.unit = ("L", "t*") if scales is None else ("m", "t")
         self.kin = kin
         self.rod = _rod_curve(case, kin, nodal, self.magnification) * self.length   # (frames, P, 2)
-        self.pin = np.stack([case.a * np.cos(kin.theta), case.a * np.sin(kin.theta)], axis=-1) * self.length
+        self.pin = _geometry.crank_pin(kin.vector) * self.length
         self.end = self.rod[:, -1, :]
+        guide, params = case.guide_record, case.kinematic_parameters
+        self.pivot = (getattr(_geometry, f"pivot_{guide.name}")(params) * self.length if guide.pivot else None)
+        beta = np.asarray(kin.beta, dtype=float)           # the guide co-ordinate of the rigid end
+        span = float(beta.max() - beta.min()) if beta.size else 0.0
+        reach = np.linspace(beta.min() - 0.5 * span - 0.1, beta.max() + 0.5 * span + 0.1, 181)
+        self.guide_curve = getattr(_geometry, f"curve_{guide.name}")(reach, params) * self.length
         self.t = t[self.steps] * (1.0 if scales is None else scales.factor("1/omega_b"))
         self.theta = np.asarray(result.theta, dtype=float)[self.steps]
         self.title = title
@@ -118,33 +125,29 @@ class Frames:
         from matplotlib.patches import Circle as Disc
 
         from .plotting import subplots
-        case, ell = self.case, self.length
+        ell, guide = self.length, self.case.guide_record
         fig, ax = subplots(figsize=(7.0, 3.9), dpi=90, constrained_layout=True)
-        pts = np.concatenate([self.rod.reshape(-1, 2), self.pin, [[0.0, 0.0]]])
-        if case.guide == "circle":
-            D = np.array([case.d, case.offset]) * ell
-            c = case.c * ell
-            pts = np.concatenate([pts, D[None], D[None] + [[c, c], [-c, -c]]])
-            arc = np.linspace(0, 2 * np.pi, 181)
-            ax.plot(D[0] + c * np.cos(arc), D[1] + c * np.sin(arc), color="0.75", lw=0.8, ls=":",
-                    label="the rocker tip's circle")
-            ax.plot([D[0]], [D[1]], marker="^", color="0.3", ms=9, ls="none")
+        pts = np.concatenate([self.rod.reshape(-1, 2), self.pin, [[0.0, 0.0]]]
+                             + ([self.pivot[None]] if self.pivot is not None else []))
         lo, hi = pts.min(axis=0), pts.max(axis=0)
         pad = 0.08 * max(hi - lo) + 0.05
         ax.set_xlim(lo[0] - pad, hi[0] + pad)
         ax.set_ylim(lo[1] - pad, hi[1] + pad)
         ax.set_aspect("equal")
-        if case.guide == "line":
-            ax.axhline(case.offset * ell, color="0.45", lw=1.2, zorder=1, label="guide")
-        ax.add_patch(Disc((0.0, 0.0), case.a * ell, fill=False, color="0.8", lw=0.8, ls=":"))
+        ax.plot(self.guide_curve[:, 0], self.guide_curve[:, 1], color="0.45", lw=1.2, zorder=1,
+                ls="-" if self.pivot is None else ":", label=f"guide ({guide.name})")
+        if self.pivot is not None:
+            ax.plot([self.pivot[0]], [self.pivot[1]], marker="^", color="0.3", ms=9, ls="none")
+        radius = float(np.max(np.hypot(self.pin[:, 0], self.pin[:, 1])))
+        ax.add_patch(Disc((0.0, 0.0), radius, fill=False, color="0.8", lw=0.8, ls=":"))
         ax.plot([0.0], [0.0], marker="o", color="0.3", ms=6, ls="none")
         art = {}
         art["crank"], = ax.plot([], [], color="0.2", lw=3.0, solid_capstyle="round", label="crank")
         art["rod"], = ax.plot([], [], color="C0", lw=2.0, label="rod (deflection magnified)")
-        if case.guide == "circle":
-            art["rocker"], = ax.plot([], [], color="C2", lw=2.5, label="rocker")
-        art["end"], = ax.plot([], [], marker="s" if case.guide == "line" else "o", color="C3", ms=10,
-                              ls="none", label="end mass" if case.guide == "circle" else "slider")
+        if self.pivot is not None:
+            art["rocker"], = ax.plot([], [], color="C2", lw=2.5, label="rocker (the link to the ground pivot)")
+        art["end"], = ax.plot([], [], marker="s" if self.pivot is None else "o", color="C3", ms=10,
+                              ls="none", label=f"end mass ({guide.label or guide.name})")
         art["clock"] = ax.text(0.01, 0.98, "", transform=ax.transAxes, va="top", fontsize=8)
         ax.set_xlabel("X / L" if ell == 1.0 and self.unit[0] == "L" else "X (m)")
         ax.set_ylabel("Y / L" if ell == 1.0 and self.unit[0] == "L" else "Y (m)")
@@ -160,13 +163,12 @@ class Frames:
 
     def draw(self, k):
         """Set the artists to frame k; returns them."""
-        art, case = self.art, self.case
+        art = self.art
         art["crank"].set_data([0.0, self.pin[k, 0]], [0.0, self.pin[k, 1]])
         art["rod"].set_data(self.rod[k, :, 0], self.rod[k, :, 1])
         art["end"].set_data([self.end[k, 0]], [self.end[k, 1]])
         if "rocker" in art:
-            art["rocker"].set_data([case.d * self.length, self.end[k, 0]],
-                                   [case.offset * self.length, self.end[k, 1]])
+            art["rocker"].set_data([self.pivot[0], self.end[k, 0]], [self.pivot[1], self.end[k, 1]])
         when = f"t* = {self.t[k]:.3f}" if self.unit[1] == "t*" else f"t = {self.t[k]:.4g} s"
         art["clock"].set_text(f"{when}, crank angle {math.degrees(self.theta[k]) % 360:.0f} deg")
         return list(art.values())

@@ -25,6 +25,7 @@ from typing import Optional
 
 import numpy as np
 
+from . import schema
 from .errors import ParameterError
 from .vibration import AXIAL_SHARE, FrozenModel, frozen_case
 from .units import Scales
@@ -104,7 +105,7 @@ class CampbellDiagram:
         folder = Path(folder)
         folder.mkdir(parents=True, exist_ok=True)
         si = self.scales is not None
-        speed_cols = ["crank_speed_rad_per_s", "crank_speed_rpm"] if si else ["omega"]
+        speed_cols = ["crank_speed_rad_per_s", "crank_speed_rpm"] if si else [schema.CRANK_SPEED]
         freq = (lambda name: [f"{name}_rad_per_s", f"{name}_Hz"]) if si else (lambda name: [name])
         paths = [folder / "campbell.csv", folder / "crossings.csv"]
         with atomic_file(paths[0]) as fh:
@@ -195,7 +196,7 @@ def campbell(mech=None, speeds=None, *, angles=36, count=4, orders=(1, 2, 3, 4, 
     theta = 2 * np.pi * np.arange(angles) / angles
     lam, share = [], []
     for i, speed in enumerate(speeds):
-        fm = FrozenModel(replace(c, omega=float(speed / unit)))
+        fm = FrozenModel(replace(c, **{schema.CRANK_SPEED: float(speed / unit)}))
         count = min(count, fm.N)
         _, _, lam_i, vec, M = fm.eigen(theta)
         lam.append(lam_i[:, :count])
@@ -203,7 +204,9 @@ def campbell(mech=None, speeds=None, *, angles=36, count=4, orders=(1, 2, 3, 4, 
         if progress is not None:
             progress(i + 1, len(speeds))
     omega_squared, axial_share = np.array(lam), np.array(share)
-    info = {k: v for k, v in c.as_dict().items() if k not in ("omega", "theta0", "motion")}
+    # a frozen mechanism has no crank motion: its parameters are left out of the description
+    motion = {n for n, p in schema.PARAMETERS.items() if p.owner == "motion"} | {schema.SELECTOR["motion"]}
+    info = {k: v for k, v in c.as_dict().items() if k not in motion}
     diagram = CampbellDiagram(speeds, theta, omega_squared, axial_share, orders, [],
                               info=dict(info, angles=angles, count=count), scales=scales)
     bands = {edge: diagram.band(edge) for edge in EDGES}

@@ -8,21 +8,14 @@ from .plotting import fit_panels, panels
 
 
 def _describe(info, scales):
+    from . import schema
     model = (f"approach {info['approach']}, {info['formulation']} / {info['damping']} / "
              f"{info['membrane']}, n = {info['n_elements']}")
-    parts = [f"eps = {info['eps']:.4g}", f"ms* = {info['ms']:.4g}", f"a* = {info['a']:.4g}"]
+    main, other = schema.describe({k: v for k, v in info.items() if k in schema.PARAMETERS})
+    parts = main + other + ([] if info.get("rotary_inertia", True) else ["no rotary inertia"])
     si = ("" if scales is None else
           f"\nin SI: L = {scales.L:.4g} m, omega_b = {scales.omega_b:.4g} rad/s "
           f"({scales.omega_b / (2 * np.pi):.4g} Hz), the first pinned-pinned bending frequency")
-    if info.get("guide") == "circle":
-        parts.append(f"four-bar: rocker c/L = {info['c']:g}, ground pivot d/L = {info['d']:g}, "
-                     f"branch {int(info['branch']):+d}")
-    elif info.get("offset"):
-        parts.append(f"guide offset e/L = {info['offset']:g}")
-    if any(info.get("gravity", (0.0, 0.0))):
-        parts.append(f"gravity ({info['gravity'][0]:g}, {info['gravity'][1]:g})")
-    if not info.get("rotary_inertia", True):
-        parts.append("no rotary inertia")
     return (f"Campbell diagram: the frozen mechanism's natural frequencies over a revolution "
             f"({info['angles']} crank angles)\n{model}; " + ", ".join(parts) + si)
 

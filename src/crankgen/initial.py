@@ -45,7 +45,7 @@ from .errors import ParameterError
 from .mesh import PSI, U, V, Mesh
 
 COMPLEX_STEP = 1e-20
-# the unit of each field (derive/model.py's units strings; crankgen.units)
+# the unit of each field (derive/declaration.py's units strings; crankgen.units)
 FIELD_UNITS = {"u": "L", "v": "L", "v_x": "1", "u_t": "L omega_b", "v_t": "L omega_b", "v_xt": "omega_b"}
 _SLOPE_OF = {"v_x": "v", "v_xt": "v_t"}
 
@@ -235,7 +235,7 @@ def reduced_state(case, initial, scales=None):
             raise ParameterError(
                 f"initial state: the rod's end ({fields} at x = L) {what} by {off:.3g} (crankgen's "
                 f"units; tolerance {tol:g} of the guide co-ordinate's natural size {guide_scale:.3g}): "
-                f"the end must stay on the {case.guide} guide of the rigid mechanism at theta0 = "
+                f"the end must stay on the {case.guide_record.name} guide of the rigid mechanism at theta0 = "
                 f"{case.theta0:g}")
 
     d0, v0 = np.zeros(mesh.n_dofs), np.zeros(mesh.n_dofs)

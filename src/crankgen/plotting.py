@@ -3,6 +3,9 @@ measured, so that nothing is clipped and no legend or label covers data or anoth
 
 import numpy as np
 
+from . import schema
+from .units import in_L
+
 
 _FIGURE_KEYS = ("figsize", "dpi", "constrained_layout", "layout", "facecolor")
 
@@ -19,27 +22,16 @@ def subplots(nrows=1, ncols=1, **kwargs):
 
 
 def _title(s):
-    """Two lines naming the model and the case; a third for what differs from the paper's slider
-    crank (gravity, guide offset, rotary inertia off, a four-bar's circle guide)."""
-    extra = []
-    gravity = tuple(s.get("gravity", (0.0, 0.0)))
-    if any(gravity):
-        extra.append(f"gravity ({gravity[0]:g}, {gravity[1]:g})")
-    if s.get("offset", 0.0):
-        extra.append(f"offset {s['offset']:g}")
+    """Two lines naming the model and the case (the mechanism's parameters and the crank's, from
+    their records); a third for the rest that differs from the defaults (gravity, a guide offset,
+    a four-bar's circle guide, rotary inertia off)."""
+    from . import schema
+    main, other = schema.describe(s)
     if not s.get("rotary_inertia", True):
-        extra.append("no rotary inertia")
-    if s.get("guide") == "circle":
-        extra.append(f"four-bar: rocker c* = {s['c']:g}, ground d* = {s['d']:g}, branch {s['branch']:+d}")
-    speed = f"Omega* = {s['omega']:g}"
-    if s.get("motion") == "runup":
-        speed = f"run-up Omega* {s['omega0']:g} -> {s['omega']:g} over {s['ramp']:g} rev"
-    elif s.get("motion") == "fluctuation":
-        speed = f"Omega* = {s['omega']:g} (1 + {s['fluctuation']:g} sin({s['order']} theta))"
+        other.append("no rotary inertia")
     return (f"approach {s['approach']}, {s['formulation']} formulation, {s['damping']} damping, "
-            f"{s.get('membrane', 'pointwise')} membrane\n{speed}, eps = {s['eps']:g}, "
-            f"ms* = {s['ms']:g}, mu* = {s['mu']:g}, n = {s['n_elements']}"
-            + ("\n" + ", ".join(extra) if extra else ""))
+            f"{s.get('membrane', 'pointwise')} membrane\n" + ", ".join(main + [f"n = {s['n_elements']}"])
+            + ("\n" + ", ".join(other) if other else ""))
 
 
 def shade_beyond(ax, limit, color):
@@ -113,8 +105,8 @@ def plot_deflection(result, path, failure=None, si=None, against="t", strain=Non
         ax.legend(fontsize=8, loc="best")
     ax.set_xlabel(unit)
     ax.set_ylabel("v* at x* = 1/2" if si is None else "v at x = L/2 in the moving frame (mm)")
-    # the range of the theory in the scale drawn: |v*| eps = |v| / L
-    eps = result.settings["eps"] if si is None else 1e-3 / si.scales.L
+    # the range of the theory in the scale drawn: |v*| eps = |v| / L (v* in units of r = eps L)
+    eps = in_L(schema.OUTPUTS["v_mid"].units, result.settings) if si is None else 1e-3 / si.scales.L
     if strain is None:
         strain = theory.axial_strain(result, per_step=True)
     note = _beyond_theory(ax, eps, v, strain)
@@ -174,14 +166,14 @@ def runup_figure(result, ramp_end, failure=None, si=None, strain=None):
             ax.plot(x[-1:], v[-1:], "x", color="C3", ms=9, mew=2,
                     label=f"{word} (step {failure.step})")
             ax.legend(fontsize=8, loc="best")
-    eps = result.settings["eps"] if si is None else 1e-3 / si.scales.L
+    eps = in_L(schema.OUTPUTS["v_mid"].units, result.settings) if si is None else 1e-3 / si.scales.L
     if strain is None:
         strain = theory.axial_strain(result, per_step=True)
     _beyond_theory(a1, eps, v[ramp], None if strain is None else np.asarray(strain)[ramp])
     note = _beyond_theory(a2, eps, v, strain)
     where = ("" if complete else
              f"\nthe run ends at crank speed {speed[-1]:.4g}, before the ramp completes "
-             f"(revolution {revs[-1]:.4g} of {result.settings.get('ramp', float('nan')):g})")
+             f"(revolution {revs[-1]:.4g} of {result.settings.get(result.case.motion_record.transient, float('nan')):g})")
     a1.set_title(_title(result.settings) + where + note, fontsize=9)
     for ax in (a1, a2):
         ax.grid(alpha=0.3)
@@ -210,7 +202,7 @@ def plot_orbit(state, path, strain=None):
             if state.multiplier is not None and np.isfinite(state.multiplier) else "")
     if strain is None:
         strain = theory.axial_strain(state, per_step=True)
-    note = _beyond_theory(a1, state.case.eps, state.v_mid, strain)
+    note = _beyond_theory(a1, in_L(schema.OUTPUTS["v_mid"].units, state.case.parameters()), state.v_mid, strain)
     a1.set_title(f"steady state: {state.status}{mult}\n" + _title(s) + note, fontsize=9)
     return save_figure(fig, path)
 

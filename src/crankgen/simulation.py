@@ -17,7 +17,8 @@ from .limits import check_run_size
 from .model import Model
 from .initial import initial_state
 from .newmark import NewmarkSettings, integrate
-from .outputs import DeclaredOutputs, SIView, StateHistory, end_axial, extension, mid_deflection
+from . import schema
+from .outputs import DeclaredOutputs, SIView, StateHistory, engine_columns, takes_engine_outputs
 from .parameters import SIMechanism
 from .units import Scales, scales_of
 from .validation import choice, in_range, numbers_array
@@ -26,13 +27,15 @@ ENGINES = ("compiled", "numpy")
 UNITS = ("crankgen", "si")
 
 
+@takes_engine_outputs
 @dataclass(frozen=True)
 class SimulationResult(DeclaredOutputs):
-    """Per-step outputs: t*, theta (rad, unwrapped), v* at x* = 1/2, u*(1), delta* (eq. 40), and
-    every declared output by name (crankgen.outputs): step quantities as attributes
-    (`slider_position`, `crank_speed`, `chord_angle`, `torque`, `pin_force_x`, ...), fields as
-    methods (`axial_force(x)`, `bending_moment(x)`, `surface_strain(x, fiber)`,
-    `chord_deflection(x)`), any of them by `quantity(name, ...)`.
+    """Per-step outputs: t*, theta (rad, unwrapped), the engine's outputs (`outputs`, by name:
+    v* at x* = 1/2, u*(1), delta* of eq. 40; each an attribute, `result.v_mid`, and a keyword of
+    the constructor), and every declared output by name (crankgen.outputs): step and reduction
+    quantities as attributes (`slider_position`, `crank_speed`, `chord_angle`, `torque`,
+    `pin_force_x`, ...), fields as methods (`axial_force(x)`, `bending_moment(x)`,
+    `surface_strain(x, fiber)`, `chord_deflection(x)`), any of them by `quantity(name, ...)`.
 
     at_times: the same at the times a run was asked for (`simulate(..., times=...)`), else None.
     si: the SI view (seconds, metres, radians, newtons, N m) of a run given in SI
@@ -40,11 +43,9 @@ class SimulationResult(DeclaredOutputs):
 
     t: np.ndarray
     theta: np.ndarray
-    v_mid: np.ndarray
-    u_end: np.ndarray
-    extension: np.ndarray
     iterations: np.ndarray
     settings: dict
+    outputs: dict = field(default=None, repr=False)                 # the engine's outputs by name
     nodes: Optional[np.ndarray] = field(default=None, repr=False)   # (steps, 3 (n+1)) if requested
     case: Optional[Case] = field(default=None, repr=False)
     states: Optional[np.ndarray] = field(default=None, repr=False)  # (steps, N) reduced displacements
@@ -54,13 +55,14 @@ class SimulationResult(DeclaredOutputs):
     scales: Optional[Scales] = field(default=None, repr=False)      # crankgen's units in SI (units="si")
 
     def to_csv(self, path):
-        """Write t*, theta (degrees), v_mid, u_end, extension as CSV (full double precision),
-        atomically."""
+        """Write t*, theta (degrees) and the engine's outputs (v_mid, u_end, extension) as CSV (full
+        double precision), atomically."""
         from .io import atomic_file
+        names = schema.ENGINE_OUTPUTS
         with atomic_file(path) as fh:
             w = csv.writer(fh)
-            w.writerow(["t", "theta_deg", "v_mid", "u_end", "extension"])
-            for row in zip(self.t, np.degrees(self.theta), self.v_mid, self.u_end, self.extension):
+            w.writerow(["t", "theta_deg", *names])
+            for row in zip(self.t, np.degrees(self.theta), *(self.outputs[n] for n in names)):
                 w.writerow([repr(float(x)) for x in row])
 
     @property
@@ -237,7 +239,7 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     t = dt * np.arange(n_steps + 1)
     kin = _kinematics.case_state(case, t)
     nodes = model.full_nodal(D, kin) if store_nodes else None
-    result = SimulationResult(t=t, theta=kin.theta, v_mid=y[:, 0], u_end=y[:, 1], extension=y[:, 2],
+    result = SimulationResult(t=t, theta=kin.theta, outputs=engine_columns(y),
                               iterations=iterations, settings=dict(info, history=history), nodes=nodes,
                               case=case, states=D, rates=V, accelerations=A, scales=scales)
     if status[0] != _engine.OK:
@@ -251,39 +253,42 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
 
 def _numpy_result(model, case, hist, info, store_nodes, scales):
     history = StateHistory(case, hist.t, hist.d, hist.v, hist.a)
-    q = history.element_vectors()
     kin = history.kinematics()
     return SimulationResult(
-        t=hist.t, theta=kin.theta, v_mid=mid_deflection(model.mesh, q, case.eps),
-        u_end=end_axial(q, case.eps), extension=extension(model.mesh, q),
+        t=hist.t, theta=kin.theta, outputs=engine_columns(history.engine_outputs()),
         iterations=hist.iterations, settings=info,
         nodes=model.full_nodal(hist.d, kin) if store_nodes else None, case=case, states=hist.d,
         rates=hist.v, accelerations=hist.a, scales=scales)
 
 
 def _at_times_result(model, case, t_req, rows, info, store_nodes, scales):
-    """The SimulationResult at the requested times from rows (y (3,), iterations, d, v, a) each."""
-    y = np.array([r[0] for r in rows], dtype=float).reshape(len(rows), 3)
+    """The SimulationResult at the requested times from rows (the engine's outputs y, iterations,
+    d, v, a) each."""
+    y = np.array([r[0] for r in rows], dtype=float).reshape(len(rows), len(schema.ENGINE_OUTPUTS))
     D, V, A = (np.array([r[k] for r in rows], dtype=float) for k in (2, 3, 4))
     kin = _kinematics.case_state(case, t_req)
     return SimulationResult(
-        t=np.array(t_req, dtype=float), theta=kin.theta, v_mid=y[:, 0], u_end=y[:, 1], extension=y[:, 2],
+        t=np.array(t_req, dtype=float), theta=kin.theta, outputs=engine_columns(y),
         iterations=np.array([r[1] for r in rows], dtype=np.int32), settings=dict(info, times=True),
         nodes=model.full_nodal(D, kin) if store_nodes else None, case=case, states=D, rates=V,
         accelerations=A, scales=scales)
+
+
+def _engine_row(result, k):
+    """The engine's outputs of a result at its step k, (len(schema.ENGINE_OUTPUTS),)."""
+    return np.array([result.outputs[name][k] for name in schema.ENGINE_OUTPUTS])
 
 
 def _numpy_at_times(model, case, result, states, landing, t_req, settings, store_nodes, info, scales):
     rows = []
     for (k, tau), tr in zip(landing, t_req):
         if tau == 0.0:
-            rows.append(((result.v_mid[k], result.u_end[k], result.extension[k]), 0) + states[k])
+            rows.append((_engine_row(result, k), 0) + states[k])
             continue
         d, v, a = states[k]
         hist = integrate(model, d, v, result.t[k], tau, 1, settings, a0=a)
         one = _numpy_result(model, case, hist, info, False, scales)
-        rows.append(((one.v_mid[1], one.u_end[1], one.extension[1]), int(hist.iterations[0]), hist.d[1],
-                     hist.v[1], hist.a[1]))
+        rows.append((_engine_row(one, 1), int(hist.iterations[0]), hist.d[1], hist.v[1], hist.a[1]))
     return _at_times_result(model, case, t_req, rows, info, store_nodes, scales)
 
 
@@ -313,7 +318,7 @@ def _compiled_at_times(model, case, result, states, landing, t_req, tol, store_n
         if j in stepped:
             rows.append(stepped[j])
         else:
-            rows.append(((result.v_mid[k], result.u_end[k], result.extension[k]), 0) + states[k])
+            rows.append((_engine_row(result, k), 0) + states[k])
     return _at_times_result(model, case, t_req, rows, info, store_nodes, scales)
 
 
@@ -325,7 +330,7 @@ def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progr
                      chunks=20, stops=(), captured=None):
     """Run the compiled engine from (D0, V0) in a few chunks, so that progress(done_steps) can be
     shown; a case that fails stops alone.  Returns (y, iterations, status, fail_step,
-    fail_residual, D, V, A) with y (B, n_steps + 1, 3) and the histories of the reduced
+    fail_residual, D, V, A) with y (B, n_steps + 1, the engine's outputs) and the histories of the reduced
     displacements, velocities and accelerations (None unless keep_states).  stops: step indices
     whose states (D, V, A), each (B, N), are put in the dict `captured`: taken from the states of
     the chunk that holds them (a chunk with stops keeps its states, and is at most CHUNK_BYTES of
@@ -397,7 +402,8 @@ def _failure(status, step, residual, dt, result=None):
 
 def _truncated(result, n_points):
     """result with its per-step arrays cut to the first n_points points (steps 0 .. n_points-1)."""
-    cut = {name: getattr(result, name)[:n_points] for name in ("t", "theta", "v_mid", "u_end", "extension")}
+    cut = {name: getattr(result, name)[:n_points] for name in ("t", "theta")}
+    cut["outputs"] = {name: values[:n_points] for name, values in result.outputs.items()}
     cut["iterations"] = result.iterations[:max(0, n_points - 1)]
     for name in ("nodes", "states", "rates", "accelerations"):
         value = getattr(result, name)
@@ -440,8 +446,8 @@ def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=Fals
             c, dt = cases[i], float(batch.dt[j])
             t = dt * np.arange(n_steps + 1)
             result = SimulationResult(
-                t=t, theta=_kinematics.case_state(c, t).theta, v_mid=y[j, :, 0], u_end=y[j, :, 1],
-                extension=y[j, :, 2], iterations=iterations[j].astype(np.int32),
+                t=t, theta=_kinematics.case_state(c, t).theta, outputs=engine_columns(y[j]),
+                iterations=iterations[j].astype(np.int32),
                 settings=dict(c.as_dict(), revolutions=revolutions, engine="compiled"), case=c,
                 states=None if D is None else D[j], rates=None if V is None else V[j],
                 accelerations=None if A is None else A[j])

@@ -28,7 +28,7 @@ import numpy as np
 from .errors import ParameterError
 from .parameters import SIMechanism
 from .sections import Section
-from .units import Scales, scales_of
+from .units import Scales, in_L, scales_of
 
 MATCH = 1e-3          # relative agreement asked of a section and the mechanism's rod (0.1 %)
 
@@ -188,7 +188,7 @@ def stress(result, section, si=None, x=None):
           else np.atleast_1d(np.asarray(x, dtype=float)) / length)
     N = np.asarray(result.quantity("axial_force", xs), dtype=float).reshape(len(result.t), -1)
     M = np.asarray(result.quantity("bending_moment", xs), dtype=float).reshape(len(result.t), -1)
-    eps = result.case.eps
+    eps = in_L("r", result.case.parameters())           # the slenderness r/L: r in units of L
     out = {}
     for name, y in section.fibres.items():
         if scales is None:                                 # sigma / E = N* eps^2 - M* eps y / r

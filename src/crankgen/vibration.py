@@ -30,6 +30,7 @@ from typing import Optional
 import numpy as np
 
 from . import kinematics as _kinematics
+from . import schema
 from .cases import run_case
 from .errors import ConvergenceError, ParameterError
 from .mesh import PSI, U, V
@@ -216,9 +217,11 @@ def frozen_case(mech=None, omega=None, *, model=None, case=None, units="crankgen
     elif isinstance(mech, SIMechanism):
         raise ParameterError("a crankgen.SIMechanism needs units='si' (or use its .mechanism and .omega)")
     c = run_case(mech, case, model=model, omega=omega, **fields)
-    if c.motion != "constant":
+    steady = schema.PARAMETERS[schema.SELECTOR["motion"]].default          # the constant crank speed
+    if c.motion_record.name != steady:
         raise ParameterError(f"modes freeze the mechanism at a constant crank speed; the crank motion "
-                             f"is {c.motion!r}: give a Mechanism and omega (the speed to freeze at)")
+                             f"is {c.motion_record.name!r}: give a Mechanism and {schema.CRANK_SPEED} (the "
+                             f"speed to freeze at)")
     return c, scales
 
 

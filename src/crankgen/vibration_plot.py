@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from . import schema
 from .plotting import fit_panels, panels
 
 
@@ -49,11 +50,10 @@ def modes_figure(m):
             leg._crankgen_outside = True
     speed = (f"crank speed {m.omega * m.scales.omega_b:g} rad/s" if si else f"Omega* = {m.omega:g}")
     c = m.case
+    main, other = schema.describe(c.parameters(), skip=(schema.CRANK_SPEED, schema.CRANK_ANGLE))
     fig.suptitle(f"mode shapes of the mechanism frozen at crank angle {math.degrees(m.theta):g} degrees, "
                  f"{speed}\napproach {c.approach}, {c.formulation} / {c.damping} / {c.membrane}, "
-                 f"n = {c.n_elements}, eps = {c.eps:g}, ms* = {c.ms:g}, a* = {c.a:g}"
-                 + (f", four-bar (c/L = {c.c:g}, d/L = {c.d:g})" if c.guide == "circle" else ""),
-                 fontsize=9)
+                 f"n = {c.n_elements}, " + ", ".join(main + other), fontsize=9)
     return fit_panels(fig)
 
 

@@ -54,7 +54,7 @@ def locking_limit(case, parameter, start, stop, samples=400):
         lo, hi = (lo, mid) if fails(mid) else (mid, hi)
     why = fails(hi)
     needs = why.split("needs ", 1)[-1].split("; got", 1)[0]
-    return hi, f"the {case.guide} guide needs {needs}"
+    return hi, f"the {case.guide_record.name} guide needs {needs}"
 
 
 def _check_progress(progress):
@@ -72,7 +72,7 @@ def _add_quantities(diagram, case, parameter, section, progress):
         br.quantity_units = units(section)
 
 
-def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, model=None, max_period=4, ds=0.05,
+def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *, model=None, max_period=4, ds=0.05,
                  ds_min=1e-4, ds_max=100.0, dp_max=None, max_points=400, tol=1e-9, switch_step=0.05,
                  case=None, progress=None, corrector="broyden", predictor="quadratic", derivative="exact",
                  quantities=True, section=None, **fields):
@@ -149,7 +149,7 @@ def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, model=Non
     return diagram
 
 
-def poincare(mech=None, parameter="omega", values=None, direction="up", *, model=None, transient=100,
+def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up", *, model=None, transient=100,
              samples=64, max_period=8, tol=1e-8, lyapunov_tol=0.01, case=None, progress=None, **fields):
     """Brute-force bifurcation diagram (a PoincareDiagram): for each value of `parameter` in
     `values`, swept "up", "down" or "both" (up, then down from where up ended), march `transient`

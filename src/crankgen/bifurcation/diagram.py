@@ -6,7 +6,9 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import schema
 from ..io import atomic_file, save_figure
+from ..units import in_L
 
 LABELS = {"fold": "F", "period-doubling": "PD", "neimark-sacker": "NS"}
 
@@ -14,40 +16,25 @@ LABELS = {"fold": "F", "period-doubling": "PD", "neimark-sacker": "NS"}
 # branch colours by period (the reproduce figures use the same): black, purple, green, olive,
 # none near the approaches' blue, orange and red (crankgen.plotting.APPROACH_COLORS)
 PERIOD_COLORS = {1: "black", 2: "#7b2d8e", 4: "#2ca02c", 8: "#6b6b00"}
-AXIS = {"omega": "Omega*", "eps": "eps", "ms": "ms*", "mu": "mu*", "a": "a*", "offset": "offset e/L",
-        "c": "rocker length c/L", "d": "ground pivot d/L", "fluctuation": "speed fluctuation k"}
+def axis(parameter):
+    """The axis text of a parameter: its record's axis (the name itself otherwise)."""
+    p = schema.PARAMETERS.get(parameter)
+    return parameter if p is None else p.axis
 
 
 def describe(info, what, parameter):
     """A two-line title from a diagram's info (the model and settings it was computed for): what
     and the parameter varied, the model; then every fixed parameter that sets the response (the
     crank speed, eps, ms*, mu*, a*) and the linkage (a four-bar's rocker and ground pivot, a
-    guide offset, gravity, a fluctuating crank), the varied parameter and any the info lacks (a
-    stability chart's second axis) left out."""
+    guide offset, gravity, a fluctuating crank), the varied parameter left out."""
     if not info:
         return f"{what} in {parameter}"
     parts = [f"approach {info['approach']}" if "approach" in info else None,
              " / ".join(str(info[k]) for k in ("formulation", "damping", "membrane") if k in info) or None,
              f"n = {info['n_elements']}" if "n_elements" in info else None]
-    fixed = [f"{AXIS.get(k, k)} = {info[k]:g}" for k in ("omega", "eps", "ms", "mu", "a")
-             if k in info and k != parameter]
-    if info.get("guide") == "circle":
-        fixed.append("four-bar: " + ", ".join(
-            [f"rocker c/L = {info['c']:g}" for _ in (1,) if parameter != "c" and "c" in info]
-            + [f"ground pivot d/L = {info['d']:g}" for _ in (1,) if parameter != "d" and "d" in info]
-            + [f"pivot height {info.get('offset', 0.0):g}" for _ in (1,)
-               if parameter != "offset" and info.get("offset")]
-            + [f"branch {int(info.get('branch', 1)):+d}"]))
-    elif info.get("offset") and parameter != "offset":
-        fixed.append(f"guide offset e/L = {info['offset']:g}")
-    gravity = info.get("gravity")
-    if gravity is not None and any(gravity):
-        fixed.append(f"gravity ({gravity[0]:g}, {gravity[1]:g})")
-    if info.get("motion") == "fluctuation":
-        k = "k" if parameter == "fluctuation" or "fluctuation" not in info else f"{info['fluctuation']:g}"
-        fixed.append(f"crank speed Omega* (1 + {k} sin({info['order']} theta))")
-    head = f"{what} in {AXIS.get(parameter, parameter)}: " + ", ".join(p for p in parts if p)
-    return head + ("\n" + ", ".join(fixed) if fixed else "")
+    main, other = schema.describe({k: v for k, v in info.items() if k in schema.PARAMETERS}, skip=(parameter,))
+    head = f"{what} in {axis(parameter)}: " + ", ".join(p for p in parts if p)
+    return head + "\n" + ", ".join(main + other)
 
 
 def _num(x):
@@ -104,11 +91,10 @@ class BifurcationDiagram:
     info: dict = field(default_factory=dict)   # the model and settings it was computed for
 
     def eps_at(self, p):
-        """Slenderness of the mechanism at parameter value p (None: not a mechanism diagram)."""
-        if self.parameter_name == "eps":
-            return float(p)
-        eps = self.info.get("eps")
-        return None if eps is None else float(eps)
+        """The amplitude's unit (v* = v / r: the radius of gyration r) in L at parameter value p, the
+        slenderness (None: not a mechanism diagram)."""
+        values = dict(self.info, **{self.parameter_name: float(p)})
+        return in_L("r", values) if schema.UNIT_PARAMETERS["r"] in values else None
 
     def as_dict(self):
         """Everything the diagram holds, as JSON-ready data (diagram_files.py)."""
@@ -241,7 +227,7 @@ class BifurcationDiagram:
                        facecolor="white", edgecolor="black", zorder=5)
             handles.append(Line2D([], [], ls="none", marker=m, markerfacecolor="white",
                                   color="black", label=f"{LABELS[kind]}: {kind}"))
-        eps = self.info.get("eps") if self.parameter_name != "eps" else None
+        eps = self.eps_at(0.0) if self.parameter_name != schema.UNIT_PARAMETERS["r"] else None
         amps = [a for br in self.branches for a in np.asarray(br.amplitude, dtype=float) if np.isfinite(a)]
         if eps and amps and max(amps) * eps > DEFLECTION_LIMIT:
             lo, hi = ax.get_ylim()
@@ -250,8 +236,8 @@ class BifurcationDiagram:
             handles.append(beyond_patch("0.88"))
         place_labels(ax, [(s.parameter, s.amplitude, f"{LABELS[s.kind]} {s.parameter:.4g}", "black")
                           for s in sorted(self.special_points, key=lambda s: s.parameter)])
-        mech = "eps" in self.info or self.parameter_name == "eps"
-        ax.set_xlabel(xlabel or AXIS.get(self.parameter_name, self.parameter_name))
+        mech = self.eps_at(0.0) is not None
+        ax.set_xlabel(xlabel or axis(self.parameter_name))
         ax.set_ylabel(ylabel or ("max |v*(1/2)| over the orbit" if mech else "amplitude"))
         ax.grid(alpha=0.3)
         leg = ax.legend(handles=handles, fontsize=8, loc="upper center", ncol=3, frameon=False,

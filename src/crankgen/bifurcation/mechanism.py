@@ -24,6 +24,8 @@ from ..errors import ParameterError
 from ..validation import choice
 from .maps import Map, MapError
 
+V_MID = schema.ENGINE_OUTPUTS.index("v_mid")     # the observable: v* at x* = 1/2, in the engine's outputs
+
 # the parameters a continuation may vary: those the schema declares continuable
 PARAMETERS = schema.CONTINUABLE
 
@@ -57,7 +59,7 @@ class MechanismMap(Map):
         choice("derivative", derivative, ("exact", "central"))
         if not case.periodic:
             raise ParameterError(f"continuation and poincare follow the crank-revolution map, which needs a "
-                                 f"crank motion periodic in the crank angle; the {case.motion!r} motion is "
+                                 f"crank motion periodic in the crank angle; the {case.motion_record.name!r} motion is "
                                  f"not (a run-up is a transient: simulate runs it)")
         if case.integrator != "newton":
             raise ParameterError(f"continuation needs integrator='newton' (the converged step map "
@@ -100,7 +102,7 @@ class MechanismMap(Map):
             self._orbits.clear()
         idx = np.arange(period + 1) * self.spr
         self._orbits[(np.asarray(y, dtype=float).tobytes(), float(p), period)] = (
-            orbit_peak(r.y[0, :, 0]), r.states[0] / self.s, r.y[0, idx, 0])
+            orbit_peak(r.y[0, :, V_MID]), r.states[0] / self.s, r.y[0, idx, V_MID])
         return X, r
 
     def evaluate(self, y, p, period=1, dp=True):
@@ -158,7 +160,7 @@ class MechanismMap(Map):
         res = self.march(y, p, period, history=True)
         idx = np.arange(period + 1) * self.spr
         states = np.concatenate([res.D_history[0, idx], res.V_history[0, idx]], axis=1) / self.s
-        return orbit_peak(res.y[0, :, 0]), states, res.y[0, idx, 0]
+        return orbit_peak(res.y[0, :, V_MID]), states, res.y[0, idx, V_MID]
 
     def iterate(self, y, p, n, jacobian=False):
         res = self.march(y, p, n, history=True)
@@ -167,7 +169,7 @@ class MechanismMap(Map):
         jacs = None
         if jacobian:
             jacs = np.array([self.evaluate(states[j], p, 1, dp=False)[1] for j in range(n)])
-        return states, res.y[0, idx, 0], jacs
+        return states, res.y[0, idx, V_MID], jacs
 
     def physical(self, y):
         return np.asarray(y, dtype=float) * self.s

@@ -27,6 +27,7 @@ from typing import Optional
 
 import numpy as np
 
+from .. import schema
 from ..errors import CrankgenError, ParameterError
 from ._blas import single_thread
 from .maps import MapError
@@ -94,7 +95,7 @@ class PoincareDiagram:
 
         from ..plotting import beyond_patch, fit_panels, panels, place_labels, shade_beyond
         from ..theory import DEFLECTION_LIMIT
-        from .diagram import AXIS, LABELS, PERIOD_COLORS, describe
+        from .diagram import LABELS, PERIOD_COLORS, axis, describe
 
         fig, axes = panels(1, 1, width=7.5, height=4.2)
         ax = axes[0, 0]
@@ -146,16 +147,18 @@ class PoincareDiagram:
                 for sp in sorted(diagram.special_points, key=lambda s: s.parameter)])
             handles.append(Line2D([], [], color="grey", lw=0.6, ls=":",
                                   label="dotted: special points of the continuation"))
-        mech = "eps" in self.info or self.parameter_name == "eps"
+        r_unit = schema.UNIT_PARAMETERS["r"]          # v* is in units of r: the slenderness gives it in L
+        mech = r_unit in self.info or self.parameter_name == r_unit
         # the range beyond the theory, |v|/L > 0.1, shaded as in every other figure (over a sweep
-        # in eps the limit changes along the axis: drawn for its largest eps, the smallest band)
-        eps = (self.info.get("eps") if self.parameter_name != "eps"
+        # of the slenderness the limit changes along the axis: drawn for its largest value, the
+        # smallest band)
+        eps = (self.info.get(r_unit) if self.parameter_name != r_unit
                else max((q.parameter for q in self.points), default=None))
         samples = [abs(float(v)) for q in self.points for v in q.samples if np.isfinite(v)]
         if mech and eps and samples and max(samples) * eps > DEFLECTION_LIMIT:
             shade_beyond(ax, DEFLECTION_LIMIT / eps, "0.88")
             handles.append(beyond_patch("0.88"))
-        ax.set_xlabel(xlabel or AXIS.get(self.parameter_name, self.parameter_name))
+        ax.set_xlabel(xlabel or axis(self.parameter_name))
         ax.set_ylabel(ylabel or ("v*(1/2) at theta = 0, once per revolution" if mech
                                  else "observable, once per application of the map"))
         ax.grid(alpha=0.3)

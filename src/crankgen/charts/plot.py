@@ -41,6 +41,19 @@ def _rgb(color):
     return to_rgb(color)
 
 
+def chart_title(chart):
+    """Two lines: the plane and the model; every other parameter that sets the response (both axes
+    left out)."""
+    from ..bifurcation.diagram import axis
+    info, xn, yn = chart.info, chart.x[0], chart.y[0]
+    parts = [f"approach {info['approach']}" if "approach" in info else None,
+             " / ".join(str(info[k]) for k in ("formulation", "damping", "membrane") if k in info) or None,
+             f"n = {info['n_elements']}" if "n_elements" in info else None]
+    main, other = schema.describe({k: v for k, v in info.items() if k in schema.PARAMETERS}, skip=(xn, yn))
+    return (f"stability chart in ({axis(xn)}, {axis(yn)}): " + ", ".join(p for p in parts if p)
+            + "\n" + ", ".join(main + other))
+
+
 def plot_chart(chart, path, title=None):
     """chart_figure written atomically to path (returned)."""
     save_figure(chart_figure(chart, title), path, dpi=130)
@@ -53,7 +66,6 @@ def chart_figure(chart, title=None):
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
-    from ..bifurcation.diagram import AXIS, describe
     from ..plotting import fit_panels, panels, place_labels
 
     xn, x_lo, x_hi = chart.x
@@ -134,7 +146,5 @@ def chart_figure(chart, title=None):
     leg = ax.legend(handles=handles, fontsize=7.5, loc="upper center", ncol=2, frameon=False,
                     bbox_to_anchor=(0.5, -0.12))
     leg._crankgen_outside = True
-    head = describe(chart.info, "stability chart", xn).split(":", 1)
-    head = f"stability chart in ({AXIS.get(xn, xn)}, {AXIS.get(yn, yn)}):" + head[-1]
-    ax.set_title(title or head, fontsize=9)
+    ax.set_title(title or chart_title(chart), fontsize=9)
     return fit_panels(fig)

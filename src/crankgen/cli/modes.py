@@ -4,13 +4,14 @@ crank angle, and their bands against crank speed with the crank orders."""
 import math
 import sys
 
+from .. import schema
 from .options import (UsageError, _Outputs, _add_mechanism_options, _add_model_options,
                       _add_output_options, _explicit, _int_list, _say)
 
 MODES_NAMES = ("modes.csv", "shapes.csv", "modes.png")
 CAMPBELL_NAMES = ("campbell.csv", "crossings.csv", "campbell.png")
 # the run's parameters a frozen mechanism reads (no crank motion but its speed, no time stepping)
-FROZEN_RUN = ("omega", "theta0", "n_elements")
+FROZEN_RUN = (schema.CRANK_SPEED, schema.CRANK_ANGLE, "n_elements")
 
 
 def add_commands(sub):
@@ -75,7 +76,7 @@ def _mechanism(args):
     if args.si is None:
         mech = Mechanism(**{n: given.pop(n) for n in schema.MECHANISM_PARAMETERS if n in given})
         return mech, given, "crankgen"
-    clash = [n for n in schema.MECHANISM_PARAMETERS + ("omega",) if n in given]
+    clash = [n for n in schema.MECHANISM_PARAMETERS + (schema.CRANK_SPEED,) if n in given]
     if clash:
         raise UsageError(f"--si gives the mechanism and its crank speed: leave out --{schema.PARAMETERS[clash[0]].cli}")
     return _si_mechanism(args.si), given, "si"
@@ -87,8 +88,8 @@ def _cmd_modes(args):
 
     integer("--count", args.count, 1)
     mech, fields, units = _mechanism(args)
-    theta = fields.pop("theta0", 0.0)
-    omega = fields.pop("omega", None)
+    theta = fields.pop(schema.CRANK_ANGLE, 0.0)
+    omega = fields.pop(schema.CRANK_SPEED, None)
     m = modes(mech, omega, theta, count=args.count, model=args.model, units=units, **fields)  # checks all
     out = _Outputs(args.out, MODES_NAMES, args.force)
     try:

@@ -10,6 +10,7 @@ import os
 import sys
 from pathlib import Path
 
+from .. import schema
 from ..errors import ConvergenceError
 from ..limits import check_run_size
 from .options import CASE_FIELDS, UsageError, _Outputs, _case, _describe, _explicit, _flag, _say
@@ -36,8 +37,12 @@ def _theory_note(deflection, strain):
 
 
 # the SI file of `simulate --si`: crankgen.SIMechanism's fields
-SI_FIELDS = ("L", "a", "E", "rho", "A", "I", "slider_mass", "crank_speed", "damping")
-SI_REQUIRED = SI_FIELDS[:-1]
+def _si_fields():
+    from dataclasses import MISSING, fields
+
+    from ..parameters import SIMechanism
+    every = tuple(f.name for f in fields(SIMechanism))
+    return every, tuple(f.name for f in fields(SIMechanism) if f.default is MISSING)
 
 
 def _si_mechanism(path):
@@ -46,6 +51,7 @@ def _si_mechanism(path):
 
     from ..io import read_regular
     from ..parameters import SIMechanism
+    si_fields, si_required = _si_fields()
     try:
         data = json.loads(read_regular(path))
     except OSError as exc:
@@ -53,12 +59,12 @@ def _si_mechanism(path):
     except ValueError as exc:
         raise UsageError(f"--si {path}: not valid JSON ({exc})") from None
     if not isinstance(data, dict):
-        raise UsageError(f"--si {path}: expected a JSON object with the fields {', '.join(SI_FIELDS)}")
-    unknown = sorted(set(data) - set(SI_FIELDS))
-    missing = [k for k in SI_REQUIRED if k not in data]
+        raise UsageError(f"--si {path}: expected a JSON object with the fields {', '.join(si_fields)}")
+    unknown = sorted(set(data) - set(si_fields))
+    missing = [k for k in si_required if k not in data]
     if unknown or missing:
         what = (f"unknown field {unknown[0]!r}" if unknown else f"missing field {missing[0]!r}")
-        raise UsageError(f"--si {path}: {what}; the fields are {', '.join(SI_FIELDS)} (damping optional)")
+        raise UsageError(f"--si {path}: {what}; the fields are {', '.join(si_fields)} (damping optional)")
     return SIMechanism(**data)
 
 
@@ -68,13 +74,14 @@ def _si_case(args, si):
     from .. import schema
     from ..cases import make_case
     given = _explicit(args)
-    clash = [n for n in schema.MECHANISM_PARAMETERS + ("omega",) if n in given]
+    clash = [n for n in schema.MECHANISM_PARAMETERS + (schema.CRANK_SPEED,) if n in given]
     if clash:
         flag = schema.PARAMETERS[clash[0]].cli
         raise UsageError(f"--si gives the mechanism and its crank speed: leave out --{flag}")
-    if given.get("motion", "constant") != "constant":
-        raise UsageError("--si: the crank turns at the file's constant crank_speed (--crank constant)")
-    return make_case(model=args.model, **si.mechanism.values(), omega=si.omega, **given)
+    motion = schema.PARAMETERS[schema.SELECTOR["motion"]]
+    if given.get(motion.name, motion.default) != motion.default:
+        raise UsageError(f"--si: the crank turns at the file's constant crank_speed (--{motion.cli} {motion.default})")
+    return make_case(model=args.model, **si.mechanism.values(), **{schema.CRANK_SPEED: si.omega}, **given)
 
 
 def _cmd_simulate(args):
@@ -132,10 +139,12 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
     from ..simulation import simulate
 
     _say(args, f"simulate: {_describe(case)}, {revolutions:g} revolutions ({steps} steps)")
-    if case.motion == "runup" and revolutions < case.ramp:
+    transient = case.motion_record.transient
+    if transient and revolutions < getattr(case, transient):
+        ramp, speed = getattr(case, transient), schema.PARAMETERS[schema.CRANK_SPEED]
         _say(args, f"simulate: note: the run ends after {revolutions:g} revolutions, before the ramp of "
-                   f"{case.ramp:g} revolutions completes (the crank does not reach Omega* = "
-                   f"{case.omega:g}); --revolutions {case.ramp:g} or more runs the whole ramp")
+                   f"{ramp:g} revolutions completes (the crank does not reach {speed.axis} = "
+                   f"{getattr(case, speed.name):g}); --revolutions {ramp:g} or more runs the whole ramp")
     failure = None
     with Progress("simulate", steps, enabled=not args.quiet) as progress:
         try:
@@ -148,7 +157,7 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
     from .. import theory
 
     strain = theory.axial_strain(res, per_step=True)
-    defl = np.abs(np.asarray(res.v_mid, dtype=float)) * case.eps
+    defl = np.abs(np.asarray(res.v_mid, dtype=float)) * _in_L(res, case)
     view = None if si is None else res.si_view(si)
     columns, values = _simulation_columns(res, case, view)
     rows = (dict(zip(columns, row), deflection_over_L=d, axial_strain=st,
@@ -178,12 +187,13 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
         node_rows = (dict(zip(node_columns, (t, th, *row, *xy)))                     # streamed
                      for t, th, row, xy in zip(values[0], values[1], nodes, where))
         out.wrote(write_csv(out.path("nodes.csv"), node_columns, node_rows))
-    # a run-up is drawn against the crank speed it passes (its resonances) and against the
-    # revolutions, other runs against time
-    if case.motion == "runup" and getattr(res, "states", None) is not None:
+    # a motion whose speed changes over its first revolutions (a run-up) is drawn against the crank
+    # speed it passes (its resonances) and against the revolutions, other runs against time
+    transient = case.motion_record.transient
+    if transient and getattr(res, "states", None) is not None:
         from ..kinematics import time_of_revolutions
         from ..plotting import plot_runup
-        out.wrote(plot_runup(res, out.path("v_mid.png"), time_of_revolutions(case, case.ramp),
+        out.wrote(plot_runup(res, out.path("v_mid.png"), time_of_revolutions(case, getattr(case, transient)),
                              failure=failure, si=view, strain=strain))
     else:
         out.wrote(plot_deflection(res, out.path("v_mid.png"), failure=failure, si=view, strain=strain))
@@ -202,18 +212,34 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
     return 0
 
 
-def _simulation_columns(res, case, view):
-    """simulation.csv's columns and their per-step values: t, the crank angle (degrees, or rad with
-    --si), v_mid, u_end, extension, then every declared step output of the case's guide
-    (crankgen.outputs; scaled units, or SI with --si, each column named with its unit)."""
-    import numpy as np
+def _in_L(res, case):
+    """The unit of v_mid (the radius of gyration r) in L: |v_mid| times it is the deflection over L."""
+    from .. import schema
+    from ..units import in_L
+    return in_L(schema.OUTPUTS["v_mid"].units, case.parameters())
 
+
+def output_names(res, case):
+    """The declared outputs a result gives per step, in the schema's order: the engine's (every
+    result), then, for a result with stored states, every step and reduction output of the case's
+    guide (one list for every CSV and SI view of per-step values)."""
     from .. import schema
 
-    names = ["v_mid", "u_end", "extension"]
+    names = [name for name, spec in schema.OUTPUTS.items() if spec.engine]
     if getattr(res, "states", None) is not None:
         names += [name for name, spec in schema.OUTPUTS.items()
-                  if spec.kind == "step" and case.guide in spec.guides]
+                  if not spec.engine and spec.kind in ("step", "reduction")
+                  and case.guide_record.name in spec.guides]
+    return names
+
+
+def _simulation_columns(res, case, view):
+    """simulation.csv's columns and their per-step values: t, the crank angle (degrees, or rad with
+    --si), then every output of output_names (crankgen.outputs; scaled units, or SI with --si, each
+    column named with its unit)."""
+    import numpy as np
+
+    names = output_names(res, case)
     if view is None:
         values = [res.t, np.degrees(res.theta)] + [np.asarray(getattr(res, name), dtype=float)
                                                     for name in names]
@@ -235,7 +261,6 @@ def _theta_at(case, t):
 
 # ---- steady ------------------------------------------------------------------------------------
 STEADY_NAMES = ["steady.csv", "orbit.csv", "orbit.png"]
-ORBIT_COLUMNS = ["theta_deg", "t", "v_mid", "u_end", "extension", "deflection_over_L", "axial_strain"]
 
 
 def _resolved(case, where=""):
@@ -300,7 +325,8 @@ def _steady(args, case, out, section=None):
     st = steady_states([case], tol=args.tol, max_revolutions=args.max_revolutions,
                        method=args.method)[0]
     row = st.row()
-    defl = theory.deflection_over_L(case.eps, st.amplitude)
+    scale = _in_L(st, case)
+    defl = theory.deflection_over_L(scale, st.amplitude)
     steps = theory.axial_strain(st, per_step=True) if st.v_mid is not None else None   # per stored step
     strain = float(steps.max()) if steps is not None and steps.size else math.nan
     row.update(deflection_over_L=defl, axial_strain=strain, beyond_theory=theory.beyond(defl, strain),
@@ -309,9 +335,12 @@ def _steady(args, case, out, section=None):
         row["message"] = _failure_text(st.message, case.approach)
     out.wrote(write_csv(out.path("steady.csv"), *flat_table(list(row), [row])))
     if st.v_mid is not None:
-        rows = [dict(zip(ORBIT_COLUMNS, (np.degrees(th), t, v, u, e, theory.deflection_over_L(case.eps, v), a)))
-                for th, t, v, u, e, a in zip(st.theta, st.t, st.v_mid, st.u_end, st.extension, steps)]
-        out.wrote(write_csv(out.path("orbit.csv"), ORBIT_COLUMNS, rows))
+        names = output_names(st, case)
+        columns = ["theta_deg", "t"] + names + ["deflection_over_L", "axial_strain"]
+        values = [np.degrees(st.theta), st.t] + [np.asarray(getattr(st, n), dtype=float) for n in names]
+        rows = [dict(zip(columns, (*row, theory.deflection_over_L(scale, row[2 + names.index("v_mid")]), a)))
+                for *row, a in zip(*values, steps)]
+        out.wrote(write_csv(out.path("orbit.csv"), columns, rows))
         out.wrote(plot_orbit(st, out.path("orbit.png"), strain=steps))
     else:                                    # no orbit: leave no orbit of an earlier run beside it
         for name in ("orbit.csv", "orbit.png"):

@@ -52,11 +52,11 @@ def _add_branch_model_options(p):
     """Model options of continue and poincare (the continued parameter's own option is ignored)."""
     g = _add_model_options(p, integrator=False)
     g.title = "model (the continued parameter takes its values from --from and --to)"
-    g.add_argument("--parameter", choices=schema.CONTINUABLE + tuple(PARAMETER_FLAGS), default="omega",
+    g.add_argument("--parameter", choices=schema.CONTINUABLE + tuple(PARAMETER_FLAGS), default=schema.CRANK_SPEED,
                    metavar="{" + ",".join(schema.CONTINUABLE) + "}",
-                   help="the parameter varied (default omega); a four-bar's rocker length and "
-                        "ground pivot are c and d, also accepted by their flags' names, rocker and "
-                        "ground")
+                   help=f"the parameter varied (default {schema.CRANK_SPEED}); a parameter whose flag has "
+                        "another name is also accepted by its flag's name (" + ", ".join(
+                            f"{flag} for {name}" for flag, name in PARAMETER_FLAGS.items()) + ")")
     g.add_argument("--from", dest="start", type=float, required=True, help="first value of the parameter")
     g.add_argument("--to", dest="stop", type=float, required=True, help="last value of the parameter")
 
@@ -100,14 +100,16 @@ def _checked_branch_model(args, continuation, values=()):
     """Every option of continue / poincare checked before anything is created or computed: the
     case at both ends of the range (and at every swept value), the continuation's own settings
     when it runs, and the steady state it starts from.  Returns the case of the first point."""
+    from .. import schema
     from ..bifurcation.api import make_case
     from ..validation import in_range, integer
     from .runs import _resolved
 
     start, stop = in_range("--from", args.start), in_range("--to", args.stop)
     case = _branch_model(args)
-    if args.parameter == "omega" and min(start, stop) <= 0:
-        raise UsageError(f"--parameter omega: the range must stay above 0 (a crank at rest has no "
+    speed = args.parameter == schema.CRANK_SPEED
+    if speed and min(start, stop) <= 0:
+        raise UsageError(f"--parameter {args.parameter}: the range must stay above 0 (a crank at rest has no "
                          f"revolution to follow), got --from {start:g} --to {stop:g}")
     for value in (start, stop, *values):
         make_case(None, args.parameter, value, case)
@@ -115,9 +117,9 @@ def _checked_branch_model(args, continuation, values=()):
         if start == stop:
             raise UsageError(f"--from and --to must differ for a continuation, got {start:g} twice")
         integer("--max-period", args.max_period, 1)
-        first = min(start, stop) if args.parameter == "omega" else start
+        first = min(start, stop) if speed else start
         _resolved(make_case(None, args.parameter, first, case),
-                  "the continuation starts from a steady state: " if args.parameter == "omega" else "")
+                  "the continuation starts from a steady state: " if speed else "")
     return case
 
 
@@ -173,8 +175,8 @@ def _cmd_continue(args):
 
 
 def _axis(parameter):
-    from ..bifurcation.diagram import AXIS
-    return AXIS[parameter]
+    from ..bifurcation.diagram import axis
+    return axis(parameter)
 
 
 def _title(args, what):

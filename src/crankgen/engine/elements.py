@@ -11,6 +11,7 @@ factorization).  Nothing here names a family, a guide or a motion.
 """
 
 from .. import schema
+from .._generated import per_step as _per_step
 from .calls import call
 from .compiled import jit, plain
 from .kernels import N_END, N_ROD
@@ -24,8 +25,8 @@ IU, IV = schema.END_SLOTS                      # the end node's (u, v) in the la
 _R = schema.END_MAP_ROWS
 Q, QD, QDD, G_S, DQD_DS, DQDD_DS, DQDD_DSD, G_SS = (_R[k] for k in (
     "q", "qd", "qdd", "g_s", "dqd_ds", "dqdd_ds", "dqdd_dsd", "g_ss"))
-PHI = schema.KIN["phi"]
 LANES = schema.LANES
+per_step = jit(_per_step.per_step_into, python=False)    # the engine's outputs from their primitives
 LQ, LQD, LQDD, LGEO, LR, LK, LC, LM, LS = (schema.LANE_ROWS[k] for k in (
     "q", "qd", "qdd", "geo", "r", "K", "C", "M", "S"))
 
@@ -245,14 +246,19 @@ def _element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv
 
 
 @jit(python=False)
-def step_outputs(kern, sel, params, dofs, mid_e, Nv_mid, G, eps, d, w, out):
-    """out = (v* at x* = 1/2, u*(1), delta* of eq. 40) of the state d at w.kin."""
+def step_outputs(kern, sel, params, p, mesh, d, w, out):
+    """out = the engine's outputs (schema.ENGINE_OUTPUTS, e.g. v* at x* = 1/2, u*(1), delta* of
+    eq. 40) of the state d at w.kin: what they read (schema.PRIMITIVES) accumulated element by
+    element, each element's nodal vector with its end node through the end map (a point: the
+    field's shape functions at x* times the nodal vector of the element holding it; an integral over
+    the rod: q^T G q summed over the elements), then the generated per_step of those and the
+    parameter vector p."""
+    dofs = mesh.dofs
     n = dofs.shape[0]
     N = d.shape[0]
-    q = w.q
-    vmid = 0.0
-    slope = 0.0
-    u_end = 0.0
+    q, prims = w.q, w.prims
+    for k in range(prims.shape[0]):
+        prims[k] = 0.0
     for e in range(n):
         for k in range(NDOF):
             idx = dofs[e, k]
@@ -261,16 +267,19 @@ def step_outputs(kern, sel, params, dofs, mid_e, Nv_mid, G, eps, d, w, out):
             end_map(kern, sel, params, q[IU], 0.0, 0.0, w)
             q[IU] = w.E[Q, 0]
             q[IV] = w.E[Q, 1]
-            u_end = q[IU]
-        if e == mid_e:
-            for k in range(NDOF):
-                vmid += Nv_mid[k] * q[k]
-        for i in range(NDOF):
-            for j in range(NDOF):
-                slope += q[i] * G[i, j] * q[j]
-    out[0] = vmid / eps
-    out[1] = u_end / (eps * eps)
-    out[2] = u_end + 0.5 * slope
+            w.q_end[0] = q[IU]
+            w.q_end[1] = q[IV]
+        for j in range(mesh.point_slots.shape[0]):
+            if mesh.point_elements[j] == e:
+                k = mesh.point_slots[j]
+                for i in range(NDOF):
+                    prims[k] += mesh.point_weights[j, i] * q[i]
+        for g in range(mesh.gram_slots.shape[0]):
+            k = mesh.gram_slots[g]
+            for i in range(NDOF):
+                for jj in range(NDOF):
+                    prims[k] += q[i] * mesh.grams[g, i, jj] * q[jj]
+    per_step(prims, w.q_end, p, out)
 
 
 def _element_terms(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, t, cv, cd, w):

@@ -7,11 +7,12 @@
   the guide's end map and kinematics and the crank motion (one-entry tables).
 - Cases: one row per case of a batch: `select` (the table index of each family's variant, -1 when
   absent, then the guide and the motion), `coef` (the element kernels' coefficients), `params`
-  (the kinematic parameters), the time step, eps, the Newmark scheme code (newton.SCHEMES), whether
-  the one-pass scheme iterates with the printed eq. (37) matrices, and the natural size of every
-  reduced DOF (`scales`).
+  (the kinematic parameters), the time step, `p` (the parameter vector, for the engine's
+  outputs), the Newmark scheme code (newton.SCHEMES), whether the one-pass scheme iterates with the
+  printed eq. (37) matrices, and the natural size of every reduced DOF (`scales`).
 - MeshData: the mesh as the engine reads it: the element DOF map, bandwidth, element length, and
-  where v* at x* = 1/2 is read (element, shape functions) and the slope Gram matrix of eq. (40).
+  what the engine's outputs accumulate (schema.PRIMITIVES): for each point primitive its place in
+  prims, its element and its shape functions there; for each integral its place and Gram matrix.
 - Scheme: Newmark's beta and gamma, the Newton tolerance and iteration limit.
 - Work: the scratch arrays of one case's Newmark steps (allocated once per case and reused).
 Every record is a namedtuple of arrays and numbers: numba compiles them as such, and with
@@ -30,6 +31,8 @@ NDOF = schema.ELEMENT_DOFS
 LANES, LANE_SIZE = schema.LANES, schema.LANE_SIZE
 N_KIN = len(schema.KINEMATICS)
 END_ROWS = len(schema.END_MAP_ROWS)
+N_OUTPUTS = len(schema.ENGINE_OUTPUTS)          # the engine's per-step outputs
+N_PRIMITIVES = len(schema.PRIMITIVES)           # what it accumulates for them
 
 Kernels = namedtuple("Kernels", [
     "rod", "end",                       # per family slot acting on every element (its lane function) /
@@ -37,9 +40,10 @@ Kernels = namedtuple("Kernels", [
     "end_map", "guide", "motion",       # (one entry each)
 ])
 
-Cases = namedtuple("Cases", ["select", "coef", "params", "dt", "eps", "scheme", "printed", "scales"])
+Cases = namedtuple("Cases", ["select", "coef", "params", "dt", "p", "scheme", "printed", "scales"])
 
-MeshData = namedtuple("MeshData", ["dofs", "kb", "l", "mid_element", "Nv_mid", "G"])
+MeshData = namedtuple("MeshData", ["dofs", "kb", "l", "point_slots", "point_elements", "point_weights",
+                                   "gram_slots", "grams"])
 
 Scheme = namedtuple("Scheme", ["beta", "gamma", "tol", "max_iter"])
 
@@ -53,6 +57,7 @@ Work = namedtuple("Work", [
     "send", "E",                        # the end map's (s, sd, sdd) and its (8, 2) values
     "r1", "S1", "K1", "C1", "M1",       # one element's residual and matrices (the element loop's scratch)
     "lanes",                            # lane buffers of the elements, schema.LANES a buffer
+    "prims", "q_end",                   # the primitives of the engine's outputs; the end node's (u, v)
 ])
 
 
@@ -64,7 +69,8 @@ def _make_work(n, N, kb):
                 np.zeros((N + KB_FIXED, 2 * KB_FIXED + 1)), np.zeros(N), np.zeros(N_KIN), np.zeros(3),
                 np.zeros(NDOF), np.zeros(NDOF), np.zeros(NDOF), np.zeros(2), np.zeros(3), np.zeros((END_ROWS, 2)),
                 np.zeros(NDOF), np.zeros((NDOF, NDOF)), np.zeros((NDOF, NDOF)), np.zeros((NDOF, NDOF)),
-                np.zeros((NDOF, NDOF)), np.zeros(((n + LANES - 1) // LANES, LANE_SIZE)))
+                np.zeros((NDOF, NDOF)), np.zeros(((n + LANES - 1) // LANES, LANE_SIZE)), np.zeros(N_PRIMITIVES),
+                np.zeros(2))
 
 
 make_work = jit(_make_work, python=False)       # inside compiled code
