@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import schema
 from ..errors import ParameterError
 from ..io import atomic_file, read_regular
 from .codim2 import CODIM2
@@ -94,10 +95,12 @@ class Curve:
         if name == "critical":
             return self._critical()
         if name == "deflection_over_L":
-            eps = self.values["eps"] if "eps" in self.values else self.info.get("eps")
-            if eps is None:
-                raise KeyError("deflection_over_L needs the mechanism's eps (this curve has none)")
-            return np.abs(np.asarray(eps, dtype=float) * self.values["amplitude"])
+            # the amplitude is in units of r (v* = v / r), the radius of gyration: r/L is a parameter
+            unit = schema.UNIT_PARAMETERS["r"]
+            r = self.values[unit] if unit in self.values else self.info.get(unit)
+            if r is None:
+                raise KeyError(f"deflection_over_L needs the mechanism's {unit} (this curve has none)")
+            return np.abs(np.asarray(r, dtype=float) * self.values["amplitude"])
         raise KeyError(f"{name!r}: a curve has {', '.join(list(self.values) + ['critical'])}")
 
     def _critical(self):

@@ -2,6 +2,6 @@
 two parameters, the regions between them named in words (compute, regions, record, plot)."""
 
 from .compute import stability_chart
-from .record import Line, Region, StabilityChart
+from .record import ChartLine, Region, StabilityChart
 
-__all__ = ["Line", "Region", "StabilityChart", "stability_chart"]
+__all__ = ["ChartLine", "Region", "StabilityChart", "stability_chart"]

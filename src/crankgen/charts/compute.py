@@ -27,7 +27,7 @@ from ..bifurcation.mechanism import PARAMETERS
 from ..errors import CrankgenError, NoResultError, ParameterError
 from ..validation import in_range, integer
 from . import regions as _regions
-from .record import Line, Region, StabilityChart
+from .record import ChartLine, Region, StabilityChart
 
 MIN_AREA = 0.01        # a piece without a verdict this large (share of the box) gets a line
 ON_CURVE = 0.01        # a special point this close to a curve (in units of the box) lies on it
@@ -65,7 +65,12 @@ def _near(curve, point, xn, yn, box):
     return float(np.min(np.hypot(ax + t * dx - px, ay + t * dy - py)))
 
 
-def stability_chart(mech=None, x=("omega", 0.2, 1.6), y=("eps", 0.005, 0.05), *, model=None, lines=6,
+R = schema.UNIT_PARAMETERS["r"]          # the slenderness r/L: v* = v / r, deflection / L = v* r/L
+X_DEFAULT = (schema.CRANK_SPEED, 0.2, 1.6)
+Y_DEFAULT = (R, 0.005, 0.05)
+
+
+def stability_chart(mech=None, x=X_DEFAULT, y=Y_DEFAULT, *, model=None, lines=6,
                     max_lines=10, max_period=2, margin=0.25, case=None, progress=None, follow_settings=None,
                     **fields):
     """The stability chart of the mechanism in the plane of x = (parameter, low, high) and y = (...),
@@ -99,8 +104,8 @@ def stability_chart(mech=None, x=("omega", 0.2, 1.6), y=("eps", 0.005, 0.05), *,
     box = ((x_lo, x_hi), (y_lo, y_hi))
     raster = _regions.Raster(x_lo, x_hi, y_lo, y_hi)
     chart_lines, curves, notes = [], [], []
-    eps_of = (lambda level: (lambda xv: level)) if yn == "eps" else (
-        (lambda level: (lambda xv: xv)) if xn == "eps" else (lambda level: (lambda xv: base.eps)))
+    eps_of = (lambda level: (lambda xv: level)) if yn == R else (
+        (lambda level: (lambda xv: xv)) if xn == R else (lambda level: (lambda xv: getattr(base, R))))
 
     record = schema.PARAMETERS[xn]
     ext_lo, ext_hi = x_lo - margin * (x_hi - x_lo), x_hi + margin * (x_hi - x_lo)
@@ -117,12 +122,12 @@ def stability_chart(mech=None, x=("omega", 0.2, 1.6), y=("eps", 0.005, 0.05), *,
             try:
                 d = continuation(None, xn, start, stop, case=c, max_period=max_period,
                                  progress=lambda text: log(f"  {yn} = {level:.4g}: {text}"))
-                line = Line(float(level), d)
+                line = ChartLine(float(level), d)
                 break
             except NoResultError as exc:
-                line = Line(float(level), None, str(exc))
+                line = ChartLine(float(level), None, str(exc))
             except FAILURES as exc:
-                line = Line(float(level), None, f"{type(exc).__name__}: {exc}")
+                line = ChartLine(float(level), None, f"{type(exc).__name__}: {exc}")
                 break
         if line.diagram is None:
             notes.append(f"the continuation at {yn} = {level:.6g} failed: {line.message}")

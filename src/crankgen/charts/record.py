@@ -35,7 +35,7 @@ class Region:
 
 
 @dataclass
-class Line:
+class ChartLine:
     """A one-parameter continuation in x at y = level (diagram None: it failed, message says why)."""
 
     level: float
@@ -159,7 +159,7 @@ class StabilityChart:
     @classmethod
     def from_dict(cls, d):
         return cls(x=tuple(d["x"]), y=tuple(d["y"]), curves=[Curve.from_dict(c) for c in d["curves"]],
-                   lines=[Line(ln["level"], None if ln["diagram"] is None else BifurcationDiagram.from_dict(ln["diagram"]),
+                   lines=[ChartLine(ln["level"], None if ln["diagram"] is None else BifurcationDiagram.from_dict(ln["diagram"]),
                                ln["message"]) for ln in d["lines"]],
                    regions=[Region(g["index"], None if g["key"] is None else tuple(tuple(k) for k in g["key"]),
                                    g["words"], dict(g["votes"]), g["agreement"], g["area"], g["x"], g["y"], g["room"])

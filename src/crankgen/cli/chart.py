@@ -3,6 +3,7 @@
 import sys
 
 from .. import schema
+from ..charts.compute import X_DEFAULT, Y_DEFAULT
 from .options import UsageError, _Outputs, _add_mechanism_options, _add_model_options, _add_output_options, _explicit
 
 CHART_NAMES = ("curves.csv", "codim2_points.csv", "regions.csv", "lines.csv", "curve_multipliers.csv",
@@ -45,11 +46,11 @@ def add_command(sub):
     g = _add_model_options(p, integrator=False)
     g.title = "model (the chart's two parameters take their values from --x and --y)"
     a = p.add_argument_group("the plane")
-    a.add_argument("--x", type=_axis_spec("--x"), default=("omega", 0.2, 1.6), metavar="PARAMETER,LOW,HIGH",
+    a.add_argument("--x", type=_axis_spec("--x"), default=X_DEFAULT, metavar="PARAMETER,LOW,HIGH",
                    help="the horizontal axis: a continuable parameter (" + ", ".join(schema.CONTINUABLE)
-                        + ") and its range (default omega,0.2,1.6)")
-    a.add_argument("--y", type=_axis_spec("--y"), default=("eps", 0.005, 0.05), metavar="PARAMETER,LOW,HIGH",
-                   help="the vertical axis (default eps,0.005,0.05)")
+                        + ") and its range (default " + ",".join(map(str, X_DEFAULT)) + ")")
+    a.add_argument("--y", type=_axis_spec("--y"), default=Y_DEFAULT, metavar="PARAMETER,LOW,HIGH",
+                   help="the vertical axis (default " + ",".join(map(str, Y_DEFAULT)) + ")")
     a.add_argument("--lines", type=int, default=6,
                    help="continuations in the x parameter at this many values of the y parameter (default 6)")
     a.add_argument("--max-lines", type=int, default=10,
