@@ -94,13 +94,12 @@ class Curve:
             return self.values[name]
         if name == "critical":
             return self._critical()
-        if name == "deflection_over_L":
-            # the amplitude is in units of r (v* = v / r), the radius of gyration: r/L is a parameter
-            unit = schema.UNIT_PARAMETERS["r"]
-            r = self.values[unit] if unit in self.values else self.info.get(unit)
-            if r is None:
-                raise KeyError(f"deflection_over_L needs the mechanism's {unit} (this curve has none)")
-            return np.abs(np.asarray(r, dtype=float) * self.values["amplitude"])
+        if name == "deflection_over_L":         # v* is in units of r: the slenderness gives it in L
+            r = schema.UNIT_PARAMETERS["r"]
+            eps = self.values[r] if r in self.values else self.info.get(r)
+            if eps is None:
+                raise KeyError(f"deflection_over_L needs the mechanism's {r} (this curve has none)")
+            return np.abs(np.asarray(eps, dtype=float) * self.values["amplitude"])
         raise KeyError(f"{name!r}: a curve has {', '.join(list(self.values) + ['critical'])}")
 
     def _critical(self):

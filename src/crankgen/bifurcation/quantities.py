@@ -27,6 +27,7 @@ import numpy as np
 from .. import engine, schema
 from .. import kinematics as _kinematics
 from ..outputs import DeclaredOutputs
+from .mechanism import V_MID
 
 QUANTITIES = ("peak_v", "peak_torque", "peak_pin_force", "peak_end_force", "peak_axial_force",
               "peak_strain", "peak_stress")
@@ -116,7 +117,7 @@ def branch_quantities(case, parameter, branch, section=None, si=None):
                 notes.append(f"point {i}: the orbit's march failed ({engine.STATUS_TEXT[int(res.status[j])]})")
                 continue
             t = float(batch.dt[j]) * np.arange(period * spr + 1)
-            orbit = Orbit(c, t, _kinematics.case_state(c, t).theta, res.y[j, :, 0], res.D_history[j],
+            orbit = Orbit(c, t, _kinematics.case_state(c, t).theta, res.y[j, :, V_MID], res.D_history[j],
                           res.V_history[j], res.A_history[j])
             for k, v in orbit_quantities(orbit, section, si).items():
                 values[k][i] = v
