@@ -558,6 +558,7 @@ class Continuer:
         first = self.first_point(x0, p0)
         work = [(first, t0, 1, None, "start")]
         branches, specials = [], []
+        shown = getattr(self.map, "reported", self.map.dim)   # as the branches report them
         while work:
             start, t_start, period, merge, origin = work.pop(0)
             pts, found, reason = self.branch(start, t_start, period, merge)
@@ -567,7 +568,7 @@ class Continuer:
                 specials.append(SpecialPoint(
                     kind=kind, parameter=sp.p, amplitude=float(sp.amplitude), period=period,
                     branch=index, multiplier=self.critical(kind, sp),
-                    state=self.map.physical(sp.x), multipliers=np.array(sp.mu),
+                    state=self.map.physical(sp.x), multipliers=np.array(sp.mu[:shown]),
                     parameter_name=self.map.parameter, range=(self.lo, self.hi)))
                 if kind == "period-doubling" and 2 * period <= self.s.max_period:
                     pt, t_e, h = self.switch(sp, period)
