@@ -89,7 +89,8 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
     fields and model=, or case=Case(...)); the value of `parameter` given among them is replaced
     by start.  The start must have a periodic response (NoResultError otherwise; a continuation
     can start from either end of its range).  Steps ds, ds_min, ds_max are arclengths in the metric
-    |dy|^2 / dim + dp^2, y the state in v*-like units; no step changes the parameter by more than
+    |dy|^2 / dim + dp^2, y the state (d, v) in v*-like units (generalized-alpha's algorithmic
+    accelerations, slaved to the orbit, do not count); no step changes the parameter by more than
     dp_max (default |stop - start| / 50).  progress(text) receives progress lines.
     corrector ("broyden" or "newton"), predictor ("quadratic" or "tangent") and derivative
     ("exact" or "central", the map's parameter derivative) select the methods

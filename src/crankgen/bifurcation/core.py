@@ -1,9 +1,11 @@
 """Pseudo-arclength continuation of the fixed points of P^k for a map x -> P(x, p) (maps.Map).
 
-Unknown z = (x, p); metric <a, b> = a_x . b_x / dim + a_p b_p.  A step predicts z + ds t along the
+Unknown z = (x, p); metric <a, b> = sum_i w_i a_x,i b_x,i + a_p b_p, w_i = 1/dim unless the map
+weighs its components (maps.state_weights: the generalized-alpha mechanism's (d, v) as Newmark's, its
+algorithmic accelerations 0).  A step predicts z + ds t along the
 unit tangent t (plus a curvature term: _predict) and corrects on
     P^k(x, p) - x = 0,   <t, z - z_pred> = 0
-(bordered Jacobian [[dP/dx - I, dP/dp], [t_x / dim, t_p]]) with one of two correctors:
+(bordered Jacobian [[dP/dx - I, dP/dp], [w t_x, t_p]]) with one of two correctors:
 - "broyden" (default): quasi-Newton from the Jacobians of the accepted point the step starts from
   (or of the prediction where there is none), with Broyden's rank-one update after each iteration,
   which evaluates P^k alone (for the mechanism a march, several times cheaper than P^k with its
@@ -51,7 +53,7 @@ import numpy as np
 
 from ._blas import single_thread
 from .diagram import BifurcationDiagram, Branch, SpecialPoint
-from .maps import MapError
+from .maps import MapError, state_weights
 from ..errors import CrankgenError, NoResultError, ParameterError
 
 KINDS = ("fold", "period-doubling", "neimark-sacker")
@@ -66,7 +68,7 @@ EASY, HARD = {"broyden": 4, "newton": 2}, {"broyden": 8, "newton": 5}
 
 @dataclass
 class Settings:
-    """Step control and tolerances (the metric is <a, b> = a_x . b_x / dim + a_p b_p)."""
+    """Step control and tolerances (the metric is <a, b> = w a_x . b_x + a_p b_p: module docstring)."""
 
     ds: float = 0.01             # first step
     ds_min: float = 1e-5         # smallest step before the branch is given up
@@ -142,14 +144,14 @@ class Continuer:
         self.map = fmap
         self.s = (settings or Settings()).check()
         self.lo, self.hi = min(p_lo, p_hi), max(p_lo, p_hi)
-        self.w = 1.0 / fmap.dim
+        self.w = state_weights(fmap)     # per state component (maps.state_weights)
         self.log = log or (lambda text: None)
         self.evaluations = 0         # of P^k with its Jacobians
         self.values = 0              # of P^k alone
 
     # -- linear algebra ------------------------------------------------------------------------
     def _dot(self, a, b):
-        return self.w * float(np.dot(a[:-1], b[:-1])) + float(a[-1] * b[-1])
+        return float(np.dot(self.w * a[:-1], b[:-1])) + float(a[-1] * b[-1])
 
     def _bordered(self, jx, jp, row):
         n = self.map.dim
@@ -530,7 +532,7 @@ class Continuer:
         mu, vec = np.linalg.eig(pd.jx)
         c = int(np.argmin(np.abs(mu + 1.0)))
         e = np.real(vec[:, c])
-        e = e / math.sqrt(self.w * float(e @ e))
+        e = e / math.sqrt(float(self.w @ (e * e)))
         t_e = np.append(e, 0.0)
         h = self.s.switch_step
         for _ in range(4):

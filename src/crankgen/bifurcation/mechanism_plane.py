@@ -21,7 +21,7 @@ import numpy as np
 from .. import engine
 from ..errors import ParameterError
 from .maps import MapError
-from .mechanism import PARAMETERS, V_MID, orbit_peak
+from .mechanism import PARAMETERS, V_MID, orbit_peak, state_metric
 from .plane_maps import PlaneMap
 
 
@@ -49,6 +49,7 @@ class MechanismPlaneMap(PlaneMap):
         self.dim = b.state_size                 # (d, v), or (d, v, a) for generalized-alpha
         self.generalized = self.dim == 3 * self.N
         self.s = np.concatenate([b.scales[0]] * (self.dim // self.N))
+        self.weights = state_metric(self.N, self.generalized)
         self._orbits = {}
         self.shootings = 0          # cases shot (each with its Jacobian)
 
