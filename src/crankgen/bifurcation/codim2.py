@@ -138,7 +138,8 @@ class CurveContinuer:
         self.hi = np.asarray(hi, dtype=float)
         n = defining.n
         self.W = np.ones(defining.size)
-        self.W[:n] = state_weights(defining.map)    # 1/n each, or the map's (maps.state_weights)
+        weights = state_weights(defining.map)       # the map's (maps.state_weights), or 1/n each
+        self.W[:n] = 1.0 / n if weights is None else weights
         self.log = log or (lambda text: None)
         self.names = defining.map.names
 

@@ -144,14 +144,17 @@ class Continuer:
         self.map = fmap
         self.s = (settings or Settings()).check()
         self.lo, self.hi = min(p_lo, p_hi), max(p_lo, p_hi)
-        self.w = state_weights(fmap)     # per state component (maps.state_weights)
+        weights = state_weights(fmap)    # per state component, or 1/dim each (maps.state_weights)
+        self.w = 1.0 / fmap.dim if weights is None else weights
         self.log = log or (lambda text: None)
         self.evaluations = 0         # of P^k with its Jacobians
         self.values = 0              # of P^k alone
 
     # -- linear algebra ------------------------------------------------------------------------
     def _dot(self, a, b):
-        return float(np.dot(self.w * a[:-1], b[:-1])) + float(a[-1] * b[-1])
+        if np.ndim(self.w):
+            return float(np.dot(self.w * a[:-1], b[:-1])) + float(a[-1] * b[-1])
+        return self.w * float(np.dot(a[:-1], b[:-1])) + float(a[-1] * b[-1])
 
     def _bordered(self, jx, jp, row):
         n = self.map.dim
@@ -532,7 +535,7 @@ class Continuer:
         mu, vec = np.linalg.eig(pd.jx)
         c = int(np.argmin(np.abs(mu + 1.0)))
         e = np.real(vec[:, c])
-        e = e / math.sqrt(float(self.w @ (e * e)))
+        e = e / math.sqrt(float(np.sum(self.w * (e * e))) if np.ndim(self.w) else self.w * float(e @ e))
         t_e = np.append(e, 0.0)
         h = self.s.switch_step
         for _ in range(4):

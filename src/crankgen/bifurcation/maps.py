@@ -24,10 +24,10 @@ from ..errors import CrankgenError
 
 
 def state_weights(fmap):
-    """(dim,) weights of the state's components in a continuation's metric: the map's own
-    `weights`, or 1/dim each."""
+    """(dim,) weights of the state's components in a continuation's metric, the map's own
+    `weights`; None where it has none (1/dim each)."""
     w = getattr(fmap, "weights", None)
-    return np.full(fmap.dim, 1.0 / fmap.dim) if w is None else np.asarray(w, dtype=float)
+    return None if w is None else np.asarray(w, dtype=float)
 
 
 class MapError(CrankgenError):

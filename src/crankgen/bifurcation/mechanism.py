@@ -31,12 +31,13 @@ V_MID = schema.ENGINE_OUTPUTS.index("v_mid")     # the observable: v* at x* = 1/
 PARAMETERS = schema.CONTINUABLE
 
 
-def state_metric(N, generalized):
-    """The weights of the map's state components in the continuation's metric (maps.state_weights):
-    1/(2N) on (d, v), and 0 on generalized-alpha's algorithmic accelerations, which are slaved to
-    the orbit; in the scaled units their stiff (axial) components are several times larger than
-    (d, v) and would otherwise set the step length and let the corrector jump between branches."""
-    w = np.full(3 * N if generalized else 2 * N, 1.0 / (2 * N))
+def state_metric(N):
+    """The weights of generalized-alpha's state (d, v, a) in the continuation's metric
+    (maps.state_weights): 1/(2N) on (d, v), as Newmark's map (whose metric is the default 1/dim),
+    and 0 on the algorithmic accelerations, which are slaved to the orbit; in the scaled units their
+    stiff (axial) components are several times larger than (d, v) and would otherwise set the step
+    length and let the corrector jump between branches."""
+    w = np.full(3 * N, 1.0 / (2 * N))
     w[2 * N:] = 0.0
     return w
 
@@ -82,7 +83,7 @@ class MechanismMap(Map):
         self.generalized = self.dim == 3 * self.N
         self.s = np.concatenate([b.scales[0]] * (self.dim // self.N))
         self.reported = 2 * self.N        # the multipliers reported (time_scheme.reported_multipliers)
-        self.weights = state_metric(self.N, self.generalized)
+        self.weights = state_metric(self.N) if self.generalized else None
         self._cache = {}
         self._orbits = {}
 

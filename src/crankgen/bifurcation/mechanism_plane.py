@@ -49,7 +49,7 @@ class MechanismPlaneMap(PlaneMap):
         self.dim = b.state_size                 # (d, v), or (d, v, a) for generalized-alpha
         self.generalized = self.dim == 3 * self.N
         self.s = np.concatenate([b.scales[0]] * (self.dim // self.N))
-        self.weights = state_metric(self.N, self.generalized)
+        self.weights = state_metric(self.N) if self.generalized else None
         self._orbits = {}
         self.shootings = 0          # cases shot (each with its Jacobian)
 
