@@ -109,9 +109,9 @@ PARAMETERS = (
               "a* (cos theta, sin theta)), units of L omega_b^2", units="L omega_b^2", metavar="GX,GY",
               symbol=(s.gX, s.gY)),
     Parameter("guide", "choice", "line", "guide",
-              "the curve the rod's end travels on: line (a slider on the line Y = offset) or circle "
+              "the curve the rod's end travels on: line (a slider on the line Y = offset), circle "
               "(the tip of a rigid massless rocker of length c pivoted at (d, offset): a four-bar "
-              "linkage with a flexible coupler)", choices=guides.GUIDES),
+              "linkage with a flexible coupler) or cam (a slider on a wavy track)", choices=guides.GUIDES),
     Parameter("offset", "real", 0.0, "offset (guide offset e/L)",
               "guide offset e/L: the line Y = e, or the ordinate of the rocker's pivot",
               units="L", continuable=True, symbol=s.e, axis="offset e/L"),
@@ -125,6 +125,12 @@ PARAMETERS = (
               "closure of the four-bar: +1 puts the rocker's tip on the counter-clockwise side of the "
               "line from the crank pin to the ground pivot, -1 on the other",
               symbol=s.branch),
+    Parameter("cam_height", "real", 0.02, "cam_height (cam track height h/L)",
+              "height h/L of a cam track's waves, Y = e + h cos(2 pi X / lambda)", low=0.0, units="L",
+              continuable=True, symbol=guides.cam_height, axis="cam height h/L"),
+    Parameter("cam_wavelength", "real", 0.25, "cam_wavelength (cam track wavelength lambda/L)",
+              "wavelength lambda/L of a cam track's waves", low=0.0, low_open=True, units="L",
+              symbol=guides.cam_wavelength),
     Parameter("motion", "choice", "constant", "motion",
               "the crank's prescribed motion: constant speed, a run-up from omega0 to omega over "
               "`ramp` revolutions, or a cyclic fluctuation omega (1 + k sin(j theta))", owner="run",

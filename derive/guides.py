@@ -111,7 +111,23 @@ def circle():
         end_scale=s.eps**2 / s.c, pivot=D)
 
 
-GUIDES = (line(), circle())
+# a cam track's height and wavelength (units of L)
+cam_height, cam_wavelength = sp.symbols("h_cam lambda_cam", positive=True)
+
+
+def cam():
+    k = 2 * sp.pi / cam_wavelength
+    sin_phi = s.a * sp.sin(s.theta) - s.e               # the straight guide's closure: Newton's guess
+    return Guide(
+        "cam", "Cam", ("offset", "cam_height", "cam_wavelength"),
+        "cam track Y = e + h cos(2 pi X / lambda): a slider (the end mass ms) on a wavy guide, its "
+        "closure solved by Newton at run time", label="slider on a cam track",
+        curve=sp.Matrix([s.beta, s.e + cam_height * sp.cos(k * s.beta)]),
+        step=sp.Matrix([sp_s, -2 * cam_height * sp.sin(k * sp_s / 2) * sp.sin(k * (s.beta + sp_s / 2))]),
+        guess=s.a * sp.cos(s.theta) + sp.sqrt(1 - sin_phi**2), end_scale=s.eps**2)
+
+
+GUIDES = (line(), circle(), cam())
 
 
 def closure_rates(guide):
