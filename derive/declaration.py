@@ -111,9 +111,11 @@ PARAMETERS = (
     Parameter("guide", "choice", "line", "guide",
               "the curve the rod's end travels on: line (a slider on the line Y = offset), circle "
               "(the tip of a rigid massless rocker of length c pivoted at (d, offset): a four-bar "
-              "linkage with a flexible coupler) or cam (a slider on a wavy track)", choices=guides.GUIDES),
+              "linkage with a flexible coupler), cam (a slider on a wavy track) or incline (a slider on a "
+              "line at an angle inclination to the X axis)", choices=guides.GUIDES),
     Parameter("offset", "real", 0.0, "offset (guide offset e/L)",
-              "guide offset e/L: the line Y = e, or the ordinate of the rocker's pivot",
+              "guide offset e/L: the line Y = e (a cam track's mean line; an inclined line's "
+              "distance from the crank's axis), or the ordinate of the rocker's pivot",
               units="L", continuable=True, symbol=s.e, axis="offset e/L"),
     Parameter("c", "real", 0.8, "c (rocker length c/L)", "rocker length c/L",
               low=0.0, low_open=True, units="L", cli="rocker", continuable=True,
@@ -131,6 +133,10 @@ PARAMETERS = (
     Parameter("cam_wavelength", "real", 0.25, "cam_wavelength (cam track wavelength lambda/L)",
               "wavelength lambda/L of a cam track's waves", low=0.0, low_open=True, units="L",
               symbol=guides.cam_wavelength),
+    Parameter("inclination", "real", 0.0, "inclination (incline's angle alpha, rad)",
+              "angle alpha of an inclined guide to the X axis (counter-clockwise); the line lies at the "
+              "distance offset from the crank's axis", units="rad", continuable=True,
+              symbol=guides.inclination, axis="inclination alpha (rad)"),
     Parameter("motion", "choice", "constant", "motion",
               "the crank's prescribed motion: constant speed, a run-up from omega0 to omega over "
               "`ramp` revolutions, or a cyclic fluctuation omega (1 + k sin(j theta))", owner="run",

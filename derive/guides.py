@@ -127,7 +127,26 @@ def cam():
         guess=s.a * sp.cos(s.theta) + sp.sqrt(1 - sin_phi**2), end_scale=s.eps**2)
 
 
-GUIDES = (line(), circle(), cam())
+# the angle of an inclined straight guide to the X axis
+inclination = sp.Symbol("alpha_g", real=True)
+
+
+def incline():
+    direction = sp.Matrix([sp.cos(inclination), sp.sin(inclination)])
+    sin_phi = s.a * sp.sin(s.theta - inclination) - s.e     # the slider-crank turned by the inclination
+    return Guide(
+        "incline", "Incline", ("offset", "inclination"),
+        "straight guide at an angle alpha to the X axis, at a distance e from the crank's axis: a "
+        "slider (the end mass ms) on an inclined line", label="slider on an incline",
+        curve=s.e * sp.Matrix([-sp.sin(inclination), sp.cos(inclination)]) + s.beta * direction,
+        step=sp_s * direction, phi=sp.asin(sin_phi) - inclination,
+        beta=s.a * sp.cos(s.theta - inclination) + sp.sqrt(1 - sin_phi**2),
+        margin=((1 - s.a - sp.Abs(s.e), "a* + |offset| < 1 (the rod must reach the guide at every "
+                                        "crank angle)"),),
+        end_scale=s.eps**2)
+
+
+GUIDES = (line(), circle(), cam(), incline())
 
 
 def closure_rates(guide):

@@ -27,6 +27,7 @@ class MechanismFields:
     branch: object = None
     cam_height: object = None
     cam_wavelength: object = None
+    inclination: object = None
 
 
 @dataclass(frozen=True)
@@ -46,6 +47,7 @@ class CaseFields:
     branch: object = None
     cam_height: object = None
     cam_wavelength: object = None
+    inclination: object = None
     motion: object = None
     omega: object = None
     omega0: object = None
@@ -86,6 +88,13 @@ class Cam(Spec):
     declaration = GUIDES[2]    # cam
 
 
+class Incline(Spec):
+    """straight guide at an angle alpha to the X axis, at a distance e from the crank's axis: a slider (the end mass ms) on an inclined line.  Parameters: offset, inclination."""
+
+    kind = 'guide'
+    declaration = GUIDES[3]    # incline
+
+
 class Constant(Spec):
     """constant crank speed Omega*: theta = theta0 + Omega* t.  Parameters: omega, theta0."""
 
@@ -107,5 +116,5 @@ class Fluctuation(Spec):
     declaration = MOTIONS[2]    # fluctuation
 
 
-GUIDE_CLASSES = (Line, Circle, Cam,)
+GUIDE_CLASSES = (Line, Circle, Cam, Incline,)
 MOTION_CLASSES = (Constant, RunUp, Fluctuation,)
