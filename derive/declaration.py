@@ -633,6 +633,9 @@ OUTPUTS = (
            build=lambda o: _inertial(end_force)[0]),
     Output("end_force_y", "step", "Y component of the end reaction (see end_force_x)", FORCE,
            build=lambda o: _inertial(end_force)[1]),
+    Output("kinetic_energy", "reduction",
+           "the rod's kinetic energy T = sum of the elements' T_i, eqs. (4)-(5) (the end mass's not "
+           "included), units of rho A L^3 omega_b^2", TORQUE, build=lambda o: en.rod_kinetic_energy()),
     Output("axial_force", "field", "N* = N L^2 / EI, N = EA times the approach's membrane strain", "EI/L^2",
            options=MEMBRANE_OPTIONS, build=lambda o: membrane_strain(o) * s.EA / s.EI),
     Output("bending_moment", "field", "M* = M L / EI = v_xx (M = EI v_xx)", "EI/L",
