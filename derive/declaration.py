@@ -636,6 +636,11 @@ OUTPUTS = (
     Output("kinetic_energy", "reduction",
            "the rod's kinetic energy T = sum of the elements' T_i, eqs. (4)-(5) (the end mass's not "
            "included), units of rho A L^3 omega_b^2", TORQUE, build=lambda o: en.rod_kinetic_energy()),
+    Output("strain_energy", "reduction",
+           "the rod's strain energy U = sum of the elements' U_i of the approach in use (eq. 2 for A; "
+           "B without the quartic term; C linear), units of rho A L^3 omega_b^2", TORQUE,
+           options=MEMBRANE_OPTIONS, build=lambda o: STRAIN_ENERGY[
+               o["approach"], o["approach"] != "C" and o["membrane"] == "averaged"].build()),
     Output("axial_force", "field", "N* = N L^2 / EI, N = EA times the approach's membrane strain", "EI/L^2",
            options=MEMBRANE_OPTIONS, build=lambda o: membrane_strain(o) * s.EA / s.EI),
     Output("bending_moment", "field", "M* = M L / EI = v_xx (M = EI v_xx)", "EI/L",
