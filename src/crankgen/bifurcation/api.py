@@ -62,10 +62,20 @@ def _check_progress(progress):
         raise ParameterError(f"progress must be None or a function, got {progress!r}")
 
 
+def _add_quantities(diagram, case, parameter, section, progress):
+    """Every branch point's physical quantities (quantities.py)."""
+    from .quantities import branch_quantities, units
+    for k, br in enumerate(diagram.branches):
+        if progress is not None:
+            progress(f"branch {k}: the physical quantities of its {len(br)} orbits")
+        br.quantities, br.quantity_notes = branch_quantities(case, parameter, br, section)
+        br.quantity_units = units(section)
+
+
 def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *, model=None, max_period=4, ds=0.05,
                  ds_min=1e-4, ds_max=100.0, dp_max=None, max_points=400, tol=1e-9, switch_step=0.05,
                  case=None, progress=None, corrector="broyden", predictor="quadratic", derivative="exact",
-                 **fields):
+                 quantities=True, section=None, **fields):
     """Follow the periodic response of the mechanism as `parameter` goes from start to stop, by
     pseudo-arclength continuation of the fixed points of the crank-revolution map, and return a
     BifurcationDiagram: branches (period, parameter, amplitude = max |v*(1/2)| over the orbit,
@@ -82,8 +92,15 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
     corrector ("broyden" or "newton"), predictor ("quadratic" or "tangent") and derivative
     ("exact" or "central", the map's parameter derivative) select the methods
     (bifurcation/core.py, mechanism.py): the defaults are the fast ones; "newton", "tangent" and
-    "central" together are the former method, kept as a baseline."""
+    "central" together are the former method, kept as a baseline.  quantities: every branch
+    point also stores the physical quantities of its orbit (Branch.quantities: peak torque, pin and
+    end forces, axial force, |v*|, outer-fibre strain, and with a crankgen.sections.Section
+    `section` the peak stress in units of E; bifurcation/quantities.py)."""
     _check_progress(progress)
+    if section is not None:
+        from ..sections import Section
+        if not isinstance(section, Section):
+            raise ParameterError(f"section must be a crankgen.sections.Section, got {type(section).__name__}")
     start = in_range("start", start)
     stop = in_range("stop", stop)
     if start == stop:
@@ -120,6 +137,8 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
                                    f"cannot turn a full revolution ({why})")
     for sp in diagram.special_points:
         sp.case = fmap.case_at(sp.parameter)
+    if quantities:
+        _add_quantities(diagram, c0, parameter, section, progress)
     info = c0.as_dict()
     info.pop(parameter)
     info.update(parameter=parameter, start=start, stop=stop, max_period=max_period,

@@ -115,7 +115,7 @@ class Curve:
 
     @property
     def label(self):
-        return f"{LABELS[self.kind]}{self.period if self.period > 1 else ''}"
+        return f"{LABELS[self.kind]}{self.period}"
 
     def describe(self):
         """One line: what the curve is and where it runs."""
