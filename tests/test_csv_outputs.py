@@ -137,3 +137,33 @@ def test_the_python_api_writers(tmp_path):
     res.to_csv(tmp_path / "run.csv")
     run = check_csv(tmp_path / "run.csv")
     np.testing.assert_allclose(run["theta_deg"], np.degrees(res.theta))
+
+
+def test_every_csv_of_the_si_commands_parses_into_numbers(tmp_path):
+    """steady, sweep, continue and poincare with --si, and the Python API's to_csv of a result and
+    of its SI view: every file crankgen writes parses into numbers, words and empty fields."""
+    import json
+    path = tmp_path / "rod.json"
+    path.write_text(json.dumps({"L": 0.3, "a": 0.03, "E": 2e11, "rho": 7870, "A": 6.4e-5, "I": 3.41e-10,
+                                "slider_mass": 0.0756, "crank_speed": 900, "damping": 2e-4,
+                                "gravity": [0, -9.81]}))
+    si = ["--si", str(path), *TINY]
+    assert main(["steady", *si, "--out", str(tmp_path / "st")]) == 0
+    assert main(["sweep", *si, "--omega", "600,900", "--out", str(tmp_path / "sw")]) == 0
+    assert main(["continue", *si, "--from", "600", "--to", "900", "--max-period", "1",
+                 "--out", str(tmp_path / "c")]) == 0
+    assert main(["poincare", *si, "--from", "600", "--to", "900", "--values", "2", "--transient", "2",
+                 "--samples", "2", "--with-continuation", "--max-period", "1", "--direction", "up",
+                 "--out", str(tmp_path / "p")]) == 0
+    st = crankgen.steady_state(crankgen.Mechanism(), omega=0.5, n_elements=2, steps_per_rev=20)
+    st.to_csv(tmp_path / "st" / "api.csv")
+    rod = crankgen.SIMechanism(L=0.3, a=0.03, E=2e11, rho=7870, A=6.4e-5, I=6.4e-5 * 0.003 ** 2, slider_mass=1,
+                               crank_speed=1)                    # eps = sqrt(I/A)/L = 0.01, the case's
+    st.si_view(rod).to_csv(tmp_path / "st" / "api_si.csv")
+    files = sorted(tmp_path.rglob("*.csv"))
+    assert len(files) == 14                  # 4 steady, 2 sweep, 3 continue, 5 poincare
+    for f in files:
+        check_csv(f)
+    branches = check_csv(tmp_path / "c" / "branches.csv")
+    assert branches["crank_speed_rad_per_s"].iloc[0] == pytest.approx(600.0)
+    assert check_csv(tmp_path / "p" / "poincare_samples.csv").columns[-1] == "value_m"

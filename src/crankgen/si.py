@@ -374,3 +374,19 @@ def row_in_si(row, si_mechanism):
 def describe_row_in_si(row, si_mechanism):
     """[{column, units, meaning}] of the SI columns row_in_si adds."""
     return [{"column": c, "units": u, "meaning": m} for c, _, u, m in _row_columns(row, si_mechanism)]
+
+
+def describe_si(values, scales, skip=()):
+    """The parameters of a case (a mapping of values in crankgen's units) in SI, as text for titles:
+    ["a = 0.03 m", "slider mass = 0.0756 kg", "gravity = (0, -9.81) m/s^2", ...], those its guide and
+    crank motion read, by SI name, `skip` (names) and the choices left out."""
+    guide, motion = schema.selected(values, "guide"), schema.selected(values, "motion")
+    out = []
+    for si, p in FIELDS.items():
+        if p.name in skip or p.selects or not p.read_by(guide, motion):
+            continue
+        value = values.get(p.name, p.default)
+        value = to_si(p.name, tuple(value) if isinstance(value, list) else value, scales)
+        unit = si_unit(p.name)
+        out.append(f"{si.replace('_', ' ')} = {p.text(value)}" + (f" {unit}" if unit != "1" and p.kind in ("real", "pair") else ""))
+    return out
