@@ -28,7 +28,7 @@ RESULTS = (
                      "outside the unit circle), not-periodic or failed; the message says why"),
     ("amplitude", AMPLITUDE_UNITS, "max |v*(1/2)| over the orbit: the largest mid-span deflection from the "
                                    "rigid rod, in units of the radius of gyration r"),
-    ("half_peak_to_peak", AMPLITUDE_UNITS, "(max v*(1/2) - min v*(1/2)) / 2 over the orbit"),
+    ("half_peak_to_peak", AMPLITUDE_UNITS, "half the peak-to-peak of v*(1/2) over the orbit, (max - min) / 2"),
     ("deflection_over_L", "1", "the amplitude as a deflection over the rod's length, |v|/L = eps max|v*|: "
                                "beyond the theory above 0.1"),
     ("axial_strain", "1", "the largest axial strain of the neutral axis over the orbit (the approach's "
@@ -129,8 +129,8 @@ def meaning(column):
 
 
 def describe(columns, si=False):
-    """[{column, units, meaning}] of a table's columns (crankgen's declared units, or SI); a pair's
-    two columns (gravity_x, gravity_y: crankgen.tables.PAIRS) are its components."""
+    """[{column, units, meaning}] of a table's columns (crankgen's declared units, or SI;
+    "dimensionless" for a number, empty for words); a pair's two columns (gravity_x, gravity_y: crankgen.tables.PAIRS) are its components."""
     from .tables import PAIRS
     parts = {c: (name, k) for name, pair in PAIRS.items() for k, c in enumerate(pair)}
     out = []
@@ -138,6 +138,7 @@ def describe(columns, si=False):
         name, k = parts.get(c, (c, None))
         units = units_of(name)
         text = CLOCK.get(name, "" if units is None else (Scales.si_name(units) if si else units))
+        text = "dimensionless" if text == "1" else text
         what = meaning(name) + ("" if k is None else f" ({'XY'[k]} component)")
         out.append({"column": c, "units": text, "meaning": what})
     return out

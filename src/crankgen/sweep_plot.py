@@ -19,6 +19,7 @@ from . import schema
 from .steady_row import PEAK, is_load
 
 MAX_SERIES = 10
+DPI = 120
 HANDLED = {"status", "message", "groups_off"}
 
 
@@ -39,6 +40,23 @@ def varying(rows, columns):
             if len(values) > 1:
                 out.append(c)
     return out
+
+
+def independent(rows, columns):
+    """The columns of `columns` that name a series: each dropped whose value follows from those
+    kept before it (a rocker's length from the guide, a fluctuation from the crank motion, the
+    options from the model)."""
+    order = sorted(columns, key=lambda c: (c in schema.OPTIONS, c == "model"))
+    order = [c for c in order if c != "model"] if "model" not in columns else \
+        [c for c in order if c not in schema.OPTIONS] + ["model"] + [c for c in order if c in schema.OPTIONS]
+    kept = []
+    for c in order:
+        seen = {}
+        for r in rows:
+            seen.setdefault(tuple(repr(r.get(k)) for k in kept), set()).add(repr(r.get(c)))
+        if any(len(v) > 1 for v in seen.values()):
+            kept.append(c)
+    return [c for c in columns if c in kept]
 
 
 def moments(columns):
@@ -70,24 +88,25 @@ def sweep_figure(table, x=None, si=None):
         xcol, xlabel = column(p.si or p.name, p.units, True), f"{(p.si or p.name).replace('_', ' ')} ({_si(p.units)})"
     else:
         xcol, xlabel = x, (p.axis or p.name)
-    others = [c for c in swept if c != x]
+    others = independent(rows, [c for c in swept if c != x])
     loads = moments(columns)
     amp_col = "amplitude" if si is None else column("amplitude", _amplitude_units(), True)
     groups = {}
     for r in rows:
-        groups.setdefault(tuple(r.get(c) for c in others), []).append(r)
+        groups.setdefault(tuple(repr(r.get(c)) for c in others), []).append(r)
     keys = list(groups)[:MAX_SERIES]
     n_panels = 1 + bool(loads)
     fig, axes = panels(n_panels, 1, width=6.4, height=3.0, space_below=0.0, top_margin=0.95)
+    fig.set_dpi(DPI)                          # laid out at the resolution it is written with
     a_amp = axes[0, 0]
     a_load = axes[1, 0] if loads else None
     scale = 1e3 if si is not None else 1.0                # metres -> mm
-    handles = []
+    handles, limits = [], {}
     ringed = False
     missing_any = False
     for k, key in enumerate(keys):
         color = f"C{k % 10}"
-        label = ", ".join(_describe(c, v) for c, v in zip(others, key)) or None
+        label = ", ".join(_describe(c, groups[key][0].get(c)) for c in others) or None
         group = sorted(groups[key], key=lambda r: _number(r.get(xcol)))
         xs = np.array([_number(r.get(xcol)) for r in group])
         amp = np.array([_number(r.get(amp_col)) for r in group]) * scale
@@ -111,13 +130,13 @@ def sweep_figure(table, x=None, si=None):
             for ax in (a_amp, a_load) if a_load is not None else (a_amp,):
                 ax.scatter(xs[missing], np.full(int(missing.sum()), 0.03 + 0.025 * (k % 4)),
                            transform=ax.get_xaxis_transform(), marker="x", color=color, s=36, zorder=5)
-        if si is None and not beyond.all():
+        if si is None:
             eps = {_number(r.get(u)) for r in group for u in schema.UNIT_PARAMETERS.values()}
             if len(eps) == 1:
                 from .theory import DEFLECTION_LIMIT
                 limit = DEFLECTION_LIMIT / eps.pop()
                 if np.nanmax(np.append(amp, 0.0)) > 0.5 * limit:
-                    a_amp.axhline(limit, color=color, ls=":", lw=0.9)
+                    limits.setdefault(limit, set()).add(color)
         for j, load in enumerate(loads):
             col = load if si is None else column(load, schema.OUTPUTS[load[len(PEAK):]].units, True)
             y = np.array([_number(r.get(col)) for r in group])
@@ -125,6 +144,8 @@ def sweep_figure(table, x=None, si=None):
                         ls=("-", "--", ":")[j % 3])
             if unstable.any():
                 a_load.scatter(xs[unstable], y[unstable], marker="o", facecolors="none", edgecolors=color, s=30)
+    for limit, colors in limits.items():      # one line per limit, in its series' colour when it has one
+        a_amp.axhline(limit, color=colors.pop() if len(colors) == 1 else "0.4", ls=":", lw=0.9)
     a_amp.set_ylabel("amplitude |v(L/2)| (mm)" if si is not None else "amplitude |v*(1/2)| (units of r)")
     a_amp.set_ylim(bottom=0.0)
     if a_load is not None:
@@ -176,10 +197,15 @@ def _amplitude_units():
 
 
 def _describe(c, v):
+    """A series' value of a column as a legend names it: a guide or motion by its record's label
+    (slider, four-bar, run-up, ...), an option or the model by its value, a number with its axis."""
     if c in schema.PARAMETERS:
         p = schema.PARAMETERS[c]
+        if p.selects:
+            record = (schema.GUIDES if p.selects == "guide" else schema.MOTIONS)[v]
+            return record.label or record.name
         return f"{p.axis or p.name} = {v:g}" if isinstance(v, (int, float)) else f"{p.axis or p.name} = {v}"
-    return f"{c} {v}"
+    return f"{v} {c}"
 
 
 def _title(row, swept, n_groups, shown, si=None):
@@ -191,17 +217,10 @@ def _title(row, swept, n_groups, shown, si=None):
     if si is None:
         main, other = schema.describe(values, skip=swept)
     else:
-        from .si import SI_NAME, dimensioned, si_unit, to_si
+        from .si import describe_si
         from .units import ROD
         main = [f"{n} = {getattr(si, n):g} {u}" for n, u, _ in ROD]
-        other = []
-        guide, motion = row[schema.SELECTOR["guide"]], row[schema.SELECTOR["motion"]]
-        for name, p in schema.PARAMETERS.items():
-            if name not in SI_NAME or name in swept or not p.read_by(guide, motion) or p.selects:
-                continue
-            value = to_si(name, values[name], si.scales)
-            text = p.text(value) + (f" {si_unit(name)}" if dimensioned(p) else "")
-            other.append(f"{SI_NAME[name].replace('_', ' ')} = {text}")
+        other = describe_si(values, si.scales, skip=swept)
     if "n_elements" not in swept:
         options.append(f"n = {row['n_elements']}")
     more = f"; {n_groups - shown} more series not drawn" if n_groups > shown else ""
@@ -212,4 +231,4 @@ def _title(row, swept, n_groups, shown, si=None):
 def plot_sweep(table, path, x=None, si=None):
     """Write the sweep figure (sweep_figure) to path atomically; returns path."""
     from .io import save_figure
-    return save_figure(sweep_figure(table, x, si), path)
+    return save_figure(sweep_figure(table, x, si), path, dpi=DPI)
