@@ -107,3 +107,46 @@ def test_the_sweep_figure_draws_the_table(mixed_sweep):
     labels = [t.get_text() for t in fig.legends[0].get_texts()] if fig.legends else \
         [t.get_text() for t in bottom.get_legend().get_texts()]
     assert sum(label.endswith(" model") for label in labels) == 8            # every series named
+
+
+def test_the_orbit_figure_draws_the_loads_in_si():
+    """orbit.png of a steady state in SI: v at mid-span in mm and the driving torque in N m
+    against the crank angle, the torque being the scaled orbit's times rho A L^3 omega_b^2
+    computed here from the rod; the title wraps inside the figure."""
+    import matplotlib
+    matplotlib.use("Agg")
+    from crankgen.plotting import layout_problems, orbit_figure
+    L, E, rho, A, I = 0.3, 2e11, 7870.0, 6.4e-5, 3.41e-10
+    steel = crankgen.SIMechanism(L=L, a=0.15, E=E, rho=rho, A=A, I=I, slider_mass=0.0756, crank_speed=150.0,
+                                 damping=2e-4, gravity=(0.0, -9.81), offset=0.01)
+    st = crankgen.steady_state(steel, units="si", n_elements=2, steps_per_rev=40)
+    omega_b = (math.pi / L) ** 2 * math.sqrt(E * I / (rho * A))
+    fig = orbit_figure(st, si=st.si)
+    assert layout_problems(fig) == []
+    top, _, bottom = fig.axes
+    x, v = top.get_lines()[0].get_xydata().T
+    np.testing.assert_allclose(x, np.degrees(st.theta))
+    np.testing.assert_allclose(v, st.v_mid * math.sqrt(I / A) * 1e3, rtol=1e-12)      # v* r, in mm
+    torque = bottom.get_lines()[0].get_xydata()[:, 1]
+    np.testing.assert_allclose(torque, st.torque * rho * A * L ** 3 * omega_b ** 2, rtol=1e-12)
+    assert bottom.get_ylabel() == "driving torque (N m)" and "offset = 0.01 m" in top.get_title().replace("\xa0", " ")
+
+
+def test_the_sweep_figure_spans_the_cases_without_an_orbit(mixed_sweep):
+    """A case without a periodic orbit is a cross at the bottom, inside the axes: rows at the
+    ends of the swept range marked not-periodic here are still within the x-limits."""
+    import matplotlib
+    matplotlib.use("Agg")
+    from crankgen.sweep_plot import sweep_figure
+    rows = check_csv(mixed_sweep / "sweep.csv")
+    records = rows.astype(object).where(rows.notna(), None).to_dict("records")
+    for r in records:
+        if r["omega"] == 0.7:
+            r.update(status="not-periodic", amplitude=None, peak_torque=None)
+    fig = sweep_figure(crankgen.SweepTable(records))
+    for ax in fig.axes[:2]:
+        lo, hi = ax.get_xlim()
+        assert lo < 0.3 and hi > 0.7
+        crosses = [c for c in ax.collections if c.get_offsets().shape[0] and
+                   np.allclose(c.get_offsets()[:, 0], 0.7)]
+        assert len(crosses) == 8                                  # one per series

@@ -183,5 +183,9 @@ def test_a_continuation_in_si_finds_the_scaled_special_points_in_rad_per_s(tmp_p
     assert {"crank_speed_rad_per_s", "amplitude_m"} <= set(branches.columns)
     assert branches["crank_speed_rad_per_s"].iloc[0] == pytest.approx(600.0)
     assert branches["stop_reason"].iloc[-1].startswith("reached crank_speed = 1300 rad/s")
+    # a branch's origin names the parameter in SI, with the digits it was printed with
+    assert d.si.text("period-doubling of branch 0 at omega = 0.9352908; merged at omega = 1.1") == \
+        f"period-doubling of branch 0 at crank_speed = {0.9352908 * omega_b:.7g} rad/s; " \
+        f"merged at crank_speed = {1.1 * omega_b:.2g} rad/s"
     with pytest.raises(crankgen.ParameterError, match="section"):
         crankgen.continuation(steel, "eps", 0.01, 0.02, units="si", **run)

@@ -144,6 +144,12 @@ def sweep_figure(table, x=None, si=None):
                         ls=("-", "--", ":")[j % 3])
             if unstable.any():
                 a_load.scatter(xs[unstable], y[unstable], marker="o", facecolors="none", edgecolors=color, s=30)
+    every = [x for key in keys for x in (_number(r.get(xcol)) for r in groups[key]) if np.isfinite(x)]
+    if every:                                 # the crosses (axes' y) do not extend the data limits
+        lo, hi = min(every), max(every)
+        pad = 0.05 * (hi - lo) if hi > lo else 0.05 * max(abs(lo), 1.0)
+        for ax in axes[:, 0]:
+            ax.set_xlim(lo - pad, hi + pad)
     for limit, colors in limits.items():      # one line per limit, in its series' colour when it has one
         a_amp.axhline(limit, color=colors.pop() if len(colors) == 1 else "0.4", ls=":", lw=0.9)
     a_amp.set_ylabel("amplitude |v(L/2)| (mm)" if si is not None else "amplitude |v*(1/2)| (units of r)")
@@ -224,8 +230,9 @@ def _title(row, swept, n_groups, shown, si=None):
     if "n_elements" not in swept:
         options.append(f"n = {row['n_elements']}")
     more = f"; {n_groups - shown} more series not drawn" if n_groups > shown else ""
-    return ("steady states of a sweep: " + ", ".join(options) + "\n" + ", ".join(main)
-            + ("\n" + ", ".join(other) if other else "") + more)
+    from .plotting import listed
+    return ("steady states of a sweep: " + ", ".join(options) + "\n" + listed(main)
+            + ("\n" + listed(other) if other else "") + more)
 
 
 def plot_sweep(table, path, x=None, si=None):

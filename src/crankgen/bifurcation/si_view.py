@@ -9,6 +9,8 @@ amplitude_m, value_m, and every column with declared units the diagram holds) an
 """
 
 import csv
+import re
+import textwrap
 from dataclasses import replace
 from pathlib import Path
 from types import SimpleNamespace
@@ -41,26 +43,26 @@ class DiagramSI:
         """Amplitudes (v*(1/2)) in m."""
         return np.asarray(x, dtype=float) * self.scales.factor(AMPLITUDE_UNITS)
 
-    def stop_reason(self, text):
-        """A branch's stop reason with the range's end in SI ("reached crank_speed = 1500 rad/s")."""
-        head = f"reached {self.parameter_name} = "
-        if not text.startswith(head):
-            return text
-        number, _, rest = text[len(head):].partition(";")
-        try:
-            value = float(self.parameter(float(number)))
-        except ValueError:
-            return text
+    def text(self, text):
+        """A branch's origin or stop reason with every value of the parameter in SI ("reached
+        omega = 1.175" -> "reached crank_speed = 1500 rad/s", "period-doubling of branch 0 at
+        omega = 0.93" -> "... at crank_speed = 1193 rad/s")."""
         name = schema.PARAMETERS[self.parameter_name].si or self.parameter_name
         unit = "" if self.parameter_unit == "1" else f" {self.parameter_unit}"
-        return f"reached {name} = {value:.6g}{unit}" + (f";{rest}" if rest else "")
+
+        def si(match):                        # as many significant digits as the value printed
+            number = match.group(1)
+            digits = len(re.split("[eE]", number)[0].lstrip("+-").replace(".", "").lstrip("0")) or 1
+            return f"{name} = {float(self.parameter(float(number))):.{digits}g}{unit}"
+        return re.sub(rf"\b{re.escape(self.parameter_name)} = ([-+0-9.eE]+[0-9])", si, text)
+
 
     @property
     def branches(self):
-        """Each branch: period, parameter (SI), amplitude (m), stable, stop_reason (the range's end in SI)."""
+        """Each branch: period, parameter (SI), amplitude (m), stable, origin and stop_reason (values of the parameter in SI)."""
         return [SimpleNamespace(period=b.period, parameter=self.parameter(b.parameter),
                                 amplitude=self.amplitude(b.amplitude), stable=np.asarray(b.stable, dtype=bool),
-                                stop_reason=self.stop_reason(b.stop_reason))
+                                origin=self.text(b.origin), stop_reason=self.text(b.stop_reason))
                 for b in getattr(self.diagram, "branches", [])]
 
     @property
@@ -107,13 +109,13 @@ class DiagramSI:
             head = rows[0]
             where = [(k, convert[c][1]) for k, c in enumerate(head) if c in convert]
             rows[0] = [convert[c][0] if c in convert else c for c in head]
-            reasons = [k for k, c in enumerate(head) if c == "stop_reason"]
+            reasons = [k for k, c in enumerate(head) if c in ("stop_reason", "origin")]
             for row in rows[1:]:
                 for k, f in where:
                     if row[k] != "":
                         row[k] = repr(float(row[k]) * f)
                 for k in reasons:
-                    row[k] = self.stop_reason(row[k])
+                    row[k] = self.text(row[k])
             with atomic_file(path) as fh:
                 csv.writer(fh).writerows(rows)
         return paths
@@ -155,6 +157,7 @@ class DiagramSI:
 def _title(view, what):
     """The title of a diagram in SI: what, the parameter and the model; the rod's scales and every
     fixed parameter in SI."""
+    from ..plotting import listed
     from ..si import describe_si
     d, sc = view.diagram, view.scales
     info = d.info
@@ -166,7 +169,7 @@ def _title(view, what):
            f"r = {sc.base['r']:.4g} m"]
     values = {k: v for k, v in info.items() if k in schema.PARAMETERS}
     return (f"{what} in {name} ({view.parameter_unit}): " + ", ".join(p for p in parts if p) + "\n"
-            + ", ".join(rod) + "\n" + ", ".join(describe_si(values, sc, skip=(d.parameter_name,))))
+            + listed(rod) + "\n" + textwrap.fill(listed(describe_si(values, sc, skip=(d.parameter_name,))), 90))
 
 
 def si_of(diagram):

@@ -245,7 +245,7 @@ def _steady(args, case, out, section=None, si=None):
         columns, values = (st if si is None else st.si).table()
         steps = values[columns.index("axial_strain")]
         out.wrote(write_csv(out.path("orbit.csv"), columns, (dict(zip(columns, r)) for r in zip(*values))))
-        out.wrote(plot_orbit(st, out.path("orbit.png"), strain=steps))
+        out.wrote(plot_orbit(st, out.path("orbit.png"), strain=steps, si=None if si is None else st.si))
     else:                                    # no orbit: leave no orbit of an earlier run beside it
         for name in ("orbit.csv", "orbit.png"):
             out.path(name).unlink(missing_ok=True)

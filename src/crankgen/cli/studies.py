@@ -177,7 +177,7 @@ def _cmd_continue(args):
         print(f"{s.kind} on the period-{s.period} branch at {name} = {s.parameter:.7g}{unit}, "
               f"amplitude {s.amplitude:.6g}{amp}, multiplier {s.multiplier.real:.6g}{s.multiplier.imag:+.6g}j")
     for k, (b, v) in enumerate(zip(d.branches, view.branches)):
-        print(f"branch {k} (period {b.period}, {b.origin}): {len(b)} points, {name} from "
+        print(f"branch {k} (period {b.period}, {getattr(v, 'origin', b.origin)}): {len(b)} points, {name} from "
               f"{v.parameter[0]:.6g} to {v.parameter[-1]:.6g}{unit}; ends: {getattr(v, 'stop_reason', b.stop_reason)}")
     print(f"{len(d.branches)} branches, {sum(len(b) for b in d.branches)} points, "
           f"{len(d.special_points)} special points in {d.info['wall_time']:.1f} s; wrote "
