@@ -163,6 +163,15 @@ def test_steady_and_sweep_on_the_command_line_in_si(heavy_slider, tmp_path, caps
         assert main(["sweep" if "--eps" in bad else "steady", "--si", str(path), *bad,
                      "--out", str(tmp_path / "x"), *run]) == 2
     assert not (tmp_path / "x").exists()
+    # a refused range is named as given, in SI
+    capsys.readouterr()
+    assert main(["continue", "--si", str(path), "--from", "0", "--to", "100", "--out", str(tmp_path / "x")]) == 2
+    assert "got --from 0 --to 100" in capsys.readouterr().err
+    assert main(["continue", "--si", str(path), "--parameter", "a", "--from", "0.1", "--to", "0.6",
+                 "--out", str(tmp_path / "x")]) == 2
+    assert f"(with --si: --from 0.1 --to 0.6 m is {0.1 / L:g} to {0.6 / L:g} in crankgen's units)" in \
+        capsys.readouterr().err
+    assert not (tmp_path / "x").exists()
 
 
 def test_a_continuation_in_si_finds_the_scaled_special_points_in_rad_per_s(tmp_path):

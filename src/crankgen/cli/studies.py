@@ -125,7 +125,22 @@ def _si_range(args, values=None):
 def _checked_branch_model(args, continuation, values=()):
     """Every option of continue / poincare checked before anything is created or computed: the
     case at both ends of the range (and at every swept value), the continuation's own settings
-    when it runs, and the steady state it starts from.  Returns the case of the first point."""
+    when it runs, and the steady state it starts from.  Returns the case of the first point.
+    With --si a refusal in crankgen's units says what the range given in SI is in them."""
+    from ..errors import ParameterError
+    try:
+        return _checked(args, continuation, values)
+    except ParameterError as e:
+        if getattr(args, "si_mechanism", None) is None:
+            raise
+        from ..si import si_unit
+        unit = si_unit(args.parameter)
+        lo, hi = args.si_range
+        raise UsageError(f"{e} (with --si: --from {lo:g} --to {hi:g}{'' if unit == '1' else ' ' + unit} "
+                         f"is {args.start:g} to {args.stop:g} in crankgen's units)") from None
+
+
+def _checked(args, continuation, values):
     from .. import schema
     from ..bifurcation.api import make_case
     from ..validation import in_range, integer
@@ -135,8 +150,9 @@ def _checked_branch_model(args, continuation, values=()):
     case = _branch_model(args)
     speed = args.parameter == schema.CRANK_SPEED
     if speed and min(start, stop) <= 0:
+        lo, hi = getattr(args, "si_range", None) or (start, stop)       # as given: in SI with --si
         raise UsageError(f"--parameter {args.parameter}: the range must stay above 0 (a crank at rest has no "
-                         f"revolution to follow), got --from {start:g} --to {stop:g}")
+                         f"revolution to follow), got --from {lo:g} --to {hi:g}")
     for value in (start, stop, *values):
         make_case(None, args.parameter, value, case)
     if continuation:
