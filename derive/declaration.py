@@ -251,14 +251,31 @@ def _weighted(residual, variables, axial_rows, groups):
     return total.applyfunc(sp.expand)
 
 
-SLIDER_ROWS = (3, 4)             # u, v of the last node in the last element's nodal vector
-_ON_LAST_ELEMENT = {**dict(zip(s.qs, s.q[3:5])), **dict(zip(s.qsd, s.qd[3:5])),
-                    **dict(zip(s.qsdd, s.qdd[3:5])), s.L: s.x0 + s.l}
+# ----------------------------------------------------------------------------------------------
+# The DOF map: the nodes' components (derive/symbols.py NODE), the constraints condensed out of the
+# equations, the natural size of each component
+# ----------------------------------------------------------------------------------------------
+
+CONSTRAINTS = (
+    records.Constraint("pin", 0, ("u", "v"), "the crank pin holds the rod's first node: u = v = 0"),
+    records.Constraint("end", -1, ("u", "v"), "the guide holds the rod's last node: (u, v) = g(s, t), the "
+                       "end map of the case's guide (derive/guides.py), one reduced co-ordinate s",
+                       reduced=("s",), map="end_map"),
+)
+END = CONSTRAINTS[1]
+# natural size of each component of a node (units of L) for Newton's scaled increments: the paper's
+# scaled outputs u* = u / eps^2, v* = v / eps
+NATURAL_SIZES = {"u": eps**2, "v": eps, "psi": eps}
+
+SLIDER_ROWS = s.element_slots(1, END.eliminated)   # the end node's (u, v) in the last element's vector
+_ON_LAST_ELEMENT = {**dict(zip(s.qs, [s.q[k] for k in SLIDER_ROWS])),
+                    **dict(zip(s.qsd, [s.qd[k] for k in SLIDER_ROWS])),
+                    **dict(zip(s.qsdd, [s.qdd[k] for k in SLIDER_ROWS])), s.L: s.x0 + s.l}
 
 
 def on_last_element(vector2):
-    """A slider vector on (u, v)_{n+1} as a 6-vector of the last element (L = x0 + l)."""
-    out = sp.zeros(6, 1)
+    """An end-mass vector on (u, v)_{n+1} as a vector of the last element (L = x0 + l)."""
+    out = sp.zeros(s.ELEMENT_DOFS, 1)
     for k, row in enumerate(SLIDER_ROWS):
         out[row] = sp.expand(vector2[k].subs(_ON_LAST_ELEMENT))
     return out

@@ -82,7 +82,7 @@ def _residual_outputs(r, printed_stiffness="exact"):
     outs = [Output("r", r, "element residual"), Output("K", K, "d r / d q"),
             Output("C", jacobian(r, s.qd), "d r / d qd"), Output("M", jacobian(r, s.qdd), "d r / d qdd")]
     if not (isinstance(printed_stiffness, str) and printed_stiffness == "exact"):
-        Kp = sp.zeros(6, 6) if isinstance(printed_stiffness, str) else printed_stiffness
+        Kp = sp.zeros(s.ELEMENT_DOFS, s.ELEMENT_DOFS) if isinstance(printed_stiffness, str) else printed_stiffness
         outs.append(Output("K_printed", Kp.applyfunc(sp.expand), "stiffness of the printed eq. (37)"))
     return tuple(outs)
 

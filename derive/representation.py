@@ -35,8 +35,7 @@ from .euler_lagrange import gradient, kinetic_residual
 from .groups import ELEMENT_VARS, ROD_AXIAL_ROWS, SLIDER_AXIAL_ROWS, SLIDER_VARS, group_vector
 from .shape_functions import B_V, N_PSI, N_U, N_V, integrate_element
 
-ELEMENT_DOFS = 6                 # (u, v, psi) of the element's two nodes, eq. (14)
-END_SLOTS = (3, 4)               # (u, v) of the rod's end node in the last element's vector
+ELEMENT_DOFS = s.ELEMENT_DOFS    # (u, v, psi) of the element's two nodes, eq. (14)
 CRANK_SYMBOLS = (s.theta, s.thetad, s.thetadd)
 COEFFICIENT_SYMBOLS = tuple(model.COEFFICIENTS)   # the coefficient vector coef, in its order
 END_COORDINATES = (gd.sp_s, gd.sp_sd, gd.sp_sdd)
@@ -69,7 +68,8 @@ class Schema:
     crank_angle: str             # the crank's angle at t = 0
     unit_parameters: dict        # {unit: the parameter giving its value in L}
     element_dofs: int
-    end_slots: tuple
+    node: Layout                 # the components of a node, in the element's order (eq. 14)
+    constraints: tuple           # the DOF map: the constraints condensed out (crankgen.records.Constraint)
 
 
 def _symbols(p):
@@ -196,6 +196,22 @@ def _unit_parameters():
     return {unit: _parameter_name(name) for unit, name in sorted(model.UNIT_PARAMETERS.items())}
 
 
+def _constraints():
+    """The DOF map's constraints, checked: components of a node, one mapped constraint (the engine
+    condenses one), which the 'end' families name."""
+    mapped = [c for c in model.CONSTRAINTS if c.map is not None]
+    if len(mapped) != 1:
+        raise ValueError(f"the engine condenses exactly one mapped constraint, got {[c.name for c in mapped]}")
+    for c in model.CONSTRAINTS:
+        if not set(c.eliminated) <= set(s.NODE) or len(c.reduced) > len(c.eliminated):
+            raise ValueError(f"constraint {c.name}: eliminated {c.eliminated} must be components of a node "
+                             f"{s.NODE}, at least as many as its reduced co-ordinates {c.reduced}")
+    for f in model.FAMILIES:
+        if f.part != "rod" and f.part != mapped[0].name:
+            raise ValueError(f"family {f.name}: part {f.part!r} is neither 'rod' nor the mapped constraint")
+    return tuple(model.CONSTRAINTS)
+
+
 def _indicators():
     return tuple((sym.name, option, value) for sym, (option, value) in model.INDICATORS.items())
 
@@ -229,7 +245,9 @@ def schema():
         kinematics=kin, coefficients=coefficients, indicators=_indicators(),
         crank_speed=_parameter_name(model.CRANK_SPEED), crank_angle=_parameter_name(model.CRANK_ANGLE),
         unit_parameters=_unit_parameters(),
-        element_dofs=ELEMENT_DOFS, end_slots=END_SLOTS)
+        element_dofs=ELEMENT_DOFS, node=Layout("node", s.NODE, "the components of a node (eq. 14): axial "
+                                                "and transverse displacement, slope"),
+        constraints=_constraints())
 
 
 # ---- the SymPy forms ----------------------------------------------------------------------------------
@@ -303,6 +321,7 @@ class Representation:
     energies: tuple              # EnergyForm
     outputs: tuple               # OutputForm
     grams: tuple                 # GramForm, of the engine's integral primitives
+    natural_sizes: tuple         # CoefficientForm per component of a node (units of L)
 
 
 def _motions():
@@ -348,6 +367,18 @@ def _energies():
             if e is not None and e.name not in out:
                 out[e.name] = EnergyForm(e.name, e.doc, sp.sympify(e.build()))
     return tuple(out.values())
+
+
+def _natural_sizes():
+    """The natural size of each component of a node, a formula in the parameters."""
+    allowed = set(parameter_symbols().values())
+    out = []
+    for component in s.NODE:
+        expr = sp.sympify(model.NATURAL_SIZES[component])
+        if expr.free_symbols - allowed:
+            raise ValueError(f"natural size of {component}: symbols that are not parameters")
+        out.append(CoefficientForm(component, expr))
+    return tuple(out)
 
 
 def _coefficients():
@@ -485,7 +516,8 @@ def _grams():
 def representation():
     """The model representation of the declaration (built once per process)."""
     return Representation(schema=schema(), coefficients=_coefficients(), motions=_motions(), guides=_guides(),
-                          families=_families(), energies=_energies(), outputs=_outputs(), grams=_grams())
+                          families=_families(), energies=_energies(), outputs=_outputs(), grams=_grams(),
+                          natural_sizes=_natural_sizes())
 
 
 # ---- the audit's group kernels (the consistent model's forces split by kind) -------------------------

@@ -22,8 +22,8 @@ from . import symbols as _symbols
 from .emit import ELEMENT_MODES, LANES, lane_rows
 from .guides import END_MAP_ROWS
 
-RECORD_CLASSES = ("Family", "Guide", "Layout", "Motion", "Option", "Output", "Parameter", "Preset", "Primitive",
-                  "Variant")
+RECORD_CLASSES = ("Constraint", "Family", "Guide", "Layout", "Motion", "Option", "Output", "Parameter", "Preset",
+                  "Primitive", "Variant")
 
 
 def _printer():
@@ -69,6 +69,23 @@ def _coefficients_source(rep):
     return "\n".join(lines) + "\n"
 
 
+def _natural_sizes_source(rep):
+    printer = _printer()
+    symbols = ir.parameter_symbols()
+    used = set().union(*(c.formula.free_symbols for c in rep.natural_sizes))
+    lines = ["def natural_sizes(p):",
+             '    """The natural size of each component of a node (NODE order, units of L) for the parameter',
+             '    vector p: the scales of Newton\'s increments and of the steady states\' convergence."""']
+    for k, name in enumerate(rep.schema.parameter_vector.entries):
+        if symbols[name] in used:
+            lines.append(f"    {symbols[name].name} = float(p[{k}])    # {name}")
+    lines.append("    return (")
+    for c in rep.natural_sizes:
+        lines.append(f"        float({printer.doprint(c.formula)}),    # {c.name}")
+    lines.append("    )")
+    return "\n".join(lines) + "\n"
+
+
 def _table_source(schema):
     rows, size = lane_rows(schema.element_dofs, len(_symbols.GEOMETRY))
     end_map_rows = ir.Layout("E", END_MAP_ROWS, "the rows of a guide's end map (8, 2): the end node's (u, v), "
@@ -94,8 +111,11 @@ def _table_source(schema):
         f"KINEMATICS = {literal(schema.kinematics)}",
         f"COEFFICIENTS = {literal(schema.coefficients)}",
         f"END_MAP_ROWS = {literal(end_map_rows)}",
+        "# the DOF map: the components of a node (eq. 14), an element's two nodes', the constraints of the",
+        "# nodes condensed out of the equations",
+        f"NODE = {literal(schema.node)}",
         f"ELEMENT_DOFS = {schema.element_dofs!r}",
-        f"END_SLOTS = {schema.end_slots!r}",
+        f"CONSTRAINTS = {literal(schema.constraints)}",
         "# what an element kernel's one-element function adds, by its mode argument (derive/emit.py)",
         f"ELEMENT_MODES = {ELEMENT_MODES!r}",
         "# an element kernel's lane function: LANES elements at once, on a buffer of LANE_SIZE values whose",
@@ -140,7 +160,8 @@ def emit_schema(derive_command, spec_hash, element_names):
         f"ELEMENT_KERNELS = {tuple(sorted(element_names))!r}",
         "",
     ]
-    return "\n".join(header) + "\n" + _table_source(rep.schema) + "\n\n" + _coefficients_source(rep)
+    return ("\n".join(header) + "\n" + _table_source(rep.schema) + "\n\n" + _coefficients_source(rep) + "\n\n"
+            + _natural_sizes_source(rep))
 
 
 def _class_doc(record):

@@ -8,7 +8,7 @@ runtime's classes of this schema are in classes.py.
 
 import math
 
-from crankgen.records import Family, Guide, Layout, Motion, Option, Output, Parameter, Preset, Primitive, Variant
+from crankgen.records import Constraint, Family, Guide, Layout, Motion, Option, Output, Parameter, Preset, Primitive, Variant
 
 KERNELS_HASH = 'ce3aba8010ecc048'
 ELEMENT_KERNELS = ('dissipation_kelvin_voigt_A', 'dissipation_kelvin_voigt_A_averaged', 'dissipation_kelvin_voigt_B', 'dissipation_kelvin_voigt_B_averaged', 'dissipation_kelvin_voigt_C', 'dissipation_paper_A', 'dissipation_paper_B', 'dissipation_paper_C', 'elastic_lagrange_A', 'elastic_lagrange_A_averaged', 'elastic_lagrange_B', 'elastic_lagrange_B_averaged', 'elastic_lagrange_C', 'elastic_paper_A', 'elastic_paper_B', 'elastic_paper_C', 'gravity_uniform', 'inertia_lagrange', 'inertia_paper', 'slider_dissipation_paper', 'slider_gravity_uniform', 'slider_inertia_lagrange', 'slider_inertia_paper')
@@ -532,8 +532,29 @@ END_MAP_ROWS = Layout(
     name='E',
     entries=('q', 'qd', 'qdd', 'g_s', 'dqd_ds', 'dqdd_ds', 'dqdd_dsd', 'g_ss'),
     doc="the rows of a guide's end map (8, 2): the end node's (u, v), their rates, and their derivatives in the reduced co-ordinate s and its rates")
+# the DOF map: the components of a node (eq. 14), an element's two nodes', the constraints of the
+# nodes condensed out of the equations
+NODE = Layout(
+    name='node',
+    entries=('u', 'v', 'psi'),
+    doc='the components of a node (eq. 14): axial and transverse displacement, slope')
 ELEMENT_DOFS = 6
-END_SLOTS = (3, 4)
+CONSTRAINTS = (
+    Constraint(
+        name='pin',
+        node=0,
+        eliminated=('u', 'v'),
+        doc="the crank pin holds the rod's first node: u = v = 0",
+        reduced=(),
+        map=None),
+    Constraint(
+        name='end',
+        node=-1,
+        eliminated=('u', 'v'),
+        doc="the guide holds the rod's last node: (u, v) = g(s, t), the end map of the case's guide (derive/guides.py), one reduced co-ordinate s",
+        reduced=('s',),
+        map='end_map'),
+)
 # what an element kernel's one-element function adds, by its mode argument (derive/emit.py)
 ELEMENT_MODES = ('full', 'printed', 'residual', 'newmark')
 # an element kernel's lane function: LANES elements at once, on a buffer of LANE_SIZE values whose
@@ -1101,4 +1122,15 @@ def coefficients(p, options, off):
         float(1 - off_cubic_axial),    # w_cubic_axial
         float(1 - off_cubic_transverse),    # w_cubic_transverse
         float(1 - off_quartic),    # w_quartic
+    )
+
+
+def natural_sizes(p):
+    """The natural size of each component of a node (NODE order, units of L) for the parameter
+    vector p: the scales of Newton's increments and of the steady states' convergence."""
+    eps = float(p[1])    # eps
+    return (
+        float(eps**2),    # u
+        float(eps),    # v
+        float(eps),    # psi
     )

@@ -161,7 +161,7 @@ def test_every_csv_of_the_si_commands_parses_into_numbers(tmp_path):
                                crank_speed=1)                    # eps = sqrt(I/A)/L = 0.01, the case's
     st.si_view(rod).to_csv(tmp_path / "st" / "api_si.csv")
     files = sorted(tmp_path.rglob("*.csv"))
-    assert len(files) == 14                  # 4 steady, 2 sweep, 3 continue, 5 poincare
+    assert len(files) == 16                  # 4 steady, 2 sweep, 4 continue, 6 poincare
     for f in files:
         check_csv(f)
     branches = check_csv(tmp_path / "c" / "branches.csv")

@@ -26,6 +26,8 @@ HOMONYMS = {("bifurcation/diagram.py", "branch"): "a branch of periodic orbits o
             ("parameters.py", "a"): "the SI crank length in metres, a field of SIMechanism (its a* = a / L is "
                                     "the parameter)",
             ("animation.py", "branch"): "a branch of periodic orbits of a continuation",
+            ("bifurcation/diagram_files.py", "branch"): "a branch of periodic orbits of a continuation (a "
+                                                        "CSV column and JSON key), not the four-bar's closure",
             ("campbell_diagram.py", "order"): "a crank order (k Omega) of a Campbell diagram (a CSV column)",
             ("sections.py", "circle"): "a circular cross-section of the rod"}
 

@@ -14,7 +14,7 @@ TABLES = {"OPTIONS": "options", "PRESETS": "presets", "DEFAULT_PRESET": "default
           "OUTPUTS": "outputs", "PRIMITIVES": "primitives", "PRINTED_ITERATION": "printed_iteration",
           "SWITCHABLE_GROUPS": "switchable_groups", "PARAMETER_VECTOR": "parameter_vector", "PARAMETER_SYMBOLS": "parameter_symbols",
           "KINEMATIC_PARAMETERS": "kinematic_parameters", "KINEMATICS": "kinematics",
-          "COEFFICIENTS": "coefficients", "ELEMENT_DOFS": "element_dofs", "END_SLOTS": "end_slots",
+          "COEFFICIENTS": "coefficients", "ELEMENT_DOFS": "element_dofs", "NODE": "node", "CONSTRAINTS": "constraints",
           "CRANK_SPEED": "crank_speed", "CRANK_ANGLE": "crank_angle", "UNIT_PARAMETERS": "unit_parameters"}
 
 

@@ -192,9 +192,32 @@ def test_a_continuation_in_si_finds_the_scaled_special_points_in_rad_per_s(tmp_p
     assert {"crank_speed_rad_per_s", "amplitude_m"} <= set(branches.columns)
     assert branches["crank_speed_rad_per_s"].iloc[0] == pytest.approx(600.0)
     assert branches["stop_reason"].iloc[-1].startswith("reached crank_speed = 1300 rad/s")
+    # every branch point's quantities in SI: torque, forces, deflection, stress (a section given)
+    rhoA, r = 7870 * 6.4e-5, math.sqrt(3.41e-10 / 6.4e-5)
+    q = {k: np.concatenate([b.quantities[k] for b in d.branches]) for k in d.branches[0].quantities}
+    np.testing.assert_allclose(branches["peak_torque_N_m"], q["peak_torque"] * rhoA * 0.3 ** 3 * omega_b ** 2,
+                               rtol=1e-12)
+    np.testing.assert_allclose(branches["peak_pin_force_N"], q["peak_pin_force"] * rhoA * 0.3 ** 2 * omega_b ** 2,
+                               rtol=1e-12)
+    np.testing.assert_allclose(branches["peak_v_m"], q["peak_v"] * r, rtol=1e-12)
+    assert "peak_strain" in branches.columns
+    square = crankgen.sections.rectangle(0.008, 0.008)                      # A = 6.4e-5, I = 3.41e-10
+    stressed = crankgen.continuation(steel, "omega", 600.0, 700.0, units="si", section=square, **run)
+    stressed.si.to_csv(tmp_path / "stressed")
+    table = check_csv(tmp_path / "stressed" / "branches.csv")
+    np.testing.assert_allclose(table["peak_stress_Pa"],
+                               np.concatenate([b.quantities["peak_stress"] for b in stressed.branches]) * 2e11,
+                               rtol=1e-12)
     # a branch's origin names the parameter in SI, with the digits it was printed with
     assert d.si.text("period-doubling of branch 0 at omega = 0.9352908; merged at omega = 1.1") == \
         f"period-doubling of branch 0 at crank_speed = {0.9352908 * omega_b:.7g} rad/s; " \
         f"merged at crank_speed = {1.1 * omega_b:.2g} rad/s"
+    # a marching sweep in SI: its amplitudes in m, and in mm where it is drawn over the branches
+    pc = crankgen.poincare(steel, "omega", [700.0], units="si", transient=2, samples=2, n_elements=2,
+                           steps_per_rev=40)
+    assert pc.si.points[0].parameter == pytest.approx(700.0)
+    assert pc.si.points[0].amplitude == pytest.approx(pc.points[0].amplitude * r, rel=1e-12)
+    drawn = pc.si._converted(1e3, {})
+    assert drawn.points[0].amplitude == pytest.approx(pc.points[0].amplitude * r * 1e3, rel=1e-12)
     with pytest.raises(crankgen.ParameterError, match="section"):
         crankgen.continuation(steel, "eps", 0.01, 0.02, units="si", **run)

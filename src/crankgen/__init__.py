@@ -20,6 +20,7 @@ _LAZY = {
     "SweepTable": "sweeps", "sweep": "sweeps", "CheckpointError": "sweeps",
     "BifurcationDiagram": "bifurcation", "PoincareDiagram": "bifurcation",
     "continuation": "bifurcation", "poincare": "bifurcation", "follow": "bifurcation", "Curve": "bifurcation",
+    "stability_chart": "charts", "StabilityChart": "charts",
     "Modes": "vibration", "modes": "vibration", "campbell": "campbell_diagram", "CampbellDiagram": "campbell_diagram",
     "animate": "animation", "Section": "sections", "stress": "stresses", "peak_loads": "stresses", "StressHistory": "stresses",
 }

@@ -23,6 +23,7 @@ import numpy as np
 from . import kinematics as _kinematics
 from ._generated import geometry as _geometry
 from .errors import ParameterError
+from .mesh import NODE_DOFS, PSI, U, V
 from .validation import in_range, integer
 
 TARGET = 0.08          # the default magnification shows the largest deflection as about 8 % of L
@@ -41,7 +42,7 @@ def inertial_nodes(result, magnification=1.0):
     case = result.case
     kin = _kinematics.case_state(case, np.asarray(result.t, dtype=float))
     nodal = Model(case).full_nodal(result.states, kin)              # (steps, 3 (n + 1))
-    u, v = nodal[:, 0::3], nodal[:, 1::3]
+    u, v = nodal[:, U::NODE_DOFS], nodal[:, V::NODE_DOFS]
     x = np.linspace(0.0, 1.0, u.shape[1])
     return _place(case, kin, x + magnification * u, magnification * v)
 
@@ -58,7 +59,7 @@ def _place(case, kin, along, across):
 def _rod_curve(case, kin, nodal, magnification, points=6):
     """(steps, P, 2): the rod drawn between its nodes (cubic v with the slopes, linear u)."""
     n = case.n_elements
-    u, v, psi = nodal[:, 0::3], nodal[:, 1::3], nodal[:, 2::3]
+    u, v, psi = nodal[:, U::NODE_DOFS], nodal[:, V::NODE_DOFS], nodal[:, PSI::NODE_DOFS]
     h = 1.0 / n
     z = np.linspace(0.0, 1.0, points + 1)[:-1]
     H = np.stack([2 * z**3 - 3 * z**2 + 1, (z**3 - 2 * z**2 + z) * h, -2 * z**3 + 3 * z**2, (z**3 - z**2) * h])
@@ -96,7 +97,7 @@ class Frames:
         self.steps = np.unique(np.round(np.linspace(0, len(t) - 1, min(count, len(t)))).astype(int))
         kin = _kinematics.case_state(case, t[self.steps])
         nodal = Model(case).full_nodal(np.asarray(result.states)[self.steps], kin)
-        largest = float(np.max(np.abs(nodal[:, 1::3]))) if nodal.size else 0.0
+        largest = float(np.max(np.abs(nodal[:, V::NODE_DOFS]))) if nodal.size else 0.0
         self.magnification = (_nice(TARGET / largest) if largest > 0 else 1.0) if magnification is None \
             else in_range("magnification", magnification, 0, None, True)
         if scales is None:

@@ -213,8 +213,9 @@ def reduced_state(case, initial, scales=None):
     for name in ("v_x", "v_xt"):
         values[name] = _slope(name, initial, x_user, n, length) / factor(name)
 
-    eps, tol = case.eps, float(initial.tol)
-    natural = {"u": eps**2, "u_t": eps**2, "v": eps, "v_t": eps}
+    tol = float(initial.tol)
+    sizes = dict(zip(schema.NODE, schema.natural_sizes(case.parameters())))    # u: eps^2, v: eps
+    natural = {"u": sizes["u"], "u_t": sizes["u"], "v": sizes["v"], "v_t": sizes["v"]}
     for name in ("u", "v", "u_t", "v_t"):
         at_pin = values[name][0]
         if abs(at_pin) > tol * natural[name]:

@@ -27,7 +27,9 @@ CRANKGEN_MEMORY_LIMIT (bytes, or with a suffix K, M, G, T: "8G") when set.
 import math
 import os
 
+from . import schema
 from .errors import ParameterError
+from .mesh import NODE_DOFS
 
 __all__ = ["check_run_size", "run_size", "memory_limit", "format_bytes"]
 
@@ -81,10 +83,11 @@ def _parts(n_elements, n_steps, n_cases, stored, batch, n_times=0):
         raise ParameterError(f"stored must be one of {', '.join(STORED)}, got {stored!r}")
     n_elements, n_steps, n_cases, n_times = (max(0, int(x)) for x in (n_elements, n_steps, n_cases, n_times))
     running = n_cases if batch is None else min(n_cases, max(1, int(batch)))
-    dofs = 3 * n_elements
-    per_step = {"outputs": 5 * 8 + 4, "states": 8 * (3 * dofs + 5) + 4,
-                "nodes": 8 * (3 * dofs + 5 + 3 * (n_elements + 1)) + 4,
-                "steady": 4 * 8 * (dofs + 5)}[stored]
+    dofs = NODE_DOFS * n_elements           # the reduced DOFs (a node's components per element)
+    row = 2 + len(schema.ENGINE_OUTPUTS)    # t, theta and the engine's outputs per step
+    per_step = {"outputs": row * 8 + 4, "states": 8 * (3 * dofs + row) + 4,
+                "nodes": 8 * (3 * dofs + row + NODE_DOFS * (n_elements + 1)) + 4,
+                "steady": 4 * 8 * (dofs + row)}[stored]
     working = ELEMENT_WORKING * n_elements
     if stored == "steady":
         working += MONODROMY_COPIES * 8 * (2 * dofs) ** 2

@@ -26,7 +26,7 @@ from . import kinematics as _kinematics
 from ._generated import per_step as _per_step
 from ._generated.shape import shape_functions
 from .errors import ParameterError
-from .mesh import Mesh
+from .mesh import NODE_DOFS, U, V, Mesh
 from .validation import finite_number, in_range
 
 NODE_TOLERANCE = 1e-12      # x* closer than this (relative to an element) to a node is at the node
@@ -56,8 +56,8 @@ def engine_outputs(mesh, q, parameters):
         prims[..., k] = q[..., e, :] @ weights
     for k, G in grams:
         prims[..., k] = np.einsum("...ei,ij,...ej->...", q, G, q)
-    end = q[..., -1, list(schema.END_SLOTS)]
-    return _per_step.per_step(prims, end, parameters)
+    e, slots, _ = mesh.holders()[0]
+    return _per_step.per_step(prims, q[..., e, list(slots)], parameters)
 
 
 def deflection_at(mesh, q, x):
@@ -112,6 +112,7 @@ class StateHistory:
         self.mesh = Mesh(case.n_elements)
         self._kin = None
         self._pin_end = None
+        self._constraints = tuple(c.name for c in schema.CONSTRAINTS)
 
     def kinematics(self):
         if self._kin is None:
@@ -125,9 +126,9 @@ class StateHistory:
         S = self.mesh.slider_dof
         E = _kinematics.end_map(self.case, self.kinematics().vector, self.states[:, S],
                                 0.0 if rates is None else rates[:, S])
-        iu, iv = schema.END_SLOTS
-        q[..., -1, iu] = E[..., schema.END_MAP_ROWS[row], 0]
-        q[..., -1, iv] = E[..., schema.END_MAP_ROWS[row], 1]
+        for e, slots, _ in self.mesh.holders():
+            for a, slot in enumerate(slots):
+                q[..., e, slot] = E[..., schema.END_MAP_ROWS[row], a]
         return q
 
     def element_vectors(self):
@@ -165,16 +166,14 @@ class StateHistory:
                 out[name] = self.kinematics().vector
             elif name == "parameters":
                 out[name] = self.case.parameter_vector
-            elif name == "q_end":
-                out[name] = self.element_vectors()[:, -1, list(schema.END_SLOTS)]
-            elif name == "qd_end":
-                self._need_rates(spec.name)
-                out[name] = self.element_rates()[:, -1, list(schema.END_SLOTS)]
+            elif name in ("q_end", "qd_end"):      # the mapped node's eliminated components
+                e, slots, _ = self.mesh.holders()[0]
+                values = self.element_vectors() if name == "q_end" else self.element_rates()
+                out[name] = values[:, e, list(slots)]
             elif name == "s":
                 out[name] = self.states[:, self.mesh.slider_dof]
-            elif name in ("pin", "end"):
-                pin, end = self._reactions()
-                out["pin"], out["end"] = pin, end
+            elif name in self._constraints:          # the force a constraint applies (pin, end)
+                out.update(zip(self._constraints, self._reactions()))
         return out
 
     def _call(self, kernel, spec, values, element=None, extra=()):
@@ -399,8 +398,8 @@ class SIView:
         if nodes is None:
             return None
         out = np.array(nodes, dtype=float)
-        out[..., 0::3] *= self.scales.L
-        out[..., 1::3] *= self.scales.L
+        for comp in (U, V):                      # u and v in m (psi, a slope, is dimensionless)
+            out[..., comp::NODE_DOFS] *= self.scales.L
         return out
 
     @property

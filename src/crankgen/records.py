@@ -14,6 +14,7 @@ generated code.
     Family, Variant       a term family of the equations of motion and its option-selected variants
     Output                a quantity a result can give, with its kernels by option values
     Primitive             what the engine accumulates for its outputs (a field at a point, an integral)
+    Constraint            a constraint of a node condensed out of the equations (the DOF map)
     Layout                the entries of a vector a kernel reads (parameters, coefficients, ...)
     Spec                  a guide or motion with values of its parameters (crankgen.Line(...), ...)
 """
@@ -296,6 +297,26 @@ class Primitive:
 
 
 @dataclass(frozen=True)
+class Constraint:
+    """A constraint of one of the rod's nodes, condensed out of the equations of motion (the DOF
+    map): its node (0: the first, -1: the last, k: an interior node), the node's components it
+    eliminates, and the reduced co-ordinates that replace them (each in the place of an eliminated
+    component, in order; none: the components are held at zero), given by the generated map `map`
+    of the case's guide (kernel <map>_<guide>: the eliminated components, their rates and their
+    derivatives in the reduced co-ordinates).  The equations of the eliminated components become
+    the reduced co-ordinates' by d'Alembert's projection (constraints.py, engine/elements.py);
+    their residual rows before it are the force the constraint applies (an output input named
+    after the constraint)."""
+
+    name: str
+    node: int
+    eliminated: tuple
+    doc: str = ""
+    reduced: tuple = ()
+    map: str = None
+
+
+@dataclass(frozen=True)
 class Layout:
     """The entries of a vector a kernel reads, in order (the kinematics vector kin, the parameter
     vector, the coefficient vector, the rows of the end map, ...)."""
@@ -380,5 +401,5 @@ def project(obj, cls, **changes):
     return cls(**values)
 
 
-__all__ = ["Option", "Preset", "Parameter", "Guide", "Motion", "Variant", "Family", "Output", "Primitive", "Layout",
-           "Spec", "project"]
+__all__ = ["Option", "Preset", "Parameter", "Guide", "Motion", "Variant", "Family", "Output", "Primitive",
+           "Constraint", "Layout", "Spec", "project"]

@@ -32,7 +32,8 @@ KINEMATICS = _table.KINEMATICS.entries
 KIN = {name: k for k, name in enumerate(KINEMATICS)}         # place of each entry of kin
 COEFFICIENTS = _table.COEFFICIENTS.entries
 ELEMENT_DOFS = _table.ELEMENT_DOFS
-END_SLOTS = _table.END_SLOTS
+NODE = _table.NODE.entries                    # the components of a node (eq. 14)
+CONSTRAINTS = _table.CONSTRAINTS              # the DOF map: the constraints condensed out
 END_MAP_ROWS = {name: k for k, name in enumerate(_table.END_MAP_ROWS.entries)}
 ELEMENT_MODES = _table.ELEMENT_MODES          # what an element kernel's one-element function adds
 LANES, LANE_SIZE = _table.LANES, _table.LANE_SIZE       # an element kernel's lane function: elements at once,
@@ -95,6 +96,12 @@ def parameter_vector(values):
         if p.slots:
             out[list(p.slots)] = p.entries(values.get(p.name, p.default))
     return out
+
+
+def natural_sizes(values):
+    """The natural size of each component of a node (NODE order, units of L) for a mapping of
+    parameter values (absent ones at their default): the declared formulas (u: eps^2, v, psi: eps)."""
+    return _table.natural_sizes(parameter_vector(values))
 
 
 def describe(values, skip=()):

@@ -79,10 +79,20 @@ def si_parameter(mech, parameter, units, fields, case, values):
     return mech, dict(fields, crank=crank), scales, [to_crankgen(parameter, v, scales) for v in values]
 
 
+def _add_quantities(diagram, case, parameter, section, progress):
+    """Every branch point's physical quantities (quantities.py)."""
+    from .quantities import branch_quantities, units
+    for k, br in enumerate(diagram.branches):
+        if progress is not None:
+            progress(f"branch {k}: the physical quantities of its {len(br)} orbits")
+        br.quantities, br.quantity_notes = branch_quantities(case, parameter, br, section)
+        br.quantity_units = units(section)
+
+
 def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *, model=None, max_period=4, ds=0.05,
                  ds_min=1e-4, ds_max=100.0, dp_max=None, max_points=400, tol=1e-9, switch_step=0.05,
                  case=None, progress=None, corrector="broyden", predictor="quadratic", derivative="exact",
-                 units="crankgen", **fields):
+                 quantities=True, section=None, units="crankgen", **fields):
     """Follow the periodic response of the mechanism as `parameter` goes from start to stop, by
     pseudo-arclength continuation of the fixed points of the crank-revolution map, and return a
     BifurcationDiagram: branches (period, parameter, amplitude = max |v*(1/2)| over the orbit,
@@ -100,13 +110,21 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
     corrector ("broyden" or "newton"), predictor ("quadratic" or "tangent") and derivative
     ("exact" or "central", the map's parameter derivative) select the methods
     (bifurcation/core.py, mechanism.py): the defaults are the fast ones; "newton", "tangent" and
-    "central" together are the former method, kept as a baseline.  units="si": mech is a
+    "central" together are the former method, kept as a baseline.  quantities: every branch
+    point also stores the physical quantities of its orbit (Branch.quantities: peak torque, pin and
+    end forces, axial force, |v*|, outer-fibre strain, and with a crankgen.sections.Section
+    `section` the peak stress in units of E; bifurcation/quantities.py).  units="si": mech is a
     crankgen.SIMechanism with its crank motion, start and stop are in the parameter's SI unit
     (crank speed in rad/s, a four-bar's c and d in m, ...), and `diagram.si` gives the diagram in
-    SI (the parameter in its SI unit, the amplitude in m)."""
+    SI (the parameter in its SI unit, the amplitude in m, the quantities in N, N m, Pa)."""
     _check_progress(progress)
+    if section is not None:
+        from ..sections import Section
+        if not isinstance(section, Section):
+            raise ParameterError(f"section must be a crankgen.sections.Section, got {type(section).__name__}")
     start = in_range("start", start)
     stop = in_range("stop", stop)
+    given = mech
     mech, fields, scales, (start, stop) = si_parameter(mech, parameter, units, fields, case, (start, stop))
     if start == stop:
         raise ParameterError(f"start and stop must differ, got {start:g}")
@@ -142,13 +160,15 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
                                    f"cannot turn a full revolution ({why})")
     for sp in diagram.special_points:
         sp.case = fmap.case_at(sp.parameter)
+    if quantities:
+        _add_quantities(diagram, c0, parameter, section, progress)
     info = c0.as_dict()
     info.pop(parameter)
     info.update(parameter=parameter, start=start, stop=stop, max_period=max_period,
                 corrector=corrector, predictor=predictor, derivative=derivative,
                 map_evaluations=cont.evaluations, map_values=cont.values, wall_time=time.perf_counter() - t0)
     diagram.info = info
-    diagram.scales = scales
+    diagram.si_mechanism = None if scales is None else given
     return diagram
 
 
@@ -174,6 +194,7 @@ def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up
     if not values:
         raise ParameterError("values must hold at least one parameter value")
     values = [in_range(f"values ({parameter})", v) for v in values]
+    given = mech
     mech, fields, scales, values = si_parameter(mech, parameter, units, fields, case, values)
     choice("direction", direction, ("up", "down", "both"))
     c0 = make_case(mech, parameter, min(values), case, model=model, **fields)
@@ -193,5 +214,5 @@ def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up
     info.update(parameter=parameter, direction=direction, transient=transient, samples=samples,
                 wall_time=time.perf_counter() - t0)
     result.info = info
-    result.scales = scales
+    result.si_mechanism = None if scales is None else given
     return result

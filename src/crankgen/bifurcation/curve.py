@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import schema
 from ..errors import ParameterError
 from ..io import atomic_file, read_regular
 from .codim2 import CODIM2
@@ -93,10 +94,11 @@ class Curve:
             return self.values[name]
         if name == "critical":
             return self._critical()
-        if name == "deflection_over_L":
-            eps = self.values["eps"] if "eps" in self.values else self.info.get("eps")
+        if name == "deflection_over_L":         # v* is in units of r: the slenderness gives it in L
+            r = schema.UNIT_PARAMETERS["r"]
+            eps = self.values[r] if r in self.values else self.info.get(r)
             if eps is None:
-                raise KeyError("deflection_over_L needs the mechanism's eps (this curve has none)")
+                raise KeyError(f"deflection_over_L needs the mechanism's {r} (this curve has none)")
             return np.abs(np.asarray(eps, dtype=float) * self.values["amplitude"])
         raise KeyError(f"{name!r}: a curve has {', '.join(list(self.values) + ['critical'])}")
 
@@ -113,7 +115,7 @@ class Curve:
 
     @property
     def label(self):
-        return f"{LABELS[self.kind]}{self.period if self.period > 1 else ''}"
+        return f"{LABELS[self.kind]}{self.period}"
 
     def describe(self):
         """One line: what the curve is and where it runs."""

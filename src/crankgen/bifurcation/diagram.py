@@ -60,6 +60,9 @@ class Branch:
     #                              start of each revolution of the orbit (mechanism: v* at theta = 0)
     origin: str = "start"
     stop_reason: str = ""
+    quantities: dict = field(default_factory=dict)   # name -> (n,): the orbits' physical quantities
+    quantity_units: dict = field(default_factory=dict)   # name -> units (bifurcation/quantities.py)
+    quantity_notes: list = field(default_factory=list)   # points whose quantities failed, and why
 
     def __len__(self):
         return len(self.parameter)
@@ -96,7 +99,7 @@ class BifurcationDiagram:
     def si_view(self, si_mechanism):
         """The diagram in SI for the crankgen.SIMechanism whose dimensionless form it was computed for."""
         from .si_view import DiagramSI
-        return DiagramSI(self, si_mechanism.scales)
+        return DiagramSI(self, si_mechanism)
 
     def eps_at(self, p):
         """The amplitude's unit (v* = v / r: the radius of gyration r) in L at parameter value p, the
@@ -104,19 +107,52 @@ class BifurcationDiagram:
         values = dict(self.info, **{self.parameter_name: float(p)})
         return in_L("r", values) if schema.UNIT_PARAMETERS["r"] in values else None
 
+    def as_dict(self):
+        """Everything the diagram holds, as JSON-ready data (diagram_files.py)."""
+        from .diagram_files import as_dict
+        return as_dict(self)
+
+    @classmethod
+    def from_dict(cls, data):
+        from .diagram_files import from_dict
+        return from_dict(data)
+
+    def to_json(self, path):
+        """The whole diagram (every point's parameter, amplitude, stability, multipliers, state,
+        section samples and physical quantities; the special points; the model) as JSON;
+        BifurcationDiagram.from_json reads it back."""
+        from .diagram_files import write_json
+        return write_json(self, path)
+
+    @classmethod
+    def from_json(cls, path):
+        from .diagram_files import read_json
+        return read_json(path)
+
+    @classmethod
+    def read_csv(cls, folder, info=None):
+        """The diagram of the CSV files to_csv wrote in folder (info: the model, for the special
+        points' Case; the CSV files do not hold it)."""
+        from .diagram_files import read_csv
+        return read_csv(folder, info)
+
     def to_csv(self, folder):
         """branches.csv (one row per point, with its branch's origin and stop_reason, why the
         branch ends; for the mechanism with deflection_over_L = eps
-        amplitude and beyond_theory, crankgen.theory), special_points.csv and multipliers.csv
-        (every multiplier of every point, long format) in folder; returns the paths.  A number
-        that does not exist is an empty field."""
+        amplitude and beyond_theory, crankgen.theory, and the orbits' physical quantities,
+        bifurcation/quantities.py), special_points.csv, multipliers.csv (every multiplier of every
+        point, long format) and states.csv (every point's section samples and state) in folder;
+        returns the paths.  A number that does not exist is an empty field.
+        BifurcationDiagram.read_csv reads them back."""
         from ..theory import beyond
+        from .diagram_files import write_states
 
         folder = Path(folder)
         folder.mkdir(parents=True, exist_ok=True)
         name = self.parameter_name
         paths = [folder / "branches.csv", folder / "special_points.csv", folder / "multipliers.csv"]
         flags = self.eps_at(self.branches[0].parameter[0]) is not None if self.branches else False
+        quantities = list(dict.fromkeys(q for br in self.branches for q in br.quantities))
 
         def theory(p, amplitude):
             x = abs(self.eps_at(p) * float(amplitude))
@@ -125,13 +161,14 @@ class BifurcationDiagram:
             w = csv.writer(fh)
             w.writerow(["branch", "period", "point", name, "amplitude", "stable",
                         "max_abs_multiplier", "origin", "stop_reason"]
-                       + (["deflection_over_L", "beyond_theory"] if flags else []))
+                       + (["deflection_over_L", "beyond_theory"] if flags else []) + quantities)
             for b, br in enumerate(self.branches):
                 for i in range(len(br)):
                     w.writerow([b, br.period, i, _num(br.parameter[i]), _num(br.amplitude[i]),
                                 int(br.stable[i]), _num(np.abs(br.multipliers[i]).max()), br.origin,
                                 br.stop_reason]
-                               + (theory(br.parameter[i], br.amplitude[i]) if flags else []))
+                               + (theory(br.parameter[i], br.amplitude[i]) if flags else [])
+                               + [_num(br.quantities[q][i]) if q in br.quantities else "" for q in quantities])
         with atomic_file(paths[1]) as fh:
             w = csv.writer(fh)
             w.writerow(["kind", name, "amplitude", "period", "branch", "multiplier_re",
@@ -149,14 +186,16 @@ class BifurcationDiagram:
                     for j, m in enumerate(br.multipliers[i]):
                         w.writerow([b, i, _num(br.parameter[i]), j, _num(m.real), _num(m.imag),
                                     _num(abs(m))])
+        paths.append(write_states(self, folder / "states.csv"))
         return paths
 
-    def plot(self, path, ax=None, title=None, ylabel=None, xlabel=None):
+    def plot(self, path, ax=None, title=None, ylabel=None, xlabel=None, sweep=None):
         """Amplitude against the parameter: stable solid, unstable dashed, one colour per period,
         special points marked and labelled (F fold, PD period doubling, NS Neimark-Sacker) where
         the label covers no curve; for the mechanism, the range beyond the theory (|v|/L > 0.1)
-        shaded.  Axis labels and title default to what the diagram holds; the legend sits below
-        the axes."""
+        shaded.  sweep: a PoincareDiagram (crankgen.poincare, up and down) whose marched
+        amplitudes are drawn over the branches (the hysteresis a run-up and a run-down show).
+        Axis labels and title default to what the diagram holds; the legend sits below the axes."""
         from matplotlib.lines import Line2D
 
         from ..plotting import beyond_patch, fit_panels, panels, place_labels
@@ -181,6 +220,15 @@ class BifurcationDiagram:
         handles = [Line2D([], [], color=c, label=f"period {k}") for k, c in sorted(colors.items())]
         handles += [Line2D([], [], color="grey", ls="-", label="stable"),
                     Line2D([], [], color="grey", ls="--", label="unstable")]
+        if sweep is not None:
+            style = {"up": ("C0", "^", 18), "down": ("C3", "v", 18)}
+            for d, (c, m, size) in style.items():
+                pts = [q for q in sweep.points if q.direction == d and q.amplitude is not None]
+                if pts:
+                    ax.scatter([q.parameter for q in pts], [q.amplitude for q in pts], marker=m, s=size,
+                               color=c, alpha=0.75, lw=0, zorder=4)
+                    handles.append(Line2D([], [], ls="none", marker=m, color=c,
+                                          label=f"marched, sweep {d}"))
         markers = {"fold": "s", "period-doubling": "o", "neimark-sacker": "D"}
         for kind, m in markers.items():
             pts = [s for s in self.special_points if s.kind == kind]

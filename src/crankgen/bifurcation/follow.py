@@ -66,8 +66,8 @@ def follow(point, parameter, start, stop, *, bounds=None, ds=0.02, ds_min=1e-5, 
         raise ParameterError(f"the second parameter must differ from the diagram's ({first!r})")
     case = point.case
     record = schema.PARAMETERS[parameter]
-    if not record.read_by(case.guide, case.motion):
-        current = case.guide if record.owner == "guide" else case.motion
+    if not record.read_by(case.guide_record.name, case.motion_record.name):
+        current = case.guide_record.name if record.owner == "guide" else case.motion_record.name
         raise ParameterError(f"cannot vary {record.label}: it belongs to the {' and '.join(record.readers)} "
                              f"{record.owner}; this case's {record.owner} is {current!r}")
     start, stop = in_range("start", start), in_range("stop", stop)

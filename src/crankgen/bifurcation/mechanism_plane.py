@@ -20,7 +20,7 @@ import numpy as np
 from .. import engine
 from ..errors import ParameterError
 from .maps import MapError
-from .mechanism import PARAMETERS, orbit_peak
+from .mechanism import PARAMETERS, V_MID, orbit_peak
 from .plane_maps import PlaneMap
 
 
@@ -37,7 +37,7 @@ class MechanismPlaneMap(PlaneMap):
             raise ParameterError(f"the two parameters must differ, got {names[0]!r} twice")
         if not case.periodic:
             raise ParameterError(f"a two-parameter continuation follows the crank-revolution map, which "
-                                 f"needs a crank motion periodic in the crank angle; the {case.motion!r} "
+                                 f"needs a crank motion periodic in the crank angle; the {case.motion_record.name!r} "
                                  f"motion is not")
         if case.integrator != "newton":
             raise ParameterError(f"a two-parameter continuation needs integrator='newton', got "
@@ -110,7 +110,7 @@ class MechanismPlaneMap(PlaneMap):
             if len(self._orbits) > 32:
                 self._orbits.clear()
             self._orbits[(y.tobytes(), p.tobytes(), period)] = (
-                orbit_peak(r.y[b, :, 0]), r.states[b] / self.s, r.y[b, idx, 0])
+                orbit_peak(r.y[b, :, V_MID]), r.states[b] / self.s, r.y[b, idx, V_MID])
             out.append((r.X1[b] / self.s, jy, jp))
         return out
 
@@ -138,7 +138,7 @@ class MechanismPlaneMap(PlaneMap):
             raise MapError(f"march at {self._where(p)} failed: {engine.STATUS_TEXT[int(res.status[0])]}")
         idx = np.arange(period + 1) * self.spr
         states = np.concatenate([res.D_history[0, idx], res.V_history[0, idx]], axis=1) / self.s
-        return orbit_peak(res.y[0, :, 0]), states, res.y[0, idx, 0]
+        return orbit_peak(res.y[0, :, V_MID]), states, res.y[0, idx, V_MID]
 
     def physical(self, y):
         return np.asarray(y, dtype=float) * self.s

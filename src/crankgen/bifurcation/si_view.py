@@ -2,10 +2,12 @@
 units: a crank speed in rad/s, a four-bar's c and d in m, the damping in s, ...) and the amplitude
 and section samples (v*(1/2), in units of the radius of gyration r) in m.
 
-`DiagramSI(diagram, scales)` is what `diagram.si` (a diagram computed with units="si") and
+`DiagramSI(diagram, si_mechanism)` is what `diagram.si` (a diagram computed with units="si") and
 `diagram.si_view(si_mechanism)` give: its branches and special points with SI numbers, `to_csv`
 (the diagram's own files with the SI columns named with their units: crank_speed_rad_per_s,
-amplitude_m, value_m, and every column with declared units the diagram holds) and `plot` (mm).
+amplitude_m, value_m, and the branch points' quantities: peak_torque_N_m, ..., peak_v_m,
+peak_stress_Pa) and `plot` (mm).  continuation.json and states.csv stay in crankgen's units (the
+diagram's own, read back by BifurcationDiagram.from_json).
 """
 
 import csv
@@ -18,6 +20,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from .. import schema
+from ..errors import ParameterError
 from ..exports import column
 from ..units import Scales
 
@@ -27,8 +30,15 @@ AMPLITUDE_UNITS = schema.OUTPUTS["v_mid"].units           # amplitudes and sampl
 class DiagramSI:
     """A BifurcationDiagram or a PoincareDiagram in SI (module docstring)."""
 
-    def __init__(self, diagram, scales):
-        self.diagram, self.scales = diagram, scales
+    def __init__(self, diagram, si_mechanism):
+        self.diagram, self.scales = diagram, si_mechanism.scales
+        self.modulus = float(si_mechanism.E)              # Pa: a stress in units of E
+        for unit, name in schema.UNIT_PARAMETERS.items():  # the diagram must be of this rod
+            value = diagram.info.get(name)
+            own = self.scales.base[unit] / self.scales.L
+            if diagram.parameter_name != name and value is not None and abs(float(value) / own - 1) > 1e-9:
+                raise ParameterError(f"the diagram's {schema.PARAMETERS[name].label} = {float(value):g} is not the "
+                                     f"rod's ({own:g}, from its L, A and I): its SI form needs its own SIMechanism")
         self.parameter_name = diagram.parameter_name
         p = schema.PARAMETERS[self.parameter_name]
         self.units = p.units
@@ -50,10 +60,16 @@ class DiagramSI:
         name = schema.PARAMETERS[self.parameter_name].si or self.parameter_name
         unit = "" if self.parameter_unit == "1" else f" {self.parameter_unit}"
 
+        ends = [float(e) for e in (self.diagram.info.get("start"), self.diagram.info.get("stop")) if e is not None]
+
         def si(match):                        # as many significant digits as the value printed
             number = match.group(1)
             digits = len(re.split("[eE]", number)[0].lstrip("+-").replace(".", "").lstrip("0")) or 1
-            return f"{name} = {float(self.parameter(float(number))):.{digits}g}{unit}"
+            value = float(number)
+            for end in ends:                  # an end of the range, rounded when printed: the end
+                if abs(value - end) <= 5 * 10.0 ** -digits * abs(end):
+                    return f"{name} = {float(self.parameter(end)):.7g}{unit}"
+            return f"{name} = {float(self.parameter(value)):.{digits}g}{unit}"
         return re.sub(rf"\b{re.escape(self.parameter_name)} = ([-+0-9.eE]+[0-9])", si, text)
 
 
@@ -74,10 +90,12 @@ class DiagramSI:
 
     @property
     def points(self):
-        """Each point of a Poincare diagram: direction, parameter (SI), classification, samples (m)."""
+        """Each point of a Poincare diagram: direction, parameter (SI), classification, samples and
+        amplitude (m)."""
         return [SimpleNamespace(direction=q.direction, parameter=float(self.parameter(q.parameter)),
                                 classification=q.classification, period=q.period,
-                                samples=self.amplitude(q.samples), message=q.message)
+                                samples=self.amplitude(q.samples), message=q.message,
+                                amplitude=None if q.amplitude is None else float(self.amplitude(q.amplitude)))
                 for q in getattr(self.diagram, "points", [])]
 
     def _columns(self):
@@ -89,11 +107,18 @@ class DiagramSI:
         for br in getattr(self.diagram, "branches", []):            # quantities with declared units
             for name, units in (getattr(br, "quantity_units", None) or {}).items():
                 if units and name not in out:
-                    try:
-                        out[name] = (column(name, units, True), self.scales.factor(units))
-                    except ValueError:
-                        continue
+                    out[name] = self._quantity(name, units)
         return out
+
+    def _quantity(self, name, units):
+        """(SI column, factor) of a branch quantity in its units ("r (v* = v/r)": r; "E": a
+        stress in units of Young's modulus)."""
+        units = units.split(" (")[0]
+        if units == "E":
+            return f"{name}_Pa", self.modulus
+        if units == "Pa":
+            return f"{name}_Pa", 1.0
+        return column(name, units, True), self.scales.factor(units)
 
     def to_csv(self, folder):
         """The diagram's CSV files (its to_csv) with every column that has a unit in SI, named with
@@ -120,22 +145,30 @@ class DiagramSI:
                 csv.writer(fh).writerows(rows)
         return paths
 
-    def plot(self, path, title=None, diagram=None):
+    def plot(self, path, title=None, diagram=None, sweep=None):
         """The diagram's figure in SI: the parameter in its SI unit, amplitudes and samples in mm
         (the diagram's own plot, its amplitude's unit in L being then a millimetre: the range
         beyond the theory, |v|/L > 0.1, is shaded where it is); diagram: a continuation drawn over
-        a Poincare diagram (computed on the same SI mechanism)."""
+        a Poincare diagram, sweep: a Poincare diagram drawn over a continuation (computed on the
+        same SI mechanism)."""
         mm = 1e3
         d = self.diagram
         unit = {schema.UNIT_PARAMETERS[AMPLITUDE_UNITS]: 1.0 / (mm * self.scales.L)}   # 1 mm in L
         xlabel = (f"{(schema.PARAMETERS[self.parameter_name].si or self.parameter_name).replace('_', ' ')} "
                   f"({self.parameter_unit})")
         if hasattr(d, "branches"):
+            under = None if sweep is None else self._other(sweep)._converted(mm, unit)
             return self._converted(mm, unit).plot(path, title=title or _title(self, "continuation"), xlabel=xlabel,
-                                                  ylabel="max |v(L/2)| over the orbit (mm)")
-        over = None if diagram is None else DiagramSI(diagram, self.scales)._converted(mm, unit)
+                                                  ylabel="max |v(L/2)| over the orbit (mm)", sweep=under)
+        over = None if diagram is None else self._other(diagram)._converted(mm, unit)
         return self._converted(mm, unit).plot(path, diagram=over, title=title or _title(self, "Poincare sweep"),
                                               xlabel=xlabel, ylabel="v(L/2) at theta = 0, once per revolution (mm)")
+
+    def _other(self, diagram):
+        """Another diagram of the same SI mechanism in SI."""
+        other = DiagramSI.__new__(DiagramSI)
+        other.__dict__.update(self.__dict__, diagram=diagram, parameter_name=diagram.parameter_name)
+        return other
 
     def _converted(self, mm, unit):
         """The diagram with its numbers in SI (amplitudes in mm) and its amplitude's unit in L."""
@@ -151,7 +184,9 @@ class DiagramSI:
                                                    amplitude=float(self.amplitude(s.amplitude)) * mm)
                                            for s in d.special_points])
         return replace(d, info=info, points=[replace(q, parameter=float(self.parameter(q.parameter)),
-                                                     samples=self.amplitude(q.samples) * mm) for q in d.points])
+                                                     samples=self.amplitude(q.samples) * mm,
+                                                     amplitude=None if q.amplitude is None else
+                                                     float(self.amplitude(q.amplitude)) * mm) for q in d.points])
 
 
 def _title(view, what):
@@ -174,9 +209,8 @@ def _title(view, what):
 
 def si_of(diagram):
     """The SI view of a diagram computed with units="si"."""
-    from ..errors import ParameterError
-    scales = getattr(diagram, "scales", None)
-    if scales is None:
+    si = getattr(diagram, "si_mechanism", None)
+    if si is None:
         raise ParameterError("this diagram was computed in crankgen's units: .si needs one made with units='si' "
                              "from a crankgen.SIMechanism; .si_view(si_mechanism) converts any")
-    return DiagramSI(diagram, scales)
+    return DiagramSI(diagram, si)

@@ -13,7 +13,10 @@ mechanism: v*(1/2) at theta = 0, once per crank revolution).  Classification, wi
 - "failed" when the map cannot be evaluated (message says why; the next value restarts from the
   last good state).  When the transient from the previous value's state fails, the value is
   approached once more from that state in four parameter steps of transient / 4 iterations each.
-distinct counts the sampled values that differ by more than 1e-6 (1 + |sample|).
+distinct counts the sampled values that differ by more than 1e-6 (1 + |sample|); amplitude is the
+largest |observable| along the orbit marched once more from the last state (for the mechanism max
+|v*(1/2)| over every step: what a diagram's branches show), over the period found, or
+AMPLITUDE_REVOLUTIONS applications when none.
 """
 
 import csv
@@ -33,6 +36,7 @@ from ..io import atomic_file, save_figure
 from .diagram import _num
 
 DIRECTIONS = ("up", "down", "both")
+AMPLITUDE_REVOLUTIONS = 8      # applications over which a response that does not repeat is measured
 
 
 @dataclass
@@ -48,6 +52,8 @@ class PoincarePoint:
     distinct: int                  # distinct sampled values
     samples: np.ndarray = field(repr=False)   # the observable once per application
     message: str = ""
+    amplitude: Optional[float] = None    # max |observable| along the last revolutions marched (the
+    #                                      orbit's period, or AMPLITUDE_REVOLUTIONS when not periodic)
 
 
 @dataclass
@@ -65,7 +71,7 @@ class PoincareDiagram:
     def si_view(self, si_mechanism):
         """The diagram in SI for the crankgen.SIMechanism whose dimensionless form it was computed for."""
         from .si_view import DiagramSI
-        return DiagramSI(self, si_mechanism.scales)
+        return DiagramSI(self, si_mechanism)
 
     def to_csv(self, folder):
         """poincare_summary.csv (one row per value and direction) and poincare_samples.csv (every
@@ -77,10 +83,11 @@ class PoincareDiagram:
         with atomic_file(paths[0]) as fh:
             w = csv.writer(fh)
             w.writerow(["direction", name, "classification", "period", "repeat_residual",
-                        "lyapunov", "distinct", "message"])
+                        "lyapunov", "distinct", "amplitude", "message"])
             for q in self.points:
                 w.writerow([q.direction, _num(q.parameter), q.classification, q.period,
-                            _num(q.repeat_residual), _num(q.lyapunov), q.distinct, q.message])
+                            _num(q.repeat_residual), _num(q.lyapunov), q.distinct, _num(q.amplitude),
+                            q.message])
         with atomic_file(paths[1]) as fh:
             w = csv.writer(fh)
             w.writerow(["direction", name, "sample", "value"])
@@ -264,8 +271,9 @@ def _sweep(fmap, passes, x0, transient, samples, max_period, tol, lyapunov_tol, 
                     lyap = _lyapunov(jacs)
                     cls = ("irregular" if lyap > lyapunov_tol else
                            "quasi-periodic" if lyap >= -lyapunov_tol else "unsettled")
+                amplitude = float(fmap.orbit(states[-1], p, k or AMPLITUDE_REVOLUTIONS)[0])
                 points.append(PoincarePoint(d, p, cls, k, r if math.isfinite(r) else None, lyap,
-                                            _distinct(smp[1:]), smp[1:]))
+                                            _distinct(smp[1:]), smp[1:], amplitude=amplitude))
                 x, p_last = states[-1], p
             except (MapError, CrankgenError) as exc:
                 points.append(PoincarePoint(d, p, "failed", 0, None, None, 0,

@@ -1,5 +1,5 @@
 """Command-line interface: `crankgen simulate | steady | sweep | reproduce | audit | continue | poincare |
-modes | campbell | animate | compile`.
+chart | modes | campbell | animate | compile`.
 
 Exit codes: 0 success; 1 a run that failed (simulate: the integration stopped, and what was
 computed up to the failure is written; steady: status "failed"; continue: no periodic state to
@@ -21,6 +21,7 @@ from .options import (_Parser, _add_mechanism_options, _add_model_options, _add_
 from . import si_file
 from .compile import _cmd_compile
 from .animate import add_command as add_animate_command
+from .chart import add_command as add_chart_command
 from .modes import add_commands as add_modes_commands
 from .runs import _cmd_simulate, _cmd_steady, _cmd_sweep
 from .studies import (CONTINUE_NAMES, POINCARE_NAMES, _add_branch_model_options, _cmd_audit,
@@ -192,16 +193,30 @@ def build_parser():
                        description="Follow the periodic response as one parameter varies (pseudo-arclength "
                                    "continuation of the crank-revolution map), with its stability, folds, "
                                    "period doublings and Neimark-Sacker points, and the period-2 (4, ...) "
-                                   "branches born at period doublings. Writes branches.csv, "
-                                   "special_points.csv, multipliers.csv and continuation.png.")
+                                   "branches born at period doublings; every point with the physical "
+                                   "quantities of its orbit (peak torque, pin and end forces, axial "
+                                   "force, |v*|, outer-fibre strain; stress with --section). Writes "
+                                   "branches.csv, special_points.csv, multipliers.csv, states.csv, "
+                                   "continuation.json (read back by "
+                                   "crankgen.BifurcationDiagram.from_json) and continuation.png.")
     _add_mechanism_options(p)
     _add_branch_model_options(p)
     p.add_argument("--max-period", type=int, default=4,
                    help="follow period doublings up to this period (default 4)")
+    p.add_argument("--section", metavar="SPEC", default=None,
+                   help="the rod's cross-section (rectangle:B,H, circle:D, tube:D,T or A,I,C), for the "
+                        "peak outer-fibre stress of every point's orbit (in units of Young's modulus E; "
+                        "only its shape counts; with --si the rod's section, the stress in Pa) beside the "
+                        "peak torque, forces and strain")
+    p.add_argument("--sweep", type=int, default=None, metavar="VALUES",
+                   help="also march the mechanism at VALUES evenly spaced values, up then down (each from "
+                        "the previous value's state: the hysteresis a run-up and a run-down show), and draw "
+                        "the marched amplitudes over the branches; writes poincare_summary.csv and "
+                        "poincare_samples.csv too")
     si_file.add_option(p, "--from and --to are then in the parameter's SI unit (rad/s for the crank speed, m "
                           "for c, d, a, the offset, kg for the end mass, s for the damping), the CSV files and "
                           "the figure in SI (the parameter with its unit, amplitudes in m, the figure in mm)")
-    _add_output_options(p, "continuation", ", ".join(CONTINUE_NAMES))
+    _add_output_options(p, "continuation", ", ".join(CONTINUE_NAMES + ("continuation.json",)))
     p.set_defaults(func=_cmd_continue)
 
     p = sub.add_parser("poincare", help="brute-force bifurcation diagram: sweep a parameter, sample v* once per revolution, classify",
@@ -225,10 +240,11 @@ def build_parser():
     si_file.add_option(p, "--from and --to are then in the parameter's SI unit, the CSV files and the figure in "
                           "SI (samples in m, the figure in mm)")
     _add_output_options(p, "poincare", ", ".join(POINCARE_NAMES) + " (and, with --with-continuation, "
-                        + ", ".join(CONTINUE_NAMES[:3]) + ")")
+                        + ", ".join(CONTINUE_NAMES[:4]) + ")")
     p.set_defaults(func=_cmd_poincare)
     add_modes_commands(sub)
     add_animate_command(sub)
+    add_chart_command(sub)
     return parser
 
 

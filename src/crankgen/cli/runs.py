@@ -121,7 +121,8 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
     out.wrote(write_csv(out.path("simulation.csv"), columns, rows))
     if args.nodes and res.nodes is not None:
         nodes = res.nodes if view is None else view.nodes
-        n = nodes.shape[1] // 3
+        from ..mesh import NODE_DOFS
+        n = nodes.shape[1] // NODE_DOFS
         # node i at x* = i / n: u, v (along and across the rigid rod; units of L, or m with --si)
         # and the slope psi = dv/dx (rad)
         # then every node's inertial position X, Y (crankgen.animation.inertial_nodes)
@@ -176,16 +177,18 @@ def _resolved(case, where=""):
     if not case.periodic:
         raise UsageError(
             f"{where}a steady state needs a crank motion periodic in the crank angle; --crank "
-            f"{case.motion} is not (a run-up is a transient: `crankgen simulate` runs it)")
-    if case.omega == 0:
+            f"{case.motion_record.name} is not (a transient: `crankgen simulate` runs it)")
+    speed = schema.PARAMETERS[schema.CRANK_SPEED]
+    omega = getattr(case, speed.name)
+    if omega == 0:
         raise UsageError(
-            f"{where}a steady state needs a turning crank: --omega 0 is a crank at rest, which has no "
-            "revolution to repeat; give --omega > 0 (`crankgen modes --omega 0` gives the natural "
-            "frequencies of the mechanism at rest)")
-    if case.omega * case.steps_per_rev < 1.0:
+            f"{where}a steady state needs a turning crank: --{speed.cli} 0 is a crank at rest, which has "
+            f"no revolution to repeat; give --{speed.cli} > 0 (`crankgen modes --{speed.cli} 0` gives the "
+            "natural frequencies of the mechanism at rest)")
+    if omega * case.steps_per_rev < 1.0:
         raise UsageError(
-            f"{where}a steady state at --omega {case.omega:g} needs --steps-per-rev >= "
-            f"{math.ceil(1 / case.omega)} (got {case.steps_per_rev}): a time step longer than the "
+            f"{where}a steady state at --{speed.cli} {omega:g} needs --steps-per-rev >= "
+            f"{math.ceil(1 / omega)} (got {case.steps_per_rev}): a time step longer than the "
             "rod's first bending period would make the stability verdict depend on the step; "
             "`crankgen simulate` marches such slow runs")
 

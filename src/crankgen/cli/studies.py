@@ -165,27 +165,50 @@ def _checked(args, continuation, values):
     return case
 
 
-CONTINUE_NAMES = ("branches.csv", "special_points.csv", "multipliers.csv", "continuation.png")
+CONTINUE_NAMES = ("branches.csv", "special_points.csv", "multipliers.csv", "states.csv", "continuation.png")
 POINCARE_NAMES = ("poincare_summary.csv", "poincare_samples.csv", "poincare.png")
 
 
 def _cmd_continue(args):
-    from ..bifurcation import continuation
+    import numpy as np
 
+    from ..bifurcation import continuation, poincare
+    from ..progress import Progress
+    from ..validation import integer
+
+    if args.sweep is not None:
+        integer("--sweep", args.sweep, 2)
+        if args.sweep > 10000:
+            raise UsageError(f"--sweep must be at most 10000, got {args.sweep}")
     _si_range(args)
+    section = None
+    if args.section is not None:                 # with --si: the rod's, its stresses in Pa
+        from ..sections import parse
+        from ..stresses import check_section
+        section = parse(args.section)
+        check_section(section, args.si_mechanism)
     case = _checked_branch_model(args, continuation=True)
-    folder = _Outputs(args.out, CONTINUE_NAMES, args.force)
+    folder = _Outputs(args.out, CONTINUE_NAMES + ("continuation.json",)
+                      + (POINCARE_NAMES[:2] if args.sweep else ()), args.force)
     try:
         log = None if args.quiet else (lambda text: print(f"continue: {text}", file=sys.stderr, flush=True))
         d = continuation(parameter=args.parameter, start=args.start, stop=args.stop, case=case,
-                         max_period=args.max_period, progress=log)
+                         max_period=args.max_period, progress=log, section=section)
         view = _in_si(args, d)
         paths = [folder.wrote(p) for p in view.to_csv(folder.folder)]
+        paths.append(folder.wrote(d.to_json(folder.path("continuation.json"))))     # crankgen's units
+        pc = None
+        if args.sweep:
+            values = np.linspace(args.start, args.stop, args.sweep)
+            with Progress("continue: sweep up and down", 2 * args.sweep, enabled=not args.quiet) as progress:
+                pc = poincare(parameter=args.parameter, values=values, direction="both", case=case,
+                              transient=100, samples=16, progress=progress)
+            paths += [folder.wrote(p) for p in _in_si(args, pc).to_csv(folder.folder)]
         if view is d:
             png = folder.wrote(d.plot(folder.path("continuation.png"), title=_title(args, "continuation"),
-                                      ylabel="max |v*(1/2)| over the orbit", xlabel=_axis(args.parameter)))
+                                      ylabel="max |v*(1/2)| over the orbit", xlabel=_axis(args.parameter), sweep=pc))
         else:
-            png = folder.wrote(view.plot(folder.path("continuation.png")))
+            png = folder.wrote(view.plot(folder.path("continuation.png"), sweep=pc))
     finally:
         folder.abandon()
     name, unit, amp = _printed(args, view)
@@ -241,7 +264,7 @@ def _cmd_poincare(args):
     integer("--samples", args.samples, 2)
     values = _si_range(args, np.linspace(args.start, args.stop, args.values))
     case = _checked_branch_model(args, args.with_continuation, values)
-    names = POINCARE_NAMES + (CONTINUE_NAMES[:3] if args.with_continuation else ())
+    names = POINCARE_NAMES + (CONTINUE_NAMES[:4] if args.with_continuation else ())
     folder = _Outputs(args.out, names, args.force)
     try:
         total = args.values * (2 if args.direction == "both" else 1)

@@ -52,7 +52,9 @@ def borrowed_work(w):
         borrowed(w.rhs), borrowed(w.W), borrowed(w.piv), borrowed(w.ext), borrowed(w.F), borrowed(w.diag),
         borrowed(w.kin), borrowed(w.crank), borrowed(w.q), borrowed(w.qd), borrowed(w.qdd), borrowed(w.geo),
         borrowed(w.send), borrowed(w.E), borrowed(w.r1), borrowed(w.S1), borrowed(w.K1), borrowed(w.C1),
-        borrowed(w.M1), borrowed(w.lanes), borrowed(w.prims), borrowed(w.q_end))
+        borrowed(w.M1), borrowed(w.lanes), borrowed(w.prims), borrowed(w.q_end), borrowed(w.mapped),
+        borrowed(w.held), borrowed(w.held_slots), borrowed(w.held_reduced), borrowed(w.qc), borrowed(w.qdc),
+        borrowed(w.qddc), borrowed(w.Ec), borrowed(w.px), borrowed(w.pr))
 
 
 @jit(python=False)

@@ -13,7 +13,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from .. import kinematics as _kinematics
-from .. import newton
+from .. import newton, schema
 from ..outputs import primitive_data
 from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
 from .compiled import call, jit
@@ -70,7 +70,8 @@ class Batch:
             np.array([c.parameter_vector for c in cases], dtype=float),
             np.array([newton.SCHEMES.index(c.integrator) for c in cases], dtype=np.int64),
             printed.astype(np.bool_),
-            np.array([self.mesh.dof_scales(c.eps, _kinematics.end_scale(c)) for c in cases]))
+            np.array([self.mesh.dof_scales(schema.natural_sizes(c.parameters()), _kinematics.end_scale(c))
+                      for c in cases]))
 
     def _new_mesh(self, n):
         from ..assembly import BandedAssembler

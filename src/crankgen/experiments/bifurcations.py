@@ -68,7 +68,7 @@ def _run(ctx, m, eps, n, spr):
             f"(n = {n}, {spr} steps/rev, periods up to {cfg.bif_max_period})")
     try:
         d = continuation(mech, "omega", lo, hi, n_elements=n, steps_per_rev=spr,
-                         max_period=cfg.bif_max_period, dp_max=cfg.bif_dp_max, tol=cfg.bif_tol,
+                         max_period=cfg.bif_max_period, dp_max=cfg.bif_dp_max, tol=cfg.bif_tol, quantities=False,
                          progress=lambda text: ctx.log(f"{label}: {text}"), **_model_options(m))
     except _FAILURES as exc:
         rec.update(status="failed", message=f"{type(exc).__name__}: {exc}")
