@@ -150,3 +150,23 @@ def test_the_sweep_figure_spans_the_cases_without_an_orbit(mixed_sweep):
         crosses = [c for c in ax.collections if c.get_offsets().shape[0] and
                    np.allclose(c.get_offsets()[:, 0], 0.7)]
         assert len(crosses) == 8                                  # one per series
+
+
+def test_steady_writes_every_declared_output_of_its_guide(tmp_path):
+    """crankgen steady on a four-bar: orbit.csv has a column per declared step output of the
+    circle guide (named with its unit) equal to the Python steady state's, and steady.csv the peak
+    of every load (a force or a moment) over that orbit."""
+    assert main(["steady", "--guide", "circle", "--omega", "0.5", "--out", str(tmp_path), *TINY]) == 0
+    orbit, row = check_csv(tmp_path / "orbit.csv"), check_csv(tmp_path / "steady.csv").iloc[0]
+    st = crankgen.steady_state(crankgen.Mechanism(guide=crankgen.Circle()), omega=0.5, n_elements=2,
+                               steps_per_rev=20)
+    steps = [n for n, o in schema.OUTPUTS.items() if o.kind == "step" and "circle" in o.guides]
+    assert "rocker_angle" in steps and "torque" in steps
+    for name in steps:
+        units = schema.OUTPUTS[name].units
+        col = [c for c in orbit.columns if c == name or (c.startswith(name + "_") and units != "1"
+                                                          and c[len(name) + 1:] not in ("x", "y"))]
+        assert len(col) == 1, (name, col)
+        np.testing.assert_allclose(orbit[col[0]], getattr(st, name), rtol=1e-9, atol=1e-12, err_msg=name)
+    for name in ("torque", "pin_force_x", "pin_force_y", "end_force_x", "end_force_y"):
+        assert row[f"peak_{name}"] == pytest.approx(np.abs(getattr(st, name)).max(), rel=1e-9)
