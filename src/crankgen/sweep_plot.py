@@ -130,13 +130,12 @@ def sweep_figure(table, x=None, si=None):
             for ax in (a_amp, a_load) if a_load is not None else (a_amp,):
                 ax.scatter(xs[missing], np.full(int(missing.sum()), 0.03 + 0.025 * (k % 4)),
                            transform=ax.get_xaxis_transform(), marker="x", color=color, s=36, zorder=5)
-        if si is None:
-            eps = {_number(r.get(u)) for r in group for u in schema.UNIT_PARAMETERS.values()}
-            if len(eps) == 1:
-                from .theory import DEFLECTION_LIMIT
-                limit = DEFLECTION_LIMIT / eps.pop()
-                if np.nanmax(np.append(amp, 0.0)) > 0.5 * limit:
-                    limits.setdefault(limit, set()).add(color)
+        from .theory import DEFLECTION_LIMIT
+        eps = {_number(r.get(u)) for r in group for u in schema.UNIT_PARAMETERS.values()}
+        limit = DEFLECTION_LIMIT * si.scales.L * scale if si is not None else \
+            DEFLECTION_LIMIT / eps.pop() if len(eps) == 1 else None          # in the amplitude's unit drawn
+        if limit is not None and np.nanmax(np.append(amp, 0.0)) > 0.5 * limit:
+            limits.setdefault(limit, set()).add(color)
         for j, load in enumerate(loads):
             col = load if si is None else column(load, schema.OUTPUTS[load[len(PEAK):]].units, True)
             y = np.array([_number(r.get(col)) for r in group])

@@ -213,9 +213,9 @@ def build_parser():
                         "the previous value's state: the hysteresis a run-up and a run-down show), and draw "
                         "the marched amplitudes over the branches; writes poincare_summary.csv and "
                         "poincare_samples.csv too")
-    si_file.add_option(p, "--from and --to are then in the parameter's SI unit (rad/s for the crank speed, m "
-                          "for c, d, a, the offset, kg for the end mass, s for the damping), the CSV files and "
-                          "the figure in SI (the parameter with its unit, amplitudes in m, the figure in mm)")
+    si_file.add_option(p, f"--from and --to are then in the parameter's SI unit ({si_file.range_text()}), the "
+                          "CSV files and the figure in SI (the parameter with its unit, amplitudes and the "
+                          "quantities in m, N, N m, Pa, the figure in mm)")
     _add_output_options(p, "continuation", ", ".join(CONTINUE_NAMES + ("continuation.json",)))
     p.set_defaults(func=_cmd_continue)
 
@@ -237,8 +237,8 @@ def build_parser():
                    help="also run the continuation over the same range and draw its branches over the samples")
     p.add_argument("--max-period", type=int, default=4,
                    help="with --with-continuation: follow period doublings up to this period (default 4)")
-    si_file.add_option(p, "--from and --to are then in the parameter's SI unit, the CSV files and the figure in "
-                          "SI (samples in m, the figure in mm)")
+    si_file.add_option(p, f"--from and --to are then in the parameter's SI unit ({si_file.range_text()}), the "
+                          "CSV files and the figure in SI (samples in m, the figure in mm)")
     _add_output_options(p, "poincare", ", ".join(POINCARE_NAMES) + " (and, with --with-continuation, "
                         + ", ".join(CONTINUE_NAMES[:4]) + ")")
     p.set_defaults(func=_cmd_poincare)

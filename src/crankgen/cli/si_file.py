@@ -44,6 +44,20 @@ def add_option(p, what):
                         f"crank-motion flags with units; {what}")
 
 
+def range_text():
+    """The SI unit of each parameter a continuation can vary with --si, from the declaration
+    ("crank_speed (omega) in rad/s, a in m, ..."); the slenderness left out (the rod's section)."""
+    from ..si import si_unit
+    out = []
+    for name in schema.CONTINUABLE:
+        if name in schema.UNIT_PARAMETERS.values():
+            continue
+        p, unit = schema.PARAMETERS[name], si_unit(name)
+        label = f"{p.si} ({name})" if p.si else name
+        out.append(f"{label} in {unit}" if unit != "1" else f"{label} as a number")
+    return ", ".join(out)
+
+
 def read(path):
     """The crankgen.SIMechanism of a JSON file (UsageError naming what is wrong)."""
     from ..io import read_regular
