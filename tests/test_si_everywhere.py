@@ -145,6 +145,8 @@ def test_steady_and_sweep_on_the_command_line_in_si(heavy_slider, tmp_path, caps
     assert row["amplitude_m"] == pytest.approx(twin.amplitude * math.sqrt(INERTIA / AREA), rel=1e-8)
     assert row["peak_torque_N_m"] == pytest.approx(np.abs(orbit["torque_N_m"]).max(), rel=1e-12)
     assert math.isnan(row["c"]) and math.isnan(row["omega0"])           # a slider has no rocker, no run-up
+    printed = capsys.readouterr().out                                   # the summary names the peak loads
+    assert f"peak loads: torque {row['peak_torque_N_m']:.4g} N m" in printed
     # a sweep of the crank speed given in rad/s: the file's crank speed replaced
     speeds = [0.3 * OMEGA_B, 0.5 * OMEGA_B]
     assert main(["sweep", "--si", str(path), "--omega", ",".join(f"{w!r}" for w in speeds),
