@@ -110,11 +110,13 @@ PARAMETERS = (
               "a* (cos theta, sin theta)), units of L omega_b^2", units="L omega_b^2", metavar="GX,GY",
               symbol=(s.gX, s.gY)),
     Parameter("guide", "choice", "line", "guide",
-              "the curve the rod's end travels on: line (a slider on the line Y = offset) or circle "
+              "the curve the rod's end travels on: line (a slider on the line Y = offset), circle "
               "(the tip of a rigid massless rocker of length c pivoted at (d, offset): a four-bar "
-              "linkage with a flexible coupler)", choices=guides.GUIDES),
+              "linkage with a flexible coupler), cam (a slider on a wavy track) or incline (a slider on a "
+              "line at an angle inclination to the X axis)", choices=guides.GUIDES),
     Parameter("offset", "real", 0.0, "offset (guide offset e/L)",
-              "guide offset e/L: the line Y = e, or the ordinate of the rocker's pivot",
+              "guide offset e/L: the line Y = e (a cam track's mean line; an inclined line's "
+              "distance from the crank's axis), or the ordinate of the rocker's pivot",
               units="L", continuable=True, symbol=s.e, axis="offset e/L"),
     Parameter("c", "real", 0.8, "c (rocker length c/L)", "rocker length c/L",
               low=0.0, low_open=True, units="L", cli="rocker", continuable=True,
@@ -126,6 +128,16 @@ PARAMETERS = (
               "closure of the four-bar: +1 puts the rocker's tip on the counter-clockwise side of the "
               "line from the crank pin to the ground pivot, -1 on the other",
               symbol=s.branch),
+    Parameter("cam_height", "real", 0.02, "cam_height (cam track height h/L)",
+              "height h/L of a cam track's waves, Y = e + h cos(2 pi X / lambda)", low=0.0, units="L",
+              continuable=True, symbol=guides.cam_height, axis="cam height h/L"),
+    Parameter("cam_wavelength", "real", 0.25, "cam_wavelength (cam track wavelength lambda/L)",
+              "wavelength lambda/L of a cam track's waves", low=0.0, low_open=True, units="L",
+              symbol=guides.cam_wavelength),
+    Parameter("inclination", "real", 0.0, "inclination (incline's angle alpha, rad)",
+              "angle alpha of an inclined guide to the X axis (counter-clockwise); the line lies at the "
+              "distance offset from the crank's axis", units="rad", continuable=True,
+              symbol=guides.inclination, axis="inclination alpha (rad)"),
     Parameter("motion", "choice", "constant", "motion",
               "the crank's prescribed motion: constant speed, a run-up from omega0 to omega over "
               "`ramp` revolutions, or a cyclic fluctuation omega (1 + k sin(j theta))", owner="run",
@@ -622,6 +634,14 @@ OUTPUTS = (
            build=lambda o: _inertial(end_force)[0]),
     Output("end_force_y", "step", "Y component of the end reaction (see end_force_x)", FORCE,
            build=lambda o: _inertial(end_force)[1]),
+    Output("kinetic_energy", "reduction",
+           "the rod's kinetic energy T = sum of the elements' T_i, eqs. (4)-(5) (the end mass's not "
+           "included), units of rho A L^3 omega_b^2", TORQUE, build=lambda o: en.rod_kinetic_energy()),
+    Output("strain_energy", "reduction",
+           "the rod's strain energy U = sum of the elements' U_i of the approach in use (eq. 2 for A; "
+           "B without the quartic term; C linear), units of rho A L^3 omega_b^2", TORQUE,
+           options=MEMBRANE_OPTIONS, build=lambda o: STRAIN_ENERGY[
+               o["approach"], o["approach"] != "C" and o["membrane"] == "averaged"].build()),
     Output("axial_force", "field", "N* = N L^2 / EI, N = EA times the approach's membrane strain", "EI/L^2",
            options=MEMBRANE_OPTIONS, build=lambda o: membrane_strain(o) * s.EA / s.EI),
     Output("bending_moment", "field", "M* = M L / EI = v_xx (M = EI v_xx)", "EI/L",

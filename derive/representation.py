@@ -97,7 +97,7 @@ def _kinematic_symbols():
     margins; the motions' laws and periods), in the parameter vector's order."""
     exprs = []
     for g in model.GUIDES:
-        exprs += [g.curve, g.step, g.phi, g.beta] + [m for m, _ in g.margin]
+        exprs += [g.curve, g.step, g.phi, g.beta, g.guess] + [m for m, _ in g.margin]
     for m in model.MOTIONS:
         exprs += [m.theta, m.thetad, m.thetadd, m.period, m.step_period]
     used = set().union(*(sp.sympify(e).free_symbols for e in exprs if e is not None))
@@ -276,6 +276,7 @@ class GuideForm:
     end_scale: sp.Expr           # natural size of the reduced co-ordinate s, in eps and the parameters
     curve: sp.Matrix             # C(beta), the guide's curve
     pivot: sp.Matrix             # the ground pivot of the link carrying the end, or None
+    closure: tuple               # a numerical closure (guides.closure), or None
 
 
 @dataclass(frozen=True)
@@ -339,10 +340,12 @@ def _guides():
     names = {sym: name for name, sym in parameter_symbols().items()}
     out = []
     for g in model.GUIDES:
-        margins = sp.Matrix([m for m, _ in g.margin])
+        margins = sp.Matrix([m for m, _ in g.margin]) if g.margin else None
         out.append(GuideForm(_guide_record(g), gd.kinematics(g), gd.end_map(g), gd.rigid_end(g), margins,
-                             g.end_scale, g.curve, g.pivot))
-        assert all(names.get(sym, "?") in g.parameters + ("a",) for sym in margins.free_symbols), g.name
+                             g.end_scale, g.curve, g.pivot, gd.closure(g)))
+        if g.phi is None and g.guess is None:
+            raise ValueError(f"guide {g.name}: neither a closed-form closure (phi, beta) nor a guess for Newton")
+        assert margins is None or all(names.get(sym, "?") in g.parameters + ("a",) for sym in margins.free_symbols), g.name
     return tuple(out)
 
 

@@ -26,15 +26,17 @@ def test_simulate_writes_units_a_time_column_and_the_theory_flags(tmp_path):
                     "slider_velocity": "slider_velocity_L_omega_b", "torque": "torque_rhoA_L3_omega_b2",
                     "pin_force_x": "pin_force_x_rhoA_L2_omega_b2", "pin_force_y": "pin_force_y_rhoA_L2_omega_b2",
                     "end_force_x": "end_force_x_rhoA_L2_omega_b2", "end_force_y": "end_force_y_rhoA_L2_omega_b2"}
+    reductions = {"kinetic_energy": "kinetic_energy_rhoA_L3_omega_b2",     # the rod's energies, per step
+                  "strain_energy": "strain_energy_rhoA_L3_omega_b2"}
     fields = {"axial_force": "axial_force_at_0.5_EI_per_L2", "bending_moment": "bending_moment_at_0.5_EI_per_L",
               "chord_deflection": "chord_deflection_at_0.5_L"}
     assert list(sim.columns) == (["t_per_omega_b", "theta_deg", "v_mid_r", "u_end_r2_per_L", "extension"]
-                                 + list(step_outputs.values()) + list(fields.values())
+                                 + list(step_outputs.values()) + list(reductions.values()) + list(fields.values())
                                  + ["deflection_over_L", "axial_strain", "beyond_theory", "status"])
     ref = crankgen.simulate(crankgen.Mechanism(), n_elements=2, steps_per_rev=20, revolutions=1,
                             formulation="lagrange", damping="kelvin-voigt", membrane="averaged")
     np.testing.assert_allclose(sim["theta_deg"], np.degrees(ref.theta), rtol=1e-15)
-    for name, col in step_outputs.items():        # the declared outputs of the same run, per step
+    for name, col in {**step_outputs, **reductions}.items():    # the declared outputs of the same run, per step
         np.testing.assert_allclose(sim[col], getattr(ref, name), rtol=1e-14, atol=1e-15, err_msg=name)
     for name, col in fields.items():              # the fields at mid-span
         np.testing.assert_allclose(sim[col], getattr(ref, name)(0.5), rtol=1e-14, atol=1e-15, err_msg=name)

@@ -223,3 +223,22 @@ def test_a_continuation_in_si_finds_the_scaled_special_points_in_rad_per_s(tmp_p
     assert drawn.points[0].amplitude == pytest.approx(pc.points[0].amplitude * r * 1e3, rel=1e-12)
     with pytest.raises(crankgen.ParameterError, match="section"):
         crankgen.continuation(steel, "eps", 0.01, 0.02, units="si", **run)
+
+
+def test_a_guide_declared_later_has_its_si_fields():
+    """The inclined guide and the cam were declared after SIMechanism was written: their parameters
+    are SI fields by their declared units (the inclination in rad, the cam's height and wavelength
+    in m), and a run in SI is its dimensionless twin's."""
+    si = crankgen.SIMechanism(**ROD, a=0.1, slider_mass=0.05, damping=3e-4, crank_speed=0.5 * OMEGA_B,
+                              guide="incline", inclination=0.3, offset=0.01)
+    twin = crankgen.Mechanism(a=0.2, eps=math.sqrt(INERTIA / AREA) / L, ms=0.05 / MASS, mu=3e-4 * OMEGA_B,
+                              guide="incline", inclination=0.3, offset=0.01 / L)
+    settings = dict(n_elements=2, steps_per_rev=20, revolutions=0.5)
+    run, ref = crankgen.simulate(si, units="si", **settings), crankgen.simulate(twin, omega=0.5, **settings)
+    np.testing.assert_array_equal(run.states, ref.states)
+    np.testing.assert_allclose(run.si.torque, ref.torque * MASS * L ** 2 * OMEGA_B ** 2, rtol=1e-12)
+    cam = crankgen.SIMechanism(**ROD, a=0.1, slider_mass=0.05, crank_speed=100.0, guide="cam", cam_height=0.005,
+                               cam_wavelength=0.2)
+    assert cam.mechanism.cam_height == pytest.approx(0.005 / L) and cam.mechanism.cam_wavelength == pytest.approx(0.2 / L)
+    with pytest.raises(crankgen.ParameterError, match=r"missing cam_wavelength \(m"):
+        crankgen.SIMechanism(**ROD, a=0.1, slider_mass=0.05, crank_speed=100.0, guide="cam", cam_height=0.005)

@@ -98,10 +98,9 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
     BifurcationDiagram: branches (period, parameter, amplitude = max |v*(1/2)| over the orbit,
     stable, Floquet multipliers, states) and special points (fold, period-doubling,
     neimark-sacker), with the period-2 (then 4, ... up to max_period) branches born at period
-    doublings.  parameter: any continuable parameter of the schema (crankgen.schema.CONTINUABLE):
-    omega, eps, ms, mu, a, offset, a four-bar's rocker length c and ground pivot abscissa d
-    (guide=crankgen.Circle(...)), and a fluctuating crank's amplitude fluctuation
-    (crank=crankgen.Fluctuation(...)).  The case as in steady_state (a Mechanism with the run's
+    doublings.  parameter: any continuable parameter of the schema (crankgen.schema.CONTINUABLE:
+    {continuable}; a guide's or a crank motion's with that guide or motion, e.g.
+    guide=crankgen.Circle(...) or crank=crankgen.Fluctuation(...)).  The case as in steady_state (a Mechanism with the run's
     fields and model=, or case=Case(...)); the value of `parameter` given among them is replaced
     by start.  The start must have a periodic response (NoResultError otherwise; a continuation
     can start from either end of its range).  Steps ds, ds_min, ds_max are arclengths in the metric
@@ -170,6 +169,11 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
     diagram.info = info
     diagram.si_mechanism = None if scales is None else given
     return diagram
+
+
+continuation.__doc__ = continuation.__doc__.replace("{continuable}", ", ".join(
+    f"{n} ({' and '.join(p.readers)} {p.owner})" if p.owner in ("guide", "motion") and len(p.readers) == 1 else n
+    for n, p in schema.PARAMETERS.items() if p.continuable))
 
 
 def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up", *, model=None, transient=100,
