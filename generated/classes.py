@@ -58,6 +58,7 @@ class CaseFields:
     n_elements: object = None
     steps_per_rev: object = None
     integrator: object = None
+    rho_inf: object = None
     formulation: object = None
     approach: object = None
     membrane: object = None

@@ -56,7 +56,7 @@ def test_a_four_bar_with_gravity_and_a_run_up_in_si_is_its_dimensionless_twin(fo
     np.testing.assert_allclose(view.crank_speed[[0, -1]], [0.2 * OMEGA_B, 0.6 * OMEGA_B], rtol=1e-12)
     force, torque = MASS * L * OMEGA_B ** 2, MASS * L ** 2 * OMEGA_B ** 2       # rho A L^2 omega_b^2, ...
     np.testing.assert_allclose(view.torque, scaled.torque * torque, rtol=1e-12)
-    np.testing.assert_allclose(view.end_force_y, scaled.end_force_y * force, rtol=1e-12)
+    np.testing.assert_allclose(view.rocker_on_tip_y, scaled.rocker_on_tip_y * force, rtol=1e-12)
     np.testing.assert_allclose(view.slider_position, scaled.slider_position * L, rtol=1e-12)
     np.testing.assert_allclose(view.rocker_angle, scaled.rocker_angle, rtol=1e-12)
     # the rocker tip stays on its circle of c = 0.4 m about D = (0.5 m, 0.02 m), in metres
@@ -115,11 +115,11 @@ def test_a_steady_state_in_si_is_the_scaled_one_with_every_output(heavy_slider, 
     assert st.status == twin.status == "periodic"
     np.testing.assert_allclose(st.states, twin.states, rtol=1e-9, atol=1e-12 * np.abs(twin.states).max())
     force = MASS * L * OMEGA_B ** 2
-    np.testing.assert_allclose(st.si.pin_force_x, twin.pin_force_x * force, rtol=1e-8,
-                               atol=1e-9 * force * np.abs(twin.pin_force_x).max())
+    np.testing.assert_allclose(st.si.crank_on_rod_x, twin.crank_on_rod_x * force, rtol=1e-8,
+                               atol=1e-9 * force * np.abs(twin.crank_on_rod_x).max())
     assert st.si.v_mid.max() == pytest.approx(twin.v_mid.max() * math.sqrt(INERTIA / AREA), rel=1e-8)
     # torque and forces are discoverable, and every declared step output is in its CSV, with units
-    assert {"torque", "pin_force_x", "end_force_y", "axial_force"} <= set(dir(st)) & set(dir(st.si))
+    assert {"torque", "crank_on_rod_x", "guide_on_slider_y", "axial_force"} <= set(dir(st)) & set(dir(st.si))
     st.si.to_csv(tmp_path / "orbit_si.csv")
     twin.to_csv(tmp_path / "orbit.csv")
     orbit_si, orbit = check_csv(tmp_path / "orbit_si.csv"), check_csv(tmp_path / "orbit.csv")
@@ -199,7 +199,7 @@ def test_a_continuation_in_si_finds_the_scaled_special_points_in_rad_per_s(tmp_p
     q = {k: np.concatenate([b.quantities[k] for b in d.branches]) for k in d.branches[0].quantities}
     np.testing.assert_allclose(branches["peak_torque_N_m"], q["peak_torque"] * rhoA * 0.3 ** 3 * omega_b ** 2,
                                rtol=1e-12)
-    np.testing.assert_allclose(branches["peak_pin_force_N"], q["peak_pin_force"] * rhoA * 0.3 ** 2 * omega_b ** 2,
+    np.testing.assert_allclose(branches["peak_pin_force_A_N"], q["peak_pin_force_A"] * rhoA * 0.3 ** 2 * omega_b ** 2,
                                rtol=1e-12)
     np.testing.assert_allclose(branches["peak_v_m"], q["peak_v"] * r, rtol=1e-12)
     assert "peak_strain" in branches.columns

@@ -2,7 +2,7 @@
 crankgen's units or in SI, and the range of the theory per step.
 
 A column is the quantity's name and its unit (`column`): in SI the SI unit (t_s, theta_rad, v_mid_m,
-torque_N_m, pin_force_x_N, crank_speed_rad_per_s), in crankgen's units the declared units string
+torque_N_m, crank_on_rod_x_N, crank_speed_rad_per_s), in crankgen's units the declared units string
 (t_per_omega_b, v_mid_r, u_end_r2_per_L, slider_position_L, torque_rhoA_L3_omega_b2); a
 dimensionless quantity is its name alone (extension), the crank angle is in degrees in crankgen's
 units (theta_deg).  The outputs are those the result gives per step (`output_names`: the engine's,

@@ -64,7 +64,7 @@ def build_parser():
     g.add_argument("--tol", type=float, default=1e-10, help="Newton tolerance on the scaled displacement increment (default 1e-10)")
     p.add_argument("--nodes", action="store_true", help="also write the nodal history nodes.csv")
     si_file.add_option(p, "simulation.csv is written in SI, every column named with its SI unit (t_s, "
-                          "theta_rad, v_mid_m, ..., torque_N_m, pin_force_x_N, ...; nodes.csv: u, v in m), "
+                          "theta_rad, v_mid_m, ..., torque_N_m, crank_on_rod_x_N, ...; nodes.csv: u, v in m), "
                           "v_mid.png in mm against s")
     _add_section_option(p)
     _add_output_options(p, "out", "simulation.csv, v_mid.png (and nodes.csv with --nodes)")
@@ -310,7 +310,9 @@ def main(argv=None):
             and signal.getsignal(signal.SIGTERM) == signal.SIG_DFL:
         handler = signal.signal(signal.SIGTERM, _terminate)
     try:
-        return _main(argv)
+        from ..notices import BeyondTheoryWarning, quiet
+        with quiet(BeyondTheoryWarning):     # every command reports the range in its own lines and files
+            return _main(argv)
     finally:
         if handler is not None:
             signal.signal(signal.SIGTERM, handler)
