@@ -240,7 +240,7 @@ def _steady(args, case, out, section=None, si=None):
     if si is not None:
         st = replace(st, scales=si.scales)
     row = st.row()
-    row["strain_energy"] = theory.strain_energy(case.approach)
+    row["strain_energy_bound"] = theory.strain_energy(case.approach)
     if st.status == "failed":
         row["message"] = _failure_text(st.message, case.approach)
     if si is not None:
