@@ -273,6 +273,17 @@ def test_a_guide_parameter_given_twice_is_refused():
         Circle(center=(1.0, 0.0), d=1.0)
 
 
+def test_a_mechanism_parameter_as_a_keyword_builds_the_mechanism_or_is_refused_beside_one():
+    """simulate(omega=0.1, eps=0.02) raised a raw TypeError (make_case got eps twice)."""
+    case = crankgen.cases.run_case(omega=0.1, eps=0.02, ms=0.3)
+    assert (case.eps, case.ms) == (0.02, 0.3)
+    assert case == Case(eps=0.02, ms=0.3, omega=0.1)
+    with pytest.raises(ParameterError, match="eps given both in the mechanism and as a keyword"):
+        crankgen.cases.run_case(Mechanism(), omega=0.1, eps=0.02)
+    with pytest.raises(ParameterError, match="eps given both"):
+        crankgen.steady_state(Mechanism(), omega=0.1, eps=0.02)
+
+
 def test_a_linkage_exactly_at_its_locking_limit_is_refused():
     """a = 0.1, D = (1, 0), c = 1.9: ||D| - a| = |1 - c| exactly, the dead point; rounding gave a
     margin of 1e-16 and main accepted it (its first step failed).  Just inside is accepted."""

@@ -166,9 +166,10 @@ def make_case(**kwargs):
 
 
 def run_case(mech=None, case=None, *, model=None, omega=None, crank=None, **fields):
-    """The Case of a run, checked once: `case` as given, or a Mechanism (default Mechanism()) with
-    the run's fields (omega, the crank motion `crank` as a record, any Case field) and the model
-    (a preset name; explicit options override it)."""
+    """The Case of a run, checked once: `case` as given, or a Mechanism (default Mechanism(), built
+    from the mechanism's parameters given as keywords) with the run's fields (omega, the crank
+    motion `crank` as a record, any Case field) and the model (a preset name; explicit options
+    override it).  A mechanism's parameter given both in `mech` and as a keyword is refused."""
     if case is not None:
         extra = [name for name, value in (("mech", mech), ("model", model), (schema.CRANK_SPEED, omega),
                                           ("crank", crank)) if value is not None] + sorted(fields)
@@ -178,8 +179,12 @@ def run_case(mech=None, case=None, *, model=None, omega=None, crank=None, **fiel
         if not isinstance(case, Case):
             raise ParameterError(f"case must be None or a crankgen.Case, got {type(case).__name__} {case!r}")
         return case
+    mechanism_fields = {n: fields.pop(n) for n in list(fields) if n in schema.MECHANISM_PARAMETERS}
     if mech is None:
-        mech = Mechanism()
+        mech = Mechanism(**mechanism_fields)
+    elif mechanism_fields:
+        raise ParameterError(f"{', '.join(sorted(mechanism_fields))} given both in the mechanism and as a "
+                             f"keyword: give it in one place (Mechanism(..., {next(iter(mechanism_fields))}=...))")
     if crank is not None:
         fields[schema.SELECTOR["motion"]] = crank
     if omega is not None:

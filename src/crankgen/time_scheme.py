@@ -185,10 +185,11 @@ def step_warning(case, omega_b=None):
     shown = "; ".join(f"{m[0]}: omega = {m[1]:.3g} omega_b{si(m[1])}, omega dt = {m[2]:.3g}, "
                       f"{100 * min(m[3], 1.0):.0f} % kept over a revolution" for m in modes)
     scheme = "Newmark's trapezoidal rule" if case.rho_inf == 1.0 else f"rho_inf = {case.rho_inf:g}"
+    advice = ("rho_inf = 0.8 (the consistent model's default) or less" if case.rho_inf > 0.8
+              else f"a rho_inf below {case.rho_inf:g}")
     return (f"the step leaves the rod's first {names} mode{'s' if len(modes) > 1 else ''} unresolved and "
             f"{scheme} does not damp the step-to-step oscillation ({shown}): accelerations and forces "
-            f"alternate from step to step; use rho_inf = 0.8 (the consistent model's default) or less, "
-            f"more steps per revolution, or damping")
+            f"alternate from step to step; use {advice}, more steps per revolution, or damping")
 
 
 def warn_steps(cases, stacklevel=3, omega_b=None):
