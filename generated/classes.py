@@ -25,6 +25,8 @@ class MechanismFields:
     c: object = None
     d: object = None
     branch: object = None
+    rocker_stiffness: object = None
+    rocker_free_angle: object = None
     cam_height: object = None
     cam_wavelength: object = None
     inclination: object = None
@@ -45,6 +47,8 @@ class CaseFields:
     c: object = None
     d: object = None
     branch: object = None
+    rocker_stiffness: object = None
+    rocker_free_angle: object = None
     cam_height: object = None
     cam_wavelength: object = None
     inclination: object = None
@@ -75,7 +79,7 @@ class Line(Spec):
 
 
 class Circle(Spec):
-    """circle of radius c about D = (d, e): a rigid massless rocker DB carrying the end mass ms (a four-bar linkage with a flexible coupler).  Parameters: offset, c, d, branch; keywords center = (d, offset), radius = (c)."""
+    """circle of radius c about D = (d, e): a rigid massless rocker DB carrying the end mass ms (a four-bar linkage with a flexible coupler).  Parameters: offset, c, d, branch, rocker_stiffness, rocker_free_angle; keywords center = (d, offset), radius = (c)."""
 
     kind = 'guide'
     declaration = GUIDES[1]    # circle
