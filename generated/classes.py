@@ -76,6 +76,7 @@ class Line(Spec):
 
     kind = 'guide'
     declaration = GUIDES[0]    # line
+    defaults = {'offset': 0.0}
 
 
 class Circle(Spec):
@@ -83,6 +84,7 @@ class Circle(Spec):
 
     kind = 'guide'
     declaration = GUIDES[1]    # circle
+    defaults = {'offset': 0.0, 'c': 0.8, 'd': 1.0, 'branch': 1, 'rocker_stiffness': 0.0, 'rocker_free_angle': 0.0}
 
 
 class Cam(Spec):
@@ -90,6 +92,7 @@ class Cam(Spec):
 
     kind = 'guide'
     declaration = GUIDES[2]    # cam
+    defaults = {'offset': 0.0, 'cam_height': 0.02, 'cam_wavelength': 0.25}
 
 
 class Incline(Spec):
@@ -97,6 +100,7 @@ class Incline(Spec):
 
     kind = 'guide'
     declaration = GUIDES[3]    # incline
+    defaults = {'offset': 0.0, 'inclination': 0.0}
 
 
 class Constant(Spec):
@@ -104,6 +108,7 @@ class Constant(Spec):
 
     kind = 'motion'
     declaration = MOTIONS[0]    # constant
+    defaults = {'omega': 0.8, 'theta0': 0.0}
 
 
 class RunUp(Spec):
@@ -111,6 +116,7 @@ class RunUp(Spec):
 
     kind = 'motion'
     declaration = MOTIONS[1]    # runup
+    defaults = {'omega0': 0.2, 'omega': 0.8, 'ramp': 20.0, 'theta0': 0.0}
 
 
 class Fluctuation(Spec):
@@ -118,6 +124,7 @@ class Fluctuation(Spec):
 
     kind = 'motion'
     declaration = MOTIONS[2]    # fluctuation
+    defaults = {'omega': 0.8, 'fluctuation': 0.1, 'order': 1, 'theta0': 0.0}
 
 
 GUIDE_CLASSES = (Line, Circle, Cam, Incline,)
