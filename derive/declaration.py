@@ -71,7 +71,8 @@ PRESETS = (
            "(free of membrane locking)"),
     Preset("paper", {"formulation": "paper", "damping": "paper", "membrane": "pointwise"},
            "the printed matrix form (eqs. 17-29, Appendix B, transcription problems corrected), the "
-           "printed damping of eq. (24), the element as derived from eq. (2)"),
+           "printed damping of eq. (24), the element as derived from eq. (2), integrated with the "
+           "paper's Newmark rule (rho_inf = 1)", {"rho_inf": 1.0}),
 )
 DEFAULT_PRESET = "consistent"
 
@@ -105,9 +106,10 @@ PARAMETERS = (
               low=0.0, low_open=True, continuable=True, symbol=s.eps, axis="eps"),
     Parameter("ms", "real", 0.5, "ms (end mass ms* = m_s/(rho A L))",
               "mass at the rod's end (the slider; the rocker's tip) ms* = m_s/(rho A L)",
-              low=0.0, continuable=True, symbol=s.ms, axis="ms*"),
+              low=0.0, units="rhoA L", continuable=True, symbol=s.ms, axis="ms*", si="slider_mass"),
     Parameter("mu", "real", 0.5, "mu (damping mu* = omega_b mu)", "damping mu* = omega_b mu",
-              low=0.0, continuable=True, symbol=s.mu, axis="mu*"),
+              low=0.0, units="1/omega_b", continuable=True, symbol=s.mu, axis="mu*", si="damping",
+              si_default=0.0),
     Parameter("gravity", "pair", (0.0, 0.0), "gravity",
               "gravity (gX, gY) in the inertial frame (X along the guide, the crank pin at "
               "a* (cos theta, sin theta)), units of L omega_b^2", units="L omega_b^2", metavar="GX,GY",
@@ -155,12 +157,12 @@ PARAMETERS = (
     Parameter("omega", "real", 0.8, "omega (crank speed Omega*)",
               "crank speed Omega* = Omega/omega_b (constant speed; a run-up's final speed; a "
               "fluctuating crank's nominal speed; 0: a crank at rest)", owner="run", low=0.0,
-              units="omega_b", continuable=True, symbol=s.omega, axis="Omega*"),
+              units="omega_b", continuable=True, symbol=s.omega, axis="Omega*", si="crank_speed"),
     Parameter("omega0", "real", 0.2, "omega0 (run-up start speed)", "a run-up's start speed Omega0*",
               owner="run", low=0.0, low_open=True, units="omega_b", symbol=s.omega0),
     Parameter("ramp", "real", 20.0, "ramp (run-up revolutions)",
               "crank revolutions over which a run-up's speed rises", owner="run", low=0.0,
-              low_open=True, symbol=s.ramp),
+              low_open=True, units="rev", symbol=s.ramp),
     Parameter("fluctuation", "real", 0.1, "fluctuation (speed fluctuation k)",
               "relative amplitude k of a cyclic speed fluctuation", owner="run",
               low=-1.0, high=1.0, low_open=True, high_open=True, continuable=True, symbol=s.k_fl,
@@ -174,12 +176,17 @@ PARAMETERS = (
               symbol=motions.theta0),
     Parameter("n_elements", "count", 16, "n_elements", "number of rod elements", owner="run", low=1,
               cli="elements"),
-    Parameter("steps_per_rev", "count", 100, "steps_per_rev", "Newmark steps per crank revolution",
+    Parameter("steps_per_rev", "count", 100, "steps_per_rev", "time steps per crank revolution",
               owner="run", low=4),
     Parameter("integrator", "choice", "newton", "integrator",
               "newton: Newton iterations on the exact tangent, its factorization reused while they "
               "converge fast; full-newton: the tangent refreshed at every iteration; one-pass: the "
               "paper's eqs. (34)-(39)", owner="run", choices=("newton", "full-newton", "one-pass")),
+    Parameter("rho_inf", "real", 0.8, "rho_inf (time scheme's spectral radius at infinite frequency)",
+              "the time scheme: 1 is Newmark's trapezoidal rule (beta 1/4, gamma 1/2, the paper's: no "
+              "numerical damping); below 1, generalized-alpha (Chung & Hulbert), second order, which "
+              "damps what a step cannot resolve: a mode's step factor tends to -rho_inf at high "
+              "frequency", owner="run", low=0.0, high=1.0, cli="rho-inf"),
 )
 
 # The crank's (nominal) speed: simulate's `omega` argument, the default continued parameter; the
@@ -507,6 +514,9 @@ PRINTED_ITERATION = {"formulation": "paper"}
 # The curves the rod's end may travel on (derive/guides.py) and the crank's prescribed motions
 # (derive/motions.py).
 GUIDES = guides.GUIDES
+# the guides whose end mass is a slider (the joint forces at B are the rod-on-slider and
+# guide-on-slider pairs); a four-bar's circle has the rocker's tip instead
+SLIDER_GUIDES = ("line", "cam", "incline")
 MOTIONS = motions.MOTIONS
 
 
@@ -521,7 +531,9 @@ class Output(records.Output):
     coef, kin, the parameters' symbols, q_end ((u, v) of the rod's end node in the moving frame),
     qd_end (their time derivatives), s (the end map's reduced co-ordinate), pin ((F_i, F_j): the
     force the crank pin applies to the rod, in the moving frame), end ((F_i, F_j): the force the
-    guide applies to the rod's end, with the end mass included), fiber, and the engine's
+    guide applies to the rod's end with the end mass, i.e. to the end mass), rod_end ((F_i, F_j):
+    the force the end mass applies to the rod at B, the rod's own terms at its end node), fiber,
+    and the engine's
     primitives (at_point, over_rod).  options: the model options the expression depends on (its
     kernels by their values).  engine: the engine computes it at every step (its build may use
     q_end, the parameters and the primitives only).  guides None: every guide."""
@@ -567,6 +579,7 @@ q_end = sp.Matrix(sp.symbols("qe0:2", real=True))
 qd_end = sp.Matrix(sp.symbols("qde0:2", real=True))
 pin = sp.Matrix(sp.symbols("pin0:2", real=True))
 end_force = sp.Matrix(sp.symbols("end0:2", real=True))
+rod_end = sp.Matrix(sp.symbols("rodend0:2", real=True))
 s_end = sp.Symbol("s", real=True)
 
 
@@ -660,16 +673,35 @@ OUTPUTS = (
            "driving torque the crank needs to hold its prescribed motion (counter-clockwise), "
            "a (e_r x F_pin), units of rho A L^3 omega_b^2", TORQUE,
            build=lambda o: s.a * (sp.cos(s.theta) * _inertial(pin)[1] - sp.sin(s.theta) * _inertial(pin)[0])),
-    Output("pin_force_x", "step", "X component of the force the crank pin applies to the rod", FORCE,
-           build=lambda o: _inertial(pin)[0]),
-    Output("pin_force_y", "step", "Y component of the force the crank pin applies to the rod", FORCE,
+    # the joint forces, named "<body>_on_<body>": who acts on whom (inertial X, Y components)
+    Output("crank_on_rod_x", "step",
+           "X component of the force the crank applies to the rod at the crank pin A (sizes the pin "
+           "and bearing at A)", FORCE, build=lambda o: _inertial(pin)[0]),
+    Output("crank_on_rod_y", "step", "Y component of the force the crank applies to the rod at A", FORCE,
            build=lambda o: _inertial(pin)[1]),
-    Output("end_force_x", "step",
-           "X component of the end reaction: the force the guide (the slider's guide normal force; the "
-           "rocker) applies at the rod's end, the end mass's inertia included", FORCE,
-           build=lambda o: _inertial(end_force)[0]),
-    Output("end_force_y", "step", "Y component of the end reaction (see end_force_x)", FORCE,
-           build=lambda o: _inertial(end_force)[1]),
+    Output("rod_on_slider_x", "step",
+           "X component of the force the rod applies to the slider at B, through the pin at B (sizes "
+           "that pin)", FORCE, build=lambda o: -_inertial(rod_end)[0], guides=SLIDER_GUIDES),
+    Output("rod_on_slider_y", "step", "Y component of the force the rod applies to the slider at B", FORCE,
+           build=lambda o: -_inertial(rod_end)[1], guides=SLIDER_GUIDES),
+    Output("guide_on_slider_x", "step",
+           "X component of the force the guide applies to the slider (normal to the guide, no "
+           "friction: zero on the horizontal line Y = e)", FORCE, build=lambda o: _inertial(end_force)[0],
+           guides=SLIDER_GUIDES),
+    Output("guide_on_slider_y", "step",
+           "Y component of the force the guide applies to the slider: the guide's normal force (sizes "
+           "the guide)", FORCE, build=lambda o: _inertial(end_force)[1], guides=SLIDER_GUIDES),
+    Output("rod_on_tip_x", "step",
+           "X component of the force the coupler (the rod) applies to the rocker's tip at B, through "
+           "the pin at B (sizes that pin)", FORCE, build=lambda o: -_inertial(rod_end)[0], guides=("circle",)),
+    Output("rod_on_tip_y", "step", "Y component of the force the rod applies to the rocker's tip at B", FORCE,
+           build=lambda o: -_inertial(rod_end)[1], guides=("circle",)),
+    Output("rocker_on_tip_x", "step",
+           "X component of the force the rocker applies to its tip mass at B (along the rocker, a "
+           "massless two-force member: the force at its pivot D too)", FORCE,
+           build=lambda o: _inertial(end_force)[0], guides=("circle",)),
+    Output("rocker_on_tip_y", "step", "Y component of the force the rocker applies to its tip mass at B",
+           FORCE, build=lambda o: _inertial(end_force)[1], guides=("circle",)),
     Output("kinetic_energy", "reduction",
            "the rod's kinetic energy T = sum of the elements' T_i, eqs. (4)-(5) (the end mass's not "
            "included), units of rho A L^3 omega_b^2", TORQUE, build=lambda o: en.rod_kinetic_energy()),

@@ -124,7 +124,14 @@ def _presets():
         for option, value in p.options.items():
             if value not in names[option].choices:
                 raise ValueError(f"preset {p.name}: {option}={value!r} is not a choice")
-    return tuple(records.Preset(p.name, dict(sorted(p.options.items())), p.doc) for p in model.PRESETS)
+        for name, value in p.settings.items():
+            par = next((q for q in model.PARAMETERS if q.name == name), None)
+            if par is None or par.owner != "run" or par.kind != "real" or not (
+                    (par.low is None or value >= par.low) and (par.high is None or value <= par.high)):
+                raise ValueError(f"preset {p.name}: {name}={value!r} is not a real run parameter's value")
+    return tuple(records.Preset(p.name, dict(sorted(p.options.items())), p.doc,
+                                dict(sorted((k, float(v)) for k, v in p.settings.items())))
+                 for p in model.PRESETS)
 
 
 def _readers(name, declared):
@@ -409,7 +416,7 @@ OUTPUT_INPUTS = (
     ("kin", s.KINEMATICS), ("parameters", PARAMETERS_BESIDE_KIN),
     ("q_end", tuple(model.q_end)), ("qd_end", tuple(model.qd_end)),
     ("s", (model.s_end,)), ("pin", tuple(model.pin)), ("end", tuple(model.end_force)),
-    ("fiber", (model.fiber,)),
+    ("rod_end", tuple(model.rod_end)), ("fiber", (model.fiber,)),
 )
 # what a kind of output always reads (a field: its element and the point in it; a reduction: each element)
 KIND_INPUTS = {"field": ("q", "zeta", "geo", "coef"), "reduction": ("q", "geo"), "step": ()}

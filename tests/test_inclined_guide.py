@@ -36,6 +36,13 @@ def test_the_inclined_slider_crank_is_the_slider_crank_turned():
     np.testing.assert_allclose(b.end_height, Y, rtol=0, atol=1e-12)
     np.testing.assert_allclose(b.chord_angle, a.chord_angle + ALPHA, rtol=0, atol=1e-12)
     np.testing.assert_allclose(b.torque, a.torque, rtol=0, atol=1e-8 * np.max(np.abs(a.torque)))
+    # the joint forces at A and B are the slider-crank's turned by alpha
+    for joint in ("crank_on_rod", "rod_on_slider", "guide_on_slider"):
+        fa = (getattr(a, joint + "_x"), getattr(a, joint + "_y"))
+        fb = (getattr(b, joint + "_x"), getattr(b, joint + "_y"))
+        size = max(np.max(np.abs(fa[0])), np.max(np.abs(fa[1])))
+        for want, got in zip(turned(fa, ALPHA), fb):
+            np.testing.assert_allclose(got, want, rtol=0, atol=1e-8 * size, err_msg=joint)
 
 
 def test_the_incline_is_declared_as_data():

@@ -6,7 +6,8 @@ from dataclasses import replace
 import numpy as np
 
 from .. import kinematics as _kinematics
-from .. import schema
+from .. import notices, schema, time_scheme
+from ..notices import BeyondTheoryWarning
 from ..cases import run_case
 from ..errors import NoResultError, ParameterError
 from ..parameters import check_full_turn
@@ -62,6 +63,23 @@ def _check_progress(progress):
         raise ParameterError(f"progress must be None or a function, got {progress!r}")
 
 
+def si_parameter(mech, parameter, units, fields, case, values):
+    """(mechanism, fields, scales, values in crankgen's units) of an analysis over `parameter`: with
+    units="si" the SIMechanism's dimensionless mechanism and crank motion, and the parameter's
+    values given in its SI unit (crankgen.si), a parameter that is a unit (the slenderness: the
+    rod's section, which sets the units) refused."""
+    from ..si import si_input, to_crankgen
+    mech, crank, scales = si_input(mech, units, fields, case=case, crank=fields.pop("crank", None),
+                                   what="a continuation")
+    if scales is None:
+        return mech, dict(fields, crank=crank) if crank is not None else fields, None, values
+    if parameter in schema.UNIT_PARAMETERS.values():
+        raise ParameterError(f"in SI, {schema.PARAMETERS[parameter].label} is the rod's section (it sets the "
+                             f"units: omega_b, r): vary it in crankgen's units, or the SI mechanism's I and A")
+    choice("parameter", parameter, PARAMETERS)
+    return mech, dict(fields, crank=crank), scales, [to_crankgen(parameter, v, scales) for v in values]
+
+
 def _add_quantities(diagram, case, parameter, section, progress):
     """Every branch point's physical quantities (quantities.py)."""
     from .quantities import branch_quantities, units
@@ -75,7 +93,7 @@ def _add_quantities(diagram, case, parameter, section, progress):
 def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *, model=None, max_period=4, ds=0.05,
                  ds_min=1e-4, ds_max=100.0, dp_max=None, max_points=400, tol=1e-9, switch_step=0.05,
                  case=None, progress=None, corrector="broyden", predictor="quadratic", derivative="exact",
-                 quantities=True, section=None, **fields):
+                 quantities=True, section=None, units="crankgen", **fields):
     """Follow the periodic response of the mechanism as `parameter` goes from start to stop, by
     pseudo-arclength continuation of the fixed points of the crank-revolution map, and return a
     BifurcationDiagram: branches (period, parameter, amplitude = max |v*(1/2)| over the orbit,
@@ -87,7 +105,8 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
     fields and model=, or case=Case(...)); the value of `parameter` given among them is replaced
     by start.  The start must have a periodic response (NoResultError otherwise; a continuation
     can start from either end of its range).  Steps ds, ds_min, ds_max are arclengths in the metric
-    |dy|^2 / dim + dp^2, y the state in v*-like units; no step changes the parameter by more than
+    |dy|^2 / dim + dp^2, y the state (d, v) in v*-like units (generalized-alpha's algorithmic
+    accelerations, slaved to the orbit, do not count); no step changes the parameter by more than
     dp_max (default |stop - start| / 50).  progress(text) receives progress lines.
     corrector ("broyden" or "newton"), predictor ("quadratic" or "tangent") and derivative
     ("exact" or "central", the map's parameter derivative) select the methods
@@ -95,7 +114,10 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
     "central" together are the former method, kept as a baseline.  quantities: every branch
     point also stores the physical quantities of its orbit (Branch.quantities: peak torque, pin and
     end forces, axial force, |v*|, outer-fibre strain, and with a crankgen.sections.Section
-    `section` the peak stress in units of E; bifurcation/quantities.py)."""
+    `section` the peak stress in units of E; bifurcation/quantities.py).  units="si": mech is a
+    crankgen.SIMechanism with its crank motion, start and stop are in the parameter's SI unit
+    (crank speed in rad/s, a four-bar's c and d in m, ...), and `diagram.si` gives the diagram in
+    SI (the parameter in its SI unit, the amplitude in m, the quantities in N, N m, Pa)."""
     _check_progress(progress)
     if section is not None:
         from ..sections import Section
@@ -103,6 +125,8 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
             raise ParameterError(f"section must be a crankgen.sections.Section, got {type(section).__name__}")
     start = in_range("start", start)
     stop = in_range("stop", stop)
+    given = mech
+    mech, fields, scales, (start, stop) = si_parameter(mech, parameter, units, fields, case, (start, stop))
     if start == stop:
         raise ParameterError(f"start and stop must differ, got {start:g}")
     c0 = make_case(mech, parameter, start, case, model=model, **fields)
@@ -120,7 +144,8 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
     t0 = time.perf_counter()
     fmap = MechanismMap(c0, parameter, derivative=choice("derivative", derivative, ("exact", "central")))
     from ..steady import steady_states
-    first = steady_states([c0])[0]
+    with notices.quiet(BeyondTheoryWarning):            # the continuation warns once, for every point
+        first = steady_states([c0])[0]
     if first.state is None:
         other = ("; a continuation can start from the other end of the range (swap its start and "
                  f"stop: from {stop:g} to {start:g})" if first.status != "failed" else "")
@@ -145,6 +170,13 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
                 corrector=corrector, predictor=predictor, derivative=derivative,
                 map_evaluations=cont.evaluations, map_values=cont.values, wall_time=time.perf_counter() - t0)
     diagram.info = info
+    diagram.si_mechanism = None if scales is None else given
+    diagram.flag_range()
+    flag = diagram.beyond_theory
+    if flag:
+        notices.warn(BeyondTheoryWarning, f"branches of the continuation reach beyond the theory "
+                     f"({flag.reason}): their numbers there are the equations' output, not a prediction of the "
+                     f"rod; branch.beyond_theory marks the points", stacklevel=2)
     return diagram
 
 
@@ -154,14 +186,17 @@ continuation.__doc__ = continuation.__doc__.replace("{continuable}", ", ".join(
 
 
 def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up", *, model=None, transient=100,
-             samples=64, max_period=8, tol=1e-8, lyapunov_tol=0.01, case=None, progress=None, **fields):
+             samples=64, max_period=8, tol=1e-8, lyapunov_tol=0.01, case=None, progress=None, units="crankgen",
+             **fields):
     """Brute-force bifurcation diagram (a PoincareDiagram): for each value of `parameter` in
     `values`, swept "up", "down" or "both" (up, then down from where up ended), march `transient`
     crank revolutions from the last state of the previous value (the first from rest), then sample
     v*(1/2) at theta = 0 once per revolution for `samples` revolutions and classify the response:
     period-k (k <= max_period), quasi-periodic, irregular or unsettled, with the evidence (repeat
     residual, largest Lyapunov exponent of the revolution map, distinct samples).  The case as in
-    steady_state.  progress(done, total) after each value."""
+    steady_state.  progress(done, total) after each value.  units="si": mech is a
+    crankgen.SIMechanism, the values are in the parameter's SI unit, and `result.si` gives the
+    diagram in SI (the samples in m)."""
     from .sweeps import sweep_map
 
     _check_progress(progress)
@@ -172,16 +207,19 @@ def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up
     if not values:
         raise ParameterError("values must hold at least one parameter value")
     values = [in_range(f"values ({parameter})", v) for v in values]
+    given = mech
+    mech, fields, scales, values = si_parameter(mech, parameter, units, fields, case, values)
     choice("direction", direction, ("up", "down", "both"))
     c0 = make_case(mech, parameter, min(values), case, model=model, **fields)
     for v in values:
         make_case(None, parameter, v, c0)                      # validates every value
     transient = integer("transient", transient, 0)
     samples = integer("samples", samples, 2)
+    time_scheme.warn_steps([c0])
     max_period = integer("max_period", max_period, 1)
     t0 = time.perf_counter()
     fmap = MechanismMap(c0, parameter)
-    x0 = np.zeros(fmap.dim)
+    x0 = fmap.rest()
     result = sweep_map(fmap, values, x0, direction, transient, samples, max_period,
                        in_range("tol", tol, 0, None, True),
                        in_range("lyapunov_tol", lyapunov_tol, 0, None, True), progress)
@@ -190,4 +228,5 @@ def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up
     info.update(parameter=parameter, direction=direction, transient=transient, samples=samples,
                 wall_time=time.perf_counter() - t0)
     result.info = info
+    result.si_mechanism = None if scales is None else given
     return result
