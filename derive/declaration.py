@@ -93,6 +93,10 @@ class Parameter(records.Parameter):
     symbol: object = None
 
 
+# the torsional spring at the rocker's ground pivot: its stiffness and the rocker angle at which it is relaxed
+rocker_stiffness = sp.Symbol("k_rocker", nonnegative=True)
+rocker_free_angle = sp.Symbol("beta_free", real=True)
+
 PARAMETERS = (
     Parameter("a", "real", 0.1, "a (crank length a* = a/L)", "crank length over rod length a* = a/L",
               low=0.0, high=1.0, low_open=True, high_open=True, units="L", continuable=True, symbol=s.a,
@@ -129,6 +133,13 @@ PARAMETERS = (
               "closure of the four-bar: +1 puts the rocker's tip on the counter-clockwise side of the "
               "line from the crank pin to the ground pivot, -1 on the other",
               symbol=s.branch),
+    Parameter("rocker_stiffness", "real", 0.0, "rocker_stiffness (rocker spring k*)",
+              "stiffness k* of a torsional spring at the rocker's ground pivot (moment per radian of the "
+              "rocker's turn from its free angle), units of rho A L^3 omega_b^2", low=0.0,
+              units="rhoA L^3 omega_b^2", continuable=True, symbol=rocker_stiffness, axis="rocker spring k*"),
+    Parameter("rocker_free_angle", "real", 0.0, "rocker_free_angle (rocker spring's free angle, rad)",
+              "the rocker angle (rad, counter-clockwise from the X axis) at which the rocker's spring is "
+              "relaxed", units="rad", symbol=rocker_free_angle),
     Parameter("cam_height", "real", 0.02, "cam_height (cam track height h/L)",
               "height h/L of a cam track's waves, Y = e + h cos(2 pi X / lambda)", low=0.0, units="L",
               continuable=True, symbol=guides.cam_height, axis="cam height h/L"),
@@ -213,6 +224,9 @@ COEFFICIENTS = {
     s.gX: s.gX,
     s.gY: s.gY,
     **{w: 1 - switched_off[g] for g, w in s.WEIGHT.items()},
+    rocker_stiffness: rocker_stiffness,
+    rocker_free_angle: rocker_free_angle,
+    s.c: s.c,
 }
 
 
@@ -316,6 +330,20 @@ SLIDER_GRAVITY = Energy("slider_gravity_potential", "Potential of gravity on the
                         "element.", _on_last_element(en.slider_gravity_potential))
 
 
+def rocker_spring_potential(qs=s.qs):
+    """V = k (gamma - gamma_free)^2 / 2 of the torsional spring at the rocker's pivot D: the rocker
+    angle gamma is the rigid one, beta, plus the turn from the rigid tip D + c (cos beta, sin beta)
+    to the end node, displaced by (u, v) on (e_i, e_j) (the guide keeps it on the rocker's circle)."""
+    dX = qs[0] * sp.cos(s.phi) + qs[1] * sp.sin(s.phi)
+    dY = -qs[0] * sp.sin(s.phi) + qs[1] * sp.cos(s.phi)
+    turn = sp.atan2(sp.cos(s.beta) * dY - sp.sin(s.beta) * dX, s.c + sp.cos(s.beta) * dX + sp.sin(s.beta) * dY)
+    return rocker_stiffness * (s.beta + turn - rocker_free_angle) ** 2 / 2
+
+
+ROCKER_SPRING = Energy("rocker_spring_potential", "Potential of the torsional spring at the rocker's "
+                       "pivot, on the last element.", _on_last_element(rocker_spring_potential))
+
+
 def _strain_energy(ap, averaged):
     suffix = "_averaged" if averaged else ""
     build = (lambda: en.strain_energy_averaged(ap)) if averaged else (lambda: en.strain_energy(ap))
@@ -393,6 +421,10 @@ def slider_gravity():
     return Term(on_last_element(gradient(en.slider_gravity_potential(), s.qs)))
 
 
+def rocker_spring():
+    return Term(on_last_element(gradient(rocker_spring_potential(), s.qs)))
+
+
 def _elastic_variants():
     out = []
     for ap in ("A", "B"):
@@ -462,6 +494,11 @@ FAMILIES = (
         Variant("uniform", {}, "gravity on the slider; the guide carries its normal part",
                 energy=SLIDER_GRAVITY, build=slider_gravity),
     ), vanishes_with=("gX", "gY")),
+    Family("rocker_spring", "end", "moment of a torsional spring at the rocker's ground pivot on the "
+           "rocker's tip", "potential", (
+        Variant("torsional", {}, "dV/dq, V = k (gamma - gamma_free)^2 / 2", energy=ROCKER_SPRING,
+                build=rocker_spring),
+    ), vanishes_with=("k_rocker",)),
 )
 FAMILY = {f.name: f for f in FAMILIES}
 

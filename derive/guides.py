@@ -97,7 +97,7 @@ def circle():
     end = PIN + chord
     ground = sp.sqrt(s.d**2 + s.e**2)
     return Guide(
-        "circle", "Circle", ("offset", "c", "d", "branch"),
+        "circle", "Circle", ("offset", "c", "d", "branch", "rocker_stiffness", "rocker_free_angle"),
         "circle of radius c about D = (d, e): a rigid massless rocker DB carrying the end mass ms "
         "(a four-bar linkage with a flexible coupler)",
         aliases=(("center", ("d", "offset")), ("radius", ("c",))), label="four-bar",

@@ -212,10 +212,13 @@ def emit_classes(derive_command):
                        "    of its declared units (None: left out); crankgen.SIMechanism adds the rod's fields and\n"
                        "    checks them.", si),
     ]
+    default = {p.name: p.default for p in schema.parameters}
     for kind, table, items in (("guide", "GUIDES", schema.guides), ("motion", "MOTIONS", schema.motions)):
         for k, record in enumerate(items):
+            defaults = {name: default[name] for name in record.parameters}
             out += ["", f"class {record.title}(Spec):", f'    """{_class_doc(record)}"""', "",
-                    f"    kind = {kind!r}", f"    declaration = {table}[{k}]    # {record.name}", ""]
+                    f"    kind = {kind!r}", f"    declaration = {table}[{k}]    # {record.name}",
+                    f"    defaults = {defaults!r}", ""]
     out += ["", f"GUIDE_CLASSES = ({', '.join(g.title for g in schema.guides)},)",
             f"MOTION_CLASSES = ({', '.join(m.title for m in schema.motions)},)"]
     return "\n".join(out) + "\n"

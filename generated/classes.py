@@ -25,6 +25,8 @@ class MechanismFields:
     c: object = None
     d: object = None
     branch: object = None
+    rocker_stiffness: object = None
+    rocker_free_angle: object = None
     cam_height: object = None
     cam_wavelength: object = None
     inclination: object = None
@@ -45,6 +47,8 @@ class CaseFields:
     c: object = None
     d: object = None
     branch: object = None
+    rocker_stiffness: object = None
+    rocker_free_angle: object = None
     cam_height: object = None
     cam_wavelength: object = None
     inclination: object = None
@@ -83,6 +87,8 @@ class SIFields:
     c: object = None
     d: object = None
     branch: object = None
+    rocker_stiffness: object = None
+    rocker_free_angle: object = None
     cam_height: object = None
     cam_wavelength: object = None
     inclination: object = None
@@ -100,13 +106,15 @@ class Line(Spec):
 
     kind = 'guide'
     declaration = GUIDES[0]    # line
+    defaults = {'offset': 0.0}
 
 
 class Circle(Spec):
-    """circle of radius c about D = (d, e): a rigid massless rocker DB carrying the end mass ms (a four-bar linkage with a flexible coupler).  Parameters: offset, c, d, branch; keywords center = (d, offset), radius = (c)."""
+    """circle of radius c about D = (d, e): a rigid massless rocker DB carrying the end mass ms (a four-bar linkage with a flexible coupler).  Parameters: offset, c, d, branch, rocker_stiffness, rocker_free_angle; keywords center = (d, offset), radius = (c)."""
 
     kind = 'guide'
     declaration = GUIDES[1]    # circle
+    defaults = {'offset': 0.0, 'c': 0.8, 'd': 1.0, 'branch': 1, 'rocker_stiffness': 0.0, 'rocker_free_angle': 0.0}
 
 
 class Cam(Spec):
@@ -114,6 +122,7 @@ class Cam(Spec):
 
     kind = 'guide'
     declaration = GUIDES[2]    # cam
+    defaults = {'offset': 0.0, 'cam_height': 0.02, 'cam_wavelength': 0.25}
 
 
 class Incline(Spec):
@@ -121,6 +130,7 @@ class Incline(Spec):
 
     kind = 'guide'
     declaration = GUIDES[3]    # incline
+    defaults = {'offset': 0.0, 'inclination': 0.0}
 
 
 class Constant(Spec):
@@ -128,6 +138,7 @@ class Constant(Spec):
 
     kind = 'motion'
     declaration = MOTIONS[0]    # constant
+    defaults = {'omega': 0.8, 'theta0': 0.0}
 
 
 class RunUp(Spec):
@@ -135,6 +146,7 @@ class RunUp(Spec):
 
     kind = 'motion'
     declaration = MOTIONS[1]    # runup
+    defaults = {'omega0': 0.2, 'omega': 0.8, 'ramp': 20.0, 'theta0': 0.0}
 
 
 class Fluctuation(Spec):
@@ -142,6 +154,7 @@ class Fluctuation(Spec):
 
     kind = 'motion'
     declaration = MOTIONS[2]    # fluctuation
+    defaults = {'omega': 0.8, 'fluctuation': 0.1, 'order': 1, 'theta0': 0.0}
 
 
 GUIDE_CLASSES = (Line, Circle, Cam, Incline,)

@@ -351,6 +351,7 @@ class Spec:
 
     kind = None              # "guide" or "motion"
     declaration = None       # its Guide or Motion record
+    defaults = {}            # its parameters' defaults: a value not given is the default
 
     def __init__(self, **kwargs):
         values, given_as = {}, {}
@@ -392,11 +393,14 @@ class Spec:
         args = ", ".join(f"{k}={v!r}" for k, v in self.values.items())
         return f"{type(self).__name__}({args})"
 
+    def _complete(self):
+        return {**self.defaults, **self.values}
+
     def __eq__(self, other):
-        return type(other) is type(self) and other.values == self.values
+        return type(other) is type(self) and other._complete() == self._complete()
 
     def __hash__(self):
-        return hash((type(self).__name__, tuple(sorted(self.values.items()))))
+        return hash((type(self).__name__, tuple(sorted(self._complete().items()))))
 
 
 def project(obj, cls, **changes):

@@ -154,7 +154,7 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     case = run_case(mech, case, model=model, omega=omega, crank=crank, **fields)
     time_scheme.warn_steps([case], omega_b=None if scales is None else scales.omega_b)
     settings = NewmarkSettings.of_case(case, tol=tol)
-    model = Model.from_case(case)
+    reference = Model.from_case(case)          # the case's runtime model (model= names its preset)
     if not isinstance(history, (bool, np.bool_)):
         raise ParameterError(f"history must be True or False, got {history!r}")
     history = bool(history)
@@ -186,15 +186,15 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     info = dict(case.as_dict(), revolutions=revolutions, tol=tol, engine=engine)
     stops = sorted({k for k, _ in landing}) if landing is not None else []
     if engine == "numpy":
-        hist = integrate(model, d0, v0, 0.0, dt, n_steps, settings, progress=progress, g0=g0)
-        result = _numpy_result(model, case, hist, info, store_nodes, scales)
+        hist = integrate(reference, d0, v0, 0.0, dt, n_steps, settings, progress=progress, g0=g0)
+        result = _numpy_result(reference, case, hist, info, store_nodes, scales)
         if landing is not None:
             # g: generalized-alpha's algorithmic accelerations; None at a start (step 0 without
             # them: a step from there is the run's starter step too)
             g = hist.a if hist.g is None else hist.g
             states = {k: (hist.d[k], hist.v[k], hist.a[k], None if k == 0 and g0 is None else g[k])
                       for k in stops}
-            result = replace(result, at_times=_numpy_at_times(model, case, result, states, landing, t_req,
+            result = replace(result, at_times=_numpy_at_times(reference, case, result, states, landing, t_req,
                                                               settings, store_nodes, info, scales))
         if not history:
             result = replace(result, states=None, rates=None, accelerations=None)
@@ -211,7 +211,7 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
         D, V, A = D[0], V[0], A[0]
     t = dt * np.arange(n_steps + 1)
     kin = _kinematics.case_state(case, t)
-    nodes = model.full_nodal(D, kin) if store_nodes else None
+    nodes = reference.full_nodal(D, kin) if store_nodes else None
     result = SimulationResult(t=t, theta=kin.theta, outputs=engine_columns(y),
                               iterations=iterations, settings=dict(info, history=history), nodes=nodes,
                               case=case, states=D, rates=V, accelerations=A, scales=scales)
@@ -219,7 +219,7 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
         raise _failure(status[0], fail_step[0], fail_res[0], dt, result)
     if landing is not None:
         states = {k: tuple(None if x is None else x[0] for x in captured[k]) for k in stops}
-        result = replace(result, at_times=_compiled_at_times(model, case, result, states, landing, t_req, tol,
+        result = replace(result, at_times=_compiled_at_times(reference, case, result, states, landing, t_req, tol,
                                                              store_nodes, info, scales))
     warn_beyond([result], "run")
     return result

@@ -24,8 +24,6 @@ import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
-
 from .. import compile_cache
 from ..compile_cache import READ_ONLY
 
@@ -35,6 +33,17 @@ except ImportError:           # pragma: no cover - not on Linux/macOS: no helper
     fcntl = None
 
 ENTRIES = ("march", "revolution")
+# name -> the function that compiles that entry point: registered by the module defining it
+# (entry_point), so that this module needs none of them
+_ENTRY_COMPILERS = {}
+
+
+def entry_point(name):
+    """Register the decorated function as the compiler of the engine's entry point `name`."""
+    def register(compile_entry):
+        _ENTRY_COMPILERS[name] = compile_entry
+        return compile_entry
+    return register
 
 
 def label(item):
@@ -97,17 +106,9 @@ def compile_item(item):
 
 
 def _compile_entry(name):
-    """Compile an engine entry point by running it once on no-op kernels (the engine's types do not
-    depend on which kernels it is given)."""
-    from ..cases import Case
-    from . import kernels
-    from .march import Batch, march
-    from .shooting import revolution
-    batch = Batch([Case(omega=1.0, n_elements=1, steps_per_rev=4)], kernels_table=kernels.noop_tables())
-    if name == "march":
-        march(batch, 1, parallel=False)
-    else:
-        revolution(batch, np.zeros((1, batch.state_size)), parallel=False)
+    """Compile an engine entry point with the compiler its module registered (engine/__init__.py
+    imports every such module)."""
+    _ENTRY_COMPILERS[name]()
 
 
 def _run(items, progress, start, compiled=None):
@@ -266,4 +267,6 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    # the registered compilers live in the package's module crankgen.engine.build, not in __main__
+    from crankgen.engine.build import main as _main
+    sys.exit(_main())

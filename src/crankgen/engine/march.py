@@ -16,9 +16,10 @@ from .. import kinematics as _kinematics
 from .. import newton, schema, time_scheme
 from ..outputs import primitive_data
 from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
+from .build import entry_point, prepare
 from .compiled import call, jit
 from .elements import kinematics, step_outputs
-from .kernels import build_items, select_rows, tables
+from .kernels import build_items, noop_tables, select_rows, tables
 from .records import N_OUTPUTS, NDOF, Cases, MeshData, Scheme, make_work
 from .step import NOT_FINITE, OK, SINGULAR, initial_acceleration, newmark_step
 
@@ -54,7 +55,6 @@ class Batch:
         else:
             self._new_mesh(n)
             if kernels_table is None:
-                from .build import prepare
                 prepare([f"entry:{e}" for e in entries] + build_items(select))
             # runs of consecutive cases of one model, each with its model's kernel table
             starts = [0] + [b for b in range(1, len(cases)) if not np.array_equal(select[b], select[b - 1])]
@@ -335,3 +335,15 @@ def march_state(batch, n_steps, X, **kw):
     generalized-alpha, whose algorithmic accelerations go on as G0."""
     D0, V0, G0 = split_state(X, batch.N)
     return march(batch, n_steps, D0=D0, V0=V0, G0=G0, **kw)
+
+
+def compiling_batch():
+    """A one-element batch on no-op kernels: running an entry point on it compiles the entry (the
+    engine's types do not depend on which kernels it is given)."""
+    from ..cases import Case
+    return Batch([Case(omega=1.0, n_elements=1, steps_per_rev=4)], kernels_table=noop_tables())
+
+
+@entry_point("march")
+def _compile_march():
+    march(compiling_batch(), 1, parallel=False)

@@ -17,7 +17,8 @@ from .banded import (KB_FIXED, assemble_band, assemble_fixed, assemble_vector, b
 from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
 from .compiled import jit
 from .elements import FULL, RESIDUAL, element_loop, iteration_matrices, kinematics, step_outputs
-from .march import parallel_slices
+from .build import entry_point
+from .march import compiling_batch, parallel_slices
 from .records import N_OUTPUTS, Scheme, make_work
 from .step import OK, SINGULAR, initial_acceleration, newmark_step
 
@@ -332,3 +333,9 @@ def revolution(batch, X0, step0=0, active=None, parallel=None, tol=1e-10, max_it
     its Jacobian, for states X0 (B, batch.state_size) at step index step0."""
     r = shoot(batch, X0, step0, active, parallel, tol, max_iter, revolutions)
     return r.X1, r.J, r.status
+
+
+@entry_point("revolution")
+def _compile_revolution():
+    batch = compiling_batch()
+    revolution(batch, np.zeros((1, batch.state_size)), parallel=False)

@@ -11,9 +11,9 @@ absent makes the claims that need it "not computable", with the reason).
 
 from dataclasses import dataclass, field
 
-from .claim_checks import (ANGLE, CLOSE, FACTOR, NOT_COMPUTABLE, NOT_REPRODUCED, NOTICEABLE,
-                           PARTLY, REPRODUCED, SAME, SLOPE, SPEED, STABLE, VERDICTS, Missing,
-                           Outcome, RunData)
+from .claim_measures import (ANGLE, CLOSE, FACTOR, NOT_COMPUTABLE, NOT_REPRODUCED, NOTICEABLE,
+                             PARTLY, REPRODUCED, SAME, SLOPE, SPEED, STABLE, VERDICTS, Missing,
+                             Outcome, RunData)
 from .claim_checks import (c2a, c2b, c3a, c3b, c3c, c4a, c4b, c4c, c5a, c5b, c5c, c5d, c6a, c6b,
                            c6c, c6d, c6e, c7a, c7b, c7c, c8a, c8b, k1, k2, k3, k4)
 

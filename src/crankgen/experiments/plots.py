@@ -12,25 +12,14 @@ import math
 
 import numpy as np
 
-from ..plotting import APPROACH_COLORS, beyond_patch, fit_panels, mark_at_axis, panels, shade_beyond
+from ..plotting import APPROACH_COLORS, fit_panels, mark_at_axis, panels, shade_beyond
 from . import findings as fd
 
 from .config import APPROACHES, MODELS
 from .figures import DIVERGED, STRAIN_LIMIT, THEORY_LIMIT
-
-FONT = 8                                   # legends, insets, annotations (pt)
-# per approach: line style and marker, so that coinciding curves stay visible
-APPROACH_STYLES = {"A": ("-", "o", 4), "B": ("--", "s", 6), "C": (":", "^", 4)}
-
-_SPEED_STYLES = [("-", "o"), ("--", "s"), (":", "D"), ("-.", "v")]
-
-
-def _title(ax, model, extra=""):
-    ax.set_title(f"{model.label}{extra}", fontsize=9)
-
-
-def _grid(ax):
-    ax.grid(alpha=0.3)
+from .plot_style import (APPROACH_STYLES, FONT, SPEED_STYLES, Line2D, coincide_note, legend_below, legend_room,
+                         panel_grid, panel_title, theory_handle)
+from .plots_sweeps import plot_figure5, plot_figure6, room_below
 
 
 def _transient(ax, curve, color, ls="-", label=None, lw=1.0):
@@ -56,69 +45,11 @@ def _theory_band(ax, eps, data_max):
     return True
 
 
-def _theory_handle():
-    return beyond_patch("0.85")
-
-
-def _legend(ax, handles=None, labels=None, ncol=1, extra=()):
-    """Legend below the axes (outside them, so that it covers no data), 8 pt."""
-    import textwrap
-    if handles is None:
-        handles, labels = ax.get_legend_handles_labels()
-    handles, labels = list(handles) + list(extra), list(labels) + [h.get_label() for h in extra]
-    if not handles:
-        return
-    fig = ax.figure
-    h_in = ax.get_position().height * fig.get_figheight()
-    w_in = ax.get_position().width * fig.get_figwidth()
-    # characters per column (8 pt text is about 0.5 em wide; handle and spacing take 3.8 em)
-    width = max(20, int((w_in * 72 / ncol - 3.8 * FONT) / (0.52 * FONT)))
-    def wrap(text):
-        lines = textwrap.wrap(str(text), width, break_on_hyphens=False)
-        if len(lines) > 1 and len(lines[-1]) < 6:          # no orphan word on a line of its own
-            lines = textwrap.wrap(str(text), width + 6, break_on_hyphens=False)
-        return "\n".join(lines)
-    labels = [wrap(t) for t in labels]
-    leg = ax.legend(handles, labels, fontsize=FONT, loc="upper center", ncol=ncol, frameon=False,
-                    bbox_to_anchor=(0.5, -0.55 / h_in), handlelength=2.6, columnspacing=1.2)
-    leg._crankgen_outside = True
-
-
-def _coincide_note(pairs):
-    """Legend entry for series that coincide: pairs of (name_a, name_b, max relative difference);
-    names joined in groups (connected by differences below 1 %)."""
-    groups = []
-    for a, b, d in pairs:
-        if d is None or not math.isfinite(d) or d >= 0.01:
-            continue
-        hit = [g for g in groups if a in g or b in g]
-        merged = [a, b] + [x for g in hit for x in g]
-        groups = [g for g in groups if g not in hit] + [list(dict.fromkeys(merged))]
-    if not groups:
-        return None
-    order = list(dict.fromkeys(x for a, b, _ in pairs for x in (a, b)))
-    text = "; ".join(_compact(sorted(g, key=order.index)) for g in groups)
-    return Line2D([], [], ls="none", label=f"{text}: coincide to 1 %")
-
-
-def _compact(names):
-    """"C ms* = 0", "C ms* = 1" -> "C ms* = 0, 1" (names sharing the text before their last '= ')."""
-    heads = {n.rpartition("= ")[0] for n in names}
-    if len(heads) == 1 and all("= " in n for n in names):
-        return heads.pop() + "= " + ", ".join(n.rpartition("= ")[2] for n in names)
-    return ", ".join(names)
-
-
 def _curve_coincidences(curves, name):
-    """_coincide_note over all pairs of successful transient curves."""
+    """coincide_note over all pairs of successful transient curves."""
     ok = [c for c in curves if c.ok]
-    return _coincide_note([(name(a), name(b), _curve_pair_diff(a, b))
+    return coincide_note([(name(a), name(b), _curve_pair_diff(a, b))
                            for i, a in enumerate(ok) for b in ok[i + 1:]])
-
-
-def Line2D(*a, **k):
-    from matplotlib.lines import Line2D as L
-    return L(*a, **k)
 
 
 def _transient_axes(ax, curves, eps):
@@ -163,7 +94,7 @@ def _transient_axes(ax, curves, eps):
         extra.append(Line2D([], [], ls="none", marker="X", ms=8, color="0.6", markeredgecolor="k",
                             label="X: the run failed here (history kept)"))
     if _theory_band(ax, eps, vmax):
-        extra.append(_theory_handle())
+        extra.append(theory_handle())
     return extra
 
 
@@ -180,11 +111,6 @@ def _colors(n):
     return [cmap(x) for x in np.linspace(0.0, 0.72, max(n, 1))]
 
 
-def _below(n_entries, ncol):
-    """Inches of legend room below a panel for n_entries in ncol columns (plus the x label)."""
-    return 0.3 + 0.17 * math.ceil(max(n_entries, 1) / ncol)
-
-
 def _curve_pair_diff(a, b):
     from .figures import transient_difference
     return transient_difference(a, b)
@@ -193,7 +119,7 @@ def _curve_pair_diff(a, b):
 def plot_figure2(data, cfg, counts):
     n_max = max(len({c.spec.n_elements for c in data["curves"] if c.spec.model == m.key
                      and c.spec.approach == ap}) for m in MODELS for ap in APPROACHES)
-    fig, axes = panels(3, 2, width=6.2, height=2.4, space_below=_below(n_max + 1, 3), top_margin=0.95)
+    fig, axes = panels(3, 2, width=6.2, height=2.4, space_below=legend_room(n_max + 1, 3), top_margin=0.95)
     for j, m in enumerate(MODELS):
         for i, ap in enumerate(APPROACHES):
             ax = axes[i, j]
@@ -202,12 +128,12 @@ def plot_figure2(data, cfg, counts):
                 _transient(ax, c, col, ls=_ls(k), label=f"n = {c.spec.n_elements}", lw=1.0 + 0.6 * (k == 0))
             extra = _transient_axes(ax, cs, cfg.eps)
             note = _curve_coincidences(cs, lambda c: f"n = {c.spec.n_elements}")
-            _title(ax, m, f"\napproach {ap}, Omega* = {cfg.fig2_omega:g}")
+            panel_title(ax, m, f"\napproach {ap}, Omega* = {cfg.fig2_omega:g}")
             ax.set_ylabel("v* at x* = 1/2")
             ax.tick_params(labelbottom=True)
             ax.set_xlabel("t*")
-            _legend(ax, ncol=3, extra=extra + ([note] if note else []))
-            _grid(ax)
+            legend_below(ax, ncol=3, extra=extra + ([note] if note else []))
+            panel_grid(ax)
     fig.suptitle(f"Figure 2: transient v*, approaches A, B, C (eps = {cfg.eps:g}, ms* = {cfg.ms:g})",
                  fontsize=10)
     return fig
@@ -215,7 +141,7 @@ def plot_figure2(data, cfg, counts):
 
 def plot_figure3(data, cfg, counts):
     n = max(len([c for c in data["curves"] if c.spec.model == m.key]) for m in MODELS)
-    fig, axes = panels(1, 2, width=6.2, height=3.4, space_below=_below(n + 1, 2), top_margin=0.95)
+    fig, axes = panels(1, 2, width=6.2, height=3.4, space_below=legend_room(n + 1, 2), top_margin=0.95)
     for j, m in enumerate(MODELS):
         ax = axes[0, j]
         cs = [c for c in data["curves"] if c.spec.model == m.key]
@@ -235,19 +161,19 @@ def plot_figure3(data, cfg, counts):
         ok = [c for c in base if c.ok]
         pairs = [(f"n = {a.spec.n_elements}", f"n = {b.spec.n_elements}", _curve_pair_diff(a, b))
                  for i, a in enumerate(ok) for b in ok[i + 1:]] + pairs
-        note = _coincide_note(pairs)
-        _title(ax, m, f"\napproach A, Omega* = {cfg.fig3_omega:g}")
+        note = coincide_note(pairs)
+        panel_title(ax, m, f"\napproach A, Omega* = {cfg.fig3_omega:g}")
         ax.set_xlabel("t*")
         ax.set_ylabel("v* at x* = 1/2")
-        _legend(ax, ncol=2, extra=extra + ([note] if note else []))
-        _grid(ax)
+        legend_below(ax, ncol=2, extra=extra + ([note] if note else []))
+        panel_grid(ax)
     fig.suptitle("Figure 3: convergence of approach A with the number of elements", fontsize=10)
     return fig
 
 
 def plot_figure4(data, cfg, counts):
     masses = sorted({c.spec.ms for c in data["curves"] if c.spec.approach != "A"})
-    fig, axes = panels(2, 2, width=6.2, height=3.0, space_below=_below(2 * len(masses) + 4, 2), top_margin=0.95)
+    fig, axes = panels(2, 2, width=6.2, height=3.0, space_below=legend_room(2 * len(masses) + 4, 2), top_margin=0.95)
     for j, m in enumerate(MODELS):
         ax = axes[0, j]
         top = []
@@ -260,11 +186,11 @@ def plot_figure4(data, cfg, counts):
         extra = _transient_axes(ax, top, cfg.eps)
         note = _curve_coincidences(top, lambda c: c.spec.approach)
         extra += [note] if note else []
-        _title(ax, m, f"\nOmega* = {cfg.fig4_omega:g}, ms* = {cfg.ms:g}")
+        panel_title(ax, m, f"\nOmega* = {cfg.fig4_omega:g}, ms* = {cfg.ms:g}")
         ax.set_ylabel("v* at x* = 1/2")
         ax.set_xlabel("t*")
-        _legend(ax, ncol=2, extra=extra)
-        _grid(ax)
+        legend_below(ax, ncol=2, extra=extra)
+        panel_grid(ax)
         ax = axes[1, j]
         cols = dict(zip(masses, _colors(len(masses))))
         bottom = []
@@ -276,11 +202,11 @@ def plot_figure4(data, cfg, counts):
         extra = _transient_axes(ax, bottom, cfg.eps)
         note = _curve_coincidences(bottom, lambda c: f"{c.spec.approach} ms* = {c.spec.ms:g}")
         extra += [note] if note else []
-        _title(ax, m, "\nslider mass: B (solid) and C (dashed)")
+        panel_title(ax, m, "\nslider mass: B (solid) and C (dashed)")
         ax.set_xlabel("t*")
         ax.set_ylabel("v* at x* = 1/2")
-        _legend(ax, ncol=2, extra=extra)
-        _grid(ax)
+        legend_below(ax, ncol=2, extra=extra)
+        panel_grid(ax)
     fig.suptitle(f"Figure 4: transient v* at high speed (eps = {cfg.eps:g}; X: where a run diverged)",
                  fontsize=10)
     return fig
@@ -289,7 +215,7 @@ def plot_figure4(data, cfg, counts):
 def plot_extension(data, cfg, counts):
     cs_all = data["curves"]
     n_leg = max(len([c for c in cs_all if c["model"] == m.key]) for m in MODELS) + 2
-    fig, axes = panels(1, 2, width=6.2, height=3.4, space_below=_below(n_leg, 2), top_margin=0.95)
+    fig, axes = panels(1, 2, width=6.2, height=3.4, space_below=legend_room(n_leg, 2), top_margin=0.95)
     for j, m in enumerate(MODELS):
         ax = axes[0, j]
         cs = [c for c in cs_all if c["model"] == m.key]
@@ -322,13 +248,13 @@ def plot_extension(data, cfg, counts):
                                 f"strain > {STRAIN_LIMIT:g}): ms* = "
                                 + ", ".join(f"{c['ms']:g}" for c in flagged)))
         n = cs[0]["n_elements"] if cs else "?"
-        _title(ax, m, f"\napproach A, n = {n}, Omega* = {data['omega']:g}")
+        panel_title(ax, m, f"\napproach A, n = {n}, Omega* = {data['omega']:g}")
         ax.set_xlabel("crank angle theta (degrees)")
         ax.set_ylabel("extension delta*")
         ax.set_xlim(0, 360)
         ax.set_xticks(range(0, 361, 60))
-        _legend(ax, ncol=2, extra=extra)
-        _grid(ax)
+        legend_below(ax, ncol=2, extra=extra)
+        panel_grid(ax)
     fig.suptitle(f"Figure {data['figure']}: extension of the neutral axis over a steady revolution",
                  fontsize=10)
     return fig
@@ -337,7 +263,6 @@ def plot_extension(data, cfg, counts):
 def plot_figure(data, cfg, counts, bifurcations=None):
     """The figure of `data`, laid out from measurements (nothing clipped, no legend over a panel)."""
     f = data["figure"]
-    from .plots_sweeps import plot_figure5, plot_figure6
     if f == 6:
         return fit_panels(plot_figure6(data, cfg, counts, bifurcations))
     fn = {2: plot_figure2, 3: plot_figure3, 4: plot_figure4, 5: plot_figure5, 7: plot_extension,
@@ -346,15 +271,14 @@ def plot_figure(data, cfg, counts, bifurcations=None):
 
 
 def plot_convergence(conv, cfg):
-    from .plots_sweeps import _room_below
     """Top: steady amplitude against n; bottom: relative change to the next count and the tolerance."""
-    fig, axes = panels(2, 2, width=6.2, height=3.0, space_below=_below(3 * len(cfg.conv_omegas) + 2, 2),
+    fig, axes = panels(2, 2, width=6.2, height=3.0, space_below=legend_room(3 * len(cfg.conv_omegas) + 2, 2),
                        top_margin=0.95)
     for j, m in enumerate(MODELS):
         top, bot = axes[0, j], axes[1, j]
         pairs = []
         for k, om in enumerate(cfg.conv_omegas):
-            speed_ls = _SPEED_STYLES[k % len(_SPEED_STYLES)][0]
+            speed_ls = SPEED_STYLES[k % len(SPEED_STYLES)][0]
             amps = {}
             for ap in APPROACHES:
                 _, mk, size = APPROACH_STYLES[ap]
@@ -397,11 +321,11 @@ def plot_convergence(conv, cfg):
             a.set_xlim(ticks[0] / 1.25, ticks[-1] * 1.25)
             for n in used:                  # one dotted line per count used
                 a.axvline(n, color="0.45", ls=":", lw=1.0, zorder=1)
-            _grid(a)
+            panel_grid(a)
         if any(r["status"] != "periodic" for r in conv["rows"] if r["model"] == m.key):
             top.autoscale_view()
-            _room_below(top)
-        note = _coincide_note(pairs)
+            room_below(top)
+        note = coincide_note(pairs)
         extra = [Line2D([], [], color="0.45", ls=":", label="dotted: element count used, by the approaches named under it")]
         beyond = sorted(n for n in used if n not in computed)
         if beyond:
@@ -413,13 +337,13 @@ def plot_convergence(conv, cfg):
                                 label="x at the bottom: the run from rest diverged (B is ill-posed)"))
         if any(r["status"] not in ("periodic", DIVERGED) for r in conv["rows"] if r["model"] == m.key):
             extra.append(Line2D([], [], ls="none", marker="+", color="0.4", label="+ at the bottom: no periodic state"))
-        _legend(top, ncol=2, extra=extra + ([note] if note else []))
-        _legend(bot, ncol=2)
+        legend_below(top, ncol=2, extra=extra + ([note] if note else []))
+        legend_below(bot, ncol=2)
         top.set_ylabel("steady amplitude max |v*|")
         top.set_xlabel("number of elements n")
         bot.set_ylabel("|a(n) - a(next n)| / a(next n)")
         bot.set_xlabel("number of elements n")
-        _title(top, m, "\nsteady amplitude against n")
-        _title(bot, m, "\nchange to the next count")
+        panel_title(top, m, "\nsteady amplitude against n")
+        panel_title(bot, m, "\nchange to the next count")
     fig.suptitle(f"Element-count convergence of the steady amplitude (eps = {cfg.eps:g})", fontsize=10)
     return fit_panels(fig)

@@ -11,8 +11,9 @@ from . import plot_bifurcations as PB
 from .config import APPROACHES, MODELS
 from . import figures as F
 from .figures import DIVERGED, STRAIN_LIMIT, THEORY_LIMIT
-from .plots import (APPROACH_STYLES, Line2D, _SPEED_STYLES, _below, _coincide_note, _grid,
-                    _legend, _theory_handle, _title)
+from .plot_style import (APPROACH_STYLES, SPEED_STYLES, Line2D, coincide_note, legend_below, legend_room,
+                         panel_grid, panel_title, theory_handle)
+
 
 def _sweep_series(ax, rows, xkey, color, ls, marker, label, mark_missing=True, ms=4, slot=0):
     """Line through the periodic points; markers for the other statuses (plots.py); the markers
@@ -58,7 +59,7 @@ def _missing_kind(r):
     return "failed"
 
 
-def _room_below(ax):
+def room_below(ax):
     """Extend the y range downwards by a strip (about 10 % of the height) for the 'x' markers of
     cases without a value, so that they never hide under data points."""
     lo, hi = ax.get_ylim()
@@ -156,7 +157,7 @@ def _approach_coincidences(rows, xkey):
             xs = [x for x in by[a] if x in by[b] and math.isfinite(by[a][x]) and math.isfinite(by[b][x])]
             d = max((abs(by[b][x] / by[a][x] - 1) for x in xs if by[a][x] != 0), default=None)
             pairs.append((a, b, d))
-    return _coincide_note(pairs)
+    return coincide_note(pairs)
 
 
 def _theory_curve(ax, xkey, eps_fixed, rows):
@@ -176,12 +177,12 @@ def _theory_curve(ax, xkey, eps_fixed, rows):
             return []
         ax.axhspan(lim, hi, color="0.85", zorder=0, lw=0)
     ax.set_ylim(lo, hi)
-    return [_theory_handle()]
+    return [theory_handle()]
 
 
 def plot_figure5(data, cfg, counts):
     oms = list(cfg.fig5_omegas)
-    fig, axes = panels(len(oms) + 1, 2, width=6.2, height=2.9, space_below=_below(8, 2), top_margin=0.8)
+    fig, axes = panels(len(oms) + 1, 2, width=6.2, height=2.9, space_below=legend_room(8, 2), top_margin=0.8)
     for j, m in enumerate(MODELS):
         rows = [r for r in data["rows"] if r["model"] == m.key]
         for i in range(len(oms) + 1):
@@ -190,7 +191,7 @@ def plot_figure5(data, cfg, counts):
             shown = oms if log else [oms[i]]
             sel_rows = [r for r in rows if r["omega"] in shown]
             for k, om in enumerate(shown):
-                speed_ls = _SPEED_STYLES[k % len(_SPEED_STYLES)][0]
+                speed_ls = SPEED_STYLES[k % len(SPEED_STYLES)][0]
                 for ap in APPROACHES:
                     ls, mk, size = APPROACH_STYLES[ap]
                     sel = [r for r in rows if r["approach"] == ap and r["omega"] == om]
@@ -202,19 +203,19 @@ def plot_figure5(data, cfg, counts):
                 ax.set_xscale("log")
                 ax.set_yscale("log")
                 ax.set_ylabel("max |v*| (log scale)")
-                _title(ax, m, f"\nlog-log, Omega* = {', '.join(f'{o:g}' for o in oms)} "
+                panel_title(ax, m, f"\nlog-log, Omega* = {', '.join(f'{o:g}' for o in oms)} "
                        "(solid, dashed)")
             else:
                 ax.set_ylabel("steady amplitude max |v*|")
                 _limit_to_steady(ax, sel_rows, "eps")
-                _title(ax, m, f"\nOmega* = {oms[i]:g}")
+                panel_title(ax, m, f"\nOmega* = {oms[i]:g}")
             if _has_missing(sel_rows):
-                _room_below(ax)
+                room_below(ax)
             extra = _theory_curve(ax, "eps", None, sel_rows)
             note = None if log else _approach_coincidences(sel_rows, "eps")
             extra += _status_handles(sel_rows, off_scale=not log and _has_off_scale(ax, sel_rows))
-            _legend(ax, ncol=2, extra=extra + ([note] if note else []))
-            _grid(ax)
+            legend_below(ax, ncol=2, extra=extra + ([note] if note else []))
+            panel_grid(ax)
     fig.suptitle("Figure 5: steady-state amplitude of v* against slenderness eps", fontsize=10)
     return fig
 
@@ -228,7 +229,7 @@ def plot_figure6(data, cfg, counts, bifurcations=None):
         if r["model"] == MODELS[1].key:
             runs[r["eps"]] = r
     n_bif = max((len(PB.legend_handles(r)) for r in runs.values()), default=0)
-    fig, axes = panels(n_rows, 2, width=6.4, height=2.9, space_below=_below(7 + n_bif, 2),
+    fig, axes = panels(n_rows, 2, width=6.4, height=2.9, space_below=legend_room(7 + n_bif, 2),
                        top_margin=1.0 if runs else 0.8)
     oms = sorted(set(cfg.fig6_omegas))
     step = float(np.min(np.diff(oms))) if len(oms) > 1 else 0.05
@@ -258,7 +259,7 @@ def plot_figure6(data, cfg, counts, bifurcations=None):
                 if zoom:
                     ax.set_ylim(0, cfg.fig6_inset_ylim)
                     ax.set_xlim(*zoom_xlim)
-                    _title(ax, m, f", eps = {eps:g}\nmagnified: v* from 0 to {cfg.fig6_inset_ylim:g}, "
+                    panel_title(ax, m, f", eps = {eps:g}\nmagnified: v* from 0 to {cfg.fig6_inset_ylim:g}, "
                            f"Omega* from 0 to {zoom_xlim[1]:.2g}")
                     extra = _ring_handles([r for r in rows if zoom_xlim[0] <= r["omega"] <= zoom_xlim[1]
                                            and F.response_of(r) <= cfg.fig6_inset_ylim])
@@ -268,16 +269,16 @@ def plot_figure6(data, cfg, counts, bifurcations=None):
                                      extra=[PB.top(run, xlim) * 1.05 / 1.25] if run else ())
                     ax.set_xlim(*xlim)
                     if _has_missing(rows):
-                        _room_below(ax)
-                    _title(ax, m, f", eps = {eps:g}" + ("\nswept points and the continuation of approach A"
+                        room_below(ax)
+                    panel_title(ax, m, f", eps = {eps:g}" + ("\nswept points and the continuation of approach A"
                                                         if run else ""))
                     extra = _status_handles(rows, off_scale=_has_off_scale(ax, rows))
                 if run is not None:
                     extra = PB.draw(ax, run) + extra
                 extra = _theory_curve(ax, "omega", eps, rows) + extra
                 note = _approach_coincidences(rows, "omega")
-                _legend(ax, ncol=2, extra=extra + ([note] if note else []))
-                _grid(ax)
+                legend_below(ax, ncol=2, extra=extra + ([note] if note else []))
+                panel_grid(ax)
     fig.suptitle("Figure 6: steady-state amplitude of v* against crank speed Omega*", fontsize=10)
     return fig
 
