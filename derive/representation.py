@@ -34,6 +34,7 @@ from . import energies as en
 from . import guides as gd
 from . import model
 from . import motions as mo
+from . import quadrature
 from . import symbols as s
 from .euler_lagrange import gradient, kinetic_residual
 from .groups import ELEMENT_VARS, ROD_AXIAL_ROWS, SLIDER_AXIAL_ROWS, SLIDER_VARS, group_vector
@@ -126,6 +127,9 @@ class VariantRecord:
     doc: str
     residual: sp.Matrix          # element residual (6,) in q, qd, qdd, geo, coef, kin
     printed_stiffness: object    # "exact", "none" or a 6x6 Matrix
+    tangents: tuple = None       # (K, C, M) derived with the residual (quadrature); None: differentiate r
+    quadrature: object = None    # the quadrature.Rule of its element integrals (None: closed form)
+    definitions: tuple = ()      # ((point field, its linear form), ...) the residual and tangents use
 
 
 @dataclass(frozen=True)
@@ -180,6 +184,7 @@ class Representation:
     energies: tuple
     outputs: tuple
     printed_iteration: tuple
+    exclusions: tuple            # ((((option, value), ...), reason), ...): combinations refused
     element_dofs: int
     end_slots: tuple
 
@@ -204,6 +209,15 @@ def _presets():
             if value not in names[option].choices:
                 raise ValueError(f"preset {p.name}: {option}={value!r} is not a choice")
     return tuple(PresetRecord(p.name, tuple(sorted(p.options.items())), p.doc) for p in model.PRESETS)
+
+
+def _exclusions():
+    names = {o.name: o for o in model.OPTIONS}
+    for x in model.EXCLUSIONS:
+        for option, value in x.options.items():
+            if value not in names[option].choices:
+                raise ValueError(f"exclusion {x.reason!r}: {option}={value!r} is not a choice")
+    return tuple((tuple(sorted(x.options.items())), x.reason) for x in model.EXCLUSIONS)
 
 
 def _readers(owner):
@@ -271,7 +285,8 @@ def _families():
             term = v.build()
             variants.append(VariantRecord(
                 v.name, f"{f.name}_{v.name}", tuple(sorted(v.when.items())), v.groups, v.energy, v.doc,
-                sp.Matrix(term.residual), term.printed_stiffness))
+                sp.Matrix(term.residual), term.printed_stiffness, term.tangents, v.quadrature,
+                term.definitions))
         out.append(FamilyRecord(f.name, f.part, f.doc, f.energy_kind, f.vanishes_with, tuple(variants)))
     return tuple(out)
 
@@ -299,7 +314,32 @@ def _energies():
                 f"dissipation_{ap}{suffix}",
                 f"Kelvin-Voigt Rayleigh dissipation function D of approach {ap}"
                 f"{', element-mean membrane strain rate' if averaged else ''}.", D))
+    out += _exact_energies()
     return tuple(out)
+
+
+def _exact_energies():
+    """The exact rod's energy kernels: its kinetic energy (the centre line's closed form, the exact
+    section rotation's by the rule), strain energy and dissipation by the rule, in q and qd."""
+    space = quadrature.PointSpace(model.EXACT_RULE, en.QUANTITIES, en.ELEMENT_FIELDS, en.POINT_FIELDS)
+
+    def in_q(energy):
+        return space.in_nodal(energy)
+    f = dict(en.fields(s.q, s.qd), x=s.x0 + s.l * s.zeta)
+    kinetic = model.integrate_centre_line(f) + in_q(en.element_rotary_kinetic_energy(space))
+    rule = model.EXACT_RULE.text
+    out = [EnergyRecord("rod_kinetic_energy_exact", "Element kinetic energy of the geometrically exact "
+                        f"rod (centre line and exact section rotation; the rotation by {rule} quadrature).",
+                        kinetic)]
+    for membrane, suffix in (("pointwise", ""), ("averaged", "_averaged")):
+        what = "element-mean stretch" if membrane == "averaged" else "pointwise stretch"
+        out.append(EnergyRecord(f"strain_energy_exact{suffix}", f"Element strain energy of the exact rod, "
+                                f"{what}, by {rule} quadrature.",
+                                in_q(en.element_strain_energy(space, "exact", membrane))))
+        out.append(EnergyRecord(f"dissipation_exact{suffix}", f"Kelvin-Voigt Rayleigh dissipation function "
+                                f"of the exact rod, {what} rate, by {rule} quadrature.",
+                                in_q(en.element_dissipation(space, "exact", membrane))))
+    return out
 
 
 # ---- outputs ------------------------------------------------------------------------------------------
@@ -326,7 +366,13 @@ def _output_inputs(expr, name):
     return inputs
 
 
+# the exact rod's option cases (its outputs' kernels are named by _field_key: exact, exact_averaged)
+EXACT_OPTION_CASES = ({"approach": "exact", "membrane": "pointwise"}, {"approach": "exact", "membrane": "averaged"})
+
+
 def _field_key(options):
+    if options["approach"] == "exact":
+        return "exact_averaged" if options["membrane"] == "averaged" else "exact"
     if options["approach"] == "C":
         return "linear"
     return "averaged" if options["membrane"] == "averaged" else "pointwise"
@@ -355,6 +401,17 @@ def _outputs():
                     if not distinct or _field_key(opts) == _field_key(option_sets[0]):
                         variants.append(OutputVariant(tuple(sorted(opts.items())), kernel, expr))
             inputs.update(_output_inputs(expr, o.name))
+        legacy = o.build({"approach": "A", "membrane": "pointwise"})
+        for opts in EXACT_OPTION_CASES:          # the exact rod's: a kernel of its own where it differs
+            expr = o.build(opts)                 # (not expanded: its square roots would multiply out)
+            if expr == legacy:
+                kernel, expr = variants[0].kernel, variants[0].expr
+            else:
+                kernel = next((v.kernel for v in variants if v.expr == expr), None)
+            if kernel is None:
+                kernel = f"{o.kind}_{o.name}_{_field_key(opts)}"
+                inputs.update(_output_inputs(expr, o.name))
+            variants.append(OutputVariant(tuple(sorted(opts.items())), kernel, expr))
         if o.kind == "field":
             inputs.update({"q", "zeta", "geo", "coef"})
         ordered = tuple(n for n, _ in OUTPUT_INPUTS if n in inputs)
@@ -374,6 +431,7 @@ def representation():
         kinematic_parameters=tuple(p.name for p in model.PARAMETERS if p.symbol is not None),
         motions=_motions(), guides=_guides(), families=_families(), energies=_energies(),
         outputs=_outputs(), printed_iteration=tuple(sorted(model.PRINTED_ITERATION.items())),
+        exclusions=_exclusions(),
         element_dofs=ELEMENT_DOFS, end_slots=END_SLOTS)
 
 

@@ -115,6 +115,21 @@ def _table_source(rep):
     out.append(")")
     out.append("# option values under which the one-pass scheme iterates with the printed eq. (37) matrices")
     out.append(f"PRINTED_ITERATION = {dict(rep.printed_iteration)!r}")
+    out.append("# option values that have no meaning together: a case choosing all of them is refused with the reason")
+    out.append("EXCLUSIONS = (")
+    for options, reason in rep.exclusions:
+        out.append(f"    ({dict(options)!r},\n     {reason!r}),")
+    out.append(")")
+    out.append("# element kernels whose integrals use a quadrature rule (derive/quadrature.py): kernel -> rule,")
+    out.append("# its points and the polynomial degree it integrates exactly; the others are integrated in closed form")
+    out.append("QUADRATURE = {")
+    for f in rep.families:
+        for v in f.variants:
+            if v.quadrature is not None:
+                rule = v.quadrature
+                out.append(f"    {v.kernel!r}: dict(rule='gauss-legendre', points={len(rule.points)!r}, "
+                           f"degree={rule.degree!r}),")
+    out.append("}")
     return "\n".join(out) + "\n"
 
 

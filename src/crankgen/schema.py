@@ -182,6 +182,8 @@ OUTPUTS = {o["name"]: Output(**o) for o in _table.OUTPUTS}
 MECHANISM_PARAMETERS = tuple(n for n, p in PARAMETERS.items() if p.owner in ("mechanism", "guide"))
 RUN_PARAMETERS = tuple(n for n, p in PARAMETERS.items() if p.owner in ("run", "motion"))
 CONTINUABLE = tuple(n for n, p in PARAMETERS.items() if p.continuable)
+EXCLUSIONS = _table.EXCLUSIONS            # (option values, reason): refused together
+QUADRATURE = _table.QUADRATURE            # element kernel -> its quadrature rule
 
 
 def resolve_options(model=None, **options):
@@ -199,12 +201,15 @@ def resolve_options(model=None, **options):
         if value is None:
             value = PRESETS[name].options.get(opt.name, opt.default)
         out[opt.name] = opt.canonical(value)
+    for values, reason in EXCLUSIONS:
+        if all(out[k] == v for k, v in values.items()):
+            raise ParameterError(reason)
     return out
 
 
 def preset_of(options):
-    """Name of the preset whose option values the options have, or None."""
-    for name, preset in PRESETS.items():
-        if all(options.get(k) == v for k, v in preset.options.items()):
-            return name
-    return None
+    """Name of the preset whose option values the options have (the one setting the most of them
+    when several do), or None."""
+    matching = [(len(p.options), name) for name, p in PRESETS.items()
+                if all(options.get(k) == v for k, v in p.options.items())]
+    return max(matching, key=lambda m: m[0])[1] if matching else None
