@@ -12,6 +12,8 @@ factorized at every iteration).
     special points of the former methods to 6 digits; both methods timed in the same run)
   start-up of a small simulate from an empty cache                       < 15 s;  warm < 1 s
   what `crankgen reproduce` compiles                                     < 60 s
+  simulate(history=False, times=10^4 .. 10^5 consecutive steps): time per requested time within
+    a factor 2 across counts (linear in the number of times; issue 32)
 """
 
 import argparse
@@ -236,6 +238,25 @@ def continuation_time(n=16, steps_per_rev=100, max_period=2, repeats=2):
     return out
 
 
+def times_linear(counts=(10**4, 3 * 10**4, 10**5), n=2, steps_per_rev=20):
+    """simulate(..., history=False, times=...) at that many consecutive steps: wall seconds and
+    microseconds per requested time (linear: about the same per time at every count; issue 32
+    measured the former rescan of the stops at 2.7 s for 10^4 and 17.8 s for 3x10^4)."""
+    from crankgen import kinematics
+    case = Case(omega=0.5, n_elements=n, steps_per_rev=steps_per_rev)
+    dt = kinematics.step_period(case) / steps_per_rev
+    mech = crankgen.Mechanism()
+    crankgen.simulate(mech, omega=0.5, n_elements=n, steps_per_rev=steps_per_rev, revolutions=1)   # load
+    rows = []
+    for m in counts:
+        times = np.arange(m) * dt
+        seconds = best_of(lambda: crankgen.simulate(mech, omega=0.5, n_elements=n, steps_per_rev=steps_per_rev,
+                                                    history=False, times=times), repeats=2)
+        rows.append(dict(times=m, seconds=seconds, us_per_time=1e6 * seconds / m))
+    return dict(n_elements=n, steps_per_rev=steps_per_rev, runs=rows,
+                ratio_per_time_largest_over_smallest=rows[-1]["us_per_time"] / rows[0]["us_per_time"])
+
+
 def reproduce_times():
     cmd = _crankgen_command()
     out = {}
@@ -315,6 +336,8 @@ def main(argv=None):
     results["shooting"] = shooting_vs_marching()
     print("timing a continuation ...", flush=True)
     results["continuation"] = continuation_time()
+    print("timing simulate at many requested times ...", flush=True)
+    results["times"] = times_linear()
     if not args.skip_reproduce:
         print("timing crankgen reproduce ...", flush=True)
         results["reproduce"] = reproduce_times()
@@ -344,6 +367,7 @@ def main(argv=None):
         targets["cold_small_simulate_lt_15s"] = st["cold_small_simulate_two_processes_s"] < 15
         targets["warm_small_simulate_lt_1s"] = st["warm_small_simulate_s"] < 1
         targets["reproduce_compile_lt_60s"] = st["reproduce_compile_s"] < 60
+    targets["times_linear_per_time_ratio_lt_2"] = results["times"]["ratio_per_time_largest_over_smallest"] < 2
     results["targets_met"] = targets
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(json.dumps(results, indent=2) + "\n")
@@ -383,6 +407,10 @@ def main(argv=None):
     print(f"continuation: former / default = {c['ratio_former_over_default']:.2f} (wall), "
           f"{c['cpu_ratio_former_over_default']:.2f} (CPU); special points agree to "
           f"{c['special_points_max_omega_difference']}")
+    t = results["times"]
+    print("simulate(history=False, times=consecutive steps), n = 2: " + ", ".join(
+        f"{r['times']} times {r['seconds']:.2f} s ({r['us_per_time']:.1f} us each)" for r in t["runs"])
+        + f"; per time, largest / smallest count {t['ratio_per_time_largest_over_smallest']:.2f}")
     if "reproduce" in results:
         r = results["reproduce"]
         print(f"crankgen reproduce: full {r['reproduce_full_s']:.1f} s, --quick {r['reproduce_quick_s']:.1f} s")

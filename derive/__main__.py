@@ -12,7 +12,7 @@ from pathlib import Path
 
 from .emit import emit_module, spec_hash
 from .kernels import ACCUMULATING, MODULES, SCALAR, element_kernels
-from .schema import emit_schema
+from .schema import emit_classes, emit_schema
 
 COMMAND = "python -m derive"
 ROOT = Path(__file__).resolve().parent.parent
@@ -33,6 +33,7 @@ def render():
         files[f"{name}.py"] = emit_module(title, kernels, COMMAND, accumulating=name in ACCUMULATING,
                                           scalar=name in SCALAR)
     files["schema.py"] = emit_schema(COMMAND, spec_hash(every), [k.name for k in element_kernels()])
+    files["classes.py"] = emit_classes(COMMAND)
     return files
 
 

@@ -133,10 +133,13 @@ def _entries(expr):
 
 
 def _cse(kernel):
-    """(assignments, reduced expressions, inputs used) of all outputs of a kernel (_staged_cse)."""
+    """(assignments, reduced expressions, inputs used) of all outputs of a kernel (_staged_cse); a
+    kernel whose outputs are printed as they stand (cse False) has no assignments."""
     flat = []
     for out in kernel.outputs:
         flat.extend(e for _, e in _entries(out.expr))
+    if not getattr(kernel, "cse", True):
+        return (), tuple(flat), set().union(*(e.free_symbols for e in flat))
     return _staged_cse(tuple(flat), tuple(getattr(kernel, "definitions", ())))
 
 

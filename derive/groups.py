@@ -2,7 +2,7 @@
 centrifugal, forcing, stiffness, cubic and quartic elastic terms, damping by order).
 
 The classification is a derivation stage of its own: the kernel specifications use it to weight the
-switchable groups (term masks, derive/model.py) and the symbolic audit uses it to report what each
+switchable groups (term masks, derive/declaration.py) and the symbolic audit uses it to report what each
 formulation keeps.
 """
 
@@ -13,7 +13,7 @@ import sympy as sp
 
 from . import symbols as s
 
-ROD_AXIAL_ROWS = (0, 3)        # u_i, u_{i+1} rows of the element vector
+ROD_AXIAL_ROWS = s.element_slots(0, ("u",)) + s.element_slots(1, ("u",))   # u_i, u_{i+1} of the element
 SLIDER_AXIAL_ROWS = (0,)       # u_{n+1} row of the slider vector
 
 

@@ -38,6 +38,8 @@ from dataclasses import dataclass
 import sympy as sp
 from sympy.simplify.fu import TR10i
 
+from crankgen import records
+
 from . import symbols as s
 from .euler_lagrange import total_time_derivative
 
@@ -51,31 +53,33 @@ END_MAP_ROWS = ("q", "qd", "qdd", "g_s", "dqd_ds", "dqdd_ds", "dqdd_dsd", "g_ss"
 
 
 @dataclass(frozen=True)
-class Guide:
-    name: str
-    title: str                   # the runtime's record of this guide (crankgen.Line, ...)
-    parameters: tuple            # parameter names it reads besides a (derive/model.py PARAMETERS)
-    curve: sp.Matrix             # C(beta)
-    step: sp.Matrix              # C(beta + s) - C(beta), written without cancellation for small s
-    phi: sp.Expr                 # rigid position analysis: phi(theta), beta(theta)
-    beta: sp.Expr
-    margin: tuple                # ((expression, text), ...): every expression > 0 iff the crank turns fully
-    end_scale: sp.Expr           # natural size of s, for Newton's scaled increments (eps: slenderness)
-    doc: str
-    aliases: tuple = ()          # keyword arguments of the runtime record standing for parameters:
-                                 # ((keyword, (parameter, ...)), ...), a tuple keyword for several
+class Guide(records.Guide):
+    """A guide (crankgen.records.Guide: name, title of its runtime record, parameters it reads
+    besides a, doc, keyword aliases of its record) with its geometry: the curve C(beta), the step
+    C(beta + s) - C(beta) written without cancellation for small s, the rigid position analysis
+    phi(theta), beta(theta) in closed form, the full-turn margins ((expression, text), ...: every
+    expression > 0 iff the crank turns fully) and the natural size of s (end_scale, in eps and the
+    parameters: Newton's scaled increments)."""
+
+    curve: sp.Matrix = None
+    step: sp.Matrix = None
+    phi: sp.Expr = None
+    beta: sp.Expr = None
+    margin: tuple = ()
+    end_scale: sp.Expr = None
+    pivot: sp.Matrix = None      # the ground pivot of a link carrying the end (a rocker), if any
 
 
 def line():
     sin_phi = s.a * sp.sin(s.theta) - s.e
     phi = sp.asin(sin_phi)
     return Guide(
-        "line", "Line", ("offset",), sp.Matrix([s.beta, s.e]), sp.Matrix([sp_s, 0]), phi,
-        s.a * sp.cos(s.theta) + sp.sqrt(1 - sin_phi**2),
-        ((1 - s.a - sp.Abs(s.e), "a* + |offset| < 1 (the rod must reach the guide Y = offset at every "
-                                 "crank angle)"),),
-        s.eps**2,
-        "straight guide Y = e: a slider (the end mass ms) on the line")
+        "line", "Line", ("offset",), "straight guide Y = e: a slider (the end mass ms) on the line", label="slider",
+        curve=sp.Matrix([s.beta, s.e]), step=sp.Matrix([sp_s, 0]), phi=phi,
+        beta=s.a * sp.cos(s.theta) + sp.sqrt(1 - sin_phi**2),
+        margin=((1 - s.a - sp.Abs(s.e), "a* + |offset| < 1 (the rod must reach the guide Y = offset at "
+                                        "every crank angle)"),),
+        end_scale=s.eps**2)
 
 
 def circle():
@@ -89,17 +93,17 @@ def circle():
     ground = sp.sqrt(s.d**2 + s.e**2)
     return Guide(
         "circle", "Circle", ("offset", "c", "d", "branch"),
-        D + s.c * sp.Matrix([sp.cos(s.beta), sp.sin(s.beta)]),
-        2 * s.c * sp.sin(sp_s / 2) * sp.Matrix([-sp.sin(s.beta + sp_s / 2), sp.cos(s.beta + sp_s / 2)]),
-        sp.atan2(-chord[1], chord[0]), sp.atan2(end[1] - s.e, end[0] - s.d),
-        ((sp.Abs(ground - s.a) - sp.Abs(1 - s.c), "||D| - a*| > |1 - c| (the rod and the rocker "
-                                                  "reach each other when the crank pin is nearest D)"),
-         (1 + s.c - ground - s.a, "|D| + a* < 1 + c (they reach each other when the crank points "
-                                  "away from D)")),
-        s.eps**2 / s.c,
         "circle of radius c about D = (d, e): a rigid massless rocker DB carrying the end mass ms "
         "(a four-bar linkage with a flexible coupler)",
-        (("center", ("d", "offset")), ("radius", ("c",))))
+        aliases=(("center", ("d", "offset")), ("radius", ("c",))), label="four-bar",
+        curve=D + s.c * sp.Matrix([sp.cos(s.beta), sp.sin(s.beta)]),
+        step=2 * s.c * sp.sin(sp_s / 2) * sp.Matrix([-sp.sin(s.beta + sp_s / 2), sp.cos(s.beta + sp_s / 2)]),
+        phi=sp.atan2(-chord[1], chord[0]), beta=sp.atan2(end[1] - s.e, end[0] - s.d),
+        margin=((sp.Abs(ground - s.a) - sp.Abs(1 - s.c), "||D| - a*| > |1 - c| (the rod and the rocker "
+                                                         "reach each other when the crank pin is nearest D)"),
+                (1 + s.c - ground - s.a, "|D| + a* < 1 + c (they reach each other when the crank points "
+                                         "away from D)")),
+        end_scale=s.eps**2 / s.c, pivot=D)
 
 
 GUIDES = (line(), circle())

@@ -51,7 +51,8 @@ class Kernel:
     doc: str
     inputs: tuple
     outputs: tuple
-    definitions: tuple = ()     # ((symbol, expression in the inputs), ...): computed before the outputs
+    cse: bool = True             # False: each output printed as it stands (no common subexpressions)
+    definitions: tuple = ()      # stages of ((symbol, expression in the inputs), ...): computed before the outputs
 
 
 def scalar(sym):
@@ -64,7 +65,7 @@ def vector(name, column):
 
 Q, QD, QDD = vector("q", s.q), vector("qd", s.qd), vector("qdd", s.qdd)
 GEO = vector("geo", s.GEOMETRY)
-COEF = vector("coef", s.COEFFICIENTS)
+COEF = vector("coef", ir.COEFFICIENT_SYMBOLS)
 KIN = vector("kin", s.KINEMATICS)
 PARAMS = vector("params", ir.KINEMATIC_SYMBOLS)
 # the same vector beside kin, which already carries a: its slot holds an unused stand-in
@@ -75,7 +76,6 @@ SEND = vector("send", ir.END_COORDINATES)
 ELEMENT_INPUTS = (Q, QD, QDD, GEO, COEF, KIN)
 OUTPUT_INPUT = {name: (vector(name, syms) if len(syms) > 1 else scalar(syms[0]))
                 for name, syms in ir.OUTPUT_INPUTS}
-OUTPUT_INPUT["params"] = PARAMS_BESIDE_KIN
 
 
 def _residual_outputs(r, printed_stiffness="exact", tangents=None):
@@ -84,7 +84,7 @@ def _residual_outputs(r, printed_stiffness="exact", tangents=None):
     outs = [Output("r", r, "element residual"), Output("K", K, "d r / d q"),
             Output("C", C, "d r / d qd"), Output("M", M, "d r / d qdd")]
     if not (isinstance(printed_stiffness, str) and printed_stiffness == "exact"):
-        Kp = sp.zeros(6, 6) if isinstance(printed_stiffness, str) else printed_stiffness
+        Kp = sp.zeros(s.ELEMENT_DOFS, s.ELEMENT_DOFS) if isinstance(printed_stiffness, str) else printed_stiffness
         outs.append(Output("K_printed", Kp.applyfunc(sp.expand), "stiffness of the printed eq. (37)"))
     return tuple(outs)
 
@@ -94,9 +94,9 @@ def element_kernels():
     kernels = []
     for family in ir.representation().families:
         for variant in family.variants:
-            kernels.append(Kernel(variant.kernel, f"{family.doc}: {variant.doc}.", ELEMENT_INPUTS,
-                                  _residual_outputs(variant.residual, variant.printed_stiffness,
-                                                    variant.tangents), variant.definitions))
+            kernels.append(Kernel(variant.record.kernel, f"{family.record.doc}: {variant.record.doc}.", ELEMENT_INPUTS,
+                                  _residual_outputs(variant.residual, variant.printed_stiffness, variant.tangents),
+                                  definitions=variant.definitions))
     return tuple(kernels)
 
 
@@ -112,9 +112,12 @@ def energy_kernels():
 
 def output_kernels():
     kernels = {}
-    for o in ir.representation().outputs:
+    for form in ir.representation().outputs:
+        o = form.record
+        if o.engine:
+            continue
         inputs = tuple(OUTPUT_INPUT[name] for name in o.inputs)
-        for v in o.variants:
+        for v in form.variants:
             if v.kernel not in kernels:
                 where = " (at zeta = x / l of the element)" if o.kind == "field" else ""
                 kernels[v.kernel] = Kernel(v.kernel, f"{o.doc}{where}.", inputs,
@@ -126,27 +129,63 @@ def kinematics_kernels():
     rep = ir.representation()
     t = scalar(s.t)
     out = []
-    for m in rep.motions:
+    for form in rep.motions:
+        m = form.record
         out.append(Kernel(f"motion_{m.name}", f"Crank angle, speed and acceleration at time t: {m.doc}.",
-                          (t, PARAMS), (Output("crank", m.crank, "(theta, thetad, thetadd)"),)))
-        period = m.period if m.period is not None else sp.Integer(0)
+                          (t, PARAMS), (Output("crank", form.crank, "(theta, thetad, thetadd)"),)))
+        period = form.period if form.period is not None else sp.Integer(0)
         out.append(Kernel(f"period_{m.name}", "Time of one crank revolution (0: not periodic).", (PARAMS,),
                           (Output("T", sp.Matrix([period]), "period"),)))
         out.append(Kernel(f"step_period_{m.name}", "The time steps_per_rev steps divide.", (PARAMS,),
-                          (Output("T", sp.Matrix([m.step_period]), "step period"),)))
-    for g in rep.guides:
+                          (Output("T", sp.Matrix([form.step_period]), "step period"),)))
+    for form in rep.guides:
+        g = form.record
         out.append(Kernel(f"guide_{g.name}", f"Rigid kinematics kin of the {g.name} guide: {g.doc}.",
-                          (CRANK, PARAMS), (Output("kin", g.kinematics, "kinematics vector"),)))
+                          (CRANK, PARAMS), (Output("kin", form.kinematics, "kinematics vector"),)))
         out.append(Kernel(f"end_map_{g.name}", f"End map of the {g.name} guide: (u, v) of the rod's end "
                           "and its rates and derivatives in (s, sd, sdd) (rows guides.END_MAP_ROWS).",
-                          (SEND, KIN, PARAMS_BESIDE_KIN), (Output("E", g.end_map, "end map"),)))
+                          (SEND, KIN, PARAMS_BESIDE_KIN), (Output("E", form.end_map, "end map"),)))
         out.append(Kernel(f"rigid_end_{g.name}", f"(X, Y) of the rigid end point on the {g.name} guide.",
-                          (KIN, PARAMS_BESIDE_KIN), (Output("X", g.rigid_end, "rigid end point"),)))
+                          (KIN, PARAMS_BESIDE_KIN), (Output("X", form.rigid_end, "rigid end point"),)))
         out.append(Kernel(f"margins_{g.name}", "Full-turn margins (each > 0 iff the crank turns a full "
-                          "revolution): " + "; ".join(g.margin_texts) + ".", (PARAMS,),
-                          (Output("m", g.margins, "margins"),)))
+                          "revolution): " + "; ".join(g.margins) + ".", (PARAMS,),
+                          (Output("m", form.margins, "margins"),)))
         out.append(Kernel(f"end_scale_{g.name}", "Natural size of the end map's reduced co-ordinate.",
-                          (scalar(s.eps), PARAMS), (Output("scale", sp.Matrix([g.end_scale]), "scale"),)))
+                          (scalar(s.eps), PARAMS), (Output("scale", sp.Matrix([form.end_scale]), "scale"),)))
+
+    return tuple(out)
+
+
+def per_step_kernels():
+    """The engine's outputs (Output.engine) from its primitives: per_step(prims, q_end, parameters),
+    every output printed as it stands (the engine's arithmetic: v / eps, u / eps**2, ...), and the
+    Gram matrix of each integral primitive."""
+    rep = ir.representation()
+    engine = [form for form in rep.outputs if form.record.engine]
+    values = sp.Matrix([form.variants[0].expr for form in engine])
+    inputs = tuple(vector(name, syms) for name, syms in ir.ENGINE_INPUTS)
+    out = [Kernel("per_step", "The outputs the engine computes at every step, in the order of the schema's "
+                  "engine outputs: " + ", ".join(form.record.name for form in engine) + ".", inputs,
+                  (Output("out", values, "the engine's outputs"),), cse=False)]
+    for g in rep.grams:
+        out.append(Kernel(g.name, "Gram matrix G of an integral over the rod: its element part is q^T G q.",
+                          (scalar(s.l),), (Output("G", g.matrix, "Gram matrix"),)))
+    return tuple(out)
+
+
+def geometry_kernels():
+    """The mechanism's geometry for figures: the crank pin, each guide's curve C(beta) and the pivot
+    of a link carrying the end."""
+    from .guides import PIN
+    out = [Kernel("crank_pin", "(X, Y) of the crank pin A = a (cos theta, sin theta).", (KIN,),
+                  (Output("X", PIN, "crank pin"),))]
+    for form in ir.representation().guides:
+        g = form.record
+        out.append(Kernel(f"curve_{g.name}", f"(X, Y) of the {g.name} guide's curve C(beta).",
+                          (scalar(s.beta), PARAMS), (Output("X", form.curve, "point of the curve"),)))
+        if form.pivot is not None:
+            out.append(Kernel(f"pivot_{g.name}", "(X, Y) of the ground pivot of the link carrying the end.",
+                              (PARAMS,), (Output("X", form.pivot, "pivot"),)))
     return tuple(out)
 
 
@@ -170,13 +209,15 @@ def group_kernels():
 MODULES = {
     "shape": ("Shape functions of Appendix A.", shape_kernels),
     "kinematics": ("Rigid kinematics: the crank motions, the guides' closures and end maps.", kinematics_kernels),
-    "elements": ("Element kernels of every term family variant declared in derive/model.py.", element_kernels),
+    "elements": ("Element kernels of every term family variant declared in derive/declaration.py.", element_kernels),
     "energy": ("Element energies T_i, T_s, U_i, V_i and the Kelvin-Voigt dissipation function.", energy_kernels),
-    "fields": ("The declared outputs: step quantities and fields along the rod.", output_kernels),
+    "fields": ("The declared outputs: step quantities, fields along the rod, reductions over it.", output_kernels),
+    "per_step": ("The outputs the engine computes at every step, from what it accumulates.", per_step_kernels),
+    "geometry": ("The guides' geometry, for figures: their curves and the pivots of links.", geometry_kernels),
     "groups": ("Element forces of the consistent model split by kind (symbolic audit).", group_kernels),
 }
 # modules whose element kernels also get the accumulating one-element variants (emit.py)
 ACCUMULATING = ("elements",)
 # modules whose kernels also get a one-element `_into` variant (the engine compiles those of
 # motion_, guide_ and end_map_)
-SCALAR = ("kinematics",)
+SCALAR = ("kinematics", "per_step")

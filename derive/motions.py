@@ -8,7 +8,7 @@ time that thetad and thetadd are the time derivatives of theta (by differentiati
 where the closed form is not differentiated symbolically) and that theta(0) = theta0.
 
 Every motion starts at the crank angle theta0 (the parameter `theta0`, declared in
-derive/model.py; default 0) at t = 0.  It enters only as the constant of integration of theta(t),
+derive/declaration.py; default 0) at t = 0.  It enters only as the constant of integration of theta(t),
 written so that theta0 = 0 evaluates to exactly the floating-point numbers of the motion without
 it (an added 0.0 changes no sum).
 
@@ -32,24 +32,26 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from crankgen import records
+
 from . import symbols as s
 
-# The crank angle at t = 0 (the parameter theta0 of derive/model.py).
+# The crank angle at t = 0 (the parameter theta0 of derive/declaration.py).
 theta0 = sp.Symbol("theta0", real=True)
 
 
 @dataclass(frozen=True)
-class Motion:
-    name: str
-    title: str                  # the runtime's record of this motion (crankgen.Constant, ...)
-    parameters: tuple           # the parameter names it reads (derive/model.py PARAMETERS)
-    theta: sp.Expr              # theta(t)
-    thetad: sp.Expr             # in t and theta
-    thetadd: sp.Expr            # in t, theta and thetad
-    period: object              # time of one crank revolution (None: not periodic)
-    step_period: sp.Expr        # the time that steps_per_rev steps divide (period, or the fastest revolution)
-    doc: str
-    aliases: tuple = ()         # keyword arguments of the runtime record standing for parameters
+class Motion(records.Motion):
+    """A crank motion (crankgen.records.Motion: name, title of its runtime record, the parameters it
+    reads, doc, keyword aliases) with theta(t), thetad (in t and theta), thetadd (in t, theta and
+    thetad), the time of one crank revolution (`period`, None: not periodic) and the time that
+    steps_per_rev steps divide (`step_period`: the period, or the fastest revolution)."""
+
+    theta: sp.Expr = None
+    thetad: sp.Expr = None
+    thetadd: sp.Expr = None
+    period: object = None
+    step_period: sp.Expr = None
 
 
 def _wrap(z):
@@ -58,9 +60,10 @@ def _wrap(z):
 
 
 def constant():
-    return Motion("constant", "Constant", ("omega", "theta0"), theta0 + s.omega * s.t, s.omega, sp.Integer(0),
-                  2 * sp.pi / s.omega, 2 * sp.pi / s.omega,
-                  "constant crank speed Omega*: theta = theta0 + Omega* t")
+    return Motion("constant", "Constant", ("omega", "theta0"), "constant crank speed Omega*: theta = theta0 + Omega* t",
+                  label="constant crank speed",
+                  theta=theta0 + s.omega * s.t, thetad=s.omega, thetadd=sp.Integer(0),
+                  period=2 * sp.pi / s.omega, step_period=2 * sp.pi / s.omega)
 
 
 def runup():
@@ -74,11 +77,12 @@ def runup():
                                   (2 * sp.pi * s.ramp + s.omega * (s.t - T), True))
     thetad = sp.Piecewise((s.omega0 + (s.omega - s.omega0) * step, during), (s.omega, True))
     thetadd = sp.Piecewise(((s.omega - s.omega0) * dstep, during), (0, True))
-    return Motion("runup", "RunUp", ("omega0", "omega", "ramp", "theta0"), theta, thetad, thetadd, None,
-                  4 * sp.pi / (s.omega0 + s.omega + sp.Abs(s.omega - s.omega0)),   # 2 pi / max
+    return Motion("runup", "RunUp", ("omega0", "omega", "ramp", "theta0"),
                   "run-up: the crank speed rises smoothly (quintic smooth step in time) from Omega0 "
                   "to Omega* over `ramp` revolutions, then stays at Omega*",
-                  (("start", ("omega0",)), ("stop", ("omega",)), ("revolutions", ("ramp",))))
+                  (("start", ("omega0",)), ("stop", ("omega",)), ("revolutions", ("ramp",))), transient="ramp", label="run-up",
+                  theta=theta, thetad=thetad, thetadd=thetadd, period=None,
+                  step_period=4 * sp.pi / (s.omega0 + s.omega + sp.Abs(s.omega - s.omega0)))   # 2 pi / max
 
 
 def fluctuation():
@@ -95,10 +99,10 @@ def fluctuation():
     thetad = s.omega * (1 + s.k_fl * sp.sin(s.j_fl * s.theta))
     thetadd = s.omega * s.k_fl * s.j_fl * sp.cos(s.j_fl * s.theta) * s.thetad
     period = 2 * sp.pi / (m * s.omega)
-    return Motion("fluctuation", "Fluctuation", ("omega", "fluctuation", "order", "theta0"), theta, thetad,
-                  thetadd, period,
-                  period, "cyclic speed fluctuation: thetad = Omega* (1 + k sin(j theta)), |k| < 1, "
-                          "j a positive integer", (("amplitude", ("fluctuation",)),))
+    return Motion("fluctuation", "Fluctuation", ("omega", "fluctuation", "order", "theta0"),
+                  "cyclic speed fluctuation: thetad = Omega* (1 + k sin(j theta)), |k| < 1, j a positive "
+                  "integer", (("amplitude", ("fluctuation",)),), label="fluctuating crank speed",
+                  theta=theta, thetad=thetad, thetadd=thetadd, period=period, step_period=period)
 
 
 MOTIONS = (constant(), runup(), fluctuation())

@@ -91,7 +91,7 @@ def rod_damping_residual(approach, m):
     return (c * s.qd).applyfunc(sp.expand)
 
 
-SLIDER_DOFS = (3, 4)   # u_{n+1}, v_{n+1} in the last element's nodal vector
+SLIDER_DOFS = s.element_slots(1, ("u", "v"))   # u_{n+1}, v_{n+1} in the last element's nodal vector
 
 
 def _slider_rows(matrix):

@@ -1,28 +1,21 @@
-"""Stage 6: the model representation, typed immutable records between the declaration and code
-generation.
+"""Stage 6: the model representation, between the declaration and code generation.
 
-`representation()` turns the declaration (derive/model.py, with the derivations it names:
-energies, printed form, guides, motions) into the records below.  Code generation needs nothing
-else: derive/kernels.py makes the kernel specifications of a record from that record alone, and
-derive/schema.py prints the runtime's schema (generated/schema.py) from the records; neither
-looks back at the declaration or the derivation (the rule of FFCx's intermediate representation).
+`schema()` gives the declaration as the runtime sees it: records of crankgen.records (the
+SymPy-free classes the runtime imports), with what follows from the declaration filled in (an
+option's effective default, a parameter's owner, readers, flag and slots in the parameter vector,
+a choice parameter's guides or motions, a variant's kernel name, an output's inputs and kernels),
+and the layouts of the vectors the kernels read.  derive/schema.py prints these records into
+generated/schema.py; tests/test_schema_records.py checks that the two agree.
 
-Records:
-- OptionRecord, PresetRecord: the model options (choice, effective default, help) and the named
-  models;
-- ParameterRecord: every parameter of a case (kind, default, range, units, label, help, flag, the
-  guides or motions that read it, its place in the kinematic parameter vector);
-- CoefficientRecord: the element kernels' coefficients as formulas;
-- MotionRecord: a crank motion's theta, thetad, thetadd in t and the kinematic parameters, and its
-  period (None: not periodic);
-- GuideRecord: a guide's rigid kinematics kin(theta, thetad, thetadd, params), its end map, its
-  rigid end point, its full-turn margins and the natural size of its reduced co-ordinate;
-- FamilyRecord / VariantRecord: the term families with each variant's element residual;
-- EnergyRecord: energy and dissipation functions per element (or on the end node);
-- OutputRecord: each declared output with its expression per option case, the kernel inputs it
-  reads and its units;
-- Representation: all of the above and the calling conventions' layouts (kinematics vector,
-  kinematic parameters, element size, end slots).
+`representation()` adds the SymPy forms code generation needs, each beside its record: a
+variant's element residual, a guide's kinematics and end map, a motion's rates, an energy, an
+output's expression per option case, the coefficients' formulas.  derive/kernels.py, emit.py and
+schema.py read only this (the rule of FFCx's intermediate representation), never the declaration.
+
+The parameter vector (the layout PARAMETERS): one slot per parameter that enters an equation (a
+pair: two), in the order of the declaration.  The coefficient function coefficients(p, options,
+off) of the element kernels and the kinematic parameter vector (KINEMATIC_PARAMETERS: the slots
+the guides and motions read, found from their expressions) are generated from it.
 """
 
 from dataclasses import dataclass
@@ -30,166 +23,90 @@ from functools import lru_cache
 
 import sympy as sp
 
+from crankgen import records
+from crankgen.records import Layout, project
+
+from . import declaration as model
 from . import energies as en
 from . import guides as gd
-from . import model
 from . import motions as mo
-from . import quadrature
 from . import symbols as s
 from .euler_lagrange import gradient, kinetic_residual
 from .groups import ELEMENT_VARS, ROD_AXIAL_ROWS, SLIDER_AXIAL_ROWS, SLIDER_VARS, group_vector
 from .shape_functions import B_V, N_PSI, N_U, N_V, integrate_element
 
-ELEMENT_DOFS = 6                 # (u, v, psi) of the element's two nodes, eq. (14)
-END_SLOTS = (3, 4)               # (u, v) of the rod's end node in the last element's vector
-KINEMATIC_SYMBOLS = tuple(p.symbol for p in model.PARAMETERS if p.symbol is not None)
+ELEMENT_DOFS = s.ELEMENT_DOFS    # (u, v, psi) of the element's two nodes, eq. (14)
 CRANK_SYMBOLS = (s.theta, s.thetad, s.thetadd)
+COEFFICIENT_SYMBOLS = tuple(model.COEFFICIENTS)   # the coefficient vector coef, in its order
 END_COORDINATES = (gd.sp_s, gd.sp_sd, gd.sp_sdd)
 
 
-@dataclass(frozen=True)
-class OptionRecord:
-    name: str
-    choices: tuple
-    default: object
-    doc: str
-    cli: str
-
+# ---- the SymPy-free schema ------------------------------------------------------------------------
 
 @dataclass(frozen=True)
-class PresetRecord:
-    name: str
-    options: tuple               # ((option, value), ...)
-    doc: str
+class Schema:
+    """The records of generated/schema.py (crankgen.records) and its layouts."""
 
-
-@dataclass(frozen=True)
-class ParameterRecord:
-    name: str
-    kind: str                    # real, pair, sign, count, choice
-    default: object
-    label: str
-    doc: str
-    owner: str                   # mechanism, guide, motion, run
-    readers: tuple               # the guides (owner guide) or motions (owner motion) that read it; () otherwise
-    low: object
-    high: object
-    low_open: bool
-    high_open: bool
-    units: str
-    cli: str
-    metavar: str
-    choices: tuple
-    continuable: bool
-    kinematic_index: int         # place in the kinematic parameter vector, or -1
-
-
-@dataclass(frozen=True)
-class CoefficientRecord:
-    name: str
-    formula: sp.Expr             # in eps, ms, mu, gX, gY, with_rotary_inertia, off_<group>
-
-
-@dataclass(frozen=True)
-class MotionRecord:
-    name: str
-    title: str
-    parameters: tuple
-    crank: sp.Matrix             # (theta, thetad, thetadd) in t and the kinematic parameters
-    period: object               # time of one revolution (None: not periodic)
-    step_period: sp.Expr         # the time steps_per_rev steps divide
-    doc: str
-    aliases: tuple
-
-
-@dataclass(frozen=True)
-class GuideRecord:
-    name: str
-    title: str
-    parameters: tuple
-    kinematics: sp.Matrix        # kin in (theta, thetad, thetadd) and the kinematic parameters
-    end_map: sp.Matrix           # (8, 2), rows guides.END_MAP_ROWS, in (s, sd, sdd), kin, parameters
-    rigid_end: sp.Matrix         # (X, Y) of the rigid end point in kin and the parameters
-    margins: sp.Matrix           # each > 0 iff the crank turns a full revolution
-    margin_texts: tuple
-    end_scale: sp.Expr           # natural size of the reduced co-ordinate s, in eps and the parameters
-    doc: str
-    aliases: tuple
-
-
-@dataclass(frozen=True)
-class VariantRecord:
-    name: str
-    kernel: str                  # element kernel name: <family>_<variant>
-    when: tuple                  # ((option, value), ...) that select it
-    groups: tuple
-    energy: str
-    doc: str
-    residual: sp.Matrix          # element residual (6,) in q, qd, qdd, geo, coef, kin
-    printed_stiffness: object    # "exact", "none" or a 6x6 Matrix
-    tangents: tuple = None       # (K, C, M) derived with the residual (quadrature); None: differentiate r
-    quadrature: object = None    # the quadrature.Rule of its element integrals (None: closed form)
-    definitions: tuple = ()      # ((point field, its linear form), ...) the residual and tangents use
-
-
-@dataclass(frozen=True)
-class FamilyRecord:
-    name: str
-    part: str                    # rod, end
-    doc: str
-    energy_kind: str
-    vanishes_with: tuple
-    variants: tuple
-
-
-@dataclass(frozen=True)
-class EnergyRecord:
-    name: str
-    doc: str
-    expr: sp.Expr                # in q, qd, geo, coef, kin (end-node energies on the last element's slots)
-
-
-@dataclass(frozen=True)
-class OutputVariant:
-    when: tuple                  # ((option, value), ...)
-    kernel: str
-    expr: sp.Expr
-
-
-@dataclass(frozen=True)
-class OutputRecord:
-    name: str
-    kind: str                    # engine, step, field
-    doc: str
-    units: str
-    arguments: tuple
-    guides: tuple                # the guides it exists for
-    inputs: tuple                # kernel input names (OUTPUT_INPUTS order)
-    variants: tuple
-
-
-@dataclass(frozen=True)
-class Representation:
     options: tuple
     presets: tuple
     default_preset: str
     parameters: tuple
-    coefficients: tuple
-    switchable_groups: tuple
-    kinematics: tuple            # names of the kinematics vector's entries
-    kinematic_parameters: tuple  # names of the kinematic parameter vector's entries
-    motions: tuple
     guides: tuple
+    motions: tuple
     families: tuple
-    energies: tuple
     outputs: tuple
-    printed_iteration: tuple
-    exclusions: tuple            # ((((option, value), ...), reason), ...): combinations refused
+    primitives: tuple            # what the engine accumulates for its outputs (crankgen.records.Primitive)
+    printed_iteration: dict
+    switchable_groups: tuple
+    parameter_vector: Layout     # every parameter entering an equation, one slot each (a pair: two)
+    parameter_symbols: Layout    # the symbol of each slot (kernels' arguments are named after them)
+    kinematic_parameters: Layout  # the slots the guides' and motions' kernels read (params)
+    kinematics: Layout           # the kinematics vector kin
+    coefficients: Layout         # the element kernels' coefficient vector coef
+    indicators: tuple            # ((symbol, option, value), ...) usable in the coefficients' formulas
+    crank_speed: str             # the crank's (nominal) speed parameter
+    crank_angle: str             # the crank's angle at t = 0
+    unit_parameters: dict        # {unit: the parameter giving its value in L}
     element_dofs: int
-    end_slots: tuple
+    node: Layout                 # the components of a node, in the element's order (eq. 14)
+    constraints: tuple           # the DOF map: the constraints condensed out (crankgen.records.Constraint)
+    exclusions: tuple            # option values refused together (crankgen.records.Exclusion)
 
 
-# ---- options, presets, parameters ----------------------------------------------------------------
+def _symbols(p):
+    """The SymPy symbols of a parameter's slots ((): it enters no equation)."""
+    if p.symbol is None:
+        return ()
+    return tuple(p.symbol) if isinstance(p.symbol, tuple) else (p.symbol,)
+
+
+def _slot_names(p):
+    syms = _symbols(p)
+    return (p.name,) if len(syms) == 1 else tuple(f"{p.name}[{k}]" for k in range(len(syms)))
+
+
+def parameter_symbols():
+    """{slot name: SymPy symbol} of the parameter vector, in its order."""
+    out = {}
+    for p in model.PARAMETERS:
+        out.update(zip(_slot_names(p), _symbols(p)))
+    return out
+
+
+def _kinematic_symbols():
+    """The parameter symbols the guides' and motions' kinematics read (their curves, closures,
+    margins; the motions' laws and periods), in the parameter vector's order."""
+    exprs = []
+    for g in model.GUIDES:
+        exprs += [g.curve, g.step, g.phi, g.beta] + [m for m, _ in g.margin]
+    for m in model.MOTIONS:
+        exprs += [m.theta, m.thetad, m.thetadd, m.period, m.step_period]
+    used = set().union(*(sp.sympify(e).free_symbols for e in exprs if e is not None))
+    return tuple(sym for sym in parameter_symbols().values() if sym in used)
+
+
+KINEMATIC_SYMBOLS = _kinematic_symbols()
+
 
 def _options():
     preset = dict(next(p for p in model.PRESETS if p.name == model.DEFAULT_PRESET).options)
@@ -198,7 +115,7 @@ def _options():
         default = preset.get(o.name, o.default)
         if default not in o.choices:
             raise ValueError(f"option {o.name}: no default (neither its own nor the default preset's)")
-        out.append(OptionRecord(o.name, o.choices, default, o.doc, o.cli or o.name.replace("_", "-")))
+        out.append(records.Option(o.name, o.choices, default, o.doc, o.cli or o.name.replace("_", "-")))
     return tuple(out)
 
 
@@ -208,231 +125,439 @@ def _presets():
         for option, value in p.options.items():
             if value not in names[option].choices:
                 raise ValueError(f"preset {p.name}: {option}={value!r} is not a choice")
-    return tuple(PresetRecord(p.name, tuple(sorted(p.options.items())), p.doc) for p in model.PRESETS)
+    return tuple(records.Preset(p.name, dict(sorted(p.options.items())), p.doc) for p in model.PRESETS)
 
 
-def _exclusions():
-    names = {o.name: o for o in model.OPTIONS}
-    for x in model.EXCLUSIONS:
-        for option, value in x.options.items():
-            if value not in names[option].choices:
-                raise ValueError(f"exclusion {x.reason!r}: {option}={value!r} is not a choice")
-    return tuple((tuple(sorted(x.options.items())), x.reason) for x in model.EXCLUSIONS)
+def _readers(name, declared):
+    """(owner, readers) of a parameter: the guides or the motions that read it (Guide.parameters,
+    Motion.parameters), else its declared owner."""
+    guides = tuple(g.name for g in model.GUIDES if name in g.parameters)
+    motions = tuple(m.name for m in model.MOTIONS if name in m.parameters)
+    if guides and motions:
+        raise ValueError(f"parameter {name}: read by guides {guides} and motions {motions}")
+    if guides and declared != "mechanism" or motions and declared != "run":
+        raise ValueError(f"parameter {name}: a guide's parameter belongs to the mechanism, a motion's to "
+                         f"the run (declared {declared!r})")
+    if declared not in ("mechanism", "run"):
+        raise ValueError(f"parameter {name}: owner must be 'mechanism' or 'run', got {declared!r}")
+    return ("guide", guides) if guides else ("motion", motions) if motions else (declared, ())
 
 
-def _readers(owner):
-    if ":" not in owner:
-        return owner, ()
-    kind, names = owner.split(":")
-    return kind, tuple(names.split(","))
+def _choices(p):
+    """(choice names, what they select) of a choice parameter."""
+    selects = {id(model.GUIDES): "guide", id(model.MOTIONS): "motion"}.get(id(p.choices))
+    names = tuple(c.name if hasattr(c, "name") else c for c in p.choices)
+    return names, selects
 
 
-def _parameters():
+def _parameters(vector):
     out = []
     for p in model.PARAMETERS:
-        owner, readers = _readers(p.owner)
-        index = KINEMATIC_SYMBOLS.index(p.symbol) if p.symbol is not None else -1
-        out.append(ParameterRecord(
-            p.name, p.kind, p.default, p.label, p.doc, owner, readers, p.low, p.high, p.low_open,
-            p.high_open, p.units, p.cli or p.name.replace("_", "-"), p.metavar, p.choices,
-            p.continuable, index))
+        owner, readers = _readers(p.name, p.owner)
+        choices, selects = _choices(p)
+        slots = tuple(vector.index(n) for n in _slot_names(p))
+        out.append(project(p, records.Parameter, owner=owner, readers=readers, choices=choices,
+                           selects=selects, slots=slots, cli=p.cli or p.name.replace("_", "-"),
+                           axis=p.axis or p.name))
     names = [p.name for p in out]
-    for guide in model.GUIDES:
-        assert set(guide.parameters) <= set(names), guide.name
-    for motion in model.MOTIONS:
-        assert set(motion.parameters) <= set(names), motion.name
+    for g in model.GUIDES:
+        assert set(g.parameters) <= set(names), g.name
+    for m in model.MOTIONS:
+        assert set(m.parameters) <= set(names), m.name
     return tuple(out)
 
 
-def _parameter_symbol_names():
-    """{derivation symbol: the parameter's name} of the kinematic parameters."""
-    return {p.symbol: p.name for p in model.PARAMETERS if p.symbol is not None}
+def _guide_record(g):
+    closure = "closed-form" if g.phi is not None else "numerical"
+    return project(g, records.Guide, margins=tuple(text for _, text in g.margin), closure=closure,
+                   pivot=g.pivot is not None)
 
 
-# ---- kinematics -------------------------------------------------------------------------------------
+def _motion_record(m):
+    return project(m, records.Motion, periodic=m.period is not None)
+
+
+def _energy_name(energy):
+    return None if energy is None else energy.name
+
+
+def _family_record(f):
+    variants = tuple(project(v, records.Variant, when=dict(sorted(v.when.items())), kernel=f"{f.name}_{v.name}",
+                             energy=_energy_name(v.energy),
+                             quadrature=None if v.quadrature is None else v.quadrature.text)
+                     for v in f.variants)
+    return project(f, records.Family, variants=variants)
+
+
+def _exclusions():
+    """The declared exclusions, their option values checked."""
+    names = {o.name: o for o in model.OPTIONS}
+    for x in model.EXCLUSIONS:
+        for option, value in x.options.items():
+            if option not in names or value not in names[option].choices:
+                raise ValueError(f"exclusion {x.reason!r}: {option}={value!r} is not a choice")
+    return tuple(records.Exclusion(dict(sorted(x.options.items())), x.reason) for x in model.EXCLUSIONS)
+
+
+def _parameter_name(name):
+    if name not in {p.name for p in model.PARAMETERS}:
+        raise ValueError(f"{name!r} is not a parameter")
+    return name
+
+
+def _unit_parameters():
+    return {unit: _parameter_name(name) for unit, name in sorted(model.UNIT_PARAMETERS.items())}
+
+
+def _constraints():
+    """The DOF map's constraints, checked: components of a node, one mapped constraint (the engine
+    condenses one), which the 'end' families name."""
+    mapped = [c for c in model.CONSTRAINTS if c.map is not None]
+    if len(mapped) != 1:
+        raise ValueError(f"the engine condenses exactly one mapped constraint, got {[c.name for c in mapped]}")
+    for c in model.CONSTRAINTS:
+        if not set(c.eliminated) <= set(s.NODE) or len(c.reduced) > len(c.eliminated):
+            raise ValueError(f"constraint {c.name}: eliminated {c.eliminated} must be components of a node "
+                             f"{s.NODE}, at least as many as its reduced co-ordinates {c.reduced}")
+    for f in model.FAMILIES:
+        if f.part != "rod" and f.part != mapped[0].name:
+            raise ValueError(f"family {f.name}: part {f.part!r} is neither 'rod' nor the mapped constraint")
+    return tuple(model.CONSTRAINTS)
+
+
+def _indicators():
+    return tuple((sym.name, option, value) for sym, (option, value) in model.INDICATORS.items())
+
+
+@lru_cache(maxsize=None)
+def schema():
+    """The declaration as records (see the module docstring)."""
+    vector = Layout("parameters", tuple(parameter_symbols()),
+                    "every parameter that enters an equation, one slot each (a pair: two), in the "
+                    "order of the declaration")
+    by_symbol = {sym: name for name, sym in parameter_symbols().items()}
+    kinematic = Layout("params", tuple(by_symbol[sym] for sym in KINEMATIC_SYMBOLS),
+                       "the slots of the parameter vector that the guides' and motions' kernels read")
+    coefficients = Layout("coef", tuple(sym.name for sym in model.COEFFICIENTS),
+                          "the element kernels' coefficients, each a formula in the parameters and "
+                          "options (coefficients(p, options, off))")
+    kin = Layout("kin", tuple(sym.name for sym in s.KINEMATICS),
+                 "the rigid kinematics every kernel reads: the crank, the rod's chord angle, the "
+                 "guide co-ordinate of the rigid end, with their rates")
+    return Schema(
+        options=_options(), presets=_presets(), default_preset=model.DEFAULT_PRESET,
+        parameters=_parameters(vector.entries), guides=tuple(_guide_record(g) for g in model.GUIDES),
+        motions=tuple(_motion_record(m) for m in model.MOTIONS),
+        families=tuple(_family_record(f) for f in model.FAMILIES), outputs=_outputs_records(),
+        primitives=_primitive_records(),
+        printed_iteration=dict(sorted(model.PRINTED_ITERATION.items())),
+        switchable_groups=s.SWITCHABLE_GROUPS, parameter_vector=vector,
+        parameter_symbols=Layout("parameter symbols", tuple(sym.name for sym in parameter_symbols().values()),
+                                 "the symbol of each slot of the parameter vector in the derivation"),
+        kinematic_parameters=kinematic,
+        kinematics=kin, coefficients=coefficients, indicators=_indicators(),
+        crank_speed=_parameter_name(model.CRANK_SPEED), crank_angle=_parameter_name(model.CRANK_ANGLE),
+        unit_parameters=_unit_parameters(),
+        element_dofs=ELEMENT_DOFS, node=Layout("node", s.NODE, "the components of a node (eq. 14): axial "
+                                                "and transverse displacement, slope"),
+        constraints=_constraints(), exclusions=_exclusions())
+
+
+# ---- the SymPy forms ----------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class CoefficientForm:
+    name: str
+    formula: sp.Expr             # in the parameter symbols, the indicators and off_<group>
+
+
+@dataclass(frozen=True)
+class MotionForm:
+    record: records.Motion
+    crank: sp.Matrix             # (theta, thetad, thetadd) in t and the kinematic parameters
+    period: object               # time of one revolution (None: not periodic)
+    step_period: sp.Expr         # the time steps_per_rev steps divide
+
+
+@dataclass(frozen=True)
+class GuideForm:
+    record: records.Guide
+    kinematics: sp.Matrix        # kin in (theta, thetad, thetadd) and the kinematic parameters
+    end_map: sp.Matrix           # (8, 2), rows guides.END_MAP_ROWS, in (s, sd, sdd), kin, parameters
+    rigid_end: sp.Matrix         # (X, Y) of the rigid end point in kin and the parameters
+    margins: sp.Matrix           # each > 0 iff the crank turns a full revolution
+    end_scale: sp.Expr           # natural size of the reduced co-ordinate s, in eps and the parameters
+    curve: sp.Matrix             # C(beta), the guide's curve
+    pivot: sp.Matrix             # the ground pivot of the link carrying the end, or None
+
+
+@dataclass(frozen=True)
+class VariantForm:
+    record: records.Variant
+    residual: sp.Matrix          # element residual (6,) in q, qd, qdd, geo, coef, kin
+    printed_stiffness: object    # "exact", "none" or a 6x6 Matrix
+    tangents: tuple = None       # (K, C, M) derived with the residual (quadrature); None: differentiate r
+    definitions: tuple = ()      # stages of (symbol, expression) the residual and tangents are written in
+
+
+@dataclass(frozen=True)
+class FamilyForm:
+    record: records.Family
+    variants: tuple              # VariantForm, in the record's order
+
+
+@dataclass(frozen=True)
+class EnergyForm:
+    name: str
+    doc: str
+    expr: sp.Expr                # in q, qd, geo, coef, kin (end-node energies on the last element's slots)
+
+
+@dataclass(frozen=True)
+class OutputVariant:
+    when: dict                   # option values
+    kernel: str
+    expr: sp.Expr
+
+
+@dataclass(frozen=True)
+class OutputForm:
+    record: records.Output
+    variants: tuple              # OutputVariant
+
+
+@dataclass(frozen=True)
+class Representation:
+    schema: Schema
+    coefficients: tuple          # CoefficientForm
+    motions: tuple               # MotionForm
+    guides: tuple                # GuideForm
+    families: tuple              # FamilyForm
+    energies: tuple              # EnergyForm
+    outputs: tuple               # OutputForm
+    grams: tuple                 # GramForm, of the engine's integral primitives
+    natural_sizes: tuple         # CoefficientForm per component of a node (units of L)
+
 
 def _motions():
-    names = _parameter_symbol_names()
+    names = {sym: name for name, sym in parameter_symbols().items()}
     out = []
     for m in model.MOTIONS:
         mo.check(m)
         crank = sp.Matrix(mo.rates(m))
         assert {names[sym] for sym in crank.free_symbols if sym in names} <= set(m.parameters), m.name
-        out.append(MotionRecord(m.name, m.title, m.parameters, crank, m.period, m.step_period, m.doc,
-                                m.aliases))
+        out.append(MotionForm(_motion_record(m), crank, m.period, m.step_period))
     return tuple(out)
 
 
 def _guides():
-    names = _parameter_symbol_names()
+    names = {sym: name for name, sym in parameter_symbols().items()}
     out = []
     for g in model.GUIDES:
         margins = sp.Matrix([m for m, _ in g.margin])
-        out.append(GuideRecord(
-            g.name, g.title, g.parameters, gd.kinematics(g), gd.end_map(g), gd.rigid_end(g), margins,
-            tuple(text for _, text in g.margin), g.end_scale, g.doc, g.aliases))
+        out.append(GuideForm(_guide_record(g), gd.kinematics(g), gd.end_map(g), gd.rigid_end(g), margins,
+                             g.end_scale, g.curve, g.pivot))
         assert all(names.get(sym, "?") in g.parameters + ("a",) for sym in margins.free_symbols), g.name
     return tuple(out)
 
 
-# ---- families and energies ----------------------------------------------------------------------------
-
 def _families():
     out = []
     for f in model.FAMILIES:
+        record = _family_record(f)
         variants = []
-        for v in f.variants:
+        for v, vr in zip(f.variants, record.variants):
             term = v.build()
-            variants.append(VariantRecord(
-                v.name, f"{f.name}_{v.name}", tuple(sorted(v.when.items())), v.groups, v.energy, v.doc,
-                sp.Matrix(term.residual), term.printed_stiffness, term.tangents, v.quadrature,
-                term.definitions))
-        out.append(FamilyRecord(f.name, f.part, f.doc, f.energy_kind, f.vanishes_with, tuple(variants)))
+            variants.append(VariantForm(vr, sp.Matrix(term.residual), term.printed_stiffness, term.tangents,
+                                        term.definitions))
+        out.append(FamilyForm(record, tuple(variants)))
     return tuple(out)
 
 
 def _energies():
-    on_end = model._ON_LAST_ELEMENT
-    out = [
-        EnergyRecord("rod_kinetic_energy", "Element kinetic energy T_i of the rod, eqs. (4)-(5).",
-                     en.rod_kinetic_energy()),
-        EnergyRecord("slider_kinetic_energy", "Kinetic energy T_s of the end mass, eqs. (6)-(7), on "
-                     "the last element.", en.slider_kinetic_energy().subs(on_end)),
-        EnergyRecord("rod_gravity_potential", "Element potential of gravity V_i.", en.rod_gravity_potential()),
-        EnergyRecord("slider_gravity_potential", "Potential of gravity on the end mass, on the last "
-                     "element.", en.slider_gravity_potential().subs(on_end)),
-    ]
-    for ap in en.APPROACHES:
-        for averaged in ((False, True) if ap != "C" else (False,)):
-            suffix = "_averaged" if averaged else ""
-            U = (en.strain_energy_averaged if averaged else en.strain_energy)(ap)
-            D = (en.kelvin_voigt_dissipation_averaged if averaged else en.kelvin_voigt_dissipation)(ap)
-            out.append(EnergyRecord(
-                f"strain_energy_{ap}{suffix}",
-                f"Element strain energy U_i of approach {ap}{', element-mean membrane strain' if averaged else ''}.", U))
-            out.append(EnergyRecord(
-                f"dissipation_{ap}{suffix}",
-                f"Kelvin-Voigt Rayleigh dissipation function D of approach {ap}"
-                f"{', element-mean membrane strain rate' if averaged else ''}.", D))
-    out += _exact_energies()
+    """Every energy a variant derives from, once (by kernel name)."""
+    out = {}
+    for f in model.FAMILIES:
+        for v in f.variants:
+            e = v.energy
+            if e is not None and e.name not in out:
+                out[e.name] = EnergyForm(e.name, e.doc, sp.sympify(e.build()))
+    return tuple(out.values())
+
+
+def _natural_sizes():
+    """The natural size of each component of a node, a formula in the parameters."""
+    allowed = set(parameter_symbols().values())
+    out = []
+    for component in s.NODE:
+        expr = sp.sympify(model.NATURAL_SIZES[component])
+        if expr.free_symbols - allowed:
+            raise ValueError(f"natural size of {component}: symbols that are not parameters")
+        out.append(CoefficientForm(component, expr))
     return tuple(out)
 
 
-def _exact_energies():
-    """The exact rod's energy kernels: its kinetic energy (the centre line's closed form, the exact
-    section rotation's by the rule), strain energy and dissipation by the rule, in q and qd."""
-    space = quadrature.PointSpace(model.EXACT_RULE, en.QUANTITIES, en.ELEMENT_FIELDS, en.POINT_FIELDS)
-
-    def in_q(energy):
-        return space.in_nodal(energy)
-    f = dict(en.fields(s.q, s.qd), x=s.x0 + s.l * s.zeta)
-    kinetic = model.integrate_centre_line(f) + in_q(en.element_rotary_kinetic_energy(space))
-    rule = model.EXACT_RULE.text
-    out = [EnergyRecord("rod_kinetic_energy_exact", "Element kinetic energy of the geometrically exact "
-                        f"rod (centre line and exact section rotation; the rotation by {rule} quadrature).",
-                        kinetic)]
-    for membrane, suffix in (("pointwise", ""), ("averaged", "_averaged")):
-        what = "element-mean stretch" if membrane == "averaged" else "pointwise stretch"
-        out.append(EnergyRecord(f"strain_energy_exact{suffix}", f"Element strain energy of the exact rod, "
-                                f"{what}, by {rule} quadrature.",
-                                in_q(en.element_strain_energy(space, "exact", membrane))))
-        out.append(EnergyRecord(f"dissipation_exact{suffix}", f"Kelvin-Voigt Rayleigh dissipation function "
-                                f"of the exact rod, {what} rate, by {rule} quadrature.",
-                                in_q(en.element_dissipation(space, "exact", membrane))))
-    return out
+def _coefficients():
+    allowed = set(parameter_symbols().values()) | set(model.INDICATORS) | set(model.switched_off.values())
+    out = []
+    for sym, expr in model.COEFFICIENTS.items():
+        expr = sp.sympify(expr)
+        unknown = expr.free_symbols - allowed
+        if unknown:
+            raise ValueError(f"coefficient {sym.name}: symbols that are neither parameters nor indicators: "
+                             f"{sorted(map(str, unknown))}")
+        out.append(CoefficientForm(sym.name, expr))
+    return tuple(out)
 
 
 # ---- outputs ------------------------------------------------------------------------------------------
 
+# The parameters' symbols as an output kernel's input `parameters` (the parameter vector; the crank
+# length's slot holds an unused stand-in, kin carries it)
+PARAMETERS_BESIDE_KIN = tuple(sp.Symbol(f"{sym.name}_param") if sym in s.KINEMATICS else sym
+                              for sym in parameter_symbols().values())
 # The inputs an output kernel may read, in the order of its arguments, with the symbols of each.
 OUTPUT_INPUTS = (
-    ("q", tuple(s.q)), ("zeta", (s.zeta,)), ("geo", s.GEOMETRY), ("coef", s.COEFFICIENTS),
-    ("kin", s.KINEMATICS), ("params", tuple(x for x in KINEMATIC_SYMBOLS if x != s.a)),
+    ("q", tuple(s.q)), ("qd", tuple(s.qd)), ("zeta", (s.zeta,)), ("geo", s.GEOMETRY), ("coef", COEFFICIENT_SYMBOLS),
+    ("kin", s.KINEMATICS), ("parameters", PARAMETERS_BESIDE_KIN),
     ("q_end", tuple(model.q_end)), ("qd_end", tuple(model.qd_end)),
     ("s", (model.s_end,)), ("pin", tuple(model.pin)), ("end", tuple(model.end_force)),
     ("fiber", (model.fiber,)),
 )
-# option cases that give every field output its distinct expressions
-FIELD_OPTION_CASES = ({"approach": "A", "membrane": "pointwise"}, {"approach": "A", "membrane": "averaged"},
-                      {"approach": "C", "membrane": "pointwise"})
+# what a kind of output always reads (a field: its element and the point in it; a reduction: each element)
+KIND_INPUTS = {"field": ("q", "zeta", "geo", "coef"), "reduction": ("q", "geo"), "step": ()}
+# the engine's outputs: one kernel, per_step(prims, q_end, parameters), all of them at once
+PRIMITIVE_SYMBOLS = tuple(p.symbol for p in model.PRIMITIVES.values())
+ENGINE_INPUTS = (("prims", PRIMITIVE_SYMBOLS), ("q_end", tuple(model.q_end)),
+                 ("parameters", tuple(parameter_symbols().values())))
 
 
-def _output_inputs(expr, name):
+def _output_inputs(expr, name, inputs=OUTPUT_INPUTS):
     used = expr.free_symbols
-    inputs = [n for n, syms in OUTPUT_INPUTS if used & set(syms)]
-    known = set().union(*(set(syms) for _, syms in OUTPUT_INPUTS))
+    names = [n for n, syms in inputs if used & set(syms)]
+    known = set().union(*(set(syms) for _, syms in inputs))
     if used - known:
         raise ValueError(f"output {name}: symbols outside the output inputs: {used - known}")
-    return inputs
+    return names
 
 
-# the exact rod's option cases (its outputs' kernels are named by _field_key: exact, exact_averaged)
-EXACT_OPTION_CASES = ({"approach": "exact", "membrane": "pointwise"}, {"approach": "exact", "membrane": "averaged"})
+def _option_cases(names):
+    """Every combination of the choices of the options `names` ({} for none)."""
+    cases = [{}]
+    for name in names:
+        option = next(o for o in model.OPTIONS if o.name == name)
+        cases = [dict(c, **{name: v}) for c in cases for v in option.choices]
+    return cases
 
 
-def _field_key(options):
-    if options["approach"] == "exact":
-        return "exact_averaged" if options["membrane"] == "averaged" else "exact"
-    if options["approach"] == "C":
+def _coarse_key(options):
+    """The membrane strain's cases: linear (approach C), pointwise or averaged; exact or
+    exact_averaged for the geometrically exact rod."""
+    if options.get("approach") == "C":
         return "linear"
-    return "averaged" if options["membrane"] == "averaged" else "pointwise"
+    averaged = options.get("membrane") == "averaged"
+    if options.get("approach") == model.EXACT:
+        return "exact_averaged" if averaged else "exact"
+    return "averaged" if averaged else "pointwise"
+
+
+def _group_suffix(cases):
+    """A kernel's suffix for the option cases sharing its expression: their membrane strain's case
+    when they share one; "exact" for the exact rod's cases alone; "" for every case of the other
+    approaches (the classical strain's, e.g. the bending moment v_xx)."""
+    keys = {_coarse_key(c) for c in cases}
+    approaches = {c.get("approach") for c in cases}
+    if len(keys) == 1:
+        return keys.pop()
+    if approaches == {model.EXACT}:
+        return "exact"
+    return "" if model.EXACT not in approaches else None
+
+
+def _output_expression(o, options):
+    """An output's expression for the option values: expanded (the canonical form its kernels are
+    grouped by), except the exact rod's own, whose square roots would multiply out."""
+    expr = o.build(options)
+    if options.get("approach") == model.EXACT and expr != o.build(dict(options, approach="A")):
+        return expr
+    return sp.expand(expr)
+
+
+def _output_forms(o):
+    """(inputs, variants) of a declared output with a build: its expression for every combination
+    of the options it depends on, one kernel per distinct expression (named by the membrane strain's
+    case when that tells them apart, _group_suffix, else by the option values)."""
+    if o.engine:
+        expr = sp.expand(o.build({}))
+        if o.options or o.kind != "step":
+            raise ValueError(f"output {o.name}: an engine output is a step output of no option")
+        _output_inputs(expr, o.name, ENGINE_INPUTS)
+        return (), (OutputVariant({}, "per_step", expr),)
+    groups = {}
+    for options in _option_cases(o.options):
+        groups.setdefault(_output_expression(o, options), []).append(options)
+    suffixes = [_group_suffix(cases) for cases in groups.values()]
+    by_coarse = None not in suffixes and len(set(suffixes)) == len(suffixes)
+    variants, inputs = [], set(KIND_INPUTS[o.kind])
+    for (expr, cases), coarse in zip(groups.items(), suffixes):
+        suffix = "_" + "_".join(str(v) for v in cases[0].values()) if not by_coarse else f"_{coarse}" if coarse else ""
+        kernel = f"{o.kind}_{o.name}{'' if len(groups) == 1 else suffix}"
+        variants += [OutputVariant(dict(sorted(c.items())), kernel, expr) for c in cases]
+        inputs.update(_output_inputs(expr, o.name))
+    return tuple(n for n, _ in OUTPUT_INPUTS if n in inputs), tuple(variants)
+
+
+def _output_record(o, forms):
+    guides = o.guides or tuple(g.name for g in model.GUIDES)
+    inputs, variants = forms
+    kernels = () if o.engine else tuple((v.when, v.kernel) for v in variants)
+    return project(o, records.Output, guides=guides, inputs=inputs, kernels=kernels)
+
+
+@lru_cache(maxsize=None)
+def _all_output_forms():
+    return tuple((o, _output_forms(o)) for o in model.OUTPUTS)
+
+
+def _outputs_records():
+    return tuple(_output_record(o, forms) for o, forms in _all_output_forms())
 
 
 def _outputs():
-    guide_names = tuple(g.name for g in model.GUIDES)
+    return tuple(OutputForm(_output_record(o, forms), forms[1]) for o, forms in _all_output_forms())
+
+
+@dataclass(frozen=True)
+class GramForm:
+    name: str                    # the kernel gram_<primitive>(l)
+    matrix: sp.Matrix            # G: the element's int integrand dx = q^T G q
+
+
+def _primitive_records():
+    return tuple(project(p, records.Primitive) for p in model.PRIMITIVES.values())
+
+
+def _grams():
+    """The Gram matrix of each integral primitive: int_element integrand dx = q^T G q."""
     out = []
-    for o in model.OUTPUTS:
-        guides = o.guides or guide_names
-        if o.kind == "engine":
-            out.append(OutputRecord(o.name, o.kind, o.doc, o.units, (), guides, (), ()))
+    for p in model.PRIMITIVES.values():
+        if p.kind != "integral":
             continue
-        cases = FIELD_OPTION_CASES if o.kind == "field" else ({"approach": "A", "membrane": "pointwise"},)
-        exprs = {}
-        for options in cases:
-            exprs.setdefault(sp.expand(o.build(options)), []).append(options)
-        variants, inputs = [], set()
-        distinct = len(exprs) > 1
-        for expr, option_sets in exprs.items():
-            suffix = f"_{_field_key(option_sets[0])}" if distinct else ""
-            kernel = f"{o.kind}_{o.name}{suffix}"
-            for ap in ("A", "B", "C"):
-                for membrane in ("pointwise", "averaged"):
-                    opts = {"approach": ap, "membrane": membrane}
-                    if not distinct or _field_key(opts) == _field_key(option_sets[0]):
-                        variants.append(OutputVariant(tuple(sorted(opts.items())), kernel, expr))
-            inputs.update(_output_inputs(expr, o.name))
-        legacy = o.build({"approach": "A", "membrane": "pointwise"})
-        for opts in EXACT_OPTION_CASES:          # the exact rod's: a kernel of its own where it differs
-            expr = o.build(opts)                 # (not expanded: its square roots would multiply out)
-            if expr == legacy:
-                kernel, expr = variants[0].kernel, variants[0].expr
-            else:
-                kernel = next((v.kernel for v in variants if v.expr == expr), None)
-            if kernel is None:
-                kernel = f"{o.kind}_{o.name}_{_field_key(opts)}"
-                inputs.update(_output_inputs(expr, o.name))
-            variants.append(OutputVariant(tuple(sorted(opts.items())), kernel, expr))
-        if o.kind == "field":
-            inputs.update({"q", "zeta", "geo", "coef"})
-        ordered = tuple(n for n, _ in OUTPUT_INPUTS if n in inputs)
-        out.append(OutputRecord(o.name, o.kind, o.doc, o.units, o.arguments, guides, ordered, tuple(variants)))
+        total = integrate_element(sp.expand(p.integrand))
+        G = sp.hessian(total, s.q) / 2
+        if G.free_symbols - {s.l} or sp.expand(total - (s.q.T * G * s.q)[0, 0]) != 0:
+            raise ValueError(f"primitive {p.name}: the integrand is not a quadratic form in q with "
+                             f"coefficients in the element length")
+        out.append(GramForm(p.kernel, G))
     return tuple(out)
 
 
 @lru_cache(maxsize=None)
 def representation():
     """The model representation of the declaration (built once per process)."""
-    return Representation(
-        options=_options(), presets=_presets(), default_preset=model.DEFAULT_PRESET,
-        parameters=_parameters(),
-        coefficients=tuple(CoefficientRecord(sym.name, sp.sympify(expr)) for sym, expr in model.COEFFICIENTS.items()),
-        switchable_groups=s.SWITCHABLE_GROUPS,
-        kinematics=tuple(sym.name for sym in s.KINEMATICS),
-        kinematic_parameters=tuple(p.name for p in model.PARAMETERS if p.symbol is not None),
-        motions=_motions(), guides=_guides(), families=_families(), energies=_energies(),
-        outputs=_outputs(), printed_iteration=tuple(sorted(model.PRINTED_ITERATION.items())),
-        exclusions=_exclusions(),
-        element_dofs=ELEMENT_DOFS, end_slots=END_SLOTS)
+    return Representation(schema=schema(), coefficients=_coefficients(), motions=_motions(), guides=_guides(),
+                          families=_families(), energies=_energies(), outputs=_outputs(), grams=_grams(),
+                          natural_sizes=_natural_sizes())
 
 
 # ---- the audit's group kernels (the consistent model's forces split by kind) -------------------------

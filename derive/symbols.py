@@ -31,10 +31,22 @@ theta, thetad, phi, phid, phidd = sp.symbols("theta thetad phi phid phidd", real
 thetadd = sp.Symbol("thetadd", real=True)
 beta, betad, betadd = sp.symbols("beta betad betadd", real=True)
 
+# The components of a node (eq. 14): axial and transverse displacement, slope; an element's nodal
+# vector holds its two nodes' components, the first node's first.
+NODE = ("u", "v", "psi")
+ELEMENT_NODES = 2
+ELEMENT_DOFS = len(NODE) * ELEMENT_NODES
+
+
+def element_slots(node, components):
+    """The places in an element's nodal vector of components of its node 0 (first) or 1 (second)."""
+    return tuple(node * len(NODE) + NODE.index(c) for c in components)
+
+
 # Element nodal vector {q}_i = {u_i, v_i, psi_i, u_i+1, v_i+1, psi_i+1} (eq. 14) and its rates.
-q = sp.Matrix(sp.symbols("q0:6", real=True))
-qd = sp.Matrix(sp.symbols("qd0:6", real=True))
-qdd = sp.Matrix(sp.symbols("qdd0:6", real=True))
+q = sp.Matrix(sp.symbols(f"q0:{ELEMENT_DOFS}", real=True))
+qd = sp.Matrix(sp.symbols(f"qd0:{ELEMENT_DOFS}", real=True))
+qdd = sp.Matrix(sp.symbols(f"qdd0:{ELEMENT_DOFS}", real=True))
 
 # Slider node displacements (u, v) of the rod's last node and their rates.
 qs = sp.Matrix(sp.symbols("qs0:2", real=True))
@@ -74,6 +86,6 @@ j_fl = sp.Symbol("j", positive=True, integer=True)
 SWITCHABLE_GROUPS = ("gyroscopic", "phidd", "centrifugal", "cubic_axial", "cubic_transverse", "quartic")
 WEIGHT = {g: sp.Symbol(f"w_{g}", real=True) for g in SWITCHABLE_GROUPS}
 
-# The three vector arguments every element kernel takes besides q, qd, qdd (one calling convention):
+# The element data every element kernel takes besides q, qd, qdd and the kinematics (the coefficient
+# vector's layout is the declaration's COEFFICIENTS):
 GEOMETRY = (l, x0)                                   # element length and first-node abscissa
-COEFFICIENTS = (rhoA, rhoI, EA, EI, mu, ms, gX, gY) + tuple(WEIGHT.values())

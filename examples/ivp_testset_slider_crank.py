@@ -69,6 +69,8 @@ LABELS = {"slider_position": "slider position x3 (m)", "chord_angle": "chord ang
           "midpoint_deflection": "midpoint deflection q1 (m)", "chord_elongation": "chord elongation q4 (m)",
           "chord_rate": "chord rate phi2' (rad/s)", "slider_velocity": "slider velocity x3' (m/s)"}
 PRIMARY = ("slider_position", "chord_angle", "midpoint_deflection")
+COLUMN_UNITS = {"slider_position": "m", "chord_angle": "rad", "midpoint_deflection": "m",
+                "chord_elongation": "m", "chord_rate": "rad_per_s", "slider_velocity": "m_per_s"}
 
 # crankgen's model of the benchmark: linear strain (approach C), the exact Lagrange equations, no
 # rotary inertia of the cross-sections (the test set's rod has none), and no damping: the
@@ -300,7 +302,7 @@ def plot(path, t, deflection, elongation, t_a, deflection_a, value_at_end, spr, 
     fig.suptitle("Slider crank of the Test Set for IVP Solvers (problem 'crank'): crankgen", fontsize=10)
     a2.plot(t, elongation * 1e6, lw=0.7, color="C2", label="crankgen, approach C")
     a2.plot([T_END], [PUBLISHED["chord_elongation"] * 1e6], "kx", ms=9, mew=2, label="published q4(0.1 s)")
-    a2.set_ylabel("chord elongation (um)")
+    a2.set_ylabel("chord elongation (µm)")
     a2.legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, frameon=False)
     a2.grid(alpha=0.3)
     tv, vib = axial_vibration(t, elongation)
@@ -311,6 +313,30 @@ def plot(path, t, deflection, elongation, t_a, deflection_a, value_at_end, spr, 
     a3.set_title("chord elongation less its running mean over one period of the first axial mode", fontsize=8)
     fig.savefig(path, dpi=120)
     plt.close(fig)
+
+
+def _cell(x):
+    """A CSV cell: a number at full precision as plain text (repr of a Python float: NumPy 2's
+    repr of its own scalars is "np.float64(...)", which no CSV reader takes for a number), else
+    the value as text."""
+    if isinstance(x, (float, np.floating)):
+        return repr(float(x))
+    if isinstance(x, (int, np.integer)):
+        return str(int(x))
+    return x
+
+
+def write_table(path, rows):
+    """crank.csv: one row per run (source "crankgen": elements, steps per revolution, time step in
+    s and the values at t = 0.1 s in SI), then the published values (source "published"; no
+    elements, steps or time step).  Every column holds numbers (or empty fields) or words only."""
+    with open(path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        keys = ["n", "steps_per_rev", "dt", *LABELS]
+        w.writerow(["source", "n", "steps_per_rev", "dt_s", *[f"{k}_{COLUMN_UNITS[k]}" for k in LABELS]])
+        for r in sorted(rows, key=lambda r: (r["n"], r["steps_per_rev"])):
+            w.writerow(["crankgen", *[_cell(r[k]) for k in keys]])
+        w.writerow(["published", "", "", "", *[_cell(PUBLISHED[k]) for k in LABELS]])
 
 
 def main(argv=None):
@@ -355,13 +381,7 @@ def main(argv=None):
     for k in ("chord_elongation", "chord_rate", "slider_velocity"):
         print(f"{LABELS[k]:>30} {finest[k]:20.12g} {'':>9} {PUBLISHED[k]:20.12g} {rel(finest[k], PUBLISHED[k]):20.2e}")
 
-    with open(out / "crank.csv", "w", newline="") as fh:
-        w = csv.writer(fh)
-        keys = ["n", "steps_per_rev", "dt", *LABELS]
-        w.writerow(keys)
-        for r in sorted(rows, key=lambda r: (r["n"], r["steps_per_rev"])):
-            w.writerow([repr(r[k]) if isinstance(r[k], float) else r[k] for k in keys])
-        w.writerow(["published", "", "", *[repr(PUBLISHED[k]) for k in LABELS]])
+    write_table(out / "crank.csv", rows)
 
     # the non-linear strain: approaches A and B on the same mechanism and initial state
     n_nl, spr_nl = (8, 12800) if args.quick else (16, 51200)

@@ -82,7 +82,7 @@ def test_cli_writes_csv_and_png(tmp_path):
     assert data.shape == (21, 5) and np.all(np.isfinite(data))
     assert (tmp_path / "simulation.csv").read_text().splitlines()[0].endswith(",status")
     assert (tmp_path / "v_mid.png").stat().st_size > 1000
-    assert np.loadtxt(tmp_path / "nodes.csv", delimiter=",", skiprows=1).shape == (21, 2 + 9)
+    assert np.loadtxt(tmp_path / "nodes.csv", delimiter=",", skiprows=1).shape == (21, 2 + 9 + 6)   # + X, Y
 
 
 @pytest.mark.parametrize("args, word", [

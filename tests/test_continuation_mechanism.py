@@ -5,6 +5,7 @@ import pytest
 
 import crankgen
 from crankgen import engine
+from crankgen.bifurcation.mechanism import orbit_peak
 from crankgen.cases import Case
 from crankgen.steady import _scaled_change
 
@@ -33,6 +34,21 @@ def test_special_points_have_their_critical_multipliers(diagram):
     assert 1.0 < pd.parameter < 1.1
 
 
+def test_the_orbit_peak_is_the_maximum_between_the_samples():
+    """A continuation point's amplitude is the orbit's maximum, not its largest sample: for a
+    sampled cosine of any phase the largest sample falls short by up to (pi/50)^2/2 = 2e-3 and
+    jumps as the phase moves (the kinks of an amplitude curve); the parabola through the largest
+    sample and its neighbours is within 1e-5 and moves smoothly."""
+    phases = np.linspace(0, 2 * np.pi / 50, 41)
+    theta = np.linspace(0, 2 * np.pi, 51)
+    sampled = np.array([np.max(np.abs(2.5 * np.cos(theta + p))) for p in phases])
+    peak = np.array([orbit_peak(2.5 * np.cos(theta + p)) for p in phases])
+    assert np.max(2.5 - sampled) > 1e-3 * 2.5
+    assert np.max(np.abs(peak - 2.5)) < 1e-5 * 2.5
+    assert orbit_peak(-3 * np.cos(theta)) == pytest.approx(3.0, rel=1e-12)       # a sample on the peak
+    assert orbit_peak([0.0, 1.0, 0.0]) == 1.0                                      # too few samples
+
+
 def test_branch_points_agree_with_steady_state(diagram):
     one = next(b for b in diagram.branches if b.period == 1)
     pd = next(s for s in diagram.special_points if s.kind == "period-doubling")
@@ -40,7 +56,7 @@ def test_branch_points_agree_with_steady_state(diagram):
     for i in picks:
         st = crankgen.steady_state(case=_case(one.parameter[i]), tol=1e-11)
         assert st.status == ("periodic" if one.stable[i] else "unstable") or abs(one.parameter[i] - pd.parameter) < 1e-9
-        assert abs(st.amplitude - one.amplitude[i]) < 1e-6
+        assert abs(orbit_peak(st.v_mid) - one.amplitude[i]) < 1e-6     # the same orbit, the same peak
         assert abs(st.multiplier - np.abs(one.multipliers[i]).max()) < 1e-6
 
 

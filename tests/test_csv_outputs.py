@@ -32,7 +32,8 @@ def test_simulate_writes_units_a_time_column_and_the_theory_flags(tmp_path):
     np.testing.assert_allclose(sim["deflection_over_L"], 0.01 * np.abs(ref.v_mid), rtol=1e-15)
     nodes = check_csv(out / "nodes.csv")
     assert list(nodes.columns[:5]) == ["t", "theta_deg", "u0_L", "v0_L", "psi0_rad"]
-    assert list(nodes.columns[-3:]) == ["u2_L", "v2_L", "psi2_rad"] and len(nodes) == len(sim)
+    assert list(nodes.columns[-9:-6]) == ["u2_L", "v2_L", "psi2_rad"] and len(nodes) == len(sim)
+    assert list(nodes.columns[-6:]) == ["X0_L", "Y0_L", "X1_L", "Y1_L", "X2_L", "Y2_L"]   # inertial
     np.testing.assert_allclose(nodes["t"], sim["t"])
 
 

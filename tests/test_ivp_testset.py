@@ -84,3 +84,21 @@ def test_no_damping_whichever_damping_model():
             for damping in ("kelvin-voigt", "paper")]
     assert np.array_equal(runs[0].states, runs[1].states)
     assert np.array_equal(runs[0].at_times.states, runs[1].at_times.states)
+
+
+def test_the_example_table_parses_into_numbers(tmp_path):
+    """crank.csv holds numbers pandas reads as numbers (NumPy 2's repr of its scalars,
+    "np.float64(...)", once made every column text), a source column of words, and the published
+    row with empty run settings."""
+    from helpers import check_csv
+
+    row = example.at_end(2, 400)                 # a short, coarse run: the values are NumPy scalars
+    assert any(isinstance(v, np.floating) for v in row.values())
+    path = tmp_path / "crank.csv"
+    example.write_table(path, [row])
+    table = check_csv(path)
+    assert list(table["source"]) == ["crankgen", "published"]
+    for column in table.columns[1:]:
+        assert np.issubdtype(table[column].dtype, np.number), column
+    assert table["slider_position_m"].iloc[1] == example.PUBLISHED["slider_position"]
+    assert table["n"].iloc[0] == 2 and np.isnan(table["n"].iloc[1])

@@ -1,5 +1,7 @@
 """The README's examples run as written: every ```python block (in a temporary folder, with the
-continuation and the Poincare sweep made small: they take minutes at the README's sizes), every
+continuation, the Poincare sweep, the Campbell diagram, the two-parameter curves and the animations
+made small: they take
+minutes at the README's sizes), every
 `crankgen ...` command line of the ```bash blocks parses, and the test command is the one .ci/run
 runs."""
 
@@ -39,6 +41,10 @@ def test_every_python_block_runs_as_written(k, tmp_path, monkeypatch):
                                                          steps_per_rev=30, max_period=2))
     monkeypatch.setattr(crankgen, "poincare", _small(crankgen.poincare, n_elements=2, steps_per_rev=30,
                                                      transient=3, samples=4))
+    monkeypatch.setattr(crankgen, "campbell", _small(crankgen.campbell, n_elements=4, angles=8))
+    monkeypatch.setattr(crankgen, "follow", _small(crankgen.follow, max_points=8))
+    from crankgen import animation
+    monkeypatch.setattr(animation, "MAX_FRAMES", 6)          # a few frames of every animation
     code = PYTHON_BLOCKS[k]
     exec(compile(code, f"README.md python block {k + 1}", "exec"), {"__name__": "readme"})
     for name in re.findall(r"""(?:to_csv|plot)\("([^"]+)""", code):      # what it says it writes

@@ -1,5 +1,6 @@
 """crankgen.sweep: tidy table, executors (process pool, real Dask cluster), failures, checkpoints."""
 
+import os
 import concurrent.futures as cf
 import csv
 import importlib
@@ -293,7 +294,7 @@ def test_to_csv_is_atomic(tmp_path, monkeypatch, reference):
     def crash(fd):
         raise OSError("disk full")
 
-    monkeypatch.setattr(sweep_mod.os, "fsync", crash)          # fails after the rows are written
+    monkeypatch.setattr(os, "fsync", crash)          # fails after the rows are written
     with pytest.raises(OSError, match="disk full"):
         reference.to_csv(path)
     assert path.read_text() == "previous table\n"

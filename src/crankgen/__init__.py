@@ -6,7 +6,8 @@ line) starts at once; the compiled engine and numba are imported only by what ne
 
 from importlib import import_module
 
-from .errors import ConvergenceError, CrankgenError, ParameterError
+from ._generated import classes as _classes
+from .errors import ConvergenceError, CrankgenError, NoResultError, ParameterError
 from .provenance import VERSION as __version__  # noqa: F401
 
 # public name -> module that defines it
@@ -18,20 +19,32 @@ _LAZY = {
     "SteadyState": "steady", "steady_state": "steady", "steady_states": "steady",
     "SweepTable": "sweeps", "sweep": "sweeps", "CheckpointError": "sweeps",
     "BifurcationDiagram": "bifurcation", "PoincareDiagram": "bifurcation",
-    "continuation": "bifurcation", "poincare": "bifurcation",
-    # guides and crank motions (records made from the schema)
-    "Line": "specs", "Circle": "specs", "Constant": "specs", "RunUp": "specs", "Fluctuation": "specs",
+    "continuation": "bifurcation", "poincare": "bifurcation", "follow": "bifurcation", "Curve": "bifurcation",
+    "stability_chart": "charts", "StabilityChart": "charts",
+    "Modes": "vibration", "modes": "vibration", "campbell": "campbell_diagram", "CampbellDiagram": "campbell_diagram",
+    "animate": "animation", "Section": "sections", "stress": "stresses", "peak_loads": "stresses", "StressHistory": "stresses",
 }
-# the choices of the model options (declared in derive/model.py), read from the generated table
+# the record class of each guide and crank motion (crankgen.Line, ...: generated/classes.py)
+_RECORDS = tuple(cls.__name__ for cls in _classes.GUIDE_CLASSES + _classes.MOTION_CLASSES)
+# the choices of the model options (declared in derive/declaration.py), read from the generated table
 _CHOICE_NAMES = {"FORMULATIONS": "formulation", "APPROACHES": "approach", "DAMPING_MODELS": "damping",
                  "MEMBRANE_OPTIONS": "membrane"}
 
-__all__ = ["ConvergenceError", "CrankgenError", "ParameterError"] + list(_LAZY) + list(_CHOICE_NAMES)
+__all__ = (["ConvergenceError", "CrankgenError", "NoResultError", "ParameterError"] + list(_LAZY) + list(_RECORDS)
+           + list(_CHOICE_NAMES) + ["sections"])
+
+
+# public modules, loaded on first use too: crankgen.sections.rectangle(b, h), ...
+_MODULES = ("sections",)
 
 
 def __getattr__(name):
-    if name in _LAZY:
+    if name in _MODULES:
+        value = import_module(f".{name}", __name__)
+    elif name in _LAZY:
         value = getattr(import_module(f".{_LAZY[name]}", __name__), name)
+    elif name in _RECORDS:
+        value = getattr(_classes, name)
     elif name in _CHOICE_NAMES:
         value = import_module(".ingredients", __name__).CHOICES[_CHOICE_NAMES[name]]
     else:

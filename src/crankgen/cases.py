@@ -1,6 +1,6 @@
 """A case: every parameter of one run, as one frozen record (the unit of sweeps and checkpoints).
 
-Its fields come from the schema (derive/model.py): the mechanism's and its guide's parameters, the
+Its fields come from the schema (derive/declaration.py): the mechanism's and its guide's parameters, the
 run's (the crank motion and its parameters, n_elements, steps_per_rev, integrator), the model
 options (formulation, approach, membrane, damping, rotary_inertia) and the audit's switched-off
 term groups.  The model is chosen by preset and options, checked once: `Case(model="paper")`, or
@@ -10,9 +10,10 @@ one key however their values were typed; an unknown or incompatible option, or a
 range, raises ParameterError naming it when the case is built.
 """
 
-from dataclasses import asdict, field, fields, make_dataclass
+from dataclasses import asdict, dataclass, fields
 
 from . import ingredients, schema
+from ._generated import classes as _classes
 from .errors import ParameterError
 from .parameters import Mechanism, check_full_turn, kinematic_parameters, settle
 
@@ -21,7 +22,9 @@ OPTION_FIELDS = tuple(schema.OPTIONS)
 _NOT_KEYED = ("model",)
 
 
-class _CaseBase:
+class CaseRules:
+    """The checks and views of a Case (its fields: generated/classes.py CaseFields)."""
+
     def __post_init__(self):
         settle(self, PARAMETER_FIELDS)
         check_full_turn(self.parameters())
@@ -50,9 +53,24 @@ class _CaseBase:
         return {n: getattr(self, n) for n in PARAMETER_FIELDS}
 
     @property
+    def parameter_vector(self):
+        """The parameter vector (schema.PARAMETER_VECTOR order): every parameter entering an equation."""
+        return schema.parameter_vector(self.parameters())
+
+    @property
     def kinematic_parameters(self):
         """The kinematic parameter vector (schema.KINEMATIC_PARAMETERS order)."""
         return kinematic_parameters(self.parameters())
+
+    @property
+    def guide_record(self):
+        """The schema's record of the case's guide (crankgen.records.Guide)."""
+        return schema.GUIDES[schema.selected(self.parameters(), "guide")]
+
+    @property
+    def motion_record(self):
+        """The schema's record of the case's crank motion (crankgen.records.Motion)."""
+        return schema.MOTIONS[schema.selected(self.parameters(), "motion")]
 
     @property
     def options(self):
@@ -62,7 +80,7 @@ class _CaseBase:
     @property
     def periodic(self):
         """True when the crank motion is periodic in the crank angle (periodic states exist)."""
-        return schema.MOTIONS[self.motion].periodic
+        return self.motion_record.periodic
 
     @property
     def selection(self):
@@ -74,7 +92,7 @@ class _CaseBase:
     def coefficients(self):
         """Coefficient vector of the element kernels (ingredients.COEFFICIENTS order)."""
         off = tuple(g for g in self.groups_off.split(",") if g)
-        return ingredients.coefficients(self.mechanism, self.options, off)
+        return ingredients.coefficients(self.parameter_vector, self.options, off)
 
     def as_dict(self):
         """The fields as plain JSON-able values (pairs as lists)."""
@@ -115,16 +133,11 @@ class _CaseBase:
         return ";".join(f"{k}={v!r}" for k, v in sorted(self.as_dict().items()))
 
 
-Case = make_dataclass(
-    "Case",
-    [(name, object, field(default=None)) for name in PARAMETER_FIELDS + OPTION_FIELDS]
-    + [("groups_off", str, field(default="")),
-       ("model", object, field(default=None, compare=False, repr=False))],
-    bases=(_CaseBase,), frozen=True,
-    namespace={"__doc__": __doc__.split("\n\n")[0] + "\n\n" + "Fields: " + ", ".join(
-        PARAMETER_FIELDS + OPTION_FIELDS) + ", groups_off (audit: term groups switched off), model "
-        "(the preset; resolved into the options, then the name of the preset they match or None).",
-               "__module__": __name__})
+@dataclass(frozen=True)
+class Case(CaseRules, _classes.CaseFields):
+    __doc__ = (__doc__.split("\n\n")[0] + "\n\n" + "Fields: " + ", ".join(PARAMETER_FIELDS + OPTION_FIELDS)
+               + ", groups_off (audit: term groups switched off), model (the preset; resolved into the "
+               "options, then the name of the preset they match or None).")
 
 
 def make_case(**kwargs):
@@ -143,7 +156,7 @@ def run_case(mech=None, case=None, *, model=None, omega=None, crank=None, **fiel
     the run's fields (omega, the crank motion `crank` as a record, any Case field) and the model
     (a preset name; explicit options override it)."""
     if case is not None:
-        extra = [name for name, value in (("mech", mech), ("model", model), ("omega", omega),
+        extra = [name for name, value in (("mech", mech), ("model", model), (schema.CRANK_SPEED, omega),
                                           ("crank", crank)) if value is not None] + sorted(fields)
         if extra:
             raise ParameterError(f"give either case= or a mechanism and its settings, not both "
@@ -154,7 +167,7 @@ def run_case(mech=None, case=None, *, model=None, omega=None, crank=None, **fiel
     if mech is None:
         mech = Mechanism()
     if crank is not None:
-        fields["motion"] = crank
+        fields[schema.SELECTOR["motion"]] = crank
     if omega is not None:
-        fields["omega"] = omega
+        fields[schema.CRANK_SPEED] = omega
     return Case.from_mechanism(mech, model=model, **fields)

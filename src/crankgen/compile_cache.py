@@ -1,8 +1,10 @@
 """Where the compiled engine is cached, keyed by a hash of the code it compiles (no numba import).
 
-CODE_HASH covers the generated kernels' specification (generated/schema.py KERNELS_HASH) and the
-source of every module the engine compiles (crankgen/engine/*.py, crankgen/newton.py): after
-`make derive` or an edit of the engine, the cache folder changes and nothing stale runs.
+CODE_HASH covers the generated kernels' specification (generated/schema.py KERNELS_HASH), the
+source of every module the engine compiles (crankgen/engine/*.py, crankgen/newton.py) and the
+versions of Python, numba and llvmlite: after `make derive`, an edit of the engine or an upgrade
+of numba, the cache folder changes, nothing stale runs, and the new compilation shows its progress
+like any first run.
 
 The folder (`CACHE`, named numba-<CODE_HASH>) is the first usable of:
 1. $CRANKGEN_CACHE_DIR/numba-<hash>, when that variable is set;
@@ -32,8 +34,22 @@ def _kernels_hash():
     return re.search(r"^KERNELS_HASH = '([0-9a-f]+)'", text, re.M).group(1)
 
 
+def _compiler_versions():
+    """The Python, numba and llvmlite versions (from the installed packages' metadata: no numba
+    import): compiled code is only valid for the compiler that made it."""
+    from importlib import metadata
+    out = [f"python {sys.version_info[0]}.{sys.version_info[1]}"]
+    for name in ("numba", "llvmlite"):
+        try:
+            out.append(f"{name} {metadata.version(name)}")
+        except metadata.PackageNotFoundError:
+            out.append(f"{name} unknown")
+    return "; ".join(out)
+
+
 def _code_hash():
     h = hashlib.sha256(_kernels_hash().encode())
+    h.update(_compiler_versions().encode())
     for path in sorted((_PACKAGE / "engine").glob("*.py")) + [_PACKAGE / "newton.py"]:
         h.update(path.name.encode())
         h.update(path.read_bytes())
@@ -43,15 +59,35 @@ def _code_hash():
 CODE_HASH = _code_hash()
 
 
-def _writable(folder):
+def _unusable(folder):
+    """None when compiled code can be kept in folder (created if needed), else what is in the way,
+    in words: "is a file", "lies under /x, a dangling symbolic link to /y", "is read-only", ..."""
     try:
         folder.mkdir(parents=True, exist_ok=True)
         probe = folder / f".probe-{os.getpid()}"
         probe.write_bytes(b"")
         probe.unlink()
-        return True
-    except OSError:
-        return False
+        return None
+    except OSError as exc:
+        return _obstacle(folder, exc)
+
+
+def _obstacle(folder, exc):
+    path = folder
+    while not os.path.lexists(path) and path != path.parent:
+        path = path.parent
+    where = "is" if path == folder else f"lies under {path}, which is"
+    if os.path.islink(path) and not os.path.exists(path):
+        return f"{where} a dangling symbolic link (to {os.readlink(path)})"
+    if os.path.lexists(path) and not os.path.isdir(path):
+        return f"{where} a file, not a folder"
+    if isinstance(exc, PermissionError) or exc.errno in (13, 30):      # EACCES, EROFS
+        return "is read-only" if path == folder else f"cannot be created in {path}, which is read-only"
+    return f"cannot be used ({exc.strerror or exc})"
+
+
+def _writable(folder):
+    return _unusable(folder) is None
 
 
 def _user_cache():
@@ -85,6 +121,9 @@ def cache_folder():
 
 
 CACHE, READ_ONLY = cache_folder()
+# what makes a read-only cache so, in words ("is read-only", "is a file, not a folder", "lies
+# under /x, which is a dangling symbolic link (to /y)")
+WHY_READ_ONLY = (_unusable(CACHE) or "is read-only") if READ_ONLY else None
 
 
 def is_warm():
@@ -92,7 +131,7 @@ def is_warm():
     return kernel_mark("entry-march").exists()
 
 
-READ_ONLY_NOTE = (f"crankgen: the compiled-code cache {CACHE} is read-only: compiling in memory for "
+READ_ONLY_NOTE = (f"crankgen: the compiled-code cache {CACHE} {WHY_READ_ONLY or 'is read-only'}: compiling in memory for "
                   "this run (set CRANKGEN_CACHE_DIR to a writable folder, or have the owner of the "
                   "installation run `crankgen compile`, to keep the compiled code)")
 _announced = []

@@ -17,3 +17,9 @@ class ConvergenceError(CrankgenError, RuntimeError):
         self.step, self.time, self.residual = step, time, residual
         # what was computed before the failure (a SimulationResult up to the last good step), if any
         self.partial = partial
+
+
+class NoResultError(CrankgenError, RuntimeError):
+    """A computation ran and found nothing to go on from: no periodic state to start a
+    continuation at, no periodic orbit near a starting point.  The command line exits 1 (a run
+    that failed), not 2 (a usage error)."""

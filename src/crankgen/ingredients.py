@@ -1,4 +1,4 @@
-"""The model's ingredients as the runtime sees them: the generated table of derive/model.py.
+"""The model's ingredients as the runtime sees them: the generated table of derive/declaration.py.
 
 Everything that depends on which options a case chose goes through here: validation of the
 options, the selection of each term family's variant (`Selection.families`, an index per family,
@@ -22,11 +22,11 @@ OPTION_NAMES = tuple(schema.OPTIONS)
 CHOICES = {name: o.choices for name, o in schema.OPTIONS.items()}
 DEFAULTS = schema.resolve_options()
 OPTION_DOCS = {name: o.doc for name, o in schema.OPTIONS.items()}
-COEFFICIENTS = _table.COEFFICIENTS
+COEFFICIENTS = schema.COEFFICIENTS
 SWITCHABLE_GROUPS = _table.SWITCHABLE_GROUPS
-FAMILIES = tuple(name for name, *_ in _table.FAMILIES)
-PARTS = {name: part for name, part, *_ in _table.FAMILIES}
-ENERGY_KINDS = {name: kind for name, _, _, kind, _, _ in _table.FAMILIES}
+FAMILIES = tuple(f.name for f in schema.FAMILIES)
+PARTS = {f.name: f.part for f in schema.FAMILIES}
+ENERGY_KINDS = {f.name: f.energy_kind for f in schema.FAMILIES}
 OUTPUTS = schema.OUTPUTS
 KERNELS_HASH = _table.KERNELS_HASH
 
@@ -74,19 +74,19 @@ def select(options, coefficients=None):
     family whose scaling coefficients all vanish (gravity without gravity) is left out: it would
     add zeros at the cost of a kernel call per element and iteration."""
     families, kernels, energies, groups = [], [], [], set()
-    for name, _part, _doc, _kind, vanishes_with, variants in _table.FAMILIES:
-        hits = [(k, v) for k, v in enumerate(variants) if _matches(v[2], options)]
-        if hits and coefficients is not None and vanishes_with and all(
-                coefficients[COEFFICIENTS.index(c)] == 0.0 for c in vanishes_with):
+    for family in schema.FAMILIES:
+        hits = [(k, v) for k, v in enumerate(family.variants) if _matches(v.when, options)]
+        if hits and coefficients is not None and family.vanishes_with and all(
+                coefficients[COEFFICIENTS.index(c)] == 0.0 for c in family.vanishes_with):
             hits = []
         if len(hits) > 1:
-            raise ParameterError(f"options {options} select several variants of {name}")
+            raise ParameterError(f"options {options} select several variants of {family.name}")
         if hits:
-            k, (_vname, kernel, _when, carried, energy) = hits[0]
+            k, variant = hits[0]
             families.append(k)
-            kernels.append(kernel)
-            energies.append(energy)
-            groups.update(carried)
+            kernels.append(variant.kernel)
+            energies.append(variant.energy)
+            groups.update(variant.groups)
         else:
             families.append(-1)
             kernels.append(None)
@@ -109,20 +109,17 @@ def check_switched_off(groups_off, selection):
     return names
 
 
-def coefficients(mechanism, options, switched_off=()):
-    """Coefficient vector (COEFFICIENTS order) of the element kernels for a mechanism and options."""
-    gX, gY = mechanism.gravity
-    values = _table.coefficients(mechanism.eps, mechanism.ms, mechanism.mu, gX, gY,
-                                 1.0 if options["rotary_inertia"] else 0.0,
-                                 *(1.0 if g in switched_off else 0.0 for g in SWITCHABLE_GROUPS))
-    return np.array(values, dtype=float)
+def coefficients(vector, options, switched_off=()):
+    """Coefficient vector (COEFFICIENTS order) of the element kernels for a parameter vector
+    (schema.PARAMETER_VECTOR order), the model options and the switched-off term groups."""
+    return np.array(_table.coefficients(vector, options, tuple(switched_off)), dtype=float)
 
 
 def output_kernel(output, options):
     """The vectorized kernel of a declared step or field output for the options."""
     spec = OUTPUTS.get(output)
-    if spec is None or spec.kind == "engine":
-        names = ", ".join(n for n, o in OUTPUTS.items() if o.kind != "engine")
+    if spec is None or spec.engine:
+        names = ", ".join(n for n, o in OUTPUTS.items() if not o.engine)
         raise ParameterError(f"no output {output!r} with a kernel; those outputs are {names}")
     for when, kernel in spec.kernels:
         if _matches(when, options):

@@ -34,6 +34,7 @@ rates) is refused with a ParameterError naming the field.  s and s_t are found b
 the end map.
 """
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -44,7 +45,7 @@ from .errors import ParameterError
 from .mesh import PSI, U, V, Mesh
 
 COMPLEX_STEP = 1e-20
-# the unit of each field (derive/model.py's units strings; crankgen.units)
+# the unit of each field (derive/declaration.py's units strings; crankgen.units)
 FIELD_UNITS = {"u": "L", "v": "L", "v_x": "1", "u_t": "L omega_b", "v_t": "L omega_b", "v_xt": "omega_b"}
 _SLOPE_OF = {"v_x": "v", "v_xt": "v_t"}
 
@@ -74,8 +75,10 @@ class InitialState:
         for slope, field in _SLOPE_OF.items():
             if getattr(self, slope) is not None and getattr(self, field) is None:
                 raise ParameterError(f"initial state: {slope} is given without {field}")
-        if isinstance(self.tol, bool) or not isinstance(self.tol, (int, float)) or not self.tol > 0:
-            raise ParameterError(f"initial state: tol must be a number > 0, got {self.tol!r}")
+        if isinstance(self.tol, (bool, np.bool_)) or not isinstance(self.tol, (int, float, np.integer, np.floating)) \
+                or not 0 < self.tol < math.inf:
+            raise ParameterError(f"initial state: tol must be a finite number > 0 (a fraction of the "
+                                 f"natural sizes, default 1e-6), got {self.tol!r}")
 
     @property
     def is_rest(self):
@@ -83,21 +86,42 @@ class InitialState:
         return all(getattr(self, name) is None for name in FIELD_UNITS)
 
 
-def _evaluate(name, fn, x, complex_ok=False):
-    """fn at the node positions x: vectorized, else node by node."""
+def _numeric(values):
+    """values as an array of numbers, or None when they are not numbers (text, a dict, booleans)."""
     try:
-        values = np.asarray(fn(x))
-        if values.shape == ():
-            values = np.full(x.shape, values[()])
-        if values.shape != x.shape:
-            raise ValueError
+        arr = np.asarray(values)
     except Exception:
+        return None
+    return arr if arr.dtype.kind in "iufc" else None
+
+
+def _evaluate(name, fn, x, complex_ok=False):
+    """fn at the node positions x: vectorized, else node by node; one real number per node, or
+    ParameterError naming the field and what the callable returned."""
+    values = None
+    try:
+        values = _numeric(fn(x))
+        if values is not None and values.shape == ():
+            values = np.full(x.shape, values[()])
+        if values is not None and values.shape != x.shape:
+            values = None
+    except Exception:
+        values = None
+    if values is None:
         try:
-            values = np.array([fn(xk) for xk in x])
+            one = [fn(xk) for xk in x]
         except Exception as exc:
             if complex_ok:
                 raise
             raise ParameterError(f"initial state: calling {name}(x) failed: {exc}") from None
+        values = _numeric(one)
+        if values is None or values.shape != x.shape:
+            got = one[0]
+            shape = np.shape(got) if _numeric(got) is not None else None
+            what = (f"values of shape {shape}" if shape not in (None, ()) else
+                    f"{type(got).__name__} {got!r}"[:80])
+            raise ParameterError(f"initial state: {name}(x) must return one real number per x (an "
+                                 f"array shaped like x for an array of positions), got {what}")
     if not complex_ok and np.iscomplexobj(values):
         if np.any(np.imag(values) != 0):
             raise ParameterError(f"initial state: {name}(x) must be real")
@@ -189,8 +213,9 @@ def reduced_state(case, initial, scales=None):
     for name in ("v_x", "v_xt"):
         values[name] = _slope(name, initial, x_user, n, length) / factor(name)
 
-    eps, tol = case.eps, float(initial.tol)
-    natural = {"u": eps**2, "u_t": eps**2, "v": eps, "v_t": eps}
+    tol = float(initial.tol)
+    sizes = dict(zip(schema.NODE, schema.natural_sizes(case.parameters())))    # u: eps^2, v: eps
+    natural = {"u": sizes["u"], "u_t": sizes["u"], "v": sizes["v"], "v_t": sizes["v"]}
     for name in ("u", "v", "u_t", "v_t"):
         at_pin = values[name][0]
         if abs(at_pin) > tol * natural[name]:
@@ -211,7 +236,7 @@ def reduced_state(case, initial, scales=None):
             raise ParameterError(
                 f"initial state: the rod's end ({fields} at x = L) {what} by {off:.3g} (crankgen's "
                 f"units; tolerance {tol:g} of the guide co-ordinate's natural size {guide_scale:.3g}): "
-                f"the end must stay on the {case.guide} guide of the rigid mechanism at theta0 = "
+                f"the end must stay on the {case.guide_record.name} guide of the rigid mechanism at theta0 = "
                 f"{case.theta0:g}")
 
     d0, v0 = np.zeros(mesh.n_dofs), np.zeros(mesh.n_dofs)

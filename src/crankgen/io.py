@@ -28,7 +28,7 @@ from .errors import CrankgenError
 
 __all__ = ["OutputExistsError", "OutputPathError", "atomic_write", "atomic_write_text", "csv_text",
            "write_csv", "save_figure", "existing_outputs", "prepare_folder", "remove_if_empty",
-           "remove_stale_temporaries", "fsync_dir", "check_target", "kind_of"]
+           "remove_stale_temporaries", "fsync_dir", "check_target", "kind_of", "open_regular", "read_regular"]
 
 
 class OutputExistsError(CrankgenError):
@@ -95,6 +95,32 @@ def check_target(path, folder=None):
                                   "writes only regular files (remove it or choose another name)",
                                   str(path))
     return path
+
+
+def open_regular(path, flags=os.O_RDONLY, follow=True):
+    """os.open of a regular file only: a FIFO, a device, a socket or a folder is refused
+    (NotRegularFileError) without blocking (O_NONBLOCK: opening a FIFO with no writer would wait
+    for one) and without reading from it; follow=False also refuses a symbolic link."""
+    for name in ("O_NONBLOCK", "O_NOCTTY", "O_CLOEXEC") + (() if follow else ("O_NOFOLLOW",)):
+        flags |= getattr(os, name, 0)
+    try:
+        fd = os.open(path, flags, 0o666)
+    except IsADirectoryError:
+        raise NotRegularFileError(errno.EISDIR, "is a folder, not a regular file", str(path)) from None
+    mode = os.fstat(fd).st_mode
+    if not stat.S_ISREG(mode):
+        os.close(fd)
+        raise NotRegularFileError(errno.EINVAL, f"is {kind_of(mode)}, not a regular file",
+                                  str(path))
+    return fd
+
+
+def read_regular(path, limit=None, follow=True):
+    """The bytes of a regular file (its first `limit` bytes), refusing anything else as
+    open_regular does: every file crankgen reads as input comes through here."""
+    fd = open_regular(path, os.O_RDONLY, follow)
+    with os.fdopen(fd, "rb") as fh:
+        return fh.read() if limit is None else fh.read(limit)
 
 
 def _named(exc, path, doing=None):

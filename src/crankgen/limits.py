@@ -3,7 +3,8 @@ and refused (ParameterError naming the parameter and the estimate) when it excee
 
 One estimate for every caller (the command line and the Python API):
 
-    check_run_size(n_elements, n_steps, n_cases=1, stored="states", batch=None, names=None)
+    check_run_size(n_elements, n_steps, n_cases=1, stored="states", batch=None, names=None,
+                   n_times=0)
 
 - n_elements: rod elements (3 n_elements degrees of freedom);
 - n_steps: time steps whose results are kept (per case);
@@ -13,7 +14,9 @@ One estimate for every caller (the command line and the Python API):
   displacements, velocities and accelerations, as `simulate` keeps them for the declared outputs),
   "nodes" (and the nodal vector, store_nodes=True) or
   "steady" (a steady state per case: its revolution, and the monodromy matrix while it is
-  computed).
+  computed);
+- n_times: the requested times of `simulate(..., times=...)`, each a stored state (and, between
+  steps, a case of the batch that steps to it).
 
 The figures are measured on the compiled engine (peak resident memory; about 3 kB per element of
 working memory, two copies of every stored step while a run is assembled, 5.5 (2N)^2 doubles per
@@ -24,7 +27,9 @@ CRANKGEN_MEMORY_LIMIT (bytes, or with a suffix K, M, G, T: "8G") when set.
 import math
 import os
 
+from . import schema
 from .errors import ParameterError
+from .mesh import NODE_DOFS
 
 __all__ = ["check_run_size", "run_size", "memory_limit", "format_bytes"]
 
@@ -72,37 +77,40 @@ def memory_limit():
     return (total, "the physical memory of this machine") if total > 0 else (None, "unknown")
 
 
-def _parts(n_elements, n_steps, n_cases, stored, batch):
-    """{"n_cases" | "n_steps" | "n_elements": bytes} of the estimate."""
+def _parts(n_elements, n_steps, n_cases, stored, batch, n_times=0):
+    """{"n_cases" | "n_steps" | "n_elements" | "n_times": bytes} of the estimate."""
     if stored not in STORED:
         raise ParameterError(f"stored must be one of {', '.join(STORED)}, got {stored!r}")
-    n_elements, n_steps, n_cases = (max(0, int(x)) for x in (n_elements, n_steps, n_cases))
+    n_elements, n_steps, n_cases, n_times = (max(0, int(x)) for x in (n_elements, n_steps, n_cases, n_times))
     running = n_cases if batch is None else min(n_cases, max(1, int(batch)))
-    dofs = 3 * n_elements
-    per_step = {"outputs": 5 * 8 + 4, "states": 8 * (3 * dofs + 5) + 4,
-                "nodes": 8 * (3 * dofs + 5 + 3 * (n_elements + 1)) + 4,
-                "steady": 4 * 8 * (dofs + 5)}[stored]
+    dofs = NODE_DOFS * n_elements           # the reduced DOFs (a node's components per element)
+    row = 2 + len(schema.ENGINE_OUTPUTS)    # t, theta and the engine's outputs per step
+    per_step = {"outputs": row * 8 + 4, "states": 8 * (3 * dofs + row) + 4,
+                "nodes": 8 * (3 * dofs + row + NODE_DOFS * (n_elements + 1)) + 4,
+                "steady": 4 * 8 * (dofs + row)}[stored]
     working = ELEMENT_WORKING * n_elements
     if stored == "steady":
         working += MONODROMY_COPIES * 8 * (2 * dofs) ** 2
     stored_cases = running if stored == "steady" else n_cases
+    at_time = 2 * (8 * (3 * dofs + 5) + 4) + ELEMENT_WORKING * max(1, n_elements)
     return {"n_cases": CASE_BOOKKEEPING * n_cases if n_cases > 1 else 0,
             "n_steps": 2 * per_step * n_steps * stored_cases,
-            "n_elements": working * running}
+            "n_elements": working * running,
+            "n_times": at_time * n_times}
 
 
-def run_size(n_elements, n_steps, n_cases=1, stored="states", batch=None):
+def run_size(n_elements, n_steps, n_cases=1, stored="states", batch=None, n_times=0):
     """Estimated peak memory in bytes of a run (see the module docstring)."""
-    return sum(_parts(n_elements, n_steps, n_cases, stored, batch).values())
+    return sum(_parts(n_elements, n_steps, n_cases, stored, batch, n_times).values())
 
 
 def check_run_size(n_elements, n_steps, n_cases=1, stored="states", batch=None, names=None,
-                   limit=None):
+                   limit=None, n_times=0):
     """The estimate of run_size, or ParameterError when it exceeds the limit (default
     memory_limit()).  The message names the parameter that weighs most (names maps "n_cases",
     "n_steps", "n_elements" to the caller's words, e.g. {"n_steps": "--revolutions"}) and gives
     the estimate and the limit."""
-    parts = _parts(n_elements, n_steps, n_cases, stored, batch)
+    parts = _parts(n_elements, n_steps, n_cases, stored, batch, n_times)
     size = sum(parts.values())
     source = "the given limit"
     if limit is None:
@@ -113,11 +121,15 @@ def check_run_size(n_elements, n_steps, n_cases=1, stored="states", batch=None, 
     names = dict({key: key for key in parts}, **(names or {}))
     cases = f" x {int(n_cases)} cases" if n_cases > 1 and stored != "steady" else ""
     what = {"n_cases": f"{names['n_cases']}: {int(n_cases)} cases",
-            "n_steps": f"{names['n_steps']} x {names['n_elements']}: {int(n_steps)} time steps x "
-                       f"{3 * int(n_elements)} degrees of freedom{cases}",
+            "n_steps": (f"{names['n_steps']}: {int(n_steps)} time steps x 5 per-step outputs{cases}"
+                        if stored == "outputs" else
+                        f"{names['n_steps']} x {names['n_elements']}: {int(n_steps)} time steps x "
+                        f"{3 * int(n_elements)} degrees of freedom{cases}"),
             "n_elements": f"{names['n_elements']}: {int(n_elements)} elements"
                           + (f" ({min(int(n_cases), int(batch or n_cases))} cases at once)"
-                             if n_cases > 1 else "")}[heaviest]
+                             if n_cases > 1 else ""),
+            "n_times": f"{names['n_times']}: {int(n_times)} requested times x "
+                       f"{3 * int(n_elements)} degrees of freedom"}[heaviest]
     raise ParameterError(f"{what} would need about {format_bytes(size)} of memory, more than "
                          f"{format_bytes(limit)} ({source}); ask for less, or set "
                          "CRANKGEN_MEMORY_LIMIT")

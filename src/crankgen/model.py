@@ -16,8 +16,9 @@ import numpy as np
 from . import kinematics as _kinematics
 from .assembly import BandedAssembler
 from .cases import Case
-from .constraints import expand, project
-from .mesh import Mesh
+from . import schema
+from .constraints import ROWS, expand, project
+from .mesh import COMPONENTS, MAPPED, NODE_DOFS, Mesh
 from .schema import ELEMENT_DOFS as NDOF
 
 # positional model options of Model.build, in the order its callers pass them
@@ -95,18 +96,22 @@ class Model:
         return np.stack([np.full(mesh.n_elements, mesh.length), mesh.x0], axis=-1)
 
     def nodal_state(self, kin, d, v, a):
-        """Element nodal vectors q, qd, qdd (..., n, 6) with the end node mapped by the guide's end
-        map, and the end map's values E (..., 8, 2)."""
+        """Element nodal vectors q, qd, qdd (..., n, NDOF) with the constrained node mapped by the
+        constraint's map (the guide's end map) in every element holding it, and the map's values
+        E (..., rows, k)."""
         p, pd, pdd = self.mesh.gather(d), self.mesh.gather(v), self.mesh.gather(a)
         S = self.mesh.slider_dof
         E = _kinematics.end_map(self.case, kin.vector, np.asarray(d)[..., S], np.asarray(v)[..., S],
                                 np.asarray(a)[..., S])
-        p[..., -1, :], pd[..., -1, :], pdd[..., -1, :] = expand(E, p[..., -1, :], pd[..., -1, :], pdd[..., -1, :])
+        for e, slots, _ in self.mesh.holders():
+            p[..., e, :], pd[..., e, :], pdd[..., e, :] = expand(E, p[..., e, :], pd[..., e, :], pdd[..., e, :],
+                                                                 slots)
         return p, pd, pdd, E
 
     def unprojected_terms(self, kin, d, v, a, secant=False):
-        """(q, E, r, K, C, M): the element terms before the end map's projection (the last
-        element's end node rows are the force the guide must apply, the end mass included)."""
+        """(q, E, r, K, C, M): the element terms before the projection on the reduced co-ordinates
+        (the eliminated rows of an element holding a constrained node are the force the constraint
+        must apply: the guide's with the end mass included)."""
         q, qd, qdd, E = self.nodal_state(kin, d, v, a)
         geo, coef, kv = self.geometry, self.coefficients, kin.vector
         shape = q.shape[:-1]
@@ -114,8 +119,9 @@ class Model:
         r, K, C, M = np.zeros(shape + (n,)), np.zeros(shape + (n, n)), np.zeros(shape + (n, n)), np.zeros(shape + (n, n))
         lead = (slice(None),) * (q.ndim - 2)
         kb = kv[..., None, :] if kv.ndim > 1 else kv
+        e = self.mesh.holders()[0][0]           # the element whose families the constrained node carries
         parts = [("rod", lead + (slice(None),), (q, qd, qdd, geo), kb),
-                 ("end", lead + (-1,), (q[..., -1, :], qd[..., -1, :], qdd[..., -1, :], geo[-1]), kv)]
+                 (MAPPED.name, lead + (e,), (q[..., e, :], qd[..., e, :], qdd[..., e, :], geo[e]), kv)]
         for part, where, args, kin_arg in parts:
             for _name, kernel in self.selection.vectorized(part):
                 out = kernel(*args, coef, kin_arg)
@@ -129,17 +135,20 @@ class Model:
         """Residual and tangents per element.  secant=True gives the printed iteration matrices of
         eq. (37) where the selected variants declare one (K_printed), for the one-pass scheme."""
         _, E, r, K, C, M = self.unprojected_terms(kin, d, v, a, secant)
-        r[..., -1, :], K[..., -1, :, :], C[..., -1, :, :], M[..., -1, :, :] = project(
-            E, r[..., -1, :], K[..., -1, :, :], C[..., -1, :, :], M[..., -1, :, :])
+        for e, slots, reduced in self.mesh.holders():
+            r[..., e, :], K[..., e, :, :], C[..., e, :, :], M[..., e, :, :] = project(
+                E, r[..., e, :], K[..., e, :, :], C[..., e, :, :], M[..., e, :, :], slots, reduced)
         return ElementTerms(r, K, C, M)
 
     def reactions(self, t, d, v, a):
-        """(pin, end), each (..., 2): the forces the crank pin and the guide apply to the rod, in
-        the moving frame (e_i, e_j), at time(s) t for reduced states d, v, a (..., N): the residual
-        rows of the constrained DOFs (the pin's u_0, v_0; the end node's u_n, v_n, whose reaction
-        is normal to the guide: g_s . end = 0 at a solution)."""
+        """The force each constraint of the DOF map applies to the rod (schema.CONSTRAINTS order:
+        the crank pin's, the guide's), each (..., k), in the moving frame (e_i, e_j), at time(s) t
+        for reduced states d, v, a (..., N): the residual rows of its eliminated components (summed
+        over the elements holding its node; the end node's reaction is normal to the guide:
+        g_s . end = 0 at a solution)."""
         _, _, r, _, _, _ = self.unprojected_terms(self.kinematics(t), d, v, a)
-        return r[..., 0, 0:2].copy(), r[..., -1, 3:5].copy()
+        return tuple(sum(r[..., e, list(slots)] for e, slots, _ in self.mesh.holders(c))
+                     for c in schema.CONSTRAINTS)
 
     def residual(self, t, d, v, a):
         """Reduced residual R(t, d, v, a)."""
@@ -174,13 +183,15 @@ class Model:
         """Full nodal vectors (..., 3 (n+1)) [u_0, v_0, psi_0, ...] from reduced d (..., N) at the
         kinematics kin (a CrankState of the same leading shape)."""
         d = np.asarray(d)
-        n = self.mesh.n_elements
-        k = NDOF // 2                                   # DOFs per node
-        out = np.zeros(d.shape[:-1] + (k * (n + 1),))
-        out[..., 2] = d[..., 0]
-        out[..., k:k * n] = d[..., 1:k * n - 2]
-        E = _kinematics.end_map(self.case, kin.vector, d[..., self.mesh.slider_dof])
-        out[..., k * n] = E[..., 0, 0]
-        out[..., k * n + 1] = E[..., 0, 1]
-        out[..., k * n + 2] = d[..., -1]
+        mesh = self.mesh
+        out = np.zeros(d.shape[:-1] + (NODE_DOFS * (mesh.n_elements + 1),))
+        for node in range(mesh.n_elements + 1):
+            for comp in range(NODE_DOFS):
+                idx = mesh.reduced_index(node, comp)
+                if idx is not None:
+                    out[..., NODE_DOFS * node + comp] = d[..., idx]
+        E = _kinematics.end_map(self.case, kin.vector, d[..., mesh.slider_dof])
+        node = mesh.node_of(MAPPED)
+        for a, name in enumerate(MAPPED.eliminated):
+            out[..., NODE_DOFS * node + COMPONENTS.index(name)] = E[..., ROWS["q"], a]
         return out

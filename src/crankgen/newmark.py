@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import kinematics as _kinematics
-from . import newton
+from . import newton, schema
 from .errors import ConvergenceError
 from .newton import ESTIMATE_FRACTION, HISTORY, REFRESH_RATE, SCHEMES  # noqa: F401  (re-exported)
 from .validation import choice, in_range, integer
@@ -99,7 +99,7 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
     n_steps = integer("number of steps", n_steps, 1)
     dt = in_range("dt", dt, 0, None, True)
     beta, gamma = settings.beta, settings.gamma
-    scales = model.mesh.dof_scales(model.mechanism.eps, _kinematics.end_scale(model.case))
+    scales = model.mesh.dof_scales(schema.natural_sizes(model.case.parameters()), _kinematics.end_scale(model.case))
     scheme = SCHEMES.index(settings.scheme)
     secant = scheme == newton.ONE_PASS and model.selection.printed_iteration
     one_pass = scheme == newton.ONE_PASS

@@ -1,38 +1,63 @@
-"""The outputs a result can give, declared in derive/model.py (OUTPUTS) and read from the schema:
-quantities the engine computes at every step (v_mid, u_end, extension), step quantities (one value
-per stored step: the crank speed, the end's position, the chord angle, the driving torque, the pin
-and end reactions, ...) and fields (per step, at any x* in [0, 1]: axial_force, bending_moment,
-surface_strain, chord_deflection, ...).
+"""The outputs a result can give, declared in derive/declaration.py (OUTPUTS) and read from the
+schema: step quantities (one value per stored step: the crank speed, the end's position, the chord
+angle, the driving torque, the pin and end reactions, ...), fields (per step, at any x* in [0, 1]:
+axial_force, bending_moment, surface_strain, chord_deflection, ...) and reductions (per step, a sum
+or integral over the rod).  The outputs flagged `engine` (v_mid, u_end, extension) the engine
+computes at every step, so that every result has them, with or without stored states.
 
-Each step or field output is a generated kernel whose inputs the schema names; StateHistory
-supplies them from the stored reduced states: the kinematics, the nodal vector of the element
-holding x*, the end node's (u, v), their rates and the reduced co-ordinate, and the reactions at the pin and the
-end (the residual rows of the constrained DOFs, which need the stored velocities and
-accelerations).  Quantities made of element-wise derivatives (u_x is constant in an element, v_xx
-linear) jump at the nodes; at an interior node crankgen returns the mean of the two elements'
-values (the average of the one-sided limits), inside an element the element's own value.
+Each step, field or reduction output is a generated kernel whose inputs the schema names;
+StateHistory supplies them from the stored reduced states: the kinematics, the nodal vector (and
+rate) of the element holding x* or of every element, the end node's (u, v), their rates and the
+reduced co-ordinate, the parameter vector, and the reactions at the pin and the end (the residual
+rows of the constrained DOFs, which need the stored velocities and accelerations).  The engine's
+outputs are the generated per_step of what they accumulate (schema.PRIMITIVES: a field at a point,
+an integral over the rod), evaluated here for stored states as the engine does at every step.
+Quantities made of element-wise derivatives (u_x is constant in an element, v_xx linear) jump at the
+nodes; at an interior node crankgen returns the mean of the two elements' values (the average of the
+one-sided limits), inside an element the element's own value.
 """
+
+import functools
 
 import numpy as np
 
 from . import ingredients, schema
 from . import kinematics as _kinematics
-from ._generated.shape import shape_functions, slope_gram
+from ._generated import per_step as _per_step
+from ._generated.shape import shape_functions
 from .errors import ParameterError
-from .mesh import Mesh
+from .mesh import NODE_DOFS, U, V, Mesh
 from .validation import finite_number, in_range
 
 NODE_TOLERANCE = 1e-12      # x* closer than this (relative to an element) to a node is at the node
+FIELDS = ("u", "v", "psi")  # the interpolated fields, in the order of the shape functions (eqs. 8-10)
 
 
-def element_history(mesh, d, phi):
-    """Element nodal vectors (steps, n, 6) of a slider on a straight guide, (u, v) = s (cos phi,
-    sin phi) at the end (a case's own end map: StateHistory.element_vectors)."""
-    q = mesh.gather(d)
-    s = q[..., -1, 3].copy()
-    q[..., -1, 3] = s * np.cos(phi)
-    q[..., -1, 4] = s * np.sin(phi)
-    return q
+def primitive_data(mesh):
+    """What the engine's outputs accumulate (schema.PRIMITIVES) on this mesh: [(place in prims,
+    element, the field's shape functions at x*)] of the points, [(place, Gram matrix)] of the
+    integrals over the rod (the engine reads the same, engine/march.py)."""
+    points, grams = [], []
+    for k, p in enumerate(schema.PRIMITIVES):
+        if p.kind == "point":
+            e, zeta = mesh.locate(p.at)
+            points.append((k, e, shape_functions(zeta, mesh.length)[FIELDS.index(p.field)]))
+        else:
+            grams.append((k, getattr(_per_step, p.kernel)(mesh.length)))
+    return points, grams
+
+
+def engine_outputs(mesh, q, parameters):
+    """The engine's outputs (..., len(schema.ENGINE_OUTPUTS)) of element nodal vectors q (..., n, 6)
+    with their end node mapped, for the parameter vector: the engine's arithmetic in NumPy."""
+    points, grams = primitive_data(mesh)
+    prims = np.zeros(q.shape[:-2] + (len(schema.PRIMITIVES),))
+    for k, e, weights in points:
+        prims[..., k] = q[..., e, :] @ weights
+    for k, G in grams:
+        prims[..., k] = np.einsum("...ei,ij,...ej->...", q, G, q)
+    e, slots, _ = mesh.holders()[0]
+    return _per_step.per_step(prims, q[..., e, list(slots)], parameters)
 
 
 def deflection_at(mesh, q, x):
@@ -47,16 +72,24 @@ def mid_deflection(mesh, q, eps):
     return deflection_at(mesh, q, 0.5) / eps
 
 
-def end_axial(q, eps):
-    """u*(1) = L u(L) / r^2."""
-    return q[..., -1, 3] / eps**2
+def takes_engine_outputs(cls):
+    """A result class (a frozen dataclass whose field `outputs` holds the engine's outputs by name)
+    whose constructor also takes each of them by name: Result(..., v_mid=..., u_end=...)."""
+    init = cls.__init__
+
+    @functools.wraps(init)
+    def __init__(self, *args, **kwargs):
+        given = {name: kwargs.pop(name) for name in schema.ENGINE_OUTPUTS if name in kwargs}
+        init(self, *args, **kwargs)
+        if given:
+            object.__setattr__(self, "outputs", dict(self.outputs or {}, **given))
+    cls.__init__ = __init__
+    return cls
 
 
-def extension(mesh, q):
-    """delta* = u(L)/L + (1/2) int_0^1 (dv/dx)^2 dx  (eq. 40, in units of L)."""
-    G = slope_gram(mesh.length)
-    slope_sq = np.einsum("...ei,ij,...ej->...", q, G, q)
-    return q[..., -1, 3] + 0.5 * slope_sq
+def engine_columns(y):
+    """{name: per-step array} of the engine's outputs y (..., len(schema.ENGINE_OUTPUTS))."""
+    return {name: y[..., k] for k, name in enumerate(schema.ENGINE_OUTPUTS)}
 
 
 def _sides(mesh, x):
@@ -69,12 +102,9 @@ def _sides(mesh, x):
     return [(e, min(max(zeta, 0.0), 1.0))]
 
 
-_PARAMS_BESIDE_KIN = [k for k, n in enumerate(schema.KINEMATIC_PARAMETERS) if n != "a"]
-
-
 class StateHistory:
     """What the declared outputs need of a run: its case and the reduced states at the stored times
-    (velocities and accelerations too for the reactions)."""
+    (velocities and accelerations too for the reactions and the rates)."""
 
     def __init__(self, case, t, states, rates=None, accelerations=None):
         self.case, self.t, self.states = case, np.asarray(t, dtype=float), np.asarray(states)
@@ -82,19 +112,37 @@ class StateHistory:
         self.mesh = Mesh(case.n_elements)
         self._kin = None
         self._pin_end = None
+        self._constraints = tuple(c.name for c in schema.CONSTRAINTS)
 
     def kinematics(self):
         if self._kin is None:
             self._kin = _kinematics.case_state(self.case, self.t)
         return self._kin
 
+    def _mapped(self, reduced, row, rates=None):
+        """(steps, n, 6) element vectors of reduced vectors, the end node's (u, v) from the end map's
+        row ("q": positions; "qd": rates, from the states and `rates`)."""
+        q = self.mesh.gather(reduced)
+        S = self.mesh.slider_dof
+        E = _kinematics.end_map(self.case, self.kinematics().vector, self.states[:, S],
+                                0.0 if rates is None else rates[:, S])
+        for e, slots, _ in self.mesh.holders():
+            for a, slot in enumerate(slots):
+                q[..., e, slot] = E[..., schema.END_MAP_ROWS[row], a]
+        return q
+
     def element_vectors(self):
         """(steps, n, 6) nodal vectors, the end node through the guide's end map."""
-        q = self.mesh.gather(self.states)
-        E = _kinematics.end_map(self.case, self.kinematics().vector, self.states[:, self.mesh.slider_dof])
-        q[..., -1, 3] = E[..., 0, 0]
-        q[..., -1, 4] = E[..., 0, 1]
-        return q
+        return self._mapped(self.states, "q")
+
+    def element_rates(self):
+        """(steps, n, 6) nodal velocities, the end node's through the guide's end map."""
+        return self._mapped(self._need_rates("the rates of the nodes"), "qd", self.rates)
+
+    def _need_rates(self, what):
+        if self.rates is None:
+            raise ParameterError(f"{what} need the stored velocities, which this result does not hold")
+        return self.rates
 
     def _reactions(self):
         if self.rates is None or self.accelerations is None:
@@ -105,52 +153,68 @@ class StateHistory:
             self._pin_end = Model(self.case).reactions(self.t, self.states, self.rates, self.accelerations)
         return self._pin_end
 
-    def _inputs(self, spec, element=None):
-        """{input name: array} for an output kernel (element: (q, zeta, geo) of a field)."""
+    def _inputs(self, spec):
+        """{input name: array} of an output kernel's inputs that are the same for every element
+        (those of an element, q, qd, zeta and geo, and a field's arguments: _call)."""
         out = {}
-        q_all = None
         for name in spec.inputs:
-            if name in ("q", "zeta", "geo", "fiber"):
+            if name in ("q", "qd", "zeta", "geo", "fiber"):
                 continue
             if name == "coef":
                 out[name] = self.case.coefficients
             elif name == "kin":
                 out[name] = self.kinematics().vector
-            elif name == "params":
-                out[name] = self.case.kinematic_parameters[_PARAMS_BESIDE_KIN]
-            elif name == "q_end":
-                q_all = self.element_vectors() if q_all is None else q_all
-                out[name] = q_all[:, -1, 3:5]
-            elif name == "qd_end":
-                if self.rates is None:
-                    raise ParameterError(f"{spec.name} needs the stored velocities, which this result "
-                                         "does not hold")
-                E = _kinematics.end_map(self.case, self.kinematics().vector,
-                                        self.states[:, self.mesh.slider_dof], self.rates[:, self.mesh.slider_dof])
-                out[name] = E[..., schema.END_MAP_ROWS["qd"], :]
+            elif name == "parameters":
+                out[name] = self.case.parameter_vector
+            elif name in ("q_end", "qd_end"):      # the mapped node's eliminated components
+                e, slots, _ = self.mesh.holders()[0]
+                values = self.element_vectors() if name == "q_end" else self.element_rates()
+                out[name] = values[:, e, list(slots)]
             elif name == "s":
                 out[name] = self.states[:, self.mesh.slider_dof]
-            elif name in ("pin", "end"):
-                pin, end = self._reactions()
-                out["pin"], out["end"] = pin, end
+            elif name in self._constraints:          # the force a constraint applies (pin, end)
+                out.update(zip(self._constraints, self._reactions()))
         return out
 
     def _call(self, kernel, spec, values, element=None, extra=()):
+        """The kernel of `spec` with its inputs: values, element = {q, qd, zeta, geo} of an element
+        (or of every element), extra: a field's arguments."""
         args = []
         for name in spec.inputs:
-            if name in ("q", "zeta", "geo"):
-                args.append(element[("q", "zeta", "geo").index(name)])
+            if name in ("q", "qd", "zeta", "geo"):
+                args.append(element[name])
             elif name == "fiber":
                 args.append(extra[0])
             else:
                 args.append(values[name])
         return kernel(*args)
 
+    def engine_outputs(self):
+        """(steps, len(schema.ENGINE_OUTPUTS)): the engine's outputs of the stored states."""
+        return engine_outputs(self.mesh, self.element_vectors(), self.case.parameter_vector)
+
     def step(self, name):
         """Values of the step output `name` per stored step."""
         spec = schema.OUTPUTS[name]
+        if spec.engine:
+            return self.engine_outputs()[:, schema.ENGINE_OUTPUTS.index(name)].copy()
         kernel = ingredients.output_kernel(name, self.case.options)
         return np.broadcast_to(self._call(kernel, spec, self._inputs(spec)), self.t.shape).copy()
+
+    def reduction(self, name):
+        """Values of the reduction output `name` per stored step: its kernel on every element, summed."""
+        spec = schema.OUTPUTS[name]
+        kernel = ingredients.output_kernel(name, self.case.options)
+        mesh = self.mesh
+        element = {"q": self.element_vectors(),
+                   "geo": np.stack([np.full(mesh.n_elements, mesh.length), mesh.x0], axis=-1)}
+        if "qd" in spec.inputs:
+            element["qd"] = self.element_rates()
+        values = self._inputs(spec)
+        if "kin" in values:
+            values["kin"] = values["kin"][:, None, :]          # every element at its step's kinematics
+        parts = np.broadcast_to(self._call(kernel, spec, values, element), self.t.shape + (mesh.n_elements,))
+        return np.sum(parts, axis=-1)
 
     def field(self, name, x, **arguments):
         """Values of the field output `name` at x* (scalar: (steps,); array: (steps, len(x)))."""
@@ -167,21 +231,25 @@ class StateHistory:
         for xj in xs:
             in_range("x (position x* along the rod)", xj, 0.0, 1.0)
         q = self.element_vectors()
+        qd = self.element_rates() if "qd" in spec.inputs else None
         values = self._inputs(spec)
         l = self.mesh.length
         out = np.empty((q.shape[0], xs.size))
         for j, xj in enumerate(xs):
-            parts = [self._call(kernel, spec, values, (q[:, e, :], zeta, np.array([l, e * l])), extra)
+            parts = [self._call(kernel, spec, values, {"q": q[:, e, :], "qd": None if qd is None else qd[:, e, :],
+                                                       "zeta": zeta, "geo": np.array([l, e * l])}, extra)
                      for e, zeta in _sides(self.mesh, float(xj))]
             out[:, j] = np.mean(np.broadcast_arrays(*parts), axis=0)
         return out[:, 0] if np.ndim(x) == 0 else out
 
 
 class DeclaredOutputs:
-    """Mixin of results that store their states: every declared output by name.
+    """Mixin of results: every declared output by name.
 
-    `result.quantity(name, x=None, **arguments)` gives any declared output; each step output is also
-    an attribute of its name (`result.torque`, `result.slider_position`, `result.chord_angle`) and
+    The engine's outputs (schema.ENGINE_OUTPUTS: v_mid, u_end, extension) are held by every result
+    (its field `outputs`); the others need the stored states.  `result.quantity(name, x=None,
+    **arguments)` gives any declared output; each step or reduction output is also an attribute of
+    its name (`result.v_mid`, `result.torque`, `result.slider_position`, `result.chord_angle`) and
     each field output a method (`result.axial_force(0.5)`, `result.surface_strain(0.5, fiber=3**0.5)`)."""
 
     def _history(self):
@@ -205,36 +273,47 @@ class DeclaredOutputs:
         spec = schema.OUTPUTS.get(name)
         if spec is None:
             raise ParameterError(f"no output {name!r}; the outputs are {', '.join(schema.OUTPUTS)}")
-        if self.case.guide not in spec.guides:
+        if self.case.guide_record.name not in spec.guides:
             raise ParameterError(f"{name} exists for the {' and '.join(spec.guides)} guide only "
-                                 f"(this case's guide is {self.case.guide!r})")
+                                 f"(this case's guide is {self.case.guide_record.name!r})")
         if spec.kind == "field":
             if x is None:
                 raise ParameterError(f"{name} is a field: give x (x* in [0, 1])")
             return self._history().field(name, x, **arguments)
         if x is not None or arguments:
-            raise ParameterError(f"{name} is a step output (one value per stored step): it takes no "
+            raise ParameterError(f"{name} is a {spec.kind} output (one value per stored step): it takes no "
                                  f"position or argument")
-        if spec.kind == "step":
-            return self._history().step(name)
-        return getattr(self, name)
+        if spec.engine and (self.__dict__.get("outputs") or {}).get(name) is not None:
+            return self.outputs[name]
+        if spec.kind == "reduction":
+            return self._history().reduction(name)
+        return self._history().step(name)
 
     @property
     def slider_position(self):
         return self.quantity("slider_position")
 
+    def animate(self, path, **options):
+        """Write the deforming mechanism's motion to path (.gif, or .mp4 with ffmpeg): see
+        crankgen.animation.animate for the options (magnification, frames, fps, title)."""
+        from .animation import animate
+        return animate(self, path, **options)
+
     def __getattr__(self, name):
         spec = schema.OUTPUTS.get(name)
+        if spec is not None and spec.engine:
+            outputs = self.__dict__.get("outputs")
+            return None if outputs is None else outputs.get(name)
         if spec is not None and spec.kind == "field":
             return lambda x, **arguments: self.quantity(name, x, **arguments)
-        if spec is not None and spec.kind == "step":
+        if spec is not None:
             return self.quantity(name)
         raise AttributeError(f"{type(self).__name__} has no attribute {name!r}")
 
 
 class SIView:
     """A result's quantities in SI: t in s, theta in rad, and every declared output converted with
-    the units it declares in derive/model.py (crankgen.units: "L" -> m, "rad", "omega_b" -> rad/s,
+    the units it declares in derive/declaration.py (crankgen.units: "L" -> m, "rad", "omega_b" -> rad/s,
     "rhoA L^2 omega_b^2" -> N, "rhoA L^3 omega_b^2" -> N m, "EI/L^2" -> N, "EI/L" -> N m, ...).
 
     Fields take the position x along the rod in metres (0 <= x <= L); their other arguments keep
@@ -276,8 +355,8 @@ class SIView:
         if nodes is None:
             return None
         out = np.array(nodes, dtype=float)
-        out[..., 0::3] *= self.scales.L
-        out[..., 1::3] *= self.scales.L
+        for comp in (U, V):                      # u and v in m (psi, a slope, is dimensionless)
+            out[..., comp::NODE_DOFS] *= self.scales.L
         return out
 
     @property

@@ -5,7 +5,7 @@ omega_b = (pi/L)^2 sqrt(EI / (rho A)) the lowest bending frequency of the pinned
 In these units rho*A = 1, E*I = 1/pi^4, E*A = 1/(pi^4 eps^2), rho*I = eps^2 (I = A r^2), and the
 paper's scaled outputs are  v* = v / eps,  u* = u / eps^2  (v, u in units of L).
 
-`Mechanism`'s fields are the schema's mechanism and guide parameters (derive/model.py PARAMETERS):
+`Mechanism`'s fields are the schema's mechanism and guide parameters (derive/declaration.py PARAMETERS):
 a, eps, ms, mu, gravity, the guide (line or circle) and the guide's parameters (offset; c, d,
 branch).  `settle` gives every parameter its canonical form (crankgen.schema.Parameter.canonical),
 expands a guide or motion record (crankgen.Line, crankgen.Circle, crankgen.RunUp, ...) into its
@@ -15,26 +15,27 @@ margins).
 """
 
 import math
-from dataclasses import dataclass, field, fields, make_dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
 from . import schema, specs
+from ._generated import classes as _classes
 from ._generated import kinematics as _kinematics
 from .errors import ParameterError
 
-_RECORDS = {"guide": specs.GUIDES, "motion": specs.MOTIONS}
 
-
-def _expand_record(obj, key):
-    """A guide or motion record given as obj.<key>: its name in obj.<key>, its values in the fields."""
+def _expand_record(obj, kind):
+    """A guide or motion record given as the value of its selecting parameter: its name there, its
+    values in the fields."""
+    key = schema.SELECTOR[kind]
     value = getattr(obj, key)
     if isinstance(value, type) and issubclass(value, specs.Spec):
         value = value()
     if not isinstance(value, specs.Spec):
         return
-    if value.kind != key:
-        raise ParameterError(f"{key} must be a {key} ({', '.join(c.__name__ for c in _RECORDS[key].values())}) "
+    if value.kind != kind:
+        raise ParameterError(f"{key} must be a {kind} ({', '.join(c.__name__ for c in specs.RECORDS[kind].values())}) "
                              f"or its name, got {value!r}")
     for name, given in value.values.items():
         current = getattr(obj, name)
@@ -46,15 +47,15 @@ def _expand_record(obj, key):
 
 def settle(obj, names):
     """Give obj's parameter fields `names` their canonical values (None: the default)."""
-    for key in ("guide", "motion"):
+    for kind, key in schema.SELECTOR.items():
         if key in names:
-            _expand_record(obj, key)
+            _expand_record(obj, kind)
     for name in names:
         p = schema.PARAMETERS[name]
         value = getattr(obj, name)
         object.__setattr__(obj, name, p.default if value is None else p.canonical(value))
-    guide = getattr(obj, "guide", schema.PARAMETERS["guide"].default)
-    motion = getattr(obj, "motion", schema.PARAMETERS["motion"].default)
+    values = {n: getattr(obj, n) for n in names}
+    guide, motion = schema.selected(values, "guide"), schema.selected(values, "motion")
     for name in names:
         p = schema.PARAMETERS[name]
         if not p.read_by(guide, motion) and getattr(obj, name) != p.default:
@@ -66,22 +67,31 @@ def settle(obj, names):
 def kinematic_parameters(values):
     """The kinematic parameter vector (schema.KINEMATIC_PARAMETERS order) of a mapping of parameter
     values; absent ones take their default."""
-    return np.array([float(values.get(n, schema.PARAMETERS[n].default)) for n in schema.KINEMATIC_PARAMETERS])
+    return schema.parameter_vector(values)[list(schema.KINEMATIC_SLOTS)]
+
+
+# A full-turn margin (a length, in units of L) must exceed this: the margins are differences of
+# lengths of order one, whose rounding (about 1e-16) could otherwise put a linkage exactly at its
+# locking limit on the accepted side, where its first step fails.
+MARGIN_TOLERANCE = 1e-9
 
 
 def check_full_turn(values):
-    """Refuse a geometry whose crank cannot turn a full revolution (the guide's margins)."""
-    guide = values.get("guide", schema.PARAMETERS["guide"].default)
-    margins = np.atleast_1d(getattr(_kinematics, f"margins_{guide}")(kinematic_parameters(values)))
-    failed = [text for m, text in zip(margins, schema.GUIDES[guide].margins) if not m > 0]
+    """Refuse a geometry whose crank cannot turn a full revolution (the guide's margins, each of
+    which must exceed MARGIN_TOLERANCE)."""
+    guide = schema.GUIDES[schema.selected(values, "guide")]
+    margins = np.atleast_1d(getattr(_kinematics, f"margins_{guide.name}")(kinematic_parameters(values)))
+    failed = [text for m, text in zip(margins, guide.margins) if not m > MARGIN_TOLERANCE]
     if failed:
         shown = ", ".join(f"{n} = {values.get(n, schema.PARAMETERS[n].default):g}"
-                          for n in ("a",) + schema.GUIDES[guide].parameters if n != "branch")
-        raise ParameterError(f"the crank cannot turn a full revolution: the {guide} guide needs "
+                          for n in schema.KINEMATIC_PARAMETERS
+                          if schema.PARAMETERS[n].owner == "mechanism" or n in guide.parameters
+                          if schema.PARAMETERS[n].kind == "real")
+        raise ParameterError(f"the crank cannot turn a full revolution: the {guide.name} guide needs "
                              f"{'; '.join(failed)}; got {shown}")
 
 
-class _MechanismBase:
+class MechanismRules:
     """Dimensionless mechanism: a* = a/L, eps = r/L, ms* = m_s/(rho A L), mu* = omega_b mu,
     gravity = (gX, gY) in units of L omega_b^2 (inertial frame: X along the guide, Y so that the
     crank pin is at a* (cos theta, sin theta)), and the guide the rod's end travels on: the line
@@ -100,17 +110,15 @@ class _MechanismBase:
     @property
     def guide_record(self):
         """The guide as a record (crankgen.Line(...), crankgen.Circle(...))."""
-        cls = specs.GUIDES[self.guide]
-        record = cls.__new__(cls)
-        record.values = {n: getattr(self, n) for n in cls.declaration.parameters}
-        return record
+        cls = specs.GUIDES[schema.selected(self.values(), "guide")]
+        return cls.of({n: getattr(self, n) for n in cls.declaration.parameters})
 
     @property
     def section(self):
         """The section constants of the rod in crankgen's units (rho A, rho I, E A, E I), from the
         coefficients' formulas of the schema (with the rod's rotary inertia)."""
         from . import ingredients
-        coef = ingredients.coefficients(self, {"rotary_inertia": True})
+        coef = ingredients.coefficients(schema.parameter_vector(self.values()), ingredients.DEFAULTS)
         return {name: float(coef[ingredients.COEFFICIENTS.index(name)]) for name in ("rhoA", "rhoI", "EA", "EI")}
 
     @property
@@ -134,18 +142,22 @@ class _MechanismBase:
         """(Mechanism, Omega*) from SI quantities.
 
         L, a in m; E in Pa; rho in kg/m^3; A in m^2; I in m^4; slider_mass in kg; crank_speed in
-        rad/s; damping mu in s (eq. 24: C = mu K).
+        rad/s; damping mu in s: the time constant of the model's damping (Kelvin-Voigt strain-rate
+        damping D = (mu/2) int [EA (de/dt)^2 + EI (dv_xx/dt)^2] dx in the default model; eq. 24,
+        C = mu (K_lin + K_non), with damping="paper").
         """
         si = SIMechanism(L=L, a=a, E=E, rho=rho, A=A, I=I, slider_mass=slider_mass,
                          crank_speed=crank_speed, damping=damping)
         return si.mechanism, si.omega
 
 
-Mechanism = make_dataclass(
-    "Mechanism", [(name, object, field(default=None)) for name in schema.MECHANISM_PARAMETERS],
-    bases=(_MechanismBase,), frozen=True, namespace={"__doc__": _MechanismBase.__doc__,
-                                                     "__module__": __name__})
-Mechanism.__module__ = __name__
+@dataclass(frozen=True)
+class Mechanism(MechanismRules, _classes.MechanismFields):
+    __doc__ = MechanismRules.__doc__
+
+
+_SI_UNIT = {"L": "m", "a": "m", "E": "Pa", "rho": "kg/m^3", "A": "m^2", "I": "m^4", "slider_mass": "kg",
+            "crank_speed": "rad/s", "damping": "s"}
 
 
 @dataclass(frozen=True)
@@ -164,11 +176,42 @@ class SIMechanism:
 
     def __post_init__(self):
         from .validation import in_range
-        for name in ("L", "a", "E", "rho", "A", "I"):
-            in_range(f"{name} (SI)", getattr(self, name), 0, None, True)
+        for f in fields(self)[:6]:              # the lengths and the material: positive
+            in_range(f"{f.name} (SI)", getattr(self, f.name), 0, None, True)
         in_range("slider_mass (kg)", self.slider_mass, 0)
         in_range("crank_speed (rad/s)", self.crank_speed, 0)
         in_range("damping (mu, s)", self.damping, 0)
+        self._check_magnitudes()
+
+    # the scales and dimensionless numbers an SI mechanism gives, as powers of its fields:
+    # every one must lie within 10^-MAGNITUDE .. 10^MAGNITUDE (zero where a field may be zero)
+    MAGNITUDE = 50
+    DERIVED = (("L (the unit of length)", {"L": 1}),
+               ("omega_b = (pi/L)^2 sqrt(E I / (rho A))", {"L": -2, "E": 0.5, "I": 0.5, "rho": -0.5, "A": -0.5}),
+               ("rho A (the unit of mass per length)", {"rho": 1, "A": 1}),
+               ("eps = sqrt(I/A) / L", {"I": 0.5, "A": -0.5, "L": -1}),
+               ("a* = a / L", {"a": 1, "L": -1}),
+               ("ms* = slider_mass / (rho A L)", {"slider_mass": 1, "rho": -1, "A": -1, "L": -1}),
+               ("mu* = omega_b damping", {"damping": 1, "L": -2, "E": 0.5, "I": 0.5, "rho": -0.5, "A": -0.5}),
+               ("Omega* = crank_speed / omega_b", {"crank_speed": 1, "L": 2, "E": -0.5, "I": -0.5, "rho": 0.5,
+                                                   "A": 0.5}))
+
+    def _check_magnitudes(self):
+        """Refuse fields whose scales overflow or underflow in floating point (or come near it),
+        naming the field that weighs most; computed on logarithms, so nothing overflows here."""
+        for what, powers in self.DERIVED:
+            values = {name: float(getattr(self, name)) for name in powers}
+            if any(v == 0 for v in values.values()):
+                continue                  # a zero mass, damping or speed: the number is zero
+            terms = {name: p * math.log10(values[name]) for name, p in powers.items()}
+            exponent = sum(terms.values()) + (2 * math.log10(math.pi) if what.startswith(("omega_b", "mu*"))
+                                              else -2 * math.log10(math.pi) if what.startswith("Omega*") else 0.0)
+            if abs(exponent) > self.MAGNITUDE:
+                name = max(terms, key=lambda n: abs(terms[n]))
+                raise ParameterError(
+                    f"SIMechanism: {name} = {values[name]:g} makes {what} about 1e{exponent:+.0f}, beyond "
+                    f"1e-{self.MAGNITUDE} .. 1e{self.MAGNITUDE} (floating point would overflow or underflow); "
+                    f"give {name} in SI units ({_SI_UNIT[name]}) of a real mechanism")
 
     @property
     def omega_b(self):

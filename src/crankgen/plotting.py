@@ -3,6 +3,9 @@ measured, so that nothing is clipped and no legend or label covers data or anoth
 
 import numpy as np
 
+from . import schema
+from .units import in_L
+
 
 _FIGURE_KEYS = ("figsize", "dpi", "constrained_layout", "layout", "facecolor")
 
@@ -19,27 +22,16 @@ def subplots(nrows=1, ncols=1, **kwargs):
 
 
 def _title(s):
-    """Two lines naming the model and the case; a third for what differs from the paper's slider
-    crank (gravity, guide offset, rotary inertia off, a four-bar's circle guide)."""
-    extra = []
-    gravity = tuple(s.get("gravity", (0.0, 0.0)))
-    if any(gravity):
-        extra.append(f"gravity ({gravity[0]:g}, {gravity[1]:g})")
-    if s.get("offset", 0.0):
-        extra.append(f"offset {s['offset']:g}")
+    """Two lines naming the model and the case (the mechanism's parameters and the crank's, from
+    their records); a third for the rest that differs from the defaults (gravity, a guide offset,
+    a four-bar's circle guide, rotary inertia off)."""
+    from . import schema
+    main, other = schema.describe(s)
     if not s.get("rotary_inertia", True):
-        extra.append("no rotary inertia")
-    if s.get("guide") == "circle":
-        extra.append(f"four-bar: rocker c* = {s['c']:g}, ground d* = {s['d']:g}, branch {s['branch']:+d}")
-    speed = f"Omega* = {s['omega']:g}"
-    if s.get("motion") == "runup":
-        speed = f"run-up Omega* {s['omega0']:g} -> {s['omega']:g} over {s['ramp']:g} rev"
-    elif s.get("motion") == "fluctuation":
-        speed = f"Omega* = {s['omega']:g} (1 + {s['fluctuation']:g} sin({s['order']} theta))"
+        other.append("no rotary inertia")
     return (f"approach {s['approach']}, {s['formulation']} formulation, {s['damping']} damping, "
-            f"{s.get('membrane', 'pointwise')} membrane\n{speed}, eps = {s['eps']:g}, "
-            f"ms* = {s['ms']:g}, mu* = {s['mu']:g}, n = {s['n_elements']}"
-            + ("\n" + ", ".join(extra) if extra else ""))
+            f"{s.get('membrane', 'pointwise')} membrane\n" + ", ".join(main + [f"n = {s['n_elements']}"])
+            + ("\n" + ", ".join(other) if other else ""))
 
 
 def shade_beyond(ax, limit, color):
@@ -113,14 +105,79 @@ def plot_deflection(result, path, failure=None, si=None, against="t", strain=Non
         ax.legend(fontsize=8, loc="best")
     ax.set_xlabel(unit)
     ax.set_ylabel("v* at x* = 1/2" if si is None else "v at x = L/2 in the moving frame (mm)")
-    # the range of the theory in the scale drawn: |v*| eps = |v| / L
-    eps = result.settings["eps"] if si is None else 1e-3 / si.scales.L
+    # the range of the theory in the scale drawn: |v*| eps = |v| / L (v* in units of r = eps L)
+    eps = in_L(schema.OUTPUTS["v_mid"].units, result.settings) if si is None else 1e-3 / si.scales.L
     if strain is None:
         strain = theory.axial_strain(result, per_step=True)
     note = _beyond_theory(ax, eps, v, strain)
     ax.set_title(_title(result.settings) + note, fontsize=9)
     ax.grid(alpha=0.3)
     return save_figure(fig, path)
+
+
+def plot_runup(result, path, ramp_end, failure=None, si=None, strain=None):
+    """runup_figure written atomically to path (returned)."""
+    from .io import save_figure
+    return save_figure(runup_figure(result, ramp_end, failure, si, strain), path)
+
+
+def runup_figure(result, ramp_end, failure=None, si=None, strain=None):
+    """A run-up in two panels: v* at x* = 1/2 against the
+    instantaneous crank speed while it rises (the passage through the rod's resonances), and
+    against the crank revolutions over the whole run, with the crank speed on the right-hand axis
+    and the end of the ramp marked (after it the speed is constant, so the revolutions there have
+    one speed and cannot be told apart against it).  ramp_end: the time (t*) at which the ramp
+    completes; a run that ends before it says so in the title.  failure, si, strain: as
+    plot_deflection."""
+    from . import theory
+    fig, (a1, a2) = subplots(2, 1, figsize=(7, 6.4), constrained_layout=True)
+    view = result if si is None else si
+    v = np.asarray(result.v_mid if si is None else si.v_mid * 1e3, dtype=float)
+    t = np.asarray(result.t, dtype=float)
+    speed = np.asarray(view.crank_speed, dtype=float)
+    revs = (np.asarray(result.theta, dtype=float) - float(result.theta[0])) / (2 * np.pi)
+    ramp = t <= ramp_end * (1 + 1e-12)
+    speed_unit = "Omega*" if si is None else "(rad/s)"
+    ylabel = "v* at x* = 1/2" if si is None else "v at x = L/2 (mm)"
+    a1.plot(speed[ramp], v[ramp], lw=1, color="C0")
+    a1.set_xlabel(f"instantaneous crank speed {speed_unit} (during the ramp)")
+    a1.set_ylabel(ylabel)
+    a2.plot(revs, v, lw=0.8, color="C0")
+    a2.set_xlabel("crank revolutions")
+    a2.set_ylabel(ylabel)
+    right = a2.twinx()
+    right.plot(revs, speed, color="C1", lw=1.2)
+    right.set_ylabel(f"crank speed {speed_unit}", color="C1")
+    right.tick_params(axis="y", colors="C1")
+    complete = t[-1] >= ramp_end * (1 - 1e-12)
+    if complete:
+        end_rev = float(np.interp(ramp_end, t, revs))
+        a2.axvline(end_rev, color="0.3", ls=":", lw=1)
+        a2.annotate(f"ramp ends (revolution {end_rev:.4g})", (end_rev, 1.0), xycoords=("data", "axes fraction"),
+                    xytext=(0, 2), textcoords="offset points", ha="center", va="bottom", fontsize=8,
+                    color="0.3")
+    if failure is not None and len(revs):
+        approach = result.settings.get("approach")
+        word = (f"run diverged (approach {approach} is ill-posed)" if theory.ill_posed(approach)
+                else "run failed")
+        for ax, x in ((a1, speed), (a2, revs)):
+            if ax is a1 and not ramp[-1]:
+                continue
+            ax.plot(x[-1:], v[-1:], "x", color="C3", ms=9, mew=2,
+                    label=f"{word} (step {failure.step})")
+            ax.legend(fontsize=8, loc="best")
+    eps = in_L(schema.OUTPUTS["v_mid"].units, result.settings) if si is None else 1e-3 / si.scales.L
+    if strain is None:
+        strain = theory.axial_strain(result, per_step=True)
+    _beyond_theory(a1, eps, v[ramp], None if strain is None else np.asarray(strain)[ramp])
+    note = _beyond_theory(a2, eps, v, strain)
+    where = ("" if complete else
+             f"\nthe run ends at crank speed {speed[-1]:.4g}, before the ramp completes "
+             f"(revolution {revs[-1]:.4g} of {result.settings.get(result.case.motion_record.transient, float('nan')):g})")
+    a1.set_title(_title(result.settings) + where + note, fontsize=9)
+    for ax in (a1, a2):
+        ax.grid(alpha=0.3)
+    return fig
 
 
 def plot_orbit(state, path, strain=None):
@@ -145,7 +202,7 @@ def plot_orbit(state, path, strain=None):
             if state.multiplier is not None and np.isfinite(state.multiplier) else "")
     if strain is None:
         strain = theory.axial_strain(state, per_step=True)
-    note = _beyond_theory(a1, state.case.eps, state.v_mid, strain)
+    note = _beyond_theory(a1, in_L(schema.OUTPUTS["v_mid"].units, state.case.parameters()), state.v_mid, strain)
     a1.set_title(f"steady state: {state.status}{mult}\n" + _title(s) + note, fontsize=9)
     return save_figure(fig, path)
 
@@ -213,6 +270,8 @@ def fit_panels(fig, pad=0.12):
         for j in range(cols):
             ax = axes[i, j]
             box, tight = ax.get_window_extent(renderer), ax.get_tightbbox(renderer)
+            if tight is None:                   # a hidden panel (an odd count on a grid) needs no room
+                continue
             ext[i, j] = [(box.x0 - tight.x0) / dpi, (tight.x1 - box.x1) / dpi,
                          (box.y0 - tight.y0) / dpi, (tight.y1 - box.y1) / dpi]
     ext = np.maximum(ext, 0.0)
@@ -351,7 +410,7 @@ def place_labels(ax, items, fontsize=8, margin=4.0):
     for x, y, text, color in items:
         best, best_cost = None, None
         for dx, dy in LABEL_OFFSETS:
-            far = abs(dy) > 20 or abs(dx) > 20
+            far = abs(dy) > 14 or abs(dx) > 14        # beyond the four adjacent places: a leader
             a = ax.annotate(text, (x, y), textcoords="offset points", xytext=(dx, dy),
                             ha="left" if dx > 0 else "right", va="center", fontsize=fontsize,
                             zorder=7, color=color,

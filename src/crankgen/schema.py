@@ -1,189 +1,53 @@
-"""The model schema as the runtime sees it: typed records of the generated tables (generated/schema.py).
+"""The model schema as the runtime sees it: the records of generated/schema.py, by name.
 
-Every parameter of a case, every option, preset, guide, motion and output is declared once, in
-derive/model.py; this module gives the runtime their records and the rules that follow from them:
-a parameter's check and canonical form (`Parameter.canonical`), the model options of a preset with
-explicit options overriding it (`resolve_options`), the parameters a guide or motion reads.
-Mechanism, Case, the command line's flags and the continuation's parameters are built from here.
+Every parameter of a case, every option, preset, guide, motion, family and output is declared once,
+in derive/declaration.py, and reaches the runtime as records of crankgen.records (printed into
+generated/schema.py).  This module gives them by name, the layouts of the vectors the kernels read,
+and the rules that follow: the model options of a preset with explicit options overriding it
+(`resolve_options`), the parameter that selects the guide or the motion, the parameters that
+belong to the mechanism or to the run.  Mechanism, Case, the command line's flags and the
+continuation's parameters are built from here; nothing in the runtime restates a record.
 """
-
-import math
-import numbers
-from dataclasses import dataclass
-
-import numpy as np
 
 from ._generated import schema as _table
 from .errors import ParameterError
 
-KINEMATICS = _table.KINEMATICS
-KINEMATIC_PARAMETERS = _table.KINEMATIC_PARAMETERS
+PARAMETERS = {p.name: p for p in _table.PARAMETERS}
+OPTIONS = {o.name: o for o in _table.OPTIONS}
+PRESETS = {p.name: p for p in _table.PRESETS}
+DEFAULT_PRESET = _table.DEFAULT_PRESET
+GUIDES = {g.name: g for g in _table.GUIDES}
+MOTIONS = {m.name: m for m in _table.MOTIONS}
+OUTPUTS = {o.name: o for o in _table.OUTPUTS}
+ENGINE_OUTPUTS = tuple(o.name for o in _table.OUTPUTS if o.engine)   # computed by the engine at every step
+PRIMITIVES = _table.PRIMITIVES                # what the engine accumulates for them (per_step's prims)
+FAMILIES = _table.FAMILIES
+
+# the layouts of the vectors the kernels read, as tuples of entry names
+PARAMETER_VECTOR = _table.PARAMETER_VECTOR.entries        # every parameter entering an equation
+KINEMATIC_PARAMETERS = _table.KINEMATIC_PARAMETERS.entries  # the slots the guides and motions read
+PARAMETER_SYMBOLS = _table.PARAMETER_SYMBOLS.entries       # the symbol of each slot in the derivation
+KINEMATIC_SLOTS = tuple(PARAMETER_VECTOR.index(n) for n in KINEMATIC_PARAMETERS)
+KINEMATICS = _table.KINEMATICS.entries
 KIN = {name: k for k, name in enumerate(KINEMATICS)}         # place of each entry of kin
+COEFFICIENTS = _table.COEFFICIENTS.entries
 ELEMENT_DOFS = _table.ELEMENT_DOFS
-END_SLOTS = _table.END_SLOTS
-END_MAP_ROWS = {name: k for k, name in enumerate(_table.END_MAP_ROWS)}
+NODE = _table.NODE.entries                    # the components of a node (eq. 14)
+CONSTRAINTS = _table.CONSTRAINTS              # the DOF map: the constraints condensed out
+END_MAP_ROWS = {name: k for k, name in enumerate(_table.END_MAP_ROWS.entries)}
 ELEMENT_MODES = _table.ELEMENT_MODES          # what an element kernel's one-element function adds
 LANES, LANE_SIZE = _table.LANES, _table.LANE_SIZE       # an element kernel's lane function: elements at once,
 LANE_ROWS = _table.LANE_ROWS                            # its buffer's size and the first row of each block
 
-
-def _bracket(low, high, low_open, high_open):
-    left = "-inf" if low is None else f"{low:g}"
-    right = "inf" if high is None else f"{high:g}"
-    return ("(" if low_open or low is None else "[") + f"{left}, {right}" + (")" if high_open or high is None else "]")
-
-
-def _real(label, value):
-    if isinstance(value, (bool, str, bytes, bytearray)) or not isinstance(value, (numbers.Real, np.generic)):
-        raise ParameterError(f"{label} must be a number, got {value!r}")
-    x = float(value)
-    if not math.isfinite(x):
-        raise ParameterError(f"{label} must be finite, got {value!r}")
-    return x + 0.0                     # -0.0 -> 0.0: one canonical zero
-
-
-@dataclass(frozen=True)
-class Parameter:
-    name: str
-    kind: str
-    default: object
-    owner: str
-    readers: tuple
-    low: object
-    high: object
-    low_open: bool
-    high_open: bool
-    units: str
-    cli: str
-    metavar: str
-    choices: tuple
-    continuable: bool
-    kinematic_index: int
-    label: str
-    doc: str
-
-    @property
-    def range_text(self):
-        if self.kind == "real":
-            return _bracket(self.low, self.high, self.low_open, self.high_open)
-        if self.kind == "count":
-            return f"an integer >= {self.low}"
-        if self.kind == "sign":
-            return "+1 or -1"
-        if self.kind == "choice":
-            return " or ".join(repr(c) for c in self.choices)
-        return "two finite numbers"
-
-    def canonical(self, value):
-        """value checked and in canonical form (a Python float, int, str or a tuple of floats; -0.0
-        is 0.0), or ParameterError naming the parameter and its allowed values."""
-        label = self.label
-        if self.kind == "real":
-            x = _real(label, value)
-            bad_low = self.low is not None and (x <= self.low if self.low_open else x < self.low)
-            bad_high = self.high is not None and (x >= self.high if self.high_open else x > self.high)
-            if bad_low or bad_high:
-                raise ParameterError(f"{label} must be in {self.range_text}, got {x:g}")
-            return x
-        if self.kind == "pair":
-            if isinstance(value, (str, bytes, dict, set, frozenset)) or not hasattr(value, "__len__") \
-                    or not hasattr(value, "__getitem__") or len(value) != 2:
-                raise ParameterError(f"{label} must be a sequence of two numbers ({self.metavar or 'X,Y'}), "
-                                     f"got {value!r}")
-            return tuple(_real(f"{label}[{k}]", value[k]) for k in range(2))
-        if self.kind in ("count", "sign"):
-            if isinstance(value, bool) or not isinstance(value, (numbers.Real, np.generic)):
-                raise ParameterError(f"{label} must be {self.range_text}, got {value!r}")
-            x = float(value)
-            if not (math.isfinite(x) and x.is_integer()):
-                raise ParameterError(f"{label} must be {self.range_text}, got {value!r}")
-            n = int(x)
-            if (self.kind == "sign" and n not in (1, -1)) or (self.kind == "count" and n < self.low):
-                raise ParameterError(f"{label} must be {self.range_text}, got {n}")
-            return n
-        if isinstance(value, np.generic):
-            value = value.item()
-        if not isinstance(value, str) or value not in self.choices:
-            raise ParameterError(f"{label} must be {self.range_text}, got {value!r}")
-        return value
-
-    def read_by(self, guide, motion):
-        """True when the case's guide / motion reads this parameter."""
-        if self.owner == "guide":
-            return guide in self.readers
-        if self.owner == "motion":
-            return motion in self.readers
-        return True
-
-
-@dataclass(frozen=True)
-class Option:
-    name: str
-    choices: tuple
-    default: object
-    cli: str
-    doc: str
-
-    def canonical(self, value):
-        if isinstance(value, np.generic):
-            value = value.item()
-        if value not in self.choices or type(value) is not type(self.choices[0]):
-            allowed = ", ".join(repr(c) for c in self.choices)
-            raise ParameterError(f"{self.name} must be one of {allowed}, got {value!r}")
-        return value
-
-
-@dataclass(frozen=True)
-class Preset:
-    name: str
-    options: dict
-    doc: str
-
-
-@dataclass(frozen=True)
-class Guide:
-    name: str
-    title: str
-    parameters: tuple
-    aliases: tuple               # ((keyword of the record, (parameter, ...)), ...)
-    margins: tuple
-    doc: str
-
-
-@dataclass(frozen=True)
-class Motion:
-    name: str
-    title: str
-    parameters: tuple
-    periodic: bool
-    aliases: tuple
-    doc: str
-
-
-@dataclass(frozen=True)
-class Output:
-    name: str
-    kind: str
-    units: str
-    arguments: tuple
-    guides: tuple
-    inputs: tuple
-    doc: str
-    kernels: tuple
-
-
-PARAMETERS = {p["name"]: Parameter(**p) for p in _table.PARAMETERS}
-OPTIONS = {o["name"]: Option(**o) for o in _table.OPTIONS}
-PRESETS = {p["name"]: Preset(**p) for p in _table.PRESETS}
-DEFAULT_PRESET = _table.DEFAULT_PRESET
-GUIDES = {g["name"]: Guide(**g) for g in _table.GUIDES}
-MOTIONS = {m["name"]: Motion(**m) for m in _table.MOTIONS}
-OUTPUTS = {o["name"]: Output(**o) for o in _table.OUTPUTS}
+CRANK_SPEED = _table.CRANK_SPEED             # the crank's (nominal) speed parameter
+CRANK_ANGLE = _table.CRANK_ANGLE             # the crank's angle at t = 0
+UNIT_PARAMETERS = _table.UNIT_PARAMETERS      # {unit: the parameter giving its value in L}
+# the choice parameters that select the guide and the crank motion: {"guide": name, "motion": name}
+SELECTOR = {p.selects: p.name for p in PARAMETERS.values() if p.selects}
 MECHANISM_PARAMETERS = tuple(n for n, p in PARAMETERS.items() if p.owner in ("mechanism", "guide"))
 RUN_PARAMETERS = tuple(n for n, p in PARAMETERS.items() if p.owner in ("run", "motion"))
 CONTINUABLE = tuple(n for n, p in PARAMETERS.items() if p.continuable)
-EXCLUSIONS = _table.EXCLUSIONS            # (option values, reason): refused together
-QUADRATURE = _table.QUADRATURE            # element kernel -> its quadrature rule
+EXCLUSIONS = _table.EXCLUSIONS            # option values refused together (records.Exclusion)
 
 
 def resolve_options(model=None, **options):
@@ -201,9 +65,9 @@ def resolve_options(model=None, **options):
         if value is None:
             value = PRESETS[name].options.get(opt.name, opt.default)
         out[opt.name] = opt.canonical(value)
-    for values, reason in EXCLUSIONS:
-        if all(out[k] == v for k, v in values.items()):
-            raise ParameterError(reason)
+    for x in EXCLUSIONS:
+        if all(out[k] == v for k, v in x.options.items()):
+            raise ParameterError(x.reason)
     return out
 
 
@@ -213,3 +77,54 @@ def preset_of(options):
     matching = [(len(p.options), name) for name, p in PRESETS.items()
                 if all(options.get(k) == v for k, v in p.options.items())]
     return max(matching, key=lambda m: m[0])[1] if matching else None
+
+
+def selected(values, kind):
+    """The name of the guide (kind "guide") or motion ("motion") of a mapping of parameter values
+    (its default when absent)."""
+    p = PARAMETERS[SELECTOR[kind]]
+    return values.get(p.name, p.default)
+
+
+def parameter_vector(values):
+    """The parameter vector (PARAMETER_VECTOR order) of a mapping of canonical parameter values;
+    absent ones take their default."""
+    import numpy as np
+    out = np.empty(len(PARAMETER_VECTOR))
+    for p in PARAMETERS.values():
+        if p.slots:
+            out[list(p.slots)] = p.entries(values.get(p.name, p.default))
+    return out
+
+
+def natural_sizes(values):
+    """The natural size of each component of a node (NODE order, units of L) for a mapping of
+    parameter values (absent ones at their default): the declared formulas (u: eps^2, v, psi: eps)."""
+    return _table.natural_sizes(parameter_vector(values))
+
+
+def describe(values, skip=()):
+    """A case's parameters as text, from their records: (main, other), two lists of "axis = value".
+    main: the mechanism's real parameters and the continuable parameters of the crank motion;
+    other: the guide or motion when not the default one, named by its record's label with every
+    parameter it reads ("four-bar: rocker length c/L = 0.8, ..."), and any other parameter entering
+    an equation that is not at its default (gravity, an offset, a start angle).  The run's settings
+    (mesh, steps, integrator) are left to the caller; `skip`: names left out."""
+    chosen = {"guide": selected(values, "guide"), "motion": selected(values, "motion")}
+    records = {"guide": GUIDES[chosen["guide"]], "motion": MOTIONS[chosen["motion"]]}
+    main, other, groups = [], [], {"guide": [], "motion": []}
+    for p in PARAMETERS.values():
+        if p.name in skip or p.selects or not p.read_by(chosen["guide"], chosen["motion"]):
+            continue
+        value = p.canonical(values.get(p.name, p.default))        # a pair from JSON: a list
+        item = f"{p.axis} = {p.text(value)}"
+        if (p.owner == "mechanism" and p.kind == "real") or (p.owner == "motion" and p.continuable):
+            main.append(item)
+        elif p.owner in groups and chosen[p.owner] != PARAMETERS[SELECTOR[p.owner]].default:
+            groups[p.owner].append(item)
+        elif p.slots and value != p.default:
+            other.append(item)
+    for kind, items in groups.items():
+        if chosen[kind] != PARAMETERS[SELECTOR[kind]].default:
+            other.append(f"{records[kind].label or records[kind].name}" + (": " + ", ".join(items) if items else ""))
+    return main, other

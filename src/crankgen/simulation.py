@@ -10,28 +10,32 @@ import numpy as np
 
 from . import engine as _engine
 from . import kinematics as _kinematics
+from .kinematics import check_crank_steps
 from .cases import Case, run_case
 from .errors import ConvergenceError, ParameterError
 from .limits import check_run_size
 from .model import Model
 from .initial import initial_state
 from .newmark import NewmarkSettings, integrate
-from .outputs import DeclaredOutputs, SIView, StateHistory, end_axial, extension, mid_deflection
+from . import schema
+from .outputs import DeclaredOutputs, SIView, StateHistory, engine_columns, takes_engine_outputs
 from .parameters import SIMechanism
 from .units import Scales, scales_of
-from .validation import choice, in_range
+from .validation import choice, in_range, numbers_array
 
 ENGINES = ("compiled", "numpy")
 UNITS = ("crankgen", "si")
 
 
+@takes_engine_outputs
 @dataclass(frozen=True)
 class SimulationResult(DeclaredOutputs):
-    """Per-step outputs: t*, theta (rad, unwrapped), v* at x* = 1/2, u*(1), delta* (eq. 40), and
-    every declared output by name (crankgen.outputs): step quantities as attributes
-    (`slider_position`, `crank_speed`, `chord_angle`, `torque`, `pin_force_x`, ...), fields as
-    methods (`axial_force(x)`, `bending_moment(x)`, `surface_strain(x, fiber)`,
-    `chord_deflection(x)`), any of them by `quantity(name, ...)`.
+    """Per-step outputs: t*, theta (rad, unwrapped), the engine's outputs (`outputs`, by name:
+    v* at x* = 1/2, u*(1), delta* of eq. 40; each an attribute, `result.v_mid`, and a keyword of
+    the constructor), and every declared output by name (crankgen.outputs): step and reduction
+    quantities as attributes (`slider_position`, `crank_speed`, `chord_angle`, `torque`,
+    `pin_force_x`, ...), fields as methods (`axial_force(x)`, `bending_moment(x)`,
+    `surface_strain(x, fiber)`, `chord_deflection(x)`), any of them by `quantity(name, ...)`.
 
     at_times: the same at the times a run was asked for (`simulate(..., times=...)`), else None.
     si: the SI view (seconds, metres, radians, newtons, N m) of a run given in SI
@@ -39,11 +43,9 @@ class SimulationResult(DeclaredOutputs):
 
     t: np.ndarray
     theta: np.ndarray
-    v_mid: np.ndarray
-    u_end: np.ndarray
-    extension: np.ndarray
     iterations: np.ndarray
     settings: dict
+    outputs: dict = field(default=None, repr=False)                 # the engine's outputs by name
     nodes: Optional[np.ndarray] = field(default=None, repr=False)   # (steps, 3 (n+1)) if requested
     case: Optional[Case] = field(default=None, repr=False)
     states: Optional[np.ndarray] = field(default=None, repr=False)  # (steps, N) reduced displacements
@@ -53,13 +55,14 @@ class SimulationResult(DeclaredOutputs):
     scales: Optional[Scales] = field(default=None, repr=False)      # crankgen's units in SI (units="si")
 
     def to_csv(self, path):
-        """Write t*, theta (degrees), v_mid, u_end, extension as CSV (full double precision),
-        atomically."""
+        """Write t*, theta (degrees) and the engine's outputs (v_mid, u_end, extension) as CSV (full
+        double precision), atomically."""
         from .io import atomic_file
+        names = schema.ENGINE_OUTPUTS
         with atomic_file(path) as fh:
             w = csv.writer(fh)
-            w.writerow(["t", "theta_deg", "v_mid", "u_end", "extension"])
-            for row in zip(self.t, np.degrees(self.theta), self.v_mid, self.u_end, self.extension):
+            w.writerow(["t", "theta_deg", *names])
+            for row in zip(self.t, np.degrees(self.theta), *(self.outputs[n] for n in names)):
                 w.writerow([repr(float(x)) for x in row])
 
     @property
@@ -89,31 +92,46 @@ ON_STEP = 1e-9
 
 
 def _requested_times(times, factor):
-    """The requested times as a 1-d array in crankgen's units (times / factor), checked."""
-    try:
-        values = np.array(times, dtype=float).ravel()
-    except (TypeError, ValueError):
-        raise ParameterError(f"times must be a sequence of numbers, got {times!r}") from None
+    """The requested times as a 1-d array in crankgen's units (times / factor), checked: numbers
+    (text and booleans refused, as everywhere), finite and >= 0."""
+    values = numbers_array("times", times)
     if values.size == 0 or not np.all(np.isfinite(values)) or np.any(values < 0):
         raise ParameterError(f"times must be one or more finite numbers >= 0, got {times!r}")
     return values / factor
 
 
-def _landing(t_req, dt, n_steps):
-    """[(step k before the time, remaining time tau)] of each requested time; tau = 0: on step k."""
-    out = []
-    for tr in t_req:
-        k = int(np.floor(tr / dt))
-        tau = tr - k * dt
-        if tau <= ON_STEP * dt:
-            tau = 0.0
-        elif dt - tau <= ON_STEP * dt:
-            k, tau = k + 1, 0.0
-        if k > n_steps or (k == n_steps and tau > 0):
-            raise ParameterError(f"times: t* = {tr:.6g} is beyond the run's end t* = {n_steps * dt:.6g} "
-                                 "(give more revolutions, or leave revolutions out to run up to the last time)")
-        out.append((k, tau))
-    return out
+def _landing(t_req, dt):
+    """(k, tau): for each requested time the step k before it and the remaining time tau (0: on
+    step k), in one pass over the times."""
+    k = np.floor(t_req / dt)
+    tau = t_req - k * dt
+    on = tau <= ON_STEP * dt
+    up = ~on & (dt - tau <= ON_STEP * dt)
+    k = np.where(up, k + 1, k)
+    tau = np.where(on | up, 0.0, tau)
+    return k, tau
+
+
+def _check_steps_needed(t_req, dt):
+    """Refuse, before any array is made, a last time so far away that its step count is not even
+    a machine integer (the run-size check then gives the memory of what remains)."""
+    last = float(np.max(t_req)) / dt
+    if not last < 2.0 ** 62:
+        raise ParameterError(f"times: t* = {float(np.max(t_req)):.6g} needs about {last:.3g} time steps "
+                             f"of dt* = {dt:.3g}; ask for earlier times")
+
+
+def _steps_to_reach(k, tau):
+    """The steps a run needs to reach every requested time (one more past a time between steps)."""
+    return int(np.max(k + (tau > 0)))
+
+
+def _check_landing(k, tau, t_req, dt, n_steps):
+    beyond = (k > n_steps) | ((k == n_steps) & (tau > 0))
+    if np.any(beyond):
+        tr = float(t_req[np.argmax(beyond)])
+        raise ParameterError(f"times: t* = {tr:.6g} is beyond the run's end t* = {n_steps * dt:.6g} "
+                             "(give more revolutions, or leave revolutions out to run up to the last time)")
 
 
 def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolutions=None, times=None,
@@ -170,22 +188,33 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     case = run_case(mech, case, model=model, omega=omega, crank=crank, **fields)
     settings = NewmarkSettings(scheme=case.integrator, tol=tol)
     model = Model.from_case(case)
+    if not isinstance(history, (bool, np.bool_)):
+        raise ParameterError(f"history must be True or False, got {history!r}")
+    history = bool(history)
+    if store_nodes and not history:
+        raise ParameterError("store_nodes needs the run's states: leave history=True")
+    landing = None
     if times is not None:
         t_req = _requested_times(times, 1.0 if scales is None else scales.factor("1/omega_b"))
     if revolutions is None and times is not None:
         dt = _kinematics.step_period(case) / case.steps_per_rev
-        n_steps = max(1, int(np.ceil(np.max(t_req) / dt * (1 - ON_STEP))))
+        _check_steps_needed(t_req, dt)
+        landing = _landing(t_req, dt)
+        n_steps = max(1, _steps_to_reach(*landing))
         revolutions = n_steps / case.steps_per_rev        # step periods: revolutions of a periodic crank
     else:
         revolutions = 10.0 if revolutions is None else revolutions
         dt, n_steps = run_length(case, revolutions)
-    check_run_size(case.n_elements, n_steps if history else 0, stored="nodes" if store_nodes else "states",
-                   names={"n_steps": "revolutions"})
-    landing = None if times is None else _landing(t_req, dt, n_steps)
-    if not isinstance(history, bool):
-        raise ParameterError(f"history must be True or False, got {history!r}")
-    if store_nodes and not history:
-        raise ParameterError("store_nodes needs the run's states: leave history=True")
+        if times is not None:
+            landing = _landing(t_req, dt)
+            _check_landing(*landing, t_req, dt, n_steps)
+    check_run_size(case.n_elements, n_steps, stored=("nodes" if store_nodes else "states") if history else "outputs",
+                   n_times=0 if times is None else len(t_req),
+                   names={"n_steps": "revolutions" if times is None else "revolutions (or the last of times)",
+                          "n_times": "times"})
+    check_crank_steps(case, dt, n_steps * dt)
+    if landing is not None:
+        landing = list(zip(landing[0].astype(np.int64).tolist(), landing[1].tolist()))
     d0, v0 = initial_state(case, initial, scales)
     info = dict(case.as_dict(), revolutions=revolutions, tol=tol, engine=engine)
     stops = sorted({k for k, _ in landing}) if landing is not None else []
@@ -210,7 +239,7 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     t = dt * np.arange(n_steps + 1)
     kin = _kinematics.case_state(case, t)
     nodes = model.full_nodal(D, kin) if store_nodes else None
-    result = SimulationResult(t=t, theta=kin.theta, v_mid=y[:, 0], u_end=y[:, 1], extension=y[:, 2],
+    result = SimulationResult(t=t, theta=kin.theta, outputs=engine_columns(y),
                               iterations=iterations, settings=dict(info, history=history), nodes=nodes,
                               case=case, states=D, rates=V, accelerations=A, scales=scales)
     if status[0] != _engine.OK:
@@ -224,39 +253,42 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
 
 def _numpy_result(model, case, hist, info, store_nodes, scales):
     history = StateHistory(case, hist.t, hist.d, hist.v, hist.a)
-    q = history.element_vectors()
     kin = history.kinematics()
     return SimulationResult(
-        t=hist.t, theta=kin.theta, v_mid=mid_deflection(model.mesh, q, case.eps),
-        u_end=end_axial(q, case.eps), extension=extension(model.mesh, q),
+        t=hist.t, theta=kin.theta, outputs=engine_columns(history.engine_outputs()),
         iterations=hist.iterations, settings=info,
         nodes=model.full_nodal(hist.d, kin) if store_nodes else None, case=case, states=hist.d,
         rates=hist.v, accelerations=hist.a, scales=scales)
 
 
 def _at_times_result(model, case, t_req, rows, info, store_nodes, scales):
-    """The SimulationResult at the requested times from rows (y (3,), iterations, d, v, a) each."""
-    y = np.array([r[0] for r in rows], dtype=float).reshape(len(rows), 3)
+    """The SimulationResult at the requested times from rows (the engine's outputs y, iterations,
+    d, v, a) each."""
+    y = np.array([r[0] for r in rows], dtype=float).reshape(len(rows), len(schema.ENGINE_OUTPUTS))
     D, V, A = (np.array([r[k] for r in rows], dtype=float) for k in (2, 3, 4))
     kin = _kinematics.case_state(case, t_req)
     return SimulationResult(
-        t=np.array(t_req, dtype=float), theta=kin.theta, v_mid=y[:, 0], u_end=y[:, 1], extension=y[:, 2],
+        t=np.array(t_req, dtype=float), theta=kin.theta, outputs=engine_columns(y),
         iterations=np.array([r[1] for r in rows], dtype=np.int32), settings=dict(info, times=True),
         nodes=model.full_nodal(D, kin) if store_nodes else None, case=case, states=D, rates=V,
         accelerations=A, scales=scales)
+
+
+def _engine_row(result, k):
+    """The engine's outputs of a result at its step k, (len(schema.ENGINE_OUTPUTS),)."""
+    return np.array([result.outputs[name][k] for name in schema.ENGINE_OUTPUTS])
 
 
 def _numpy_at_times(model, case, result, states, landing, t_req, settings, store_nodes, info, scales):
     rows = []
     for (k, tau), tr in zip(landing, t_req):
         if tau == 0.0:
-            rows.append(((result.v_mid[k], result.u_end[k], result.extension[k]), 0) + states[k])
+            rows.append((_engine_row(result, k), 0) + states[k])
             continue
         d, v, a = states[k]
         hist = integrate(model, d, v, result.t[k], tau, 1, settings, a0=a)
         one = _numpy_result(model, case, hist, info, False, scales)
-        rows.append(((one.v_mid[1], one.u_end[1], one.extension[1]), int(hist.iterations[0]), hist.d[1],
-                     hist.v[1], hist.a[1]))
+        rows.append((_engine_row(one, 1), int(hist.iterations[0]), hist.d[1], hist.v[1], hist.a[1]))
     return _at_times_result(model, case, t_req, rows, info, store_nodes, scales)
 
 
@@ -286,49 +318,71 @@ def _compiled_at_times(model, case, result, states, landing, t_req, tol, store_n
         if j in stepped:
             rows.append(stepped[j])
         else:
-            rows.append(((result.v_mid[k], result.u_end[k], result.extension[k]), 0) + states[k])
+            rows.append((_engine_row(result, k), 0) + states[k])
     return _at_times_result(model, case, t_req, rows, info, store_nodes, scales)
+
+
+# the most memory a chunk's states may take while the states at requested times are picked from it
+CHUNK_BYTES = 64 * 2**20
 
 
 def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progress=None,
                      chunks=20, stops=(), captured=None):
     """Run the compiled engine from (D0, V0) in a few chunks, so that progress(done_steps) can be
     shown; a case that fails stops alone.  Returns (y, iterations, status, fail_step,
-    fail_residual, D, V, A) with y (B, n_steps + 1, 3) and the histories of the reduced
+    fail_residual, D, V, A) with y (B, n_steps + 1, the engine's outputs) and the histories of the reduced
     displacements, velocities and accelerations (None unless keep_states).  stops: step indices
-    whose states (D, V, A), each (B, N), are put in the dict `captured` (chunks end there; the
-    marching is the same as without them)."""
+    whose states (D, V, A), each (B, N), are put in the dict `captured`: taken from the states of
+    the chunk that holds them (a chunk with stops keeps its states, and is at most CHUNK_BYTES of
+    them long), so the work grows linearly with the stops; the marching is the same as without
+    them (chunks continue from the state and history where the last one ended)."""
     B = len(batch)
     D, V, A, previous = np.array(D0, dtype=float), np.array(V0, dtype=float), None, None
     status = np.zeros(B, dtype=np.int64)
     fail_step, fail_res = np.zeros(B, dtype=np.int64), np.zeros(B)
     ys, its, hist = [], [], ([], [], [])
     size = max(1, -(-n_steps // chunks)) if progress is not None else n_steps
-    stops = sorted(k for k in set(stops) if 0 <= k <= n_steps)
-    if stops and stops[0] == 0:
+    stops = np.unique(np.asarray([k for k in stops if 0 <= k <= n_steps], dtype=np.int64))
+    if not keep_states and stops.size:
+        size = min(size, max(1, CHUNK_BYTES // (3 * 8 * B * max(1, batch.N))))
+    if stops.size and stops[0] == 0:
         first = _engine.march(batch, 0, D0=D, V0=V, tol=tol, status=status)
         A, status = first.A, first.status
         captured[0] = (D.copy(), V.copy(), A.copy())
-    done = 0
+    done, next_stop = 0, int(np.searchsorted(stops, 1))
     while done < n_steps:
         k = min(size, n_steps - done)
-        later = [s for s in stops if s > done]
-        if later:
-            k = min(k, later[0] - done)
-        res = _engine.march(batch, k, D0=D, V0=V, A0=A, step0=done, keep_history=bool(keep_states),
+        last_stop = int(np.searchsorted(stops, done + k, side="right"))
+        holds = last_stop > next_stop                          # stops in (done, done + k]
+        res = _engine.march(batch, k, D0=D, V0=V, A0=A, step0=done, keep_history=bool(keep_states or holds),
                             tol=tol, status=status, previous=previous)
         new_fail = (res.status != _engine.OK) & (status == _engine.OK)
         fail_step[new_fail], fail_res[new_fail] = res.fail_step[new_fail], res.fail_residual[new_fail]
         status = res.status
         ys.append(res.y if done == 0 else res.y[:, 1:])
         its.append(res.iterations)
+        for stop in stops[next_stop:last_stop]:
+            j = int(stop) - done
+            captured[int(stop)] = (res.D_history[:, j].copy(), res.V_history[:, j].copy(),
+                                   res.A_history[:, j].copy())
+        next_stop = last_stop
         if keep_states:
             for store, h in zip(hist, (res.D_history, res.V_history, res.A_history)):
                 store.append(h if done == 0 else h[:, 1:])
         D, V, A, previous = res.D, res.V, res.A, res.previous
         done += k
-        if done in stops:
-            captured[done] = (D.copy(), V.copy(), A.copy())
+        if not np.any(status == _engine.OK):
+            # every case has stopped: the rest would be NaN rows (what the engine writes for a
+            # case that does not advance), and progress must not count steps never computed
+            if progress is not None:
+                progress(int(np.max(fail_step)) - 1)
+            rest = n_steps - done
+            ys.append(np.full((B, rest, 3), np.nan))
+            its.append(np.zeros((B, rest), dtype=its[-1].dtype))
+            if keep_states:
+                for store in hist:
+                    store.append(np.full(store[-1].shape[:1] + (rest,) + store[-1].shape[2:], np.nan))
+            break
         if progress is not None:
             progress(done)
     histories = tuple(np.concatenate(h, axis=1) if keep_states else None for h in hist)
@@ -348,7 +402,8 @@ def _failure(status, step, residual, dt, result=None):
 
 def _truncated(result, n_points):
     """result with its per-step arrays cut to the first n_points points (steps 0 .. n_points-1)."""
-    cut = {name: getattr(result, name)[:n_points] for name in ("t", "theta", "v_mid", "u_end", "extension")}
+    cut = {name: getattr(result, name)[:n_points] for name in ("t", "theta")}
+    cut["outputs"] = {name: values[:n_points] for name, values in result.outputs.items()}
     cut["iterations"] = result.iterations[:max(0, n_points - 1)]
     for name in ("nodes", "states", "rates", "accelerations"):
         value = getattr(result, name)
@@ -374,6 +429,9 @@ def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=Fals
     for (n, _, n_steps), idx in groups.items():
         check_run_size(n, n_steps, n_cases=len(idx), stored="states" if keep_states else "outputs",
                        names={"n_steps": "revolutions", "n_cases": "cases"})
+    for i, c in enumerate(cases):
+        dt, n_steps = run_length(c, revolutions)
+        check_crank_steps(c, dt, n_steps * dt, f"cases[{i}]: " if len(cases) > 1 else "")
     out = [None] * len(cases)
     done_total = 0
     for (n, spr, n_steps), idx in sorted(groups.items()):
@@ -388,8 +446,8 @@ def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=Fals
             c, dt = cases[i], float(batch.dt[j])
             t = dt * np.arange(n_steps + 1)
             result = SimulationResult(
-                t=t, theta=_kinematics.case_state(c, t).theta, v_mid=y[j, :, 0], u_end=y[j, :, 1],
-                extension=y[j, :, 2], iterations=iterations[j].astype(np.int32),
+                t=t, theta=_kinematics.case_state(c, t).theta, outputs=engine_columns(y[j]),
+                iterations=iterations[j].astype(np.int32),
                 settings=dict(c.as_dict(), revolutions=revolutions, engine="compiled"), case=c,
                 states=None if D is None else D[j], rates=None if V is None else V[j],
                 accelerations=None if A is None else A[j])

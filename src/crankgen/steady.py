@@ -40,22 +40,24 @@ from typing import Optional
 
 import numpy as np
 
-from . import engine
+from . import engine, schema
 from . import kinematics as _kinematics
 from .cases import Case, run_case
 from .errors import ParameterError
 from .limits import check_run_size
-from .outputs import DeclaredOutputs
+from .outputs import DeclaredOutputs, engine_columns, takes_engine_outputs
 from .validation import choice, in_range, integer
 
 STATUSES = ("periodic", "not-periodic", "unstable", "failed")
 METHODS = ("shooting", "march")
 
 
+@takes_engine_outputs
 @dataclass(frozen=True)
 class SteadyState(DeclaredOutputs):
     """One steady revolution of a case (arrays over steps_per_rev + 1 points, theta from 0 to 2 pi),
-    with every declared output by name (crankgen.outputs: `slider_position`, `axial_force(x)`, ...).
+    with the engine's outputs (`outputs`, by name: v_mid, u_end, extension, each an attribute) and
+    every declared output by name (crankgen.outputs: `slider_position`, `axial_force(x)`, ...).
 
     Numbers that do not exist for a result are None (never NaN); status and message say why.
     """
@@ -72,9 +74,7 @@ class SteadyState(DeclaredOutputs):
     multiplier: Optional[float] = None  # largest |Floquet multiplier| (None: not computed, see message)
     theta: np.ndarray = field(default=None, repr=False)
     t: np.ndarray = field(default=None, repr=False)
-    v_mid: np.ndarray = field(default=None, repr=False)
-    u_end: np.ndarray = field(default=None, repr=False)
-    extension: np.ndarray = field(default=None, repr=False)
+    outputs: dict = field(default=None, repr=False)       # the engine's outputs over the revolution, by name
     state: np.ndarray = field(default=None, repr=False)   # reduced (d, v) at theta = 0, (2 N,)
     states: np.ndarray = field(default=None, repr=False)  # reduced displacements over the revolution
     rates: np.ndarray = field(default=None, repr=False)   # reduced velocities over the revolution
@@ -269,15 +269,15 @@ class _BatchSolver:
         out = []
         for i, case in enumerate(self.cases):
             if show[i] and res.status[i] == engine.OK:
-                y = res.y[i]
-                v = y[:, 0]
+                outputs = engine_columns(res.y[i])
+                v = outputs["v_mid"]
                 t = float(b.dt[i]) * np.arange(spr + 1)
                 out.append(SteadyState(
                     case, self.status[i], float(np.max(np.abs(v))), float((v.max() - v.min()) / 2),
                     int(self.periods[i]), int(self.iterations[i]), self.residual[i],
                     self.message[i], multiplier=self.multiplier[i],
-                    theta=_kinematics.case_state(case, t).theta, t=t, v_mid=v, u_end=y[:, 1],
-                    extension=y[:, 2], state=self.X[i].copy(), states=res.D_history[i],
+                    theta=_kinematics.case_state(case, t).theta, t=t, outputs=outputs,
+                    state=self.X[i].copy(), states=res.D_history[i],
                     rates=res.V_history[i], accelerations=res.A_history[i]))
             else:
                 status = self.status[i] if self.status[i] != "pending" else "failed"
@@ -299,17 +299,21 @@ def _check_resolved(case, where=""):
     if not case.periodic:
         raise ParameterError(
             f"{where}a steady state needs a crank motion periodic in the crank angle; the "
-            f"{case.motion!r} motion is not (a run-up is a transient: simulate runs it)")
+            f"{case.motion_record.name!r} motion is not (a transient: simulate runs it)")
     T = _kinematics.period(case)
     dt = T / case.steps_per_rev
     if dt > 2 * math.pi:
+        speed = schema.PARAMETERS[schema.CRANK_SPEED]
+        value = getattr(case, speed.name)
+        nominal = T == 2 * math.pi / value            # one revolution at the crank speed: T = 2 pi / Omega*
         raise ParameterError(
-            f"{where}steps_per_rev must be at least {'1/Omega* = ' if case.motion == 'constant' else ''}"
+            f"{where}steps_per_rev must be at least {f'1/{speed.axis} = ' if nominal else ''}"
             f"{math.ceil(T / (2 * math.pi) * (1 - 1e-12)):d} for a "
-            f"steady state at Omega* = {case.omega:g} (got {case.steps_per_rev}): the time step "
+            f"steady state at {speed.axis} = {value:g} (got {case.steps_per_rev}): the time step "
             f"dt* = {dt:.3g} would exceed the period 2 pi of the rod's first bending mode, and with "
             f"such steps the Floquet multipliers, hence the stability verdict, are set by the time "
             f"step instead of the mechanism; simulate() marches such slow, quasi-static runs")
+    _kinematics.check_crank_steps(case, dt, T, where)
 
 
 def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="shooting",

@@ -5,7 +5,10 @@ switched-off term groups as text); flat_table turns them into columns that any C
 gravity into two numeric columns gravity_x, gravity_y (units L omega_b^2), groups_off dropped when
 it is empty in every row (it is only set by the audit's term-switching runs)."""
 
-PAIRS = {"gravity": ("gravity_x", "gravity_y")}
+from . import schema
+
+# a pair parameter as two columns <name>_x, <name>_y
+PAIRS = {p.name: (f"{p.name}_x", f"{p.name}_y") for p in schema.PARAMETERS.values() if p.kind == "pair"}
 
 
 def flat_table(columns, rows):

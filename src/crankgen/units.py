@@ -2,7 +2,7 @@
 
 Inside crankgen: length L (the rod's length), mass rho A L, time 1/omega_b with
 omega_b = (pi/L)^2 sqrt(EI/(rho A)) (the lowest bending frequency of the pinned-pinned rod).  Every
-parameter and output declares its unit in derive/model.py as a product of the base symbols below,
+parameter and output declares its unit in derive/declaration.py as a product of the base symbols below,
 with integer powers and at most one "/": "r", "r^2/L", "L", "rad", "omega_b", "L omega_b",
 "rhoA L^2 omega_b^2", "rhoA L^3 omega_b^2", "EI/L^2", "EI/L", "1/omega_b", "1".  `Scales` gives
 the SI value of each base symbol for one mechanism; `Scales.factor(units)` the SI value of one unit
@@ -105,3 +105,19 @@ def scales_of(si_mechanism):
         raise ParameterError(f"expected a crankgen.SIMechanism, got {type(si_mechanism).__name__}")
     return Scales(L=float(si_mechanism.L), eps=si_mechanism.radius_of_gyration / si_mechanism.L,
                   omega_b=si_mechanism.omega_b, rhoA=float(si_mechanism.rho * si_mechanism.A))
+
+
+def in_L(units, values):
+    """The value in crankgen's length L of one unit `units` made of lengths ("r", "r^2/L", "L"),
+    for a case's parameter values (a mapping; absent ones at their default): a unit that is a
+    parameter (the radius of gyration r = eps L) takes that parameter's value (schema.UNIT_PARAMETERS)."""
+    from . import schema
+    out = 1.0
+    for name, power in parse(units).items():
+        if name == "L":
+            continue
+        if name not in schema.UNIT_PARAMETERS:
+            raise ValueError(f"{name} is not a length (units {units!r})")
+        p = schema.PARAMETERS[schema.UNIT_PARAMETERS[name]]
+        out *= float(values.get(p.name, p.default)) ** power
+    return out

@@ -3,13 +3,25 @@
 import math
 import numbers
 
+import numpy as np
+
 from .errors import ParameterError
+
+# what is never a number, though Python or NumPy would turn it into one: text ("0.8" -> 0.8) and
+# truth values (True -> 1, numpy.bool_ included)
+NOT_NUMBERS = (bool, np.bool_, str, bytes, bytearray)
+
+
+def not_a_number(value):
+    """True for text and booleans (Python's or NumPy's), which crankgen never reads as numbers."""
+    return isinstance(value, NOT_NUMBERS)
 
 
 def finite_number(name, value):
-    """value as a float; it must be a real, finite number.  Text is refused, even "0.8": a number
-    given as a string is a mistake to report, not to guess (the command line parses its own)."""
-    if isinstance(value, (bool, str, bytes, bytearray)):
+    """value as a float; it must be a real, finite number.  Text and booleans are refused, even
+    "0.8" and numpy.True_: a number given as a string is a mistake to report, not to guess (the
+    command line parses its own)."""
+    if not_a_number(value) or isinstance(value, (complex, np.complexfloating)):
         raise ParameterError(f"{name} must be a number, got {value!r}")
     try:
         x = float(value)
@@ -36,9 +48,9 @@ def in_range(name, value, low=None, high=None, low_open=False, high_open=False):
 
 def integer(name, value, minimum):
     """value as an int >= minimum (integral floats such as 16.0 are accepted)."""
-    if isinstance(value, numbers.Integral) and not isinstance(value, bool):
+    if isinstance(value, numbers.Integral) and not not_a_number(value):
         n = int(value)
-    elif isinstance(value, float) and value.is_integer():
+    elif isinstance(value, (float, np.floating)) and float(value).is_integer():
         n = int(value)
     else:
         raise ParameterError(f"{name} must be an integer >= {minimum}, got {value!r}")
@@ -53,3 +65,24 @@ def choice(name, value, allowed):
         options = ", ".join(repr(a) for a in allowed)
         raise ParameterError(f"{name} must be one of {options}, got {value!r}")
     return value
+
+
+def numbers_array(name, values):
+    """values (a number or a sequence of them) as a 1-d float array; text, booleans and other
+    non-numbers are refused anywhere in it (NumPy would read "0.5" and True as numbers)."""
+    bad = ParameterError(f"{name} must be a number or a sequence of numbers, got {values!r}"[:200])
+    if not_a_number(values):
+        raise bad
+    if isinstance(values, np.ndarray) and values.dtype.kind in "iuf":
+        return values.astype(float).ravel()              # numbers already: no look at each one
+    try:
+        items = np.asarray(values, dtype=object).ravel()  # each item as given (NumPy would turn
+    except (TypeError, ValueError):                       # [numpy.True_, 1.0] into [1.0, 1.0])
+        raise bad from None
+    if any(not_a_number(v) or isinstance(v, (list, tuple, dict, set)) for v in items):
+        raise bad
+    try:
+        return np.array([finite_number(name, v) if not isinstance(v, (float, int)) else v for v in items],
+                        dtype=float)
+    except ParameterError:
+        raise bad from None

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import engine
+from .. import engine, schema
 from ..cases import Case
 from ..mesh import Mesh, PSI, V
 
@@ -65,7 +65,7 @@ def backbone(amplitudes, eps=0.01, ms=0.5, approach="A", formulation="lagrange",
         if res.status[i] != engine.OK:
             points.append(BackbonePoint(case, amp, math.nan, engine.STATUS_TEXT[int(res.status[i])]))
             continue
-        w_h = _frequency(t, res.y[i, :, 0])
+        w_h = _frequency(t, res.y[i, :, schema.ENGINE_OUTPUTS.index("v_mid")])
         if not math.isfinite(w_h):
             points.append(BackbonePoint(case, amp, math.nan, "no oscillation"))
         elif w_h * dt > 2 * math.pi / 8:      # fewer than 8 steps per period: not resolved

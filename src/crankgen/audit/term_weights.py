@@ -16,7 +16,7 @@ from .. import engine, ingredients
 from .._generated import groups as _groups
 from ..cases import Case
 from ..constraints import project_residual
-from ..mesh import U
+from ..mesh import NDOF, U
 from ..model import Model
 from ..steady import steady_states
 
@@ -66,20 +66,23 @@ def group_weights(case, steady):
         q, qd, qdd, E = model.nodal_state(kin, res.D_history[0, k], res.V_history[0, k],
                                           res.A_history[0, k])
         element = (q, qd, qdd, geo, coef, kin.vector)
-        last = (q[-1], qd[-1], qdd[-1], geo[-1], coef, kin.vector)
+        held = mesh.holders()
+        e = held[0][0]                  # the element whose node the end mass sits on
+        last = (q[e], qd[e], qdd[e], geo[e], coef, kin.vector)
         vectors = {}
         for g in ALL_GROUPS:
-            r = np.zeros((mesh.n_elements, 6))
+            r = np.zeros((mesh.n_elements, NDOF))
             if g in KINETIC_GROUPS:
                 r += _kernel("rod_inertia", g, averaged)(*element)[0]
                 slider = _kernel("slider_inertia", g, averaged)
                 if slider is not None:
-                    r[-1] += slider(*last)[0]
+                    r[e] += slider(*last)[0]
             elif g in ELASTIC_GROUPS:
                 r += _kernel("rod_elastic_A", g, averaged)(*element)[0]
             else:
                 r += _kernel("kelvin_voigt_A", g, averaged)(*element)[0]
-            r[-1] = project_residual(E, r[-1])
+            for h, slots, reduced in held:
+                r[h] = project_residual(E, r[h], slots, reduced)
             vectors[g] = model.assembler.vector(r)
         elastic = sum(vectors[g] for g in ELASTIC_GROUPS)
         total = sum(vectors.values())

@@ -5,8 +5,11 @@ from dataclasses import replace
 
 import numpy as np
 
+from .. import kinematics as _kinematics
+from .. import schema
 from ..cases import run_case
-from ..errors import CrankgenError, ParameterError
+from ..errors import NoResultError, ParameterError
+from ..parameters import check_full_turn
 from ..validation import choice, in_range, integer
 from .core import CORRECTORS, PREDICTORS, Continuer, Settings
 from .mechanism import PARAMETERS, MechanismMap
@@ -14,9 +17,44 @@ from .mechanism import PARAMETERS, MechanismMap
 
 def make_case(mech, parameter, value, case, **fields):
     """The Case of the first point: case (if given) or mech + the run's fields and model, with
-    parameter = value."""
+    parameter = value; its time step checked against the crank motion (kinematics.check_crank_steps)."""
     choice("parameter", parameter, PARAMETERS)
-    return replace(run_case(mech, case, **fields), **{parameter: value})
+    base = run_case(mech, case, **fields)
+    p = schema.PARAMETERS[parameter]
+    if not p.read_by(base.guide, base.motion):
+        current = base.guide if p.owner == "guide" else base.motion
+        raise ParameterError(f"cannot vary {p.label}: it belongs to the "
+                             f"{' and '.join(p.readers)} {p.owner}; this case's {p.owner} is {current!r}")
+    out = replace(base, **{parameter: value})
+    if out.periodic:
+        T = _kinematics.period(out)
+        _kinematics.check_crank_steps(out, T / out.steps_per_rev, T, f"{parameter} = {value:g}: ")
+    return out
+
+
+def locking_limit(case, parameter, start, stop, samples=400):
+    """(value, the guide's condition that fails) of the first value of `parameter` from start
+    towards stop at which the crank cannot turn a full revolution (the guide's margins,
+    parameters.check_full_turn), to 1e-12 of the range by bisection; None when there is none.
+    A four-bar that locks for |d| < 0.3 continued from d = -1 to 1 stops short of -0.3: this
+    names why."""
+    def fails(p):
+        try:
+            check_full_turn(dict(case.parameters(), **{parameter: float(p)}))
+            return None
+        except ParameterError as exc:
+            return str(exc)
+    values = np.linspace(start, stop, samples + 1)
+    bad = next((k for k, p in enumerate(values) if fails(p)), None)
+    if bad is None or bad == 0:
+        return None
+    lo, hi = float(values[bad - 1]), float(values[bad])
+    while abs(hi - lo) > 1e-12 * abs(stop - start):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if fails(mid) else (mid, hi)
+    why = fails(hi)
+    needs = why.split("needs ", 1)[-1].split("; got", 1)[0]
+    return hi, f"the {case.guide_record.name} guide needs {needs}"
 
 
 def _check_progress(progress):
@@ -24,24 +62,46 @@ def _check_progress(progress):
         raise ParameterError(f"progress must be None or a function, got {progress!r}")
 
 
-def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, model=None, max_period=4, ds=0.05,
+def _add_quantities(diagram, case, parameter, section, progress):
+    """Every branch point's physical quantities (quantities.py)."""
+    from .quantities import branch_quantities, units
+    for k, br in enumerate(diagram.branches):
+        if progress is not None:
+            progress(f"branch {k}: the physical quantities of its {len(br)} orbits")
+        br.quantities, br.quantity_notes = branch_quantities(case, parameter, br, section)
+        br.quantity_units = units(section)
+
+
+def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *, model=None, max_period=4, ds=0.05,
                  ds_min=1e-4, ds_max=100.0, dp_max=None, max_points=400, tol=1e-9, switch_step=0.05,
                  case=None, progress=None, corrector="broyden", predictor="quadratic", derivative="exact",
-                 **fields):
-    """Follow the periodic response of the mechanism as `parameter` (omega, eps, ms, mu, a or offset) goes
-    from start to stop, by pseudo-arclength continuation of the fixed points of the crank-revolution
-    map, and return a BifurcationDiagram: branches (period, parameter, amplitude = max |v*(1/2)|
-    over the orbit, stable, Floquet multipliers, states) and special points (fold, period-doubling,
+                 quantities=True, section=None, **fields):
+    """Follow the periodic response of the mechanism as `parameter` goes from start to stop, by
+    pseudo-arclength continuation of the fixed points of the crank-revolution map, and return a
+    BifurcationDiagram: branches (period, parameter, amplitude = max |v*(1/2)| over the orbit,
+    stable, Floquet multipliers, states) and special points (fold, period-doubling,
     neimark-sacker), with the period-2 (then 4, ... up to max_period) branches born at period
-    doublings.  The case as in steady_state (a Mechanism with the run's fields and model=, or
-    case=Case(...)); the value of `parameter` given among them is replaced by start.  Steps ds, ds_min, ds_max are arclengths in the metric
+    doublings.  parameter: any continuable parameter of the schema (crankgen.schema.CONTINUABLE):
+    omega, eps, ms, mu, a, offset, a four-bar's rocker length c and ground pivot abscissa d
+    (guide=crankgen.Circle(...)), and a fluctuating crank's amplitude fluctuation
+    (crank=crankgen.Fluctuation(...)).  The case as in steady_state (a Mechanism with the run's
+    fields and model=, or case=Case(...)); the value of `parameter` given among them is replaced
+    by start.  The start must have a periodic response (NoResultError otherwise; a continuation
+    can start from either end of its range).  Steps ds, ds_min, ds_max are arclengths in the metric
     |dy|^2 / dim + dp^2, y the state in v*-like units; no step changes the parameter by more than
     dp_max (default |stop - start| / 50).  progress(text) receives progress lines.
     corrector ("broyden" or "newton"), predictor ("quadratic" or "tangent") and derivative
     ("exact" or "central", the map's parameter derivative) select the methods
     (bifurcation/core.py, mechanism.py): the defaults are the fast ones; "newton", "tangent" and
-    "central" together are the former method, kept as a baseline."""
+    "central" together are the former method, kept as a baseline.  quantities: every branch
+    point also stores the physical quantities of its orbit (Branch.quantities: peak torque, pin and
+    end forces, axial force, |v*|, outer-fibre strain, and with a crankgen.sections.Section
+    `section` the peak stress in units of E; bifurcation/quantities.py)."""
     _check_progress(progress)
+    if section is not None:
+        from ..sections import Section
+        if not isinstance(section, Section):
+            raise ParameterError(f"section must be a crankgen.sections.Section, got {type(section).__name__}")
     start = in_range("start", start)
     stop = in_range("stop", stop)
     if start == stop:
@@ -63,10 +123,23 @@ def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, model=Non
     from ..steady import steady_states
     first = steady_states([c0])[0]
     if first.state is None:
-        raise CrankgenError(f"no periodic response to start from at {parameter} = {start:g}: "
-                            f"{first.status}, {first.message}")
+        other = ("; a continuation can start from the other end of the range (swap its start and "
+                 f"stop: from {stop:g} to {start:g})" if first.status != "failed" else "")
+        raise NoResultError(f"no periodic response to start from at {parameter} = {start:g}: "
+                            f"{first.status}, {first.message}{other}")
     cont = Continuer(fmap, start, stop, settings, log=progress)
     diagram = cont.diagram(first.state / fmap.s, start, 1.0 if stop > start else -1.0)
+    lock = locking_limit(c0, parameter, start, stop)
+    if lock is not None:
+        value, why = lock
+        for br in diagram.branches:
+            if not br.stop_reason.startswith("reached"):
+                br.stop_reason += (f"; {parameter} = {value:.6g} is the locking limit: beyond it the crank "
+                                   f"cannot turn a full revolution ({why})")
+    for sp in diagram.special_points:
+        sp.case = fmap.case_at(sp.parameter)
+    if quantities:
+        _add_quantities(diagram, c0, parameter, section, progress)
     info = c0.as_dict()
     info.pop(parameter)
     info.update(parameter=parameter, start=start, stop=stop, max_period=max_period,
@@ -76,7 +149,7 @@ def continuation(mech=None, parameter="omega", start=0.2, stop=1.6, *, model=Non
     return diagram
 
 
-def poincare(mech=None, parameter="omega", values=None, direction="up", *, model=None, transient=100,
+def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up", *, model=None, transient=100,
              samples=64, max_period=8, tol=1e-8, lyapunov_tol=0.01, case=None, progress=None, **fields):
     """Brute-force bifurcation diagram (a PoincareDiagram): for each value of `parameter` in
     `values`, swept "up", "down" or "both" (up, then down from where up ended), march `transient`

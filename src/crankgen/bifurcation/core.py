@@ -49,7 +49,7 @@ import numpy as np
 from ._blas import single_thread
 from .diagram import BifurcationDiagram, Branch, SpecialPoint
 from .maps import MapError
-from ..errors import CrankgenError, ParameterError
+from ..errors import CrankgenError, NoResultError, ParameterError
 
 KINDS = ("fold", "period-doubling", "neimark-sacker")
 CORRECTORS = ("broyden", "newton")
@@ -397,7 +397,7 @@ class Continuer:
         try:
             return self._finish(self.correct(np.append(x0, p0), e_p, period), period)
         except _Failed as exc:
-            raise CrankgenError(f"no periodic orbit of period {period} found near the starting "
+            raise NoResultError(f"no periodic orbit of period {period} found near the starting "
                                 f"state at {self.map.parameter} = {p0:g}: {exc}") from None
 
     def branch(self, start, t0, period, merge=None):
@@ -518,7 +518,8 @@ class Continuer:
                 specials.append(SpecialPoint(
                     kind=kind, parameter=sp.p, amplitude=float(sp.amplitude), period=period,
                     branch=index, multiplier=self.critical(kind, sp),
-                    state=self.map.physical(sp.x)))
+                    state=self.map.physical(sp.x), multipliers=np.array(sp.mu),
+                    parameter_name=self.map.parameter, range=(self.lo, self.hi)))
                 if kind == "period-doubling" and 2 * period <= self.s.max_period:
                     pt, t_e, h = self.switch(sp, period)
                     if pt is None:

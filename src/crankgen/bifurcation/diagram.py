@@ -6,7 +6,9 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import schema
 from ..io import atomic_file, save_figure
+from ..units import in_L
 
 LABELS = {"fold": "F", "period-doubling": "PD", "neimark-sacker": "NS"}
 
@@ -14,18 +16,25 @@ LABELS = {"fold": "F", "period-doubling": "PD", "neimark-sacker": "NS"}
 # branch colours by period (the reproduce figures use the same): black, purple, green, olive,
 # none near the approaches' blue, orange and red (crankgen.plotting.APPROACH_COLORS)
 PERIOD_COLORS = {1: "black", 2: "#7b2d8e", 4: "#2ca02c", 8: "#6b6b00"}
-AXIS = {"omega": "Omega*", "eps": "eps", "ms": "ms*", "mu": "mu*", "a": "a*", "offset": "offset e/L"}
+def axis(parameter):
+    """The axis text of a parameter: its record's axis (the name itself otherwise)."""
+    p = schema.PARAMETERS.get(parameter)
+    return parameter if p is None else p.axis
 
 
 def describe(info, what, parameter):
-    """A title from a diagram's info (the model and settings it was computed for)."""
+    """A two-line title from a diagram's info (the model and settings it was computed for): what
+    and the parameter varied, the model; then every fixed parameter that sets the response (the
+    crank speed, eps, ms*, mu*, a*) and the linkage (a four-bar's rocker and ground pivot, a
+    guide offset, gravity, a fluctuating crank), the varied parameter left out."""
     if not info:
         return f"{what} in {parameter}"
     parts = [f"approach {info['approach']}" if "approach" in info else None,
              " / ".join(str(info[k]) for k in ("formulation", "damping", "membrane") if k in info) or None,
              f"n = {info['n_elements']}" if "n_elements" in info else None]
-    fixed = [f"{AXIS.get(k, k)} = {info[k]:g}" for k in ("omega", "eps") if k in info and k != parameter]
-    return f"{what} in {AXIS.get(parameter, parameter)}: " + ", ".join(p for p in parts + fixed if p)
+    main, other = schema.describe({k: v for k, v in info.items() if k in schema.PARAMETERS}, skip=(parameter,))
+    head = f"{what} in {axis(parameter)}: " + ", ".join(p for p in parts if p)
+    return head + "\n" + ", ".join(main + other)
 
 
 def _num(x):
@@ -51,6 +60,9 @@ class Branch:
     #                              start of each revolution of the orbit (mechanism: v* at theta = 0)
     origin: str = "start"
     stop_reason: str = ""
+    quantities: dict = field(default_factory=dict)   # name -> (n,): the orbits' physical quantities
+    quantity_units: dict = field(default_factory=dict)   # name -> units (bifurcation/quantities.py)
+    quantity_notes: list = field(default_factory=list)   # points whose quantities failed, and why
 
     def __len__(self):
         return len(self.parameter)
@@ -65,6 +77,10 @@ class SpecialPoint:
     branch: int                    # index into diagram.branches
     multiplier: complex            # the critical multiplier (+1, -1, on the unit circle)
     state: np.ndarray = field(default=None, repr=False)
+    multipliers: np.ndarray = field(default=None, repr=False)   # all of them (of P^period)
+    parameter_name: str = ""       # the parameter continued
+    case: object = field(default=None, repr=False)   # the mechanism's Case at the point (crankgen.follow)
+    range: tuple = None            # the continuation's range of the parameter
 
 
 @dataclass
@@ -75,24 +91,57 @@ class BifurcationDiagram:
     info: dict = field(default_factory=dict)   # the model and settings it was computed for
 
     def eps_at(self, p):
-        """Slenderness of the mechanism at parameter value p (None: not a mechanism diagram)."""
-        if self.parameter_name == "eps":
-            return float(p)
-        eps = self.info.get("eps")
-        return None if eps is None else float(eps)
+        """The amplitude's unit (v* = v / r: the radius of gyration r) in L at parameter value p, the
+        slenderness (None: not a mechanism diagram)."""
+        values = dict(self.info, **{self.parameter_name: float(p)})
+        return in_L("r", values) if schema.UNIT_PARAMETERS["r"] in values else None
+
+    def as_dict(self):
+        """Everything the diagram holds, as JSON-ready data (diagram_files.py)."""
+        from .diagram_files import as_dict
+        return as_dict(self)
+
+    @classmethod
+    def from_dict(cls, data):
+        from .diagram_files import from_dict
+        return from_dict(data)
+
+    def to_json(self, path):
+        """The whole diagram (every point's parameter, amplitude, stability, multipliers, state,
+        section samples and physical quantities; the special points; the model) as JSON;
+        BifurcationDiagram.from_json reads it back."""
+        from .diagram_files import write_json
+        return write_json(self, path)
+
+    @classmethod
+    def from_json(cls, path):
+        from .diagram_files import read_json
+        return read_json(path)
+
+    @classmethod
+    def read_csv(cls, folder, info=None):
+        """The diagram of the CSV files to_csv wrote in folder (info: the model, for the special
+        points' Case; the CSV files do not hold it)."""
+        from .diagram_files import read_csv
+        return read_csv(folder, info)
 
     def to_csv(self, folder):
-        """branches.csv (one row per point; for the mechanism with deflection_over_L = eps
-        amplitude and beyond_theory, crankgen.theory), special_points.csv and multipliers.csv
-        (every multiplier of every point, long format) in folder; returns the paths.  A number
-        that does not exist is an empty field."""
+        """branches.csv (one row per point, with its branch's origin and stop_reason, why the
+        branch ends; for the mechanism with deflection_over_L = eps
+        amplitude and beyond_theory, crankgen.theory, and the orbits' physical quantities,
+        bifurcation/quantities.py), special_points.csv, multipliers.csv (every multiplier of every
+        point, long format) and states.csv (every point's section samples and state) in folder;
+        returns the paths.  A number that does not exist is an empty field.
+        BifurcationDiagram.read_csv reads them back."""
         from ..theory import beyond
+        from .diagram_files import write_states
 
         folder = Path(folder)
         folder.mkdir(parents=True, exist_ok=True)
         name = self.parameter_name
         paths = [folder / "branches.csv", folder / "special_points.csv", folder / "multipliers.csv"]
         flags = self.eps_at(self.branches[0].parameter[0]) is not None if self.branches else False
+        quantities = list(dict.fromkeys(q for br in self.branches for q in br.quantities))
 
         def theory(p, amplitude):
             x = abs(self.eps_at(p) * float(amplitude))
@@ -100,13 +149,15 @@ class BifurcationDiagram:
         with atomic_file(paths[0]) as fh:
             w = csv.writer(fh)
             w.writerow(["branch", "period", "point", name, "amplitude", "stable",
-                        "max_abs_multiplier", "origin"]
-                       + (["deflection_over_L", "beyond_theory"] if flags else []))
+                        "max_abs_multiplier", "origin", "stop_reason"]
+                       + (["deflection_over_L", "beyond_theory"] if flags else []) + quantities)
             for b, br in enumerate(self.branches):
                 for i in range(len(br)):
                     w.writerow([b, br.period, i, _num(br.parameter[i]), _num(br.amplitude[i]),
-                                int(br.stable[i]), _num(np.abs(br.multipliers[i]).max()), br.origin]
-                               + (theory(br.parameter[i], br.amplitude[i]) if flags else []))
+                                int(br.stable[i]), _num(np.abs(br.multipliers[i]).max()), br.origin,
+                                br.stop_reason]
+                               + (theory(br.parameter[i], br.amplitude[i]) if flags else [])
+                               + [_num(br.quantities[q][i]) if q in br.quantities else "" for q in quantities])
         with atomic_file(paths[1]) as fh:
             w = csv.writer(fh)
             w.writerow(["kind", name, "amplitude", "period", "branch", "multiplier_re",
@@ -124,14 +175,16 @@ class BifurcationDiagram:
                     for j, m in enumerate(br.multipliers[i]):
                         w.writerow([b, i, _num(br.parameter[i]), j, _num(m.real), _num(m.imag),
                                     _num(abs(m))])
+        paths.append(write_states(self, folder / "states.csv"))
         return paths
 
-    def plot(self, path, ax=None, title=None, ylabel=None, xlabel=None):
+    def plot(self, path, ax=None, title=None, ylabel=None, xlabel=None, sweep=None):
         """Amplitude against the parameter: stable solid, unstable dashed, one colour per period,
         special points marked and labelled (F fold, PD period doubling, NS Neimark-Sacker) where
         the label covers no curve; for the mechanism, the range beyond the theory (|v|/L > 0.1)
-        shaded.  Axis labels and title default to what the diagram holds; the legend sits below
-        the axes."""
+        shaded.  sweep: a PoincareDiagram (crankgen.poincare, up and down) whose marched
+        amplitudes are drawn over the branches (the hysteresis a run-up and a run-down show).
+        Axis labels and title default to what the diagram holds; the legend sits below the axes."""
         from matplotlib.lines import Line2D
 
         from ..plotting import beyond_patch, fit_panels, panels, place_labels
@@ -156,6 +209,15 @@ class BifurcationDiagram:
         handles = [Line2D([], [], color=c, label=f"period {k}") for k, c in sorted(colors.items())]
         handles += [Line2D([], [], color="grey", ls="-", label="stable"),
                     Line2D([], [], color="grey", ls="--", label="unstable")]
+        if sweep is not None:
+            style = {"up": ("C0", "^", 18), "down": ("C3", "v", 18)}
+            for d, (c, m, size) in style.items():
+                pts = [q for q in sweep.points if q.direction == d and q.amplitude is not None]
+                if pts:
+                    ax.scatter([q.parameter for q in pts], [q.amplitude for q in pts], marker=m, s=size,
+                               color=c, alpha=0.75, lw=0, zorder=4)
+                    handles.append(Line2D([], [], ls="none", marker=m, color=c,
+                                          label=f"marched, sweep {d}"))
         markers = {"fold": "s", "period-doubling": "o", "neimark-sacker": "D"}
         for kind, m in markers.items():
             pts = [s for s in self.special_points if s.kind == kind]
@@ -165,7 +227,7 @@ class BifurcationDiagram:
                        facecolor="white", edgecolor="black", zorder=5)
             handles.append(Line2D([], [], ls="none", marker=m, markerfacecolor="white",
                                   color="black", label=f"{LABELS[kind]}: {kind}"))
-        eps = self.info.get("eps") if self.parameter_name != "eps" else None
+        eps = self.eps_at(0.0) if self.parameter_name != schema.UNIT_PARAMETERS["r"] else None
         amps = [a for br in self.branches for a in np.asarray(br.amplitude, dtype=float) if np.isfinite(a)]
         if eps and amps and max(amps) * eps > DEFLECTION_LIMIT:
             lo, hi = ax.get_ylim()
@@ -174,8 +236,8 @@ class BifurcationDiagram:
             handles.append(beyond_patch("0.88"))
         place_labels(ax, [(s.parameter, s.amplitude, f"{LABELS[s.kind]} {s.parameter:.4g}", "black")
                           for s in sorted(self.special_points, key=lambda s: s.parameter)])
-        mech = "eps" in self.info or self.parameter_name == "eps"
-        ax.set_xlabel(xlabel or AXIS.get(self.parameter_name, self.parameter_name))
+        mech = self.eps_at(0.0) is not None
+        ax.set_xlabel(xlabel or axis(self.parameter_name))
         ax.set_ylabel(ylabel or ("max |v*(1/2)| over the orbit" if mech else "amplitude"))
         ax.grid(alpha=0.3)
         leg = ax.legend(handles=handles, fontsize=8, loc="upper center", ncol=3, frameon=False,

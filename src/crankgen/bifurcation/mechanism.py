@@ -9,7 +9,8 @@ state of each step (a central difference of the residual alone between the cases
 h = 1e-5 max(|p|, 0.01): truncation ~1e-10 relative, no Newton noise) and by the dependence of the
 time step on p.  derivative="central" keeps the former central difference of two marches at
 p -/+ h, h = 1e-5 max(1, |p|) (Newton noise ~1e-5 relative), as a baseline to measure against.
-value(y, p, k) marches P^k alone.  Amplitude: max |v*(1/2)| over the k revolutions of the orbit,
+value(y, p, k) marches P^k alone.  Amplitude: max |v*(1/2)| over the k revolutions of the orbit
+(orbit_peak: the largest sample raised to the peak of the parabola through it and its neighbours),
 marched from the state as in steady_state (taken from the last evaluation with Jacobians when that
 was at the same state and parameter: the same steps).
 """
@@ -23,8 +24,30 @@ from ..errors import ParameterError
 from ..validation import choice
 from .maps import Map, MapError
 
+V_MID = schema.ENGINE_OUTPUTS.index("v_mid")     # the observable: v* at x* = 1/2, in the engine's outputs
+
 # the parameters a continuation may vary: those the schema declares continuable
 PARAMETERS = schema.CONTINUABLE
+
+
+def orbit_peak(v):
+    """max |v| over a periodic orbit sampled at v[0], ..., v[-1] (v[-1] the start again): the
+    largest sample, raised to the peak of the parabola through it and its two neighbours (the
+    orbit wraps around).  The largest sample alone falls short of the orbit's maximum by up to
+    (pi / samples per revolution)^2 / 2 relative, and which sample is largest changes along a
+    branch, which kinked the amplitude curves; the parabola's error is of third order."""
+    v = np.asarray(v, dtype=float)
+    n = len(v) - 1                          # distinct samples of the closed orbit
+    k = int(np.argmax(np.abs(v[:n]))) if n >= 3 else int(np.argmax(np.abs(v)))
+    top = abs(float(v[k]))
+    if n < 3:
+        return top
+    sign = 1.0 if v[k] >= 0 else -1.0
+    left, mid, right = sign * v[(k - 1) % n], sign * v[k], sign * v[(k + 1) % n]
+    curvature = left - 2 * mid + right
+    if not curvature < 0:
+        return top
+    return top - (right - left) ** 2 / (8 * curvature)
 
 
 class MechanismMap(Map):
@@ -36,7 +59,7 @@ class MechanismMap(Map):
         choice("derivative", derivative, ("exact", "central"))
         if not case.periodic:
             raise ParameterError(f"continuation and poincare follow the crank-revolution map, which needs a "
-                                 f"crank motion periodic in the crank angle; the {case.motion!r} motion is "
+                                 f"crank motion periodic in the crank angle; the {case.motion_record.name!r} motion is "
                                  f"not (a run-up is a transient: simulate runs it)")
         if case.integrator != "newton":
             raise ParameterError(f"continuation needs integrator='newton' (the converged step map "
@@ -79,7 +102,7 @@ class MechanismMap(Map):
             self._orbits.clear()
         idx = np.arange(period + 1) * self.spr
         self._orbits[(np.asarray(y, dtype=float).tobytes(), float(p), period)] = (
-            float(np.max(np.abs(r.y[0, :, 0]))), r.states[0] / self.s, r.y[0, idx, 0])
+            orbit_peak(r.y[0, :, V_MID]), r.states[0] / self.s, r.y[0, idx, V_MID])
         return X, r
 
     def evaluate(self, y, p, period=1, dp=True):
@@ -137,7 +160,7 @@ class MechanismMap(Map):
         res = self.march(y, p, period, history=True)
         idx = np.arange(period + 1) * self.spr
         states = np.concatenate([res.D_history[0, idx], res.V_history[0, idx]], axis=1) / self.s
-        return float(np.max(np.abs(res.y[0, :, 0]))), states, res.y[0, idx, 0]
+        return orbit_peak(res.y[0, :, V_MID]), states, res.y[0, idx, V_MID]
 
     def iterate(self, y, p, n, jacobian=False):
         res = self.march(y, p, n, history=True)
@@ -146,7 +169,7 @@ class MechanismMap(Map):
         jacs = None
         if jacobian:
             jacs = np.array([self.evaluate(states[j], p, 1, dp=False)[1] for j in range(n)])
-        return states, res.y[0, idx, 0], jacs
+        return states, res.y[0, idx, V_MID], jacs
 
     def physical(self, y):
         return np.asarray(y, dtype=float) * self.s

@@ -13,16 +13,21 @@ mechanism: v*(1/2) at theta = 0, once per crank revolution).  Classification, wi
 - "failed" when the map cannot be evaluated (message says why; the next value restarts from the
   last good state).  When the transient from the previous value's state fails, the value is
   approached once more from that state in four parameter steps of transient / 4 iterations each.
-distinct counts the sampled values that differ by more than 1e-6 (1 + |sample|).
+distinct counts the sampled values that differ by more than 1e-6 (1 + |sample|); amplitude is the
+largest |observable| along the orbit marched once more from the last state (for the mechanism max
+|v*(1/2)| over every step: what a diagram's branches show), over the period found, or
+AMPLITUDE_REVOLUTIONS applications when none.
 """
 
 import csv
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Optional
 
 import numpy as np
 
+from .. import schema
 from ..errors import CrankgenError, ParameterError
 from ._blas import single_thread
 from .maps import MapError
@@ -31,6 +36,7 @@ from ..io import atomic_file, save_figure
 from .diagram import _num
 
 DIRECTIONS = ("up", "down", "both")
+AMPLITUDE_REVOLUTIONS = 8      # applications over which a response that does not repeat is measured
 
 
 @dataclass
@@ -39,11 +45,15 @@ class PoincarePoint:
     parameter: float
     classification: str            # "period-k", "quasi-periodic", "irregular", "unsettled", "failed"
     period: int                    # k of "period-k", else 0
-    repeat_residual: float         # scaled max |x_{j+k} - x_j| for that k (smallest over k otherwise)
-    lyapunov: float                # largest Lyapunov exponent per application (nan when periodic)
+    repeat_residual: Optional[float]   # scaled max |x_{j+k} - x_j| for that k (smallest over k
+    #                                    otherwise); None when the march failed
+    lyapunov: Optional[float]      # largest Lyapunov exponent per application; None when periodic
+    #                                (not computed) or failed
     distinct: int                  # distinct sampled values
     samples: np.ndarray = field(repr=False)   # the observable once per application
     message: str = ""
+    amplitude: Optional[float] = None    # max |observable| along the last revolutions marched (the
+    #                                      orbit's period, or AMPLITUDE_REVOLUTIONS when not periodic)
 
 
 @dataclass
@@ -62,10 +72,11 @@ class PoincareDiagram:
         with atomic_file(paths[0]) as fh:
             w = csv.writer(fh)
             w.writerow(["direction", name, "classification", "period", "repeat_residual",
-                        "lyapunov", "distinct", "message"])
+                        "lyapunov", "distinct", "amplitude", "message"])
             for q in self.points:
                 w.writerow([q.direction, _num(q.parameter), q.classification, q.period,
-                            _num(q.repeat_residual), _num(q.lyapunov), q.distinct, q.message])
+                            _num(q.repeat_residual), _num(q.lyapunov), q.distinct, _num(q.amplitude),
+                            q.message])
         with atomic_file(paths[1]) as fh:
             w = csv.writer(fh)
             w.writerow(["direction", name, "sample", "value"])
@@ -82,8 +93,9 @@ class PoincareDiagram:
         legend sits below the axes."""
         from matplotlib.lines import Line2D
 
-        from ..plotting import fit_panels, panels, place_labels
-        from .diagram import AXIS, LABELS, PERIOD_COLORS, describe
+        from ..plotting import beyond_patch, fit_panels, panels, place_labels, shade_beyond
+        from ..theory import DEFLECTION_LIMIT
+        from .diagram import LABELS, PERIOD_COLORS, axis, describe
 
         fig, axes = panels(1, 1, width=7.5, height=4.2)
         ax = axes[0, 0]
@@ -135,8 +147,18 @@ class PoincareDiagram:
                 for sp in sorted(diagram.special_points, key=lambda s: s.parameter)])
             handles.append(Line2D([], [], color="grey", lw=0.6, ls=":",
                                   label="dotted: special points of the continuation"))
-        mech = "eps" in self.info or self.parameter_name == "eps"
-        ax.set_xlabel(xlabel or AXIS.get(self.parameter_name, self.parameter_name))
+        r_unit = schema.UNIT_PARAMETERS["r"]          # v* is in units of r: the slenderness gives it in L
+        mech = r_unit in self.info or self.parameter_name == r_unit
+        # the range beyond the theory, |v|/L > 0.1, shaded as in every other figure (over a sweep
+        # of the slenderness the limit changes along the axis: drawn for its largest value, the
+        # smallest band)
+        eps = (self.info.get(r_unit) if self.parameter_name != r_unit
+               else max((q.parameter for q in self.points), default=None))
+        samples = [abs(float(v)) for q in self.points for v in q.samples if np.isfinite(v)]
+        if mech and eps and samples and max(samples) * eps > DEFLECTION_LIMIT:
+            shade_beyond(ax, DEFLECTION_LIMIT / eps, "0.88")
+            handles.append(beyond_patch("0.88"))
+        ax.set_xlabel(xlabel or axis(self.parameter_name))
         ax.set_ylabel(ylabel or ("v*(1/2) at theta = 0, once per revolution" if mech
                                  else "observable, once per application of the map"))
         ax.grid(alpha=0.3)
@@ -230,7 +252,7 @@ def _sweep(fmap, passes, x0, transient, samples, max_period, tol, lyapunov_tol, 
                         break
                     states, smp, _ = fmap.iterate(states[-1], p, samples)
                     k, r = _classify(states, tol, max_period)
-                lyap = math.nan
+                lyap = None
                 if k:
                     cls = f"period-{k}"
                 else:
@@ -238,10 +260,12 @@ def _sweep(fmap, passes, x0, transient, samples, max_period, tol, lyapunov_tol, 
                     lyap = _lyapunov(jacs)
                     cls = ("irregular" if lyap > lyapunov_tol else
                            "quasi-periodic" if lyap >= -lyapunov_tol else "unsettled")
-                points.append(PoincarePoint(d, p, cls, k, r, lyap, _distinct(smp[1:]), smp[1:]))
+                amplitude = float(fmap.orbit(states[-1], p, k or AMPLITUDE_REVOLUTIONS)[0])
+                points.append(PoincarePoint(d, p, cls, k, r if math.isfinite(r) else None, lyap,
+                                            _distinct(smp[1:]), smp[1:], amplitude=amplitude))
                 x, p_last = states[-1], p
             except (MapError, CrankgenError) as exc:
-                points.append(PoincarePoint(d, p, "failed", 0, math.nan, math.nan, 0,
+                points.append(PoincarePoint(d, p, "failed", 0, None, None, 0,
                                             np.zeros(0), str(exc)))
             done += 1
             if progress is not None:

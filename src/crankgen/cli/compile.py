@@ -8,18 +8,21 @@ import time
 
 
 def _cmd_compile(args):
-    from ..compile_cache import CACHE, READ_ONLY
+    from ..compile_cache import CACHE, READ_ONLY, WHY_READ_ONLY
     from ..engine.build import ENTRIES, done, prepare
     from ..engine.kernels import all_build_items
 
     items = [f"entry:{e}" for e in ENTRIES] + all_build_items()
     todo = [item for item in items if not done(item)]
     if READ_ONLY:
-        print(f"crankgen compile: the cache {CACHE} is read-only for this user: nothing can be kept; "
-              "run this command as the owner of the installation, or set CRANKGEN_CACHE_DIR")
+        print(f"crankgen compile: the cache {CACHE} {WHY_READ_ONLY}: nothing can be kept; "
+              "run this command as the owner of the installation, or set CRANKGEN_CACHE_DIR "
+              "to a writable folder")
         return 1
     start = time.perf_counter()
-    prepare(todo, quiet=args.quiet)
-    print(f"{len(todo)} item(s) compiled, {len(items) - len(todo)} already there; "
-          f"cache {CACHE} ({time.perf_counter() - start:.1f} s)")
+    compiled = prepare(todo, quiet=args.quiet)
+    others = len(todo) - len(compiled)
+    print(f"{len(compiled)} item(s) compiled, {len(items) - len(todo)} already there"
+          + (f", {others} compiled meanwhile by another crankgen process" if others else "")
+          + f"; cache {CACHE} ({time.perf_counter() - start:.1f} s)")
     return 0

@@ -1,7 +1,9 @@
-"""Command-line interface: `crankgen simulate | steady | sweep | reproduce | audit | continue | poincare | compile`.
+"""Command-line interface: `crankgen simulate | steady | sweep | reproduce | audit | continue | poincare |
+chart | modes | campbell | animate | compile`.
 
 Exit codes: 0 success; 1 a run that failed (simulate: the integration stopped, and what was
-computed up to the failure is written; steady: status "failed"; a file that could not be written);
+computed up to the failure is written; steady: status "failed"; continue: no periodic state to
+start from; a file that could not be written);
 2 a usage error (a bad option or parameter, an unusable --out, outputs already there without
 --force, a run too large for the machine's memory, a checkpoint in use), reported on one line
 before anything is computed or created; 130 interrupted (Ctrl-C), 143 terminated (SIGTERM).
@@ -12,11 +14,14 @@ import sys
 import warnings
 
 from ..audit import SECTIONS as AUDIT_SECTIONS
-from ..errors import ConvergenceError, CrankgenError
+from ..errors import ConvergenceError, CrankgenError, NoResultError
 from ..provenance import VERSION
 from .options import (_Parser, _add_mechanism_options, _add_model_options, _add_output_options,
                       _figure_list, _number_list)
 from .compile import _cmd_compile
+from .animate import add_command as add_animate_command
+from .chart import add_command as add_chart_command
+from .modes import add_commands as add_modes_commands
 from .runs import _cmd_simulate, _cmd_steady, _cmd_sweep
 from .studies import (CONTINUE_NAMES, POINCARE_NAMES, _add_branch_model_options, _cmd_audit,
                       _cmd_continue, _cmd_poincare, _cmd_reproduce)
@@ -28,8 +33,10 @@ def build_parser():
 
     parser = _Parser(
         prog="crankgen",
-        description="Dynamics of flexible slider-crank mechanisms (rigid crank at constant speed, "
-                    "flexible finite-element connecting rod, slider on a straight guide).",
+        description="Dynamics of flexible slider-crank mechanisms and four-bar linkages (a rigid "
+                    "crank with a prescribed motion: constant speed, a run-up or a speed "
+                    "fluctuation; a flexible finite-element connecting rod; its end mass on a "
+                    "straight guide, a slider, or on a rigid rocker, a four-bar).",
         epilog="Exit codes: 0 success; 1 a run that failed (what it computed before failing is "
                "written); 2 a usage error (bad option or parameter, unusable --out, outputs already "
                "there without --force, a run too large for this machine's memory); 130 interrupted, "
@@ -57,10 +64,13 @@ def build_parser():
     p.add_argument("--si", metavar="FILE", default=None,
                    help="the mechanism in SI from a JSON file: {\"L\": m, \"a\": m, \"E\": Pa, \"rho\": "
                         "kg/m^3, \"A\": m^2, \"I\": m^4, \"slider_mass\": kg, \"crank_speed\": rad/s, "
-                        "\"damping\": s (optional, mu of eq. 24; default 0)}; it replaces the mechanism "
+                        "\"damping\": s (optional, default 0: mu, the damping time constant of the "
+                        "model's damping, Kelvin-Voigt strain-rate damping by default, eq. 24 with "
+                        "--damping paper)}; it replaces the mechanism "
                         "options and --omega (the crank turns at crank_speed), and simulation.csv is "
                         "written in SI: t_s, theta_rad, v_mid_m, u_end_m, extension, slider_position_m, "
                         "chord_angle_rad (nodes.csv: u, v in m), v_mid.png in mm against s")
+    _add_section_option(p)
     _add_output_options(p, "out", "simulation.csv, v_mid.png (and nodes.csv with --nodes)")
     p.set_defaults(func=_cmd_simulate)
 
@@ -78,6 +88,7 @@ def build_parser():
     _add_steady_options(g)
     g.add_argument("--method", choices=("shooting", "march"), default="shooting",
                    help="shooting: Newton on the revolution map; march: revolution by revolution (default shooting)")
+    _add_section_option(p)
     _add_output_options(p, "out", "steady.csv, orbit.csv and orbit.png")
     p.set_defaults(func=_cmd_steady)
 
@@ -170,13 +181,26 @@ def build_parser():
                        description="Follow the periodic response as one parameter varies (pseudo-arclength "
                                    "continuation of the crank-revolution map), with its stability, folds, "
                                    "period doublings and Neimark-Sacker points, and the period-2 (4, ...) "
-                                   "branches born at period doublings. Writes branches.csv, "
-                                   "special_points.csv, multipliers.csv and continuation.png.")
+                                   "branches born at period doublings; every point with the physical "
+                                   "quantities of its orbit (peak torque, pin and end forces, axial "
+                                   "force, |v*|, outer-fibre strain; stress with --section). Writes "
+                                   "branches.csv, special_points.csv, multipliers.csv, states.csv, "
+                                   "continuation.json (read back by "
+                                   "crankgen.BifurcationDiagram.from_json) and continuation.png.")
     _add_mechanism_options(p)
     _add_branch_model_options(p)
     p.add_argument("--max-period", type=int, default=4,
                    help="follow period doublings up to this period (default 4)")
-    _add_output_options(p, "continuation", ", ".join(CONTINUE_NAMES))
+    p.add_argument("--section", metavar="SPEC", default=None,
+                   help="the rod's cross-section (rectangle:B,H, circle:D, tube:D,T or A,I,C), for the "
+                        "peak outer-fibre stress of every point's orbit (in units of Young's modulus E; "
+                        "only its shape counts) beside the peak torque, forces and strain")
+    p.add_argument("--sweep", type=int, default=None, metavar="VALUES",
+                   help="also march the mechanism at VALUES evenly spaced values, up then down (each from "
+                        "the previous value's state: the hysteresis a run-up and a run-down show), and draw "
+                        "the marched amplitudes over the branches; writes poincare_summary.csv and "
+                        "poincare_samples.csv too")
+    _add_output_options(p, "continuation", ", ".join(CONTINUE_NAMES + ("continuation.json",)))
     p.set_defaults(func=_cmd_continue)
 
     p = sub.add_parser("poincare", help="brute-force bifurcation diagram: sweep a parameter, sample v* once per revolution, classify",
@@ -198,9 +222,22 @@ def build_parser():
     p.add_argument("--max-period", type=int, default=4,
                    help="with --with-continuation: follow period doublings up to this period (default 4)")
     _add_output_options(p, "poincare", ", ".join(POINCARE_NAMES) + " (and, with --with-continuation, "
-                        + ", ".join(CONTINUE_NAMES[:3]) + ")")
+                        + ", ".join(CONTINUE_NAMES[:4]) + ")")
     p.set_defaults(func=_cmd_poincare)
+    add_modes_commands(sub)
+    add_animate_command(sub)
+    add_chart_command(sub)
     return parser
+
+
+def _add_section_option(p):
+    p.add_argument("--section", metavar="SPEC", default=None,
+                   help="the rod's cross-section, to print the peak loads and the outer-fibre stresses "
+                        "(largest tension and compression with where and when, the largest range per "
+                        "revolution): rectangle:B,H (H in the plane of the mechanism), circle:D, "
+                        "tube:D,T or A,I,C (A,I,C_TOP,C_BOTTOM); in m with --si (stresses in Pa; the "
+                        "section must be the rod's of the file), otherwise only its shape counts "
+                        "(stresses in units of Young's modulus E, loads in crankgen's units)")
 
 
 def _add_steady_options(g):
@@ -273,7 +310,7 @@ def _main(argv):
     set_quiet(getattr(args, "quiet", False))
     try:
         return args.func(args)
-    except ConvergenceError as exc:                          # a run that failed
+    except (ConvergenceError, NoResultError) as exc:         # a run that failed
         print(f"{name}: run failed: {exc}", file=sys.stderr)
         return 1
     except CrankgenError as exc:                             # parameters, --out, existing outputs

@@ -1,4 +1,4 @@
-"""Options shared by the commands, made from the schema (derive/model.py): a flag per parameter of
+"""Options shared by the commands, made from the schema (derive/declaration.py): a flag per parameter of
 a case (its kind, range, units and help; --model and the options' flags from the presets and
 options), the output folder; argument types; the Case a command line describes."""
 
@@ -51,7 +51,8 @@ def _default_text(p):
 
 def _help(p, many):
     where = ""
-    if p.owner in ("guide", "motion"):
+    every = schema.GUIDES if p.owner == "guide" else schema.MOTIONS
+    if p.owner in ("guide", "motion") and set(p.readers) != set(every):
         where = f" [{' and '.join(p.readers)} {p.owner}]"
     rng = f", {p.range_text}" if (p.kind == "real" and (p.low, p.high) != (None, None)) or p.kind == "count" else ""
     return f"{p.doc}{rng}{where} (default {_default_text(p)})" + many
@@ -84,12 +85,14 @@ def _add_mechanism_options(p, grid=False):
         _add_parameter(g, schema.PARAMETERS[name], grid)
 
 
-def _add_model_options(p, grid=False, integrator=True):
-    g = p.add_argument_group("crank motion, model and integration"
-                             + (" (lists allowed: A,B or 8,16)" if grid else ""))
+def _add_model_options(p, grid=False, integrator=True, run=None, title=None):
+    """The run's parameters (run: the names to offer; default all, the integrator only when
+    `integrator`), --model and the options' flags."""
+    g = p.add_argument_group(title or ("crank motion, model and integration"
+                                       + (" (lists allowed: A,B or 8,16)" if grid else "")))
     many = " (a list of them allowed)" if grid else ""
     for name in schema.RUN_PARAMETERS:
-        if name == "integrator" and not integrator:
+        if (name == "integrator" and not integrator) or (run is not None and name not in run):
             continue
         _add_parameter(g, schema.PARAMETERS[name], grid)
     g.add_argument("--model", type=_choices("model", tuple(schema.PRESETS), grid), default=None,
@@ -240,20 +243,10 @@ def _case(args):
 
 
 def _describe(case):
+    main, other = schema.describe(case.parameters())
     extra = "" if case.rotary_inertia else ", no rotary inertia"
-    if any(case.gravity):
-        extra += f", gravity ({case.gravity[0]:g}, {case.gravity[1]:g})"
-    if case.offset:
-        extra += f", offset {case.offset:g}"
-    if case.guide != schema.PARAMETERS["guide"].default:
-        extra += f", {case.guide} guide (" + ", ".join(
-            f"{n} = {getattr(case, n):g}" for n in schema.GUIDES[case.guide].parameters if n != "offset") + ")"
-    if case.motion != schema.PARAMETERS["motion"].default:
-        extra += f", {case.motion} crank (" + ", ".join(
-            f"{n} = {getattr(case, n):g}" for n in schema.MOTIONS[case.motion].parameters) + ")"
     return (f"approach {case.approach}, {case.formulation} formulation, {case.damping} damping, "
-            f"{case.membrane} membrane, Omega* = {case.omega:g}, eps = {case.eps:g}, "
-            f"n = {case.n_elements}{extra}")
+            f"{case.membrane} membrane, " + ", ".join(main + [f"n = {case.n_elements}"] + other) + extra)
 
 
 def _say(args, text):

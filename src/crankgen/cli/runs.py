@@ -10,6 +10,7 @@ import os
 import sys
 from pathlib import Path
 
+from .. import schema
 from ..errors import ConvergenceError
 from ..limits import check_run_size
 from .options import CASE_FIELDS, UsageError, _Outputs, _case, _describe, _explicit, _flag, _say
@@ -36,29 +37,34 @@ def _theory_note(deflection, strain):
 
 
 # the SI file of `simulate --si`: crankgen.SIMechanism's fields
-SI_FIELDS = ("L", "a", "E", "rho", "A", "I", "slider_mass", "crank_speed", "damping")
-SI_REQUIRED = SI_FIELDS[:-1]
+def _si_fields():
+    from dataclasses import MISSING, fields
+
+    from ..parameters import SIMechanism
+    every = tuple(f.name for f in fields(SIMechanism))
+    return every, tuple(f.name for f in fields(SIMechanism) if f.default is MISSING)
 
 
 def _si_mechanism(path):
     """The crankgen.SIMechanism of a JSON file (UsageError naming what is wrong)."""
     import json
 
+    from ..io import read_regular
     from ..parameters import SIMechanism
+    si_fields, si_required = _si_fields()
     try:
-        with open(path) as fh:
-            data = json.load(fh)
+        data = json.loads(read_regular(path))
     except OSError as exc:
-        raise UsageError(f"--si {path}: {exc.strerror or exc}") from None
+        raise UsageError(f"--si {path}: {exc.strerror or exc}; give the path of a JSON file") from None
     except ValueError as exc:
         raise UsageError(f"--si {path}: not valid JSON ({exc})") from None
     if not isinstance(data, dict):
-        raise UsageError(f"--si {path}: expected a JSON object with the fields {', '.join(SI_FIELDS)}")
-    unknown = sorted(set(data) - set(SI_FIELDS))
-    missing = [k for k in SI_REQUIRED if k not in data]
+        raise UsageError(f"--si {path}: expected a JSON object with the fields {', '.join(si_fields)}")
+    unknown = sorted(set(data) - set(si_fields))
+    missing = [k for k in si_required if k not in data]
     if unknown or missing:
         what = (f"unknown field {unknown[0]!r}" if unknown else f"missing field {missing[0]!r}")
-        raise UsageError(f"--si {path}: {what}; the fields are {', '.join(SI_FIELDS)} (damping optional)")
+        raise UsageError(f"--si {path}: {what}; the fields are {', '.join(si_fields)} (damping optional)")
     return SIMechanism(**data)
 
 
@@ -68,13 +74,14 @@ def _si_case(args, si):
     from .. import schema
     from ..cases import make_case
     given = _explicit(args)
-    clash = [n for n in schema.MECHANISM_PARAMETERS + ("omega",) if n in given]
+    clash = [n for n in schema.MECHANISM_PARAMETERS + (schema.CRANK_SPEED,) if n in given]
     if clash:
         flag = schema.PARAMETERS[clash[0]].cli
         raise UsageError(f"--si gives the mechanism and its crank speed: leave out --{flag}")
-    if given.get("motion", "constant") != "constant":
-        raise UsageError("--si: the crank turns at the file's constant crank_speed (--crank constant)")
-    return make_case(model=args.model, **si.mechanism.values(), omega=si.omega, **given)
+    motion = schema.PARAMETERS[schema.SELECTOR["motion"]]
+    if given.get(motion.name, motion.default) != motion.default:
+        raise UsageError(f"--si: the crank turns at the file's constant crank_speed (--{motion.cli} {motion.default})")
+    return make_case(model=args.model, **si.mechanism.values(), **{schema.CRANK_SPEED: si.omega}, **given)
 
 
 def _cmd_simulate(args):
@@ -82,22 +89,48 @@ def _cmd_simulate(args):
 
     si = None if args.si is None else _si_mechanism(args.si)
     case = _case(args) if si is None else _si_case(args, si)    # validates every parameter ...
+    section = _section(args, si)
     revolutions = in_range("revolutions", args.revolutions, 0, None, True)
     in_range("tol", args.tol, 0, None, True)
+    from ..kinematics import check_crank_steps
     from ..simulation import run_length
 
-    steps = run_length(case, revolutions)[1]
+    dt, steps = run_length(case, revolutions)
+    check_crank_steps(case, dt, steps * dt)
     check_run_size(case.n_elements, steps, stored="nodes" if args.nodes else "states",
                    names={"n_steps": "--revolutions", "n_elements": "--elements"})
     names = ["simulation.csv", "v_mid.png"] + (["nodes.csv"] if args.nodes else [])
     out = _Outputs(args.out, names, args.force)             # ... and the output folder, first
     try:
-        return _simulate(args, case, revolutions, steps, out, si)
+        return _simulate(args, case, revolutions, steps, out, si, section)
     finally:
         out.abandon()
 
 
-def _simulate(args, case, revolutions, steps, out, si=None):
+def _section(args, si):
+    """The --section of the command line, checked against the SI rod (None: not given)."""
+    if getattr(args, "section", None) is None:
+        return None
+    from ..sections import parse
+    from ..stresses import check_section
+    section = parse(args.section)
+    check_section(section, si)
+    return section
+
+
+def _loads_and_stress(result, section, si):
+    """The summary lines of the peak loads and the outer-fibre stresses of a result."""
+    from ..stresses import peak_loads, stress
+    from ..units import scales_of
+    scales = None if si is None else scales_of(si)
+    loads = "; ".join(f"{p.name} {p.value:.4g} {p.units} (t{'' if scales else '*'} = {p.t:.4g}"
+                      f"{' s' if scales else ''}, crank angle {math.degrees(p.theta) % 360:.1f} deg)"
+                      for p in peak_loads(result, scales))
+    return [f"peak loads: {loads}", stress(result, section, si=si).summary()
+            + ("" if si is not None else " (units of E: the fibre's strain)")]
+
+
+def _simulate(args, case, revolutions, steps, out, si=None, section=None):
     import numpy as np
 
     from ..io import write_csv
@@ -106,6 +139,12 @@ def _simulate(args, case, revolutions, steps, out, si=None):
     from ..simulation import simulate
 
     _say(args, f"simulate: {_describe(case)}, {revolutions:g} revolutions ({steps} steps)")
+    transient = case.motion_record.transient
+    if transient and revolutions < getattr(case, transient):
+        ramp, speed = getattr(case, transient), schema.PARAMETERS[schema.CRANK_SPEED]
+        _say(args, f"simulate: note: the run ends after {revolutions:g} revolutions, before the ramp of "
+                   f"{ramp:g} revolutions completes (the crank does not reach {speed.axis} = "
+                   f"{getattr(case, speed.name):g}); --revolutions {ramp:g} or more runs the whole ramp")
     failure = None
     with Progress("simulate", steps, enabled=not args.quiet) as progress:
         try:
@@ -118,7 +157,7 @@ def _simulate(args, case, revolutions, steps, out, si=None):
     from .. import theory
 
     strain = theory.axial_strain(res, per_step=True)
-    defl = np.abs(np.asarray(res.v_mid, dtype=float)) * case.eps
+    defl = np.abs(np.asarray(res.v_mid, dtype=float)) * _in_L(res, case)
     view = None if si is None else res.si_view(si)
     columns, values = _simulation_columns(res, case, view)
     rows = (dict(zip(columns, row), deflection_over_L=d, axial_strain=st,
@@ -134,20 +173,31 @@ def _simulate(args, case, revolutions, steps, out, si=None):
     out.wrote(write_csv(out.path("simulation.csv"), columns, rows))
     if args.nodes and res.nodes is not None:
         nodes = res.nodes if view is None else view.nodes
-        n = nodes.shape[1] // 3
+        from ..mesh import NODE_DOFS
+        n = nodes.shape[1] // NODE_DOFS
         # node i at x* = i / n: u, v (along and across the rigid rod; units of L, or m with --si)
         # and the slope psi = dv/dx (rad)
+        # then every node's inertial position X, Y (crankgen.animation.inertial_nodes)
+        from ..animation import inertial_nodes
         length, time = ("L", "t") if view is None else ("m", "t_s")
         node_columns = [time, columns[1]] + [f"{q}{i}_{unit}" for i in range(n)
                                              for q, unit in (("u", length), ("v", length),
                                                              ("psi", "rad"))]
-        node_rows = (dict(zip(node_columns, (t, th, *row)))                          # streamed
-                     for t, th, row in zip(values[0], values[1], nodes))
+        node_columns += [f"{q}{i}_{length}" for i in range(n) for q in ("X", "Y")]
+        where = inertial_nodes(res).reshape(len(res.t), -1) * (1.0 if view is None else view.scales.L)
+        node_rows = (dict(zip(node_columns, (t, th, *row, *xy)))                     # streamed
+                     for t, th, row, xy in zip(values[0], values[1], nodes, where))
         out.wrote(write_csv(out.path("nodes.csv"), node_columns, node_rows))
-    # a run-up is drawn against the crank speed it passes (its resonances), other runs against time
-    against = "crank_speed" if case.motion == "runup" and getattr(res, "states", None) is not None else "t"
-    out.wrote(plot_deflection(res, out.path("v_mid.png"), failure=failure, si=view, against=against,
-                              strain=strain))
+    # a motion whose speed changes over its first revolutions (a run-up) is drawn against the crank
+    # speed it passes (its resonances) and against the revolutions, other runs against time
+    transient = case.motion_record.transient
+    if transient and getattr(res, "states", None) is not None:
+        from ..kinematics import time_of_revolutions
+        from ..plotting import plot_runup
+        out.wrote(plot_runup(res, out.path("v_mid.png"), time_of_revolutions(case, getattr(case, transient)),
+                             failure=failure, si=view, strain=strain))
+    else:
+        out.wrote(plot_deflection(res, out.path("v_mid.png"), failure=failure, si=view, strain=strain))
     note = _theory_note(float(np.max(defl)) if len(defl) else math.nan,
                         float(np.max(strain)) if len(strain) else math.nan)
     if failure is not None:
@@ -158,21 +208,39 @@ def _simulate(args, case, revolutions, steps, out, si=None):
     last = (res.v_mid if view is None else view.v_mid)[-case.steps_per_rev:]
     print(f"wrote {', '.join(str(p) for p in out.written)}; max |v{'*' if view is None else ''}| "
           f"over the last revolution {np.max(np.abs(last)):.6g}{'' if view is None else ' m'}{note}")
+    if section is not None:
+        print("\n".join(_loads_and_stress(res, section, si)))
     return 0
+
+
+def _in_L(res, case):
+    """The unit of v_mid (the radius of gyration r) in L: |v_mid| times it is the deflection over L."""
+    from .. import schema
+    from ..units import in_L
+    return in_L(schema.OUTPUTS["v_mid"].units, case.parameters())
+
+
+def output_names(res, case):
+    """The declared outputs a result gives per step, in the schema's order: the engine's (every
+    result), then, for a result with stored states, every step and reduction output of the case's
+    guide (one list for every CSV and SI view of per-step values)."""
+    from .. import schema
+
+    names = [name for name, spec in schema.OUTPUTS.items() if spec.engine]
+    if getattr(res, "states", None) is not None:
+        names += [name for name, spec in schema.OUTPUTS.items()
+                  if not spec.engine and spec.kind in ("step", "reduction")
+                  and case.guide_record.name in spec.guides]
+    return names
 
 
 def _simulation_columns(res, case, view):
     """simulation.csv's columns and their per-step values: t, the crank angle (degrees, or rad with
-    --si), v_mid, u_end, extension, then every declared step output of the case's guide
-    (crankgen.outputs; scaled units, or SI with --si, each column named with its unit)."""
+    --si), then every output of output_names (crankgen.outputs; scaled units, or SI with --si, each
+    column named with its unit)."""
     import numpy as np
 
-    from .. import schema
-
-    names = ["v_mid", "u_end", "extension"]
-    if getattr(res, "states", None) is not None:
-        names += [name for name, spec in schema.OUTPUTS.items()
-                  if spec.kind == "step" and case.guide in spec.guides]
+    names = output_names(res, case)
     if view is None:
         values = [res.t, np.degrees(res.theta)] + [np.asarray(getattr(res, name), dtype=float)
                                                     for name in names]
@@ -194,16 +262,27 @@ def _theta_at(case, t):
 
 # ---- steady ------------------------------------------------------------------------------------
 STEADY_NAMES = ["steady.csv", "orbit.csv", "orbit.png"]
-ORBIT_COLUMNS = ["theta_deg", "t", "v_mid", "u_end", "extension", "deflection_over_L", "axial_strain"]
 
 
 def _resolved(case, where=""):
-    """Steady states need Omega* * steps_per_rev >= 1 (crankgen.steady_states refuses coarser
-    steps); checked here, before any output or progress line, and said in one line."""
-    if case.omega * case.steps_per_rev < 1.0:
+    """Steady states need a crank motion periodic in the crank angle, a turning crank and
+    Omega* * steps_per_rev >= 1 (crankgen.steady_states refuses coarser steps); checked here,
+    before any output or progress line, and said in one line."""
+    if not case.periodic:
         raise UsageError(
-            f"{where}a steady state at --omega {case.omega:g} needs --steps-per-rev >= "
-            f"{math.ceil(1 / case.omega)} (got {case.steps_per_rev}): a time step longer than the "
+            f"{where}a steady state needs a crank motion periodic in the crank angle; --crank "
+            f"{case.motion_record.name} is not (a transient: `crankgen simulate` runs it)")
+    speed = schema.PARAMETERS[schema.CRANK_SPEED]
+    omega = getattr(case, speed.name)
+    if omega == 0:
+        raise UsageError(
+            f"{where}a steady state needs a turning crank: --{speed.cli} 0 is a crank at rest, which has "
+            f"no revolution to repeat; give --{speed.cli} > 0 (`crankgen modes --{speed.cli} 0` gives the "
+            "natural frequencies of the mechanism at rest)")
+    if omega * case.steps_per_rev < 1.0:
+        raise UsageError(
+            f"{where}a steady state at --{speed.cli} {omega:g} needs --steps-per-rev >= "
+            f"{math.ceil(1 / omega)} (got {case.steps_per_rev}): a time step longer than the "
             "rod's first bending period would make the stability verdict depend on the step; "
             "`crankgen simulate` marches such slow runs")
 
@@ -212,6 +291,7 @@ def _cmd_steady(args):
     from ..validation import in_range, integer
 
     case = _case(args)
+    section = _section(args, None)
     in_range("tol", args.tol, 0, None, True)
     integer("max_revolutions", args.max_revolutions, 1)
     check_run_size(case.n_elements, case.steps_per_rev, stored="steady",
@@ -219,7 +299,7 @@ def _cmd_steady(args):
     _resolved(case)
     out = _Outputs(args.out, STEADY_NAMES, args.force)
     try:
-        return _steady(args, case, out)
+        return _steady(args, case, out, section)
     finally:
         out.abandon()
 
@@ -235,7 +315,7 @@ def _method_text(args, case):
             f"per revolution{why}")
 
 
-def _steady(args, case, out):
+def _steady(args, case, out, section=None):
     import numpy as np
 
     from .. import theory
@@ -248,7 +328,8 @@ def _steady(args, case, out):
     st = steady_states([case], tol=args.tol, max_revolutions=args.max_revolutions,
                        method=args.method)[0]
     row = st.row()
-    defl = theory.deflection_over_L(case.eps, st.amplitude)
+    scale = _in_L(st, case)
+    defl = theory.deflection_over_L(scale, st.amplitude)
     steps = theory.axial_strain(st, per_step=True) if st.v_mid is not None else None   # per stored step
     strain = float(steps.max()) if steps is not None and steps.size else math.nan
     row.update(deflection_over_L=defl, axial_strain=strain, beyond_theory=theory.beyond(defl, strain),
@@ -257,9 +338,12 @@ def _steady(args, case, out):
         row["message"] = _failure_text(st.message, case.approach)
     out.wrote(write_csv(out.path("steady.csv"), *flat_table(list(row), [row])))
     if st.v_mid is not None:
-        rows = [dict(zip(ORBIT_COLUMNS, (np.degrees(th), t, v, u, e, theory.deflection_over_L(case.eps, v), a)))
-                for th, t, v, u, e, a in zip(st.theta, st.t, st.v_mid, st.u_end, st.extension, steps)]
-        out.wrote(write_csv(out.path("orbit.csv"), ORBIT_COLUMNS, rows))
+        names = output_names(st, case)
+        columns = ["theta_deg", "t"] + names + ["deflection_over_L", "axial_strain"]
+        values = [np.degrees(st.theta), st.t] + [np.asarray(getattr(st, n), dtype=float) for n in names]
+        rows = [dict(zip(columns, (*row, theory.deflection_over_L(scale, row[2 + names.index("v_mid")]), a)))
+                for *row, a in zip(*values, steps)]
+        out.wrote(write_csv(out.path("orbit.csv"), columns, rows))
         out.wrote(plot_orbit(st, out.path("orbit.png"), strain=steps))
     else:                                    # no orbit: leave no orbit of an earlier run beside it
         for name in ("orbit.csv", "orbit.png"):
@@ -272,6 +356,8 @@ def _steady(args, case, out):
           f"{num(st.multiplier, '{:.4f}')}; {st.iterations} shooting iterations, {st.periods} "
           f"revolutions marched, residual {num(st.residual, '{:.2e}')}"
           + (f"; {row['message']}" if row["message"] else "") + _theory_note(defl, strain))
+    if section is not None and st.states is not None:
+        print("\n".join(_loads_and_stress(st, section, None)))
     print(f"wrote {', '.join(str(p) for p in out.written)}")
     if st.status == "failed":
         print(f"crankgen steady: run failed: {row['message']}", file=sys.stderr)

@@ -2,6 +2,7 @@
 
 import sys
 
+from .. import schema
 from .options import UsageError, _Outputs, _add_model_options, _explicit, _model_options, _say
 
 
@@ -50,19 +51,47 @@ def _cmd_audit(args):
 def _add_branch_model_options(p):
     """Model options of continue and poincare (the continued parameter's own option is ignored)."""
     g = _add_model_options(p, integrator=False)
-    g.title = "model (the option of the continued parameter is replaced by its range)"
-    from .. import schema
-    g.add_argument("--parameter", choices=schema.CONTINUABLE, default="omega",
-                   help="the parameter varied (default omega)")
+    g.title = "model (the continued parameter takes its values from --from and --to)"
+    g.add_argument("--parameter", choices=schema.CONTINUABLE + tuple(PARAMETER_FLAGS), default=schema.CRANK_SPEED,
+                   metavar="{" + ",".join(schema.CONTINUABLE) + "}",
+                   help=f"the parameter varied (default {schema.CRANK_SPEED}); a parameter whose flag has "
+                        "another name is also accepted by its flag's name (" + ", ".join(
+                            f"{flag} for {name}" for flag, name in PARAMETER_FLAGS.items()) + ")")
     g.add_argument("--from", dest="start", type=float, required=True, help="first value of the parameter")
     g.add_argument("--to", dest="stop", type=float, required=True, help="last value of the parameter")
 
 
+# the continuable parameters whose flag has another name (--rocker for c, --ground for d): accepted
+# by --parameter under either name
+PARAMETER_FLAGS = {p.cli: name for name, p in schema.PARAMETERS.items()
+                   if p.continuable and p.cli != name}
+
+
+def _parameter(args):
+    """The continued parameter's name (c for --parameter rocker, d for ground)."""
+    return PARAMETER_FLAGS.get(args.parameter, args.parameter)
+
+
 def _branch_model(args):
-    """The case of the first point, checked (the continued parameter set to the range's start)."""
+    """The case of the first point, checked (the continued parameter set to the range's start).
+    Refused: the continued parameter also given by its own flag (its values are --from/--to), and
+    a parameter the case's guide or crank motion does not read."""
     from ..cases import make_case
 
+    args.parameter = _parameter(args)
     fields = _explicit(args)
+    p = schema.PARAMETERS[args.parameter]
+    if args.parameter in fields:
+        raise UsageError(f"--{p.cli} is the parameter varied (--parameter {args.parameter}): its values "
+                         "are --from and --to; leave out --" + p.cli)
+    guide = fields.get("guide", schema.PARAMETERS["guide"].default)
+    motion = fields.get("motion", schema.PARAMETERS["motion"].default)
+    if not p.read_by(guide, motion):
+        owner = "--guide" if p.owner == "guide" else "--crank"
+        current = guide if p.owner == "guide" else motion
+        raise UsageError(f"--parameter {args.parameter} ({p.label.split('(', 1)[-1].rstrip(')')}) belongs "
+                         f"to the {' and '.join(p.readers)} {p.owner} ({owner} {' or '.join(p.readers)}); "
+                         f"this case's {p.owner} is {current}")
     fields[args.parameter] = args.start
     return make_case(model=args.model, **fields)
 
@@ -71,60 +100,89 @@ def _checked_branch_model(args, continuation, values=()):
     """Every option of continue / poincare checked before anything is created or computed: the
     case at both ends of the range (and at every swept value), the continuation's own settings
     when it runs, and the steady state it starts from.  Returns the case of the first point."""
+    from .. import schema
     from ..bifurcation.api import make_case
     from ..validation import in_range, integer
     from .runs import _resolved
 
     start, stop = in_range("--from", args.start), in_range("--to", args.stop)
     case = _branch_model(args)
+    speed = args.parameter == schema.CRANK_SPEED
+    if speed and min(start, stop) <= 0:
+        raise UsageError(f"--parameter {args.parameter}: the range must stay above 0 (a crank at rest has no "
+                         f"revolution to follow), got --from {start:g} --to {stop:g}")
     for value in (start, stop, *values):
         make_case(None, args.parameter, value, case)
     if continuation:
         if start == stop:
             raise UsageError(f"--from and --to must differ for a continuation, got {start:g} twice")
         integer("--max-period", args.max_period, 1)
-        first = min(start, stop) if args.parameter == "omega" else start
+        first = min(start, stop) if speed else start
         _resolved(make_case(None, args.parameter, first, case),
-                  "the continuation starts from a steady state: " if args.parameter == "omega" else "")
+                  "the continuation starts from a steady state: " if speed else "")
     return case
 
 
-CONTINUE_NAMES = ("branches.csv", "special_points.csv", "multipliers.csv", "continuation.png")
+CONTINUE_NAMES = ("branches.csv", "special_points.csv", "multipliers.csv", "states.csv", "continuation.png")
 POINCARE_NAMES = ("poincare_summary.csv", "poincare_samples.csv", "poincare.png")
 
 
 def _cmd_continue(args):
-    from ..bifurcation import continuation
+    import numpy as np
 
+    from ..bifurcation import continuation, poincare
+    from ..progress import Progress
+    from ..validation import integer
+
+    section = None
+    if args.section is not None:
+        from ..sections import parse
+        section = parse(args.section)
+    if args.sweep is not None:
+        integer("--sweep", args.sweep, 2)
+        if args.sweep > 10000:
+            raise UsageError(f"--sweep must be at most 10000, got {args.sweep}")
     case = _checked_branch_model(args, continuation=True)
-    folder = _Outputs(args.out, CONTINUE_NAMES, args.force)
+    folder = _Outputs(args.out, CONTINUE_NAMES + ("continuation.json",)
+                      + (POINCARE_NAMES[:2] if args.sweep else ()), args.force)
     try:
         log = None if args.quiet else (lambda text: print(f"continue: {text}", file=sys.stderr, flush=True))
         d = continuation(parameter=args.parameter, start=args.start, stop=args.stop, case=case,
-                         max_period=args.max_period, progress=log)
+                         max_period=args.max_period, progress=log, section=section)
         paths = [folder.wrote(p) for p in d.to_csv(folder.folder)]
+        paths.append(folder.wrote(d.to_json(folder.path("continuation.json"))))
+        pc = None
+        if args.sweep:
+            values = np.linspace(args.start, args.stop, args.sweep)
+            with Progress("continue: sweep up and down", 2 * args.sweep, enabled=not args.quiet) as progress:
+                pc = poincare(parameter=args.parameter, values=values, direction="both", case=case,
+                              transient=100, samples=16, progress=progress)
+            paths += [folder.wrote(p) for p in pc.to_csv(folder.folder)]
         png = folder.wrote(d.plot(folder.path("continuation.png"), title=_title(args, "continuation"),
-                                  ylabel="max |v*(1/2)| over the orbit", xlabel=_AXIS[args.parameter]))
+                                  ylabel="max |v*(1/2)| over the orbit", xlabel=_axis(args.parameter), sweep=pc))
     finally:
         folder.abandon()
     for s in d.special_points:
         print(f"{s.kind} on the period-{s.period} branch at {args.parameter} = {s.parameter:.7g}, "
               f"amplitude {s.amplitude:.6g}, multiplier {s.multiplier.real:.6g}{s.multiplier.imag:+.6g}j")
+    for k, b in enumerate(d.branches):
+        print(f"branch {k} (period {b.period}, {b.origin}): {len(b)} points, {args.parameter} from "
+              f"{b.parameter[0]:.6g} to {b.parameter[-1]:.6g}; ends: {b.stop_reason}")
     print(f"{len(d.branches)} branches, {sum(len(b) for b in d.branches)} points, "
           f"{len(d.special_points)} special points in {d.info['wall_time']:.1f} s; wrote "
           f"{', '.join(str(p) for p in paths)} and {png}")
     return 0
 
 
-_AXIS = {"omega": "Omega*", "eps": "eps", "ms": "ms*", "mu": "mu*", "a": "a*", "offset": "offset e/L",
-         "c": "rocker length c/L", "d": "ground pivot d/L", "fluctuation": "speed fluctuation k"}
+def _axis(parameter):
+    from ..bifurcation.diagram import axis
+    return axis(parameter)
 
 
 def _title(args, what):
+    from ..bifurcation.diagram import describe
     c = _branch_model(args)
-    other = f"eps = {c.eps:g}" if args.parameter != "eps" else f"Omega* = {c.omega:g}"
-    return (f"{what} in {args.parameter}: approach {c.approach}, {c.formulation} / {c.damping} damping, "
-            f"{c.membrane} membrane, n = {c.n_elements}, {other}")
+    return describe(c.as_dict(), what, args.parameter)
 
 
 def _cmd_poincare(args):
@@ -142,7 +200,7 @@ def _cmd_poincare(args):
     integer("--samples", args.samples, 2)
     values = np.linspace(args.start, args.stop, args.values)
     case = _checked_branch_model(args, args.with_continuation, values)
-    names = POINCARE_NAMES + (CONTINUE_NAMES[:3] if args.with_continuation else ())
+    names = POINCARE_NAMES + (CONTINUE_NAMES[:4] if args.with_continuation else ())
     folder = _Outputs(args.out, names, args.force)
     try:
         total = args.values * (2 if args.direction == "both" else 1)
@@ -160,7 +218,7 @@ def _cmd_poincare(args):
         paths = [folder.wrote(p) for p in pc.to_csv(folder.folder)]
         png = folder.wrote(pc.plot(folder.path("poincare.png"), diagram, title=_title(args, "Poincare sweep"),
                                    ylabel="v*(1/2) at theta = 0, once per revolution",
-                                   xlabel=_AXIS[args.parameter]))
+                                   xlabel=_axis(args.parameter)))
     finally:
         folder.abandon()
     counts = {}

@@ -52,18 +52,21 @@ def borrowed_work(w):
         borrowed(w.rhs), borrowed(w.W), borrowed(w.piv), borrowed(w.ext), borrowed(w.F), borrowed(w.diag),
         borrowed(w.kin), borrowed(w.crank), borrowed(w.q), borrowed(w.qd), borrowed(w.qdd), borrowed(w.geo),
         borrowed(w.send), borrowed(w.E), borrowed(w.r1), borrowed(w.S1), borrowed(w.K1), borrowed(w.C1),
-        borrowed(w.M1), borrowed(w.lanes))
+        borrowed(w.M1), borrowed(w.lanes), borrowed(w.prims), borrowed(w.q_end), borrowed(w.mapped),
+        borrowed(w.held), borrowed(w.held_slots), borrowed(w.held_reduced), borrowed(w.qc), borrowed(w.qdc),
+        borrowed(w.qddc), borrowed(w.Ec), borrowed(w.px), borrowed(w.pr))
 
 
 @jit(python=False)
 def borrowed_cases(c):
-    return Cases(borrowed(c.select), borrowed(c.coef), borrowed(c.params), borrowed(c.dt), borrowed(c.eps),
+    return Cases(borrowed(c.select), borrowed(c.coef), borrowed(c.params), borrowed(c.dt), borrowed(c.p),
                  borrowed(c.scheme), borrowed(c.printed), borrowed(c.scales))
 
 
 @jit(python=False)
 def borrowed_mesh(m):
-    return MeshData(borrowed(m.dofs), m.kb, m.l, m.mid_element, borrowed(m.Nv_mid), borrowed(m.G))
+    return MeshData(borrowed(m.dofs), m.kb, m.l, borrowed(m.point_slots), borrowed(m.point_elements),
+                    borrowed(m.point_weights), borrowed(m.gram_slots), borrowed(m.grams))
 
 
 @jit(python=False)

@@ -20,7 +20,9 @@ import contextlib
 import os
 import subprocess
 import sys
+import tempfile
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -108,8 +110,9 @@ def _compile_entry(name):
         revolution(batch, np.zeros((1, 2 * batch.N)), parallel=False)
 
 
-def _run(items, progress, start):
-    """One pass over items: compile those whose lock this process gets; return the others."""
+def _run(items, progress, start, compiled=None):
+    """One pass over items: compile those whose lock this process gets (appended to `compiled`);
+    return the others."""
     left = []
     for item in items:
         if done(item):
@@ -125,12 +128,15 @@ def _run(items, progress, start):
             compile_item(item)
             _mark(item)
             _log(item)
+            _log(item, "CRANKGEN_BUILD_REPORT")
+            if compiled is not None:
+                compiled.append(item)
     return left
 
 
-def _log(item):
+def _log(item, variable="CRANKGEN_BUILD_LOG"):
     """Append the item to $CRANKGEN_BUILD_LOG, when set (which process compiled what)."""
-    path = os.environ.get("CRANKGEN_BUILD_LOG")
+    path = os.environ.get(variable)
     if path:
         try:
             with open(path, "a") as fh:
@@ -139,13 +145,14 @@ def _log(item):
             pass
 
 
-def _helper(items):
-    """Start the helper process on the reversed list (None when it cannot help)."""
+def _helper(items, report):
+    """Start the helper process on the reversed list (None when it cannot help); it lists the
+    items it compiled in the file `report`."""
     if READ_ONLY or fcntl is None or len(items) < 2 or (os.cpu_count() or 1) < 2 \
             or os.environ.get("CRANKGEN_BUILD_PROCESSES") == "1":
         return None
     env = dict(os.environ, CRANKGEN_CACHE_DIR=str(compile_cache.CACHE.parent),
-               CRANKGEN_BUILD_PARENT=str(os.getpid()))
+               CRANKGEN_BUILD_PARENT=str(os.getpid()), CRANKGEN_BUILD_REPORT=str(report))
     try:
         return subprocess.Popen([sys.executable, "-m", "crankgen.engine.build", *reversed(items)],
                                 stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
@@ -183,16 +190,24 @@ def _held(item):
 
 
 def prepare(items, quiet=False):
-    """Compile every item not done yet (module docstring), with progress lines on stderr."""
+    """Compile every item not done yet (module docstring), with progress lines on stderr.
+    Returns the items this process and its helper compiled (not those another run compiled
+    meanwhile, nor those done before)."""
     from numba.core import config
     if config.DISABLE_JIT:                        # plain Python: nothing to compile
-        return
+        return []
     quiet = quiet or bool(compile_cache.QUIET)
     todo = [item for item in items if not done(item)]
     if not todo:
-        return
+        return []
     start = time.perf_counter()
-    count = [0]
+    count, compiled = [0], []
+    with tempfile.TemporaryDirectory(prefix="crankgen-build-") as folder:
+        _prepare(todo, quiet, start, count, compiled, Path(folder) / "helper.txt")
+    return compiled
+
+
+def _prepare(todo, quiet, start, count, compiled, report):
 
     def progress(item, t0):
         count[0] += 1
@@ -200,12 +215,12 @@ def prepare(items, quiet=False):
             finished = sum(done(i) for i in todo)
             _say(f"crankgen: compiling {label(item)} ({finished}/{len(todo)} done, "
                  f"{time.perf_counter() - t0:.0f} s)")
-    helper = _helper(todo)
+    helper = _helper(todo, report)
     if not quiet:
         _say(f"crankgen: compiling {len(todo)} item(s) for this machine, once (the engine and the "
              f"model's kernels, on {2 if helper else 1} process(es); later runs load them)")
     try:
-        left = _run(todo, progress, start)
+        left = _run(todo, progress, start, compiled)
         _wait_for(left, todo, quiet, start)
         for item in left:                         # held by another process: wait for it
             with _lock(item, wait=True):
@@ -214,12 +229,17 @@ def prepare(items, quiet=False):
                 compile_item(item)
                 _mark(item)
                 _log(item)
+                compiled.append(item)
     finally:
         if helper is not None:
             try:
                 helper.wait(timeout=600)
             except subprocess.TimeoutExpired:
                 helper.kill()
+            try:
+                compiled.extend(line for line in report.read_text().split() if line in todo)
+            except OSError:
+                pass
     if not quiet:
         _say(f"crankgen: compiled in {time.perf_counter() - start:.1f} s")
 

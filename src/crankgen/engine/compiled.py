@@ -11,13 +11,11 @@ The folder may be read-only (a shared installation): then what was compiled ther
 the rest is compiled in memory for this run; saving never fails a run (a full disk, a read-only
 folder: the code just stays in memory).  No home directory is needed.
 
-A cache file that cannot be read (a truncated write, a disk fault) makes numba fail on the first
-call of the function; `call` catches such a failure once, deletes the unreadable files with a
-warning and runs again (numba then recompiles what is missing).
+A cache file that cannot be read (a truncated write, a disk fault, garbage) is removed where it is
+loaded, with a one-line warning, and its function compiled again (`_Cache`): every compiled
+artefact, the engine's and the kernels', is loaded through that one path.
 """
 
-import os
-import pickle
 import sys
 import types
 import warnings
@@ -75,13 +73,20 @@ if _KernelsHashLocator not in caching.CacheImpl._locator_classes:
 
 
 class _Cache(caching.FunctionCache):
-    """numba's function cache that never fails a run: a folder that cannot be read loads nothing
-    (the code is compiled), one that cannot be written (read-only, a full disk) saves nothing."""
+    """numba's function cache that never fails a run, and the one place where compiled code is
+    loaded from disk (the engine's entry points, everything they call, and every kernel alike):
+    a folder that cannot be read loads nothing (the code is compiled), one that cannot be written
+    (read-only, a full disk) saves nothing, and a damaged file (garbage, truncated or empty: any
+    failure to unpickle or rebuild what it holds) is removed with a one-line warning, with the
+    rest of this function's files, and the function is compiled again."""
 
     def load_overload(self, sig, target_context):
         try:
             return super().load_overload(sig, target_context)
         except OSError:
+            return None
+        except Exception as exc:
+            self._remove_damaged(exc)
             return None
 
     def save_overload(self, sig, data):
@@ -91,6 +96,34 @@ class _Cache(caching.FunctionCache):
             super().save_overload(sig, data)
         except OSError as exc:
             _note_unsaved(exc)
+        except Exception as exc:                 # an index damaged since it was loaded
+            self._remove_damaged(exc)
+            try:
+                super().save_overload(sig, data)
+            except Exception as again:
+                _note_unsaved(again)
+
+    def _files(self):
+        """This function's index file and data files in the cache folder."""
+        index = Path(self._cache_file._index_path)
+        pattern = self._cache_file._data_name_pattern.replace("{number:d}", "*")
+        return [index] + sorted(index.parent.glob(pattern))
+
+    def _remove_damaged(self, exc):
+        removed = []
+        if not READ_ONLY:
+            for path in self._files():
+                try:
+                    path.unlink()
+                    removed.append(path.name)
+                except FileNotFoundError:
+                    pass
+                except OSError:
+                    continue
+        what = (f"removed {', '.join(removed)}" if removed else "left it (read-only)")
+        warnings.warn(f"crankgen: damaged compiled code of {self._name} in {CACHE} "
+                      f"({type(exc).__name__}: {str(exc)[:80]}); {what}, compiling it again",
+                      RuntimeWarning, stacklevel=2)
 
 
 _unsaved = []
@@ -190,53 +223,8 @@ def _plain_overload(x):
     return lambda x: _plain(x)
 
 
-def _from_numba_cache(exc):
-    tb = exc.__traceback__
-    while tb is not None:
-        name = tb.tb_frame.f_code.co_filename.replace(os.sep, "/")
-        if name.endswith("numba/core/caching.py"):
-            return True
-        tb = tb.tb_next
-    return False
-
-
-def _unreadable(path):
-    try:
-        with open(path, "rb") as fh:
-            if path.suffix == ".nbi":
-                pickle.load(fh)
-                pickle.loads(fh.read())
-            else:
-                pickle.loads(fh.read())
-        return False
-    except Exception:
-        return True
-
-
-def repair():
-    """Delete the unreadable files of the cache folder; returns their names."""
-    bad = []
-    for path in sorted(CACHE.rglob("*.nb[ic]")):
-        if _unreadable(path):
-            try:
-                path.unlink(missing_ok=True)
-            except OSError:
-                continue
-            bad.append(path.name)
-    return bad
-
-
 def call(fn, *args):
-    """fn(*args); a failure to read numba's cache is repaired once (module docstring)."""
+    """fn(*args), after saying once that a read-only cache cannot keep what is compiled (a
+    damaged cache file is repaired where it is loaded: _Cache)."""
     announce()
-    try:
-        return fn(*args)
-    except Exception as exc:
-        if not _from_numba_cache(exc):
-            raise
-        bad = repair()
-        warnings.warn(f"crankgen: the compiled-code cache in {CACHE} could not be read "
-                      f"({type(exc).__name__}: {exc}); removed {len(bad)} unreadable file(s) and "
-                      "recompiling once", RuntimeWarning, stacklevel=3)
-        print("crankgen: recompiling the engine after a damaged cache", file=sys.stderr)
-        return fn(*args)
+    return fn(*args)

@@ -27,7 +27,6 @@ from .. import newton as _newton
 from .. import schema
 from .._generated import elements as _elements
 from .._generated import kinematics as _kinematics
-from .._generated import schema as _table
 from .calls import address
 from .compiled import jit
 from .records import Kernels
@@ -47,9 +46,10 @@ SIGNATURES = {
 
 PARTS = ("rod", "end")
 PART_KIND = {"rod": "lanes", "end": "element"}      # the rod's families run on lanes of elements
-FAMILY_SLOTS = {part: [f for f in _table.FAMILIES if f[1] == part] for part in PARTS}
+FAMILY_SLOTS = {part: [f for f in schema.FAMILIES if f.part == part] for part in PARTS}
 # flat variant tables per part: (family name, variant index, element kernel name)
-VARIANTS = {part: [(f[0], k, v[1]) for f in FAMILY_SLOTS[part] for k, v in enumerate(f[5])] for part in PARTS}
+VARIANTS = {part: [(f.name, k, v.kernel) for f in FAMILY_SLOTS[part] for k, v in enumerate(f.variants)]
+            for part in PARTS}
 GUIDE_NAMES = tuple(schema.GUIDES)
 MOTION_NAMES = tuple(schema.MOTIONS)
 N_ROD, N_END = len(FAMILY_SLOTS["rod"]), len(FAMILY_SLOTS["end"])
@@ -59,13 +59,13 @@ SELECT_SIZE = N_ROD + N_END + 2
 
 def select_row(case):
     """The case's `select` row (module docstring)."""
-    by_family = dict(zip((f[0] for f in _table.FAMILIES), case.selection.families))
+    by_family = dict(zip((f.name for f in schema.FAMILIES), case.selection.families))
     row = []
     for part in PARTS:
         for f in FAMILY_SLOTS[part]:
-            k = by_family[f[0]]
-            row.append(-1 if k < 0 else VARIANTS[part].index((f[0], k, f[5][k][1])))
-    return row + [GUIDE_NAMES.index(case.guide), MOTION_NAMES.index(case.motion)]
+            k = by_family[f.name]
+            row.append(-1 if k < 0 else VARIANTS[part].index((f.name, k, f.variants[k].kernel)))
+    return row + [GUIDE_NAMES.index(case.guide_record.name), MOTION_NAMES.index(case.motion_record.name)]
 
 
 # ---- no-ops: the entries of kernels no case needs ---------------------------------------------------

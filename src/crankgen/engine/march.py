@@ -13,13 +13,13 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from .. import kinematics as _kinematics
-from .. import newton
-from .._generated import shape as _shape
+from .. import newton, schema
+from ..outputs import primitive_data
 from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
 from .compiled import call, jit
 from .elements import kinematics, step_outputs
 from .kernels import build_items, select_rows, tables
-from .records import Cases, MeshData, Scheme, make_work
+from .records import N_OUTPUTS, NDOF, Cases, MeshData, Scheme, make_work
 from .step import NOT_FINITE, OK, SINGULAR, initial_acceleration, newmark_step
 
 HISTORY = newton.HISTORY
@@ -67,10 +67,11 @@ class Batch:
             np.array([c.kinematic_parameters for c in cases], dtype=float),
             (np.array([_kinematics.step_period(c) / spr for c in cases], dtype=float) if dt is None else
              np.array(np.broadcast_to(np.asarray(dt, dtype=float), (len(cases),)))),
-            np.array([c.eps for c in cases], dtype=float),
+            np.array([c.parameter_vector for c in cases], dtype=float),
             np.array([newton.SCHEMES.index(c.integrator) for c in cases], dtype=np.int64),
             printed.astype(np.bool_),
-            np.array([self.mesh.dof_scales(c.eps, _kinematics.end_scale(c)) for c in cases]))
+            np.array([self.mesh.dof_scales(schema.natural_sizes(c.parameters()), _kinematics.end_scale(c))
+                      for c in cases]))
 
     def _new_mesh(self, n):
         from ..assembly import BandedAssembler
@@ -78,12 +79,14 @@ class Batch:
 
         self.mesh = Mesh(n)
         self.N = self.mesh.n_dofs
-        mid_element, zeta = self.mesh.locate(0.5)
+        points, grams = primitive_data(self.mesh)
         self.meshdata = MeshData(
             np.ascontiguousarray(self.mesh.element_dofs, dtype=np.int64), BandedAssembler(self.mesh).bandwidth,
-            self.mesh.length, mid_element,
-            np.ascontiguousarray(_shape.shape_functions(zeta, self.mesh.length)[1], dtype=float),
-            np.ascontiguousarray(_shape.slope_gram(self.mesh.length), dtype=float))
+            self.mesh.length, np.array([k for k, _, _ in points], dtype=np.int64),
+            np.array([e for _, e, _ in points], dtype=np.int64),
+            np.ascontiguousarray(np.array([w for _, _, w in points], dtype=float).reshape(len(points), NDOF)),
+            np.array([k for k, _ in grams], dtype=np.int64),
+            np.ascontiguousarray(np.array([G for _, G in grams], dtype=float).reshape(len(grams), NDOF, NDOF)))
 
     @property
     def dt(self):
@@ -99,7 +102,8 @@ class Batch:
 
 
 class MarchResult:
-    """Outputs of march: y[b, m] = (v*, u*(1), delta*) at step m, final states, statuses."""
+    """Outputs of march: y[b, m] = the engine's outputs (schema.ENGINE_OUTPUTS) at step m, final
+    states, statuses."""
 
     def __init__(self, **kw):
         self.__dict__.update(kw)
@@ -119,10 +123,10 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, 
         dt = cases.dt[b]
         d, v, acc = D0[b].copy(), V0[b].copy(), A0[b].copy()
         dn, vn, an = np.zeros(N), np.zeros(N), np.zeros(N)
-        y = np.zeros(3)
+        y = np.zeros(N_OUTPUTS)
         kinematics(kern, sel, params, t0[b] + step0 * dt, w)
-        step_outputs(kern, sel, params, mesh.dofs, mesh.mid_element, mesh.Nv_mid, mesh.G, cases.eps[b], d, w, y)
-        for k in range(3):
+        step_outputs(kern, sel, params, cases.p[b], mesh, d, w, y)
+        for k in range(N_OUTPUTS):
             out_y[b, 0, k] = y[k]
         if keep_history:
             for i in range(N):
@@ -157,9 +161,8 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, 
                 v[i] = vn[i]
                 acc[i] = an[i]
             n_prev[b] = min(n_prev[b] + 1, HISTORY)
-            step_outputs(kern, sel, params, mesh.dofs, mesh.mid_element, mesh.Nv_mid, mesh.G, cases.eps[b],
-                         d, w, y)
-            for k in range(3):
+            step_outputs(kern, sel, params, cases.p[b], mesh, d, w, y)
+            for k in range(N_OUTPUTS):
                 out_y[b, m + 1, k] = y[k]
             if keep_history:
                 for i in range(N):
@@ -258,7 +261,7 @@ def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False
         P, n_prev = np.zeros((B, HISTORY, N)), np.zeros(B, dtype=np.int64)
     else:
         P, n_prev = np.array(previous[0], dtype=float), np.array(previous[1], dtype=np.int64)
-    out_y = np.full((B, n_steps + 1, 3), np.nan)
+    out_y = np.full((B, n_steps + 1, N_OUTPUTS), np.nan)
     out_iter = np.zeros((B, n_steps), dtype=np.int64)
     fail_step = np.zeros(B, dtype=np.int64)
     fail_res = np.zeros(B)

@@ -7,11 +7,12 @@
   the guide's end map and kinematics and the crank motion (one-entry tables).
 - Cases: one row per case of a batch: `select` (the table index of each family's variant, -1 when
   absent, then the guide and the motion), `coef` (the element kernels' coefficients), `params`
-  (the kinematic parameters), the time step, eps, the Newmark scheme code (newton.SCHEMES), whether
-  the one-pass scheme iterates with the printed eq. (37) matrices, and the natural size of every
-  reduced DOF (`scales`).
+  (the kinematic parameters), the time step, `p` (the parameter vector, for the engine's
+  outputs), the Newmark scheme code (newton.SCHEMES), whether the one-pass scheme iterates with the
+  printed eq. (37) matrices, and the natural size of every reduced DOF (`scales`).
 - MeshData: the mesh as the engine reads it: the element DOF map, bandwidth, element length, and
-  where v* at x* = 1/2 is read (element, shape functions) and the slope Gram matrix of eq. (40).
+  what the engine's outputs accumulate (schema.PRIMITIVES): for each point primitive its place in
+  prims, its element and its shape functions there; for each integral its place and Gram matrix.
 - Scheme: Newmark's beta and gamma, the Newton tolerance and iteration limit.
 - Work: the scratch arrays of one case's Newmark steps (allocated once per case and reused).
 Every record is a namedtuple of arrays and numbers: numba compiles them as such, and with
@@ -30,6 +31,16 @@ NDOF = schema.ELEMENT_DOFS
 LANES, LANE_SIZE = schema.LANES, schema.LANE_SIZE
 N_KIN = len(schema.KINEMATICS)
 END_ROWS = len(schema.END_MAP_ROWS)
+# the DOF map's mapped constraint (the guide's): the components it eliminates at its node (K_ELIM),
+# its reduced co-ordinates (M_RED), its node, and the eliminated components' places in an element
+# whose first or second node it is
+MAPPED = next(c for c in schema.CONSTRAINTS if c.map is not None)
+K_ELIM, M_RED, MAPPED_NODE = len(MAPPED.eliminated), len(MAPPED.reduced), MAPPED.node
+_NODE_DOFS = len(schema.NODE)
+SLOTS_FIRST = np.array([schema.NODE.index(c) for c in MAPPED.eliminated], dtype=np.int64)
+SLOTS_SECOND = SLOTS_FIRST + _NODE_DOFS
+N_OUTPUTS = len(schema.ENGINE_OUTPUTS)          # the engine's per-step outputs
+N_PRIMITIVES = len(schema.PRIMITIVES)           # what it accumulates for them
 
 Kernels = namedtuple("Kernels", [
     "rod", "end",                       # per family slot acting on every element (its lane function) /
@@ -37,9 +48,10 @@ Kernels = namedtuple("Kernels", [
     "end_map", "guide", "motion",       # (one entry each)
 ])
 
-Cases = namedtuple("Cases", ["select", "coef", "params", "dt", "eps", "scheme", "printed", "scales"])
+Cases = namedtuple("Cases", ["select", "coef", "params", "dt", "p", "scheme", "printed", "scales"])
 
-MeshData = namedtuple("MeshData", ["dofs", "kb", "l", "mid_element", "Nv_mid", "G"])
+MeshData = namedtuple("MeshData", ["dofs", "kb", "l", "point_slots", "point_elements", "point_weights",
+                                   "gram_slots", "grams"])
 
 Scheme = namedtuple("Scheme", ["beta", "gamma", "tol", "max_iter"])
 
@@ -53,18 +65,55 @@ Work = namedtuple("Work", [
     "send", "E",                        # the end map's (s, sd, sdd) and its (8, 2) values
     "r1", "S1", "K1", "C1", "M1",       # one element's residual and matrices (the element loop's scratch)
     "lanes",                            # lane buffers of the elements, schema.LANES a buffer
+    "prims", "q_end",                   # the primitives of the engine's outputs; the mapped node's eliminated components
+    "mapped", "held", "held_slots", "held_reduced",    # the DOF map's condensation: `condensation`
+    "qc", "qdc", "qddc", "Ec",          # per holding element: its mapped nodal state and map values
+    "px", "pr",                         # the projection's scratch: eliminated entries (3, K_ELIM), reduced (3, M_RED)
 ])
+
+
+def _condensation(n):
+    """The DOF map's condensation on n elements: (mapped (n,): for each element the index of its
+    holding of the mapped constraint's node, -1 none; held (h,): the holding elements; held_slots
+    (h, K_ELIM): the eliminated components' places in each; held_reduced (h, M_RED): the places of
+    the reduced co-ordinates there, the first eliminated ones), the same as crankgen.mesh.Mesh.holders."""
+    node = MAPPED_NODE % (n + 1)
+    count = (1 if node >= 1 else 0) + (1 if node < n else 0)
+    mapped = np.full(n, -1, dtype=np.int64)
+    held = np.zeros(count, dtype=np.int64)
+    slots = np.zeros((count, K_ELIM), dtype=np.int64)
+    reduced = np.zeros((count, M_RED), dtype=np.int64)
+    i = 0
+    for side in range(2):                    # the element ending at the node, then the one starting there
+        e = node - 1 + side
+        if 0 <= e < n:
+            mapped[e] = i
+            held[i] = e
+            for a in range(K_ELIM):
+                slots[i, a] = SLOTS_SECOND[a] if side == 0 else SLOTS_FIRST[a]
+            for j in range(M_RED):
+                reduced[i, j] = slots[i, j]
+            i += 1
+    return mapped, held, slots, reduced
+
+
+condensation = jit(_condensation)                # called by make_work, compiled or not
 
 
 def _make_work(n, N, kb):
     """Work arrays for n elements, N reduced DOFs, bandwidth kb."""
+    mapped, held, held_slots, held_reduced = condensation(n)
+    h = held.shape[0]
     return Work(np.zeros((n, NDOF)), np.zeros((n, NDOF, NDOF)), np.zeros((n, NDOF, NDOF)),
                 np.zeros((n, NDOF, NDOF)), np.zeros((n, NDOF, NDOF)), np.zeros(N), np.zeros((N + KB_FIXED, 1)),
                 np.zeros((N, 3 * kb + 1)), np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64),
                 np.zeros((N + KB_FIXED, 2 * KB_FIXED + 1)), np.zeros(N), np.zeros(N_KIN), np.zeros(3),
-                np.zeros(NDOF), np.zeros(NDOF), np.zeros(NDOF), np.zeros(2), np.zeros(3), np.zeros((END_ROWS, 2)),
+                np.zeros(NDOF), np.zeros(NDOF), np.zeros(NDOF), np.zeros(2), np.zeros(3 * M_RED),
+                np.zeros((END_ROWS, K_ELIM)),
                 np.zeros(NDOF), np.zeros((NDOF, NDOF)), np.zeros((NDOF, NDOF)), np.zeros((NDOF, NDOF)),
-                np.zeros((NDOF, NDOF)), np.zeros(((n + LANES - 1) // LANES, LANE_SIZE)))
+                np.zeros((NDOF, NDOF)), np.zeros(((n + LANES - 1) // LANES, LANE_SIZE)), np.zeros(N_PRIMITIVES),
+                np.zeros(K_ELIM), mapped, held, held_slots, held_reduced, np.zeros((h, NDOF)), np.zeros((h, NDOF)),
+                np.zeros((h, NDOF)), np.zeros((h, END_ROWS, K_ELIM)), np.zeros((3, K_ELIM)), np.zeros((3, M_RED)))
 
 
 make_work = jit(_make_work, python=False)       # inside compiled code

@@ -18,7 +18,7 @@ from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_wo
 from .compiled import jit
 from .elements import FULL, RESIDUAL, element_loop, iteration_matrices, kinematics, step_outputs
 from .march import parallel_slices
-from .records import Scheme, make_work
+from .records import N_OUTPUTS, Scheme, make_work
 from .step import OK, SINGULAR, initial_acceleration, newmark_step
 
 HISTORY = newton.HISTORY
@@ -93,7 +93,7 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
         dd~ += (v + dt (1 - 2 beta) a + 2 beta dt a') ddt/dp,  dv~ += ((1 - gamma) a + gamma a') ddt/dp
     (with a fixed number of steps per revolution the crank angles of the steps need not depend on
     p, the times t = k dt do).
-    Y[b, m]: the step outputs (v*, u*(1), delta*) at step step0 + m; XR[b, r]: the state after r
+    Y[b, m]: the engine's outputs (schema.ENGINE_OUTPUTS) at step step0 + m; XR[b, r]: the state after r
     times spr steps (r = 0 .. n_steps // spr)."""
     n = mesh.dofs.shape[0]
     N = X0.shape[1] // 2
@@ -120,12 +120,12 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
         rm, rp, g = np.zeros(N), np.zeros(N), np.zeros(N)
         Kb = np.zeros((N, 3 * kb + 1))
         Cb = np.zeros((N, 3 * kb + 1))
-        y = np.zeros(3)
+        y = np.zeros(N_OUTPUTS)
         if not initial_acceleration(kern, cases, b, mesh, step0 * dt, d, v, acc, w):
             status[b] = SINGULAR
             continue
-        step_outputs(kern, sel, params, dofs, mesh.mid_element, mesh.Nv_mid, mesh.G, cases.eps[b], d, w, y)
-        for k in range(3):
+        step_outputs(kern, sel, params, cases.p[b], mesh, d, w, y)
+        for k in range(N_OUTPUTS):
             Y[b, 0, k] = y[k]
         for i in range(2 * N):
             XR[b, 0, i] = X0[b, i]
@@ -212,8 +212,8 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
                 acc[i] = an[i]
             if with_p:                  # _parameter_forcing moved the kinematics to p +- h
                 kinematics(kern, sel, params, t_new, w)
-            step_outputs(kern, sel, params, dofs, mesh.mid_element, mesh.Nv_mid, mesh.G, cases.eps[b], d, w, y)
-            for k in range(3):
+            step_outputs(kern, sel, params, cases.p[b], mesh, d, w, y)
+            for k in range(N_OUTPUTS):
                 Y[b, m + 1, k] = y[k]
             if (m + 1) % spr == 0:
                 r = (m + 1) // spr
@@ -235,8 +235,8 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
 
 class Revolution:
     """Result of shoot: X1 (B, 2N) the states after the revolutions, J (B, 2N, 2N) = dX1/dX0 (None
-    without jacobian), Jp (B, 2N) = dX1/dp (None without a parameter), y (B, steps + 1, 3) the
-    step outputs (v*, u*(1), delta*), states (B, revolutions + 1, 2N) at theta = 0, status (B,)."""
+    without jacobian), Jp (B, 2N) = dX1/dp (None without a parameter), y (B, steps + 1, outputs) the
+    engine's outputs (schema.ENGINE_OUTPUTS), states (B, revolutions + 1, 2N) at theta = 0, status (B,)."""
 
     def __init__(self, **kw):
         self.__dict__.update(kw)
@@ -267,7 +267,7 @@ def shoot(batch, X0, step0=0, active=None, parallel=None, beta=0.25, gamma=0.5, 
     n_steps = int(revolutions) * batch.steps_per_rev
     X1 = np.full((B, 2 * N), np.nan)
     J = np.full((B, 2 * N, 2 * N + (1 if with_p else 0)) if jacobian else (1, 1, 1), np.nan)
-    Y = np.full((B, n_steps + 1, 3), np.nan)
+    Y = np.full((B, n_steps + 1, N_OUTPUTS), np.nan)
     XR = np.full((B, int(revolutions) + 1, 2 * N), np.nan)
     status = np.zeros(B, dtype=np.int64)
     if parallel is None:

@@ -68,7 +68,7 @@ def _run(ctx, m, eps, n, spr):
             f"(n = {n}, {spr} steps/rev, periods up to {cfg.bif_max_period})")
     try:
         d = continuation(mech, "omega", lo, hi, n_elements=n, steps_per_rev=spr,
-                         max_period=cfg.bif_max_period, dp_max=cfg.bif_dp_max, tol=cfg.bif_tol,
+                         max_period=cfg.bif_max_period, dp_max=cfg.bif_dp_max, tol=cfg.bif_tol, quantities=False,
                          progress=lambda text: ctx.log(f"{label}: {text}"), **_model_options(m))
     except _FAILURES as exc:
         rec.update(status="failed", message=f"{type(exc).__name__}: {exc}")
@@ -125,10 +125,15 @@ def _beyond(ctx, mech, m, n, spr, edge, label):
         return out
     for q in pc.points:
         out["points"].append(dict(omega=float(q.parameter), classification=q.classification,
-                                  period=int(q.period), repeat_residual=float(q.repeat_residual),
-                                  lyapunov=float(q.lyapunov), distinct=int(q.distinct),
+                                  period=int(q.period), repeat_residual=_float(q.repeat_residual),
+                                  lyapunov=_float(q.lyapunov), distinct=int(q.distinct),
                                   message=q.message))
     return out
+
+
+def _float(x):
+    """A number, or NaN for one that does not exist (None), as the recorded data hold it."""
+    return math.nan if x is None else float(x)
 
 
 def stability_segments(branch, specials=()):

@@ -14,6 +14,7 @@ import warnings
 from pathlib import Path
 
 from ..errors import CrankgenError
+from ..io import read_regular
 from .io import atomic_write, file_hash, to_json
 
 NAME = "manifest.json"
@@ -95,8 +96,7 @@ class Manifest:
         if not path.exists():
             return cls(folder)
         try:
-            with open(path) as fh:
-                doc = json.load(fh)
+            doc = json.loads(read_regular(path))
             problem = _document_problem(doc)
         except (OSError, ValueError) as exc:
             problem = f"it cannot be read ({exc})"

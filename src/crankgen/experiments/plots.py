@@ -385,7 +385,9 @@ def plot_convergence(conv, cfg):
         for ap in APPROACHES:
             used.setdefault(conv["counts"][(m.key, ap)], []).append(ap)
         bot.axhline(cfg.conv_tol, color="k", lw=0.8, ls="--", label=f"tolerance {100 * cfg.conv_tol:g} %")
-        ticks = sorted(set(cfg.conv_ladder) | set(used))
+        # the counts computed (the ladder stops where a series converged) and those used
+        computed = {r["n_elements"] for r in conv["rows"] if r["model"] == m.key}
+        ticks = sorted(computed | set(used))
         names = [str(n) + (f"\n{', '.join(used[n])}" if n in used else "") for n in ticks]
         for a in (top, bot):
             a.set_xscale("log", base=2)
@@ -401,6 +403,11 @@ def plot_convergence(conv, cfg):
             _room_below(top)
         note = _coincide_note(pairs)
         extra = [Line2D([], [], color="0.45", ls=":", label="dotted: element count used, by the approaches named under it")]
+        beyond = sorted(n for n in used if n not in computed)
+        if beyond:
+            extra.append(Line2D([], [], ls="none", label="; ".join(
+                f"n = {n} ({', '.join(used[n])}): the paper's count, larger than the converged one "
+                "(not on the ladder, which stopped once converged)" for n in beyond)))
         if any(r["status"] == DIVERGED for r in conv["rows"] if r["model"] == m.key):
             extra.append(Line2D([], [], ls="none", marker="x", color="0.4",
                                 label="x at the bottom: the run from rest diverged (B is ill-posed)"))

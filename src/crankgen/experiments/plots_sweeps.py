@@ -235,12 +235,14 @@ def plot_figure6(data, cfg, counts, bifurcations=None):
     xs = oms + ([float(x) for r in runs.values() for br in r.get("branches", []) for x in br["omega"]]
                 if runs else [])
     xlim = (max(0.0, min(xs) - step / 2), max(xs) + step / 2)     # no marker cut at the edges
-    # the magnified panels share one range: up to where A (periodic) last stays within the
-    # magnified amplitudes in any panel, never beyond the sweep
-    zoom_hi = _zoom_end(data["rows"], cfg.fig6_inset_ylim, oms)
-    zoom_xlim = (0.0, min(xlim[1], zoom_hi * 1.1 + step / 2))
+    # the magnified panels of one eps share one range: up to where A (periodic) last stays within
+    # the magnified amplitudes in either model, never beyond the sweep
+    zooms = {eps: (0.0, min(xlim[1], _zoom_end([r for r in data["rows"] if r["eps"] == eps],
+                                               cfg.fig6_inset_ylim, oms) * 1.1 + step / 2))
+             for eps in cfg.fig6_eps}
     for j, m in enumerate(MODELS):
         for i, eps in enumerate(cfg.fig6_eps):
+            zoom_xlim = zooms[eps]
             rows = [r for r in data["rows"] if r["model"] == m.key and r["eps"] == eps]
             run = runs.get(eps) if m is MODELS[1] else None
             for zoom in (False, True):
@@ -282,7 +284,7 @@ def plot_figure6(data, cfg, counts, bifurcations=None):
 
 def _zoom_end(rows, ylim, oms):
     """Largest speed up to which approach A's periodic amplitude stays within ylim, in any model
-    and eps (the end of the magnified panels of Figure 6)."""
+    and eps of `rows` (the end of a magnified panel of Figure 6)."""
     ends = []
     for key in {(r["model"], r["eps"]) for r in rows}:
         a = sorted((r for r in rows if (r["model"], r["eps"]) == key and r["approach"] == "A"),

@@ -92,6 +92,11 @@ def _counts_list(counts):
     return sorted([m, ap, n] for (m, ap), n in counts.items())
 
 
+
+# how long the first run on a machine compiles what reproduce uses (the README says the same):
+# measured 27 s on two idle cores (bench/results.json) and 60 s with the cores shared
+COMPILE_TIME = "about 30 s on two idle cores, a minute or more when they are busy"
+
 class Context:
     """What the figure functions need: the config, logging, and the two engines with progress."""
 
@@ -113,8 +118,8 @@ class Context:
         from ..compile_cache import is_warm
         compiled = not is_warm()
         t0 = time.perf_counter()
-        self.log("starting the compiled engine" + (" (compiling it for this machine, once: 1-3 "
-                                                   "minutes on 2 cores)" if compiled else ""))
+        self.log("starting the compiled engine" + (f" (compiling it for this machine, once: {COMPILE_TIME})"
+                                                   if compiled else ""))
         cases = [Case(n_elements=1, steps_per_rev=20, omega=w) for w in (0.8, 0.9)]
         _steady.steady_states(cases[:1], max_revolutions=2)
         _steady.steady_states(cases, max_revolutions=2)

@@ -28,10 +28,13 @@ add an ingredient, declare it here (a Family variant, an Option, a Parameter and
 that uses it, a Guide, a Motion or an Output), then `make derive`.
 """
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Callable
 
 import sympy as sp
+
+from crankgen import records
+from crankgen.records import Option, Preset
 
 from . import energies as en
 from . import guides, motions
@@ -44,17 +47,8 @@ from .shape_functions import integrate_element
 
 
 # ----------------------------------------------------------------------------------------------
-# Options and presets
+# Options and presets (crankgen.records.Option, Preset)
 # ----------------------------------------------------------------------------------------------
-
-@dataclass(frozen=True)
-class Option:
-    name: str
-    choices: tuple
-    default: object              # None: the default preset's value (DEFAULT_PRESET)
-    doc: str
-    cli: str = None              # command-line flag (default: --<name>); its values: the choices' text
-
 
 OPTIONS = (
     Option("formulation", ("lagrange", "paper"), None,
@@ -76,16 +70,6 @@ OPTIONS = (
 )
 
 
-@dataclass(frozen=True)
-class Preset:
-    """A named set of option values: a model.  Options a preset does not set keep their default;
-    an option given explicitly overrides the preset's value."""
-
-    name: str
-    options: dict
-    doc: str
-
-
 PRESETS = (
     Preset("consistent", {"formulation": "lagrange", "damping": "kelvin-voigt", "membrane": "averaged"},
            "the exact Lagrange equations, strain-rate (Kelvin-Voigt) damping, averaged membrane strain "
@@ -102,21 +86,16 @@ PRESETS = (
 DEFAULT_PRESET = "consistent"
 
 
-@dataclass(frozen=True)
-class Exclusion:
-    """Option values that have no meaning together: a case choosing all of them is refused with
-    `reason` (one line)."""
+EXACT = "exact"                  # the approach of the geometrically exact rod
 
-    options: dict
-    reason: str
-
-
+# Option values that have no meaning together (crankgen.records.Exclusion): a case choosing them is
+# refused with the reason.
 EXCLUSIONS = (
-    Exclusion({"approach": "exact", "formulation": "paper"},
-              "approach 'exact' has no printed matrix form: use formulation='lagrange' (or model='exact')"),
-    Exclusion({"approach": "exact", "damping": "paper"},
-              "approach 'exact' has no printed damping (eq. 24 is built from the matrices of eq. 2): "
-              "use damping='kelvin-voigt' (or model='exact')"),
+    records.Exclusion({"approach": EXACT, "formulation": "paper"},
+                      "approach 'exact' has no printed matrix form: use formulation='lagrange' (or model='exact')"),
+    records.Exclusion({"approach": EXACT, "damping": "paper"},
+                      "approach 'exact' has no printed damping (eq. 24 is built from the matrices of eq. 2): "
+                      "use damping='kelvin-voigt' (or model='exact')"),
 )
 
 # ----------------------------------------------------------------------------------------------
@@ -125,82 +104,70 @@ EXCLUSIONS = (
 
 
 @dataclass(frozen=True)
-class Parameter:
-    """One parameter of a case.  kind: "real" (a finite number in the range low..high, open ends
-    where low_open / high_open), "pair" (two finite numbers), "sign" (+1 or -1), "count" (an integer
-    >= low), "choice" (one of `choices`).  owner: "mechanism" (a Mechanism field), "guide:<name>",
-    "motion:<name>" (read by those guides or motions only; at its default otherwise), "run" (a
-    setting of the run).  units: the unit of the value (crankgen's units: L, rho A L, 1/omega_b).
-    continuable: a continuation may vary it."""
+class Parameter(records.Parameter):
+    """A parameter of a case (crankgen.records.Parameter: kind, default, range, units, flag, ...)
+    with its symbol in the derivation (a pair: a tuple of two), None for a parameter that enters
+    no equation.  owner: declared "mechanism" (a Mechanism field) or "run"; a parameter that a
+    guide or motion reads (Guide.parameters, Motion.parameters) is owned by those
+    (derive/representation.py).  The choices of a choice parameter may be the guides or the
+    motions: it then selects the case's guide or motion."""
 
-    name: str
-    kind: str
-    default: object
-    label: str                   # how messages name it
-    doc: str
-    owner: str = "mechanism"
-    low: float = None
-    high: float = None
-    low_open: bool = False
-    high_open: bool = False
-    units: str = "1"
-    cli: str = None              # command-line flag (default: --<name>)
-    metavar: str = None
-    choices: tuple = ()
-    continuable: bool = False
-    symbol: sp.Symbol = None     # its symbol in the derivation (kinematic parameters)
+    symbol: object = None
 
 
 PARAMETERS = (
     Parameter("a", "real", 0.1, "a (crank length a* = a/L)", "crank length over rod length a* = a/L",
-              low=0.0, high=1.0, low_open=True, high_open=True, units="L", continuable=True, symbol=s.a),
+              low=0.0, high=1.0, low_open=True, high_open=True, units="L", continuable=True, symbol=s.a,
+              axis="a*"),
     Parameter("eps", "real", 0.01, "eps (slenderness r/L)",
               "slenderness eps = r/L, r the radius of gyration of the rod's section",
-              low=0.0, low_open=True, continuable=True),
+              low=0.0, low_open=True, continuable=True, symbol=s.eps, axis="eps"),
     Parameter("ms", "real", 0.5, "ms (end mass ms* = m_s/(rho A L))",
               "mass at the rod's end (the slider; the rocker's tip) ms* = m_s/(rho A L)",
-              low=0.0, continuable=True),
+              low=0.0, continuable=True, symbol=s.ms, axis="ms*"),
     Parameter("mu", "real", 0.5, "mu (damping mu* = omega_b mu)", "damping mu* = omega_b mu",
-              low=0.0, continuable=True),
+              low=0.0, continuable=True, symbol=s.mu, axis="mu*"),
     Parameter("gravity", "pair", (0.0, 0.0), "gravity",
               "gravity (gX, gY) in the inertial frame (X along the guide, the crank pin at "
-              "a* (cos theta, sin theta)), units of L omega_b^2", units="L omega_b^2", metavar="GX,GY"),
+              "a* (cos theta, sin theta)), units of L omega_b^2", units="L omega_b^2", metavar="GX,GY",
+              symbol=(s.gX, s.gY)),
     Parameter("guide", "choice", "line", "guide",
               "the curve the rod's end travels on: line (a slider on the line Y = offset) or circle "
               "(the tip of a rigid massless rocker of length c pivoted at (d, offset): a four-bar "
-              "linkage with a flexible coupler)", choices=("line", "circle")),
+              "linkage with a flexible coupler)", choices=guides.GUIDES),
     Parameter("offset", "real", 0.0, "offset (guide offset e/L)",
               "guide offset e/L: the line Y = e, or the ordinate of the rocker's pivot",
-              owner="guide:line,circle", units="L", continuable=True, symbol=s.e),
+              units="L", continuable=True, symbol=s.e, axis="offset e/L"),
     Parameter("c", "real", 0.8, "c (rocker length c/L)", "rocker length c/L",
-              owner="guide:circle", low=0.0, low_open=True, units="L", cli="rocker", continuable=True,
-              symbol=s.c),
+              low=0.0, low_open=True, units="L", cli="rocker", continuable=True,
+              symbol=s.c, axis="rocker length c/L"),
     Parameter("d", "real", 1.0, "d (ground pivot abscissa d/L)",
               "abscissa d/L of the rocker's ground pivot D = (d, offset)",
-              owner="guide:circle", units="L", cli="ground", continuable=True, symbol=s.d),
+              units="L", cli="ground", continuable=True, symbol=s.d, axis="ground pivot d/L"),
     Parameter("branch", "sign", 1, "branch",
               "closure of the four-bar: +1 puts the rocker's tip on the counter-clockwise side of the "
               "line from the crank pin to the ground pivot, -1 on the other",
-              owner="guide:circle", symbol=s.branch),
+              symbol=s.branch),
     Parameter("motion", "choice", "constant", "motion",
               "the crank's prescribed motion: constant speed, a run-up from omega0 to omega over "
               "`ramp` revolutions, or a cyclic fluctuation omega (1 + k sin(j theta))", owner="run",
-              cli="crank", choices=("constant", "runup", "fluctuation")),
+              cli="crank", choices=motions.MOTIONS),
     Parameter("omega", "real", 0.8, "omega (crank speed Omega*)",
               "crank speed Omega* = Omega/omega_b (constant speed; a run-up's final speed; a "
               "fluctuating crank's nominal speed; 0: a crank at rest)", owner="run", low=0.0,
-              units="omega_b", continuable=True, symbol=s.omega),
+              units="omega_b", continuable=True, symbol=s.omega, axis="Omega*"),
     Parameter("omega0", "real", 0.2, "omega0 (run-up start speed)", "a run-up's start speed Omega0*",
-              owner="motion:runup", low=0.0, low_open=True, units="omega_b", symbol=s.omega0),
+              owner="run", low=0.0, low_open=True, units="omega_b", symbol=s.omega0),
     Parameter("ramp", "real", 20.0, "ramp (run-up revolutions)",
-              "crank revolutions over which a run-up's speed rises", owner="motion:runup", low=0.0,
+              "crank revolutions over which a run-up's speed rises", owner="run", low=0.0,
               low_open=True, symbol=s.ramp),
     Parameter("fluctuation", "real", 0.1, "fluctuation (speed fluctuation k)",
-              "relative amplitude k of a cyclic speed fluctuation", owner="motion:fluctuation",
-              low=-1.0, high=1.0, low_open=True, high_open=True, continuable=True, symbol=s.k_fl),
+              "relative amplitude k of a cyclic speed fluctuation", owner="run",
+              low=-1.0, high=1.0, low_open=True, high_open=True, continuable=True, symbol=s.k_fl,
+              axis="speed fluctuation k"),
     Parameter("order", "count", 1, "order (speed fluctuation order j)",
               "order j of a cyclic speed fluctuation (j per revolution)",
-              owner="motion:fluctuation", low=1, symbol=s.j_fl),
+              owner="run", low=1, symbol=s.j_fl),
     Parameter("theta0", "real", 0.0, "theta0 (crank angle at t = 0, rad)",
               "the crank angle at t = 0 (rad, counter-clockwise from the X axis); the rod starts in "
               "the rigid mechanism's position at that angle", owner="run", units="rad",
@@ -215,13 +182,28 @@ PARAMETERS = (
               "paper's eqs. (34)-(39)", owner="run", choices=("newton", "full-newton", "one-pass")),
 )
 
-# The kinematic parameters: the vector the kinematics and end map kernels receive, in this order.
-KINEMATIC_PARAMETERS = tuple(p.name for p in PARAMETERS if p.symbol is not None)
+# The crank's (nominal) speed: simulate's `omega` argument, the default continued parameter; the
+# crank's angle at t = 0 (where a frozen mechanism is frozen).
+CRANK_SPEED = "omega"
+CRANK_ANGLE = "theta0"
+# The units that are parameters: the radius of gyration r = eps L (outputs in units of r, e.g. v*).
+UNIT_PARAMETERS = {"r": "eps"}
 
-# indicator of an option value, usable in coefficient formulas
-with_rotary_inertia = sp.Symbol("with_rotary_inertia")
-eps = s.eps
+# Indicators usable in coefficient formulas: 1 when a case's option has a value, else 0
+# (INDICATORS: symbol -> (option, value)), and 1 when the audit switches a term group off.
+INDICATORS = {}
+
+
+def indicator(option, value):
+    """The symbol that is 1 when the case's option `option` has `value`, else 0."""
+    symbol = sp.Symbol(f"with_{option}" if value is True else f"{option}_{value}")
+    INDICATORS[symbol] = (option, value)
+    return symbol
+
+
+with_rotary_inertia = indicator("rotary_inertia", True)
 switched_off = {g: sp.Symbol(f"off_{g}") for g in s.SWITCHABLE_GROUPS}
+eps = s.eps
 
 # crankgen's units: length L, mass rho A L, time 1/omega_b with omega_b = (pi/L)^2 sqrt(EI/(rho A)),
 # so rho A = 1, E I = 1/pi^4, E A = E I / r^2 = 1/(pi^4 eps^2), rho I = rho A r^2 = eps^2.
@@ -236,7 +218,6 @@ COEFFICIENTS = {
     s.gY: s.gY,
     **{w: 1 - switched_off[g] for g, w in s.WEIGHT.items()},
 }
-assert tuple(COEFFICIENTS) == s.COEFFICIENTS
 
 
 # ----------------------------------------------------------------------------------------------
@@ -258,25 +239,33 @@ class Term:
 
 
 @dataclass(frozen=True)
-class Variant:
-    name: str                    # kernel name: <family>_<name>
-    when: dict                   # option values that select it (absent options: any value; a tuple: any of)
-    build: Callable              # () -> Term
+class Energy:
+    """An energy (or Rayleigh dissipation) function per element, built by `build()` as an
+    expression in q, qd, geo, coef, kin (the end node's energies on the last element's slots): its
+    kernel `name` in generated/energy.py serves the energy balance and the outputs."""
+
+    name: str
     doc: str
-    groups: tuple = ()           # switchable groups it carries, each multiplied by its weight w_<group>
-    energy: str = None           # the energy kernel (derive/kernels.energy_kernels) it derives from
-    quadrature: object = None    # the quadrature.Rule its element integrals use (None: closed form)
+    build: Callable
 
 
 @dataclass(frozen=True)
-class Family:
-    name: str
-    part: str                    # "rod": every element; "end": the slider, on the last element
-    doc: str
-    energy_kind: str             # what its variants' energy kernels give: "kinetic", "potential", "dissipation"
-    variants: tuple = field(default_factory=tuple)
-    vanishes_with: tuple = ()    # coefficients that scale the whole family: all zero -> left out of a case
+class Variant(records.Variant):
+    """A variant of a term family (crankgen.records.Variant: name, option values `when`, doc,
+    switchable groups, energy) with `build`, () -> Term, its element residual; `energy` is the
+    Energy it derives from (None: none)."""
 
+    build: Callable = None
+
+    def __post_init__(self):
+        if not (isinstance(self.doc, str) and callable(self.build)):
+            raise TypeError(f"Variant {self.name!r}: Variant(name, when, doc, groups, energy, build=...)")
+
+
+@dataclass(frozen=True)
+class Family(records.Family):
+    """A term family (crankgen.records.Family: name, part, doc, energy_kind, variants,
+    vanishes_with): part "rod" acts on every element, "end" on the end node (the end mass)."""
 
 
 def _weighted(residual, variables, axial_rows, groups):
@@ -288,14 +277,31 @@ def _weighted(residual, variables, axial_rows, groups):
     return total.applyfunc(sp.expand)
 
 
-SLIDER_ROWS = (3, 4)             # u, v of the last node in the last element's nodal vector
-_ON_LAST_ELEMENT = {**dict(zip(s.qs, s.q[3:5])), **dict(zip(s.qsd, s.qd[3:5])),
-                    **dict(zip(s.qsdd, s.qdd[3:5])), s.L: s.x0 + s.l}
+# ----------------------------------------------------------------------------------------------
+# The DOF map: the nodes' components (derive/symbols.py NODE), the constraints condensed out of the
+# equations, the natural size of each component
+# ----------------------------------------------------------------------------------------------
+
+CONSTRAINTS = (
+    records.Constraint("pin", 0, ("u", "v"), "the crank pin holds the rod's first node: u = v = 0"),
+    records.Constraint("end", -1, ("u", "v"), "the guide holds the rod's last node: (u, v) = g(s, t), the "
+                       "end map of the case's guide (derive/guides.py), one reduced co-ordinate s",
+                       reduced=("s",), map="end_map"),
+)
+END = CONSTRAINTS[1]
+# natural size of each component of a node (units of L) for Newton's scaled increments: the paper's
+# scaled outputs u* = u / eps^2, v* = v / eps
+NATURAL_SIZES = {"u": eps**2, "v": eps, "psi": eps}
+
+SLIDER_ROWS = s.element_slots(1, END.eliminated)   # the end node's (u, v) in the last element's vector
+_ON_LAST_ELEMENT = {**dict(zip(s.qs, [s.q[k] for k in SLIDER_ROWS])),
+                    **dict(zip(s.qsd, [s.qd[k] for k in SLIDER_ROWS])),
+                    **dict(zip(s.qsdd, [s.qdd[k] for k in SLIDER_ROWS])), s.L: s.x0 + s.l}
 
 
 def on_last_element(vector2):
-    """A slider vector on (u, v)_{n+1} as a 6-vector of the last element (L = x0 + l)."""
-    out = sp.zeros(6, 1)
+    """An end-mass vector on (u, v)_{n+1} as a vector of the last element (L = x0 + l)."""
+    out = sp.zeros(s.ELEMENT_DOFS, 1)
     for k, row in enumerate(SLIDER_ROWS):
         out[row] = sp.expand(vector2[k].subs(_ON_LAST_ELEMENT))
     return out
@@ -303,6 +309,42 @@ def on_last_element(vector2):
 
 INERTIA_GROUPS = ("gyroscopic", "phidd", "centrifugal")
 ELASTIC_GROUPS = ("cubic_axial", "cubic_transverse", "quartic")
+
+
+def _on_last_element(energy):
+    return lambda: energy().subs(_ON_LAST_ELEMENT)
+
+
+ROD_KINETIC = Energy("rod_kinetic_energy", "Element kinetic energy T_i of the rod, eqs. (4)-(5).",
+                     en.rod_kinetic_energy)
+SLIDER_KINETIC = Energy("slider_kinetic_energy", "Kinetic energy T_s of the end mass, eqs. (6)-(7), on "
+                        "the last element.", _on_last_element(en.slider_kinetic_energy))
+ROD_GRAVITY = Energy("rod_gravity_potential", "Element potential of gravity V_i.", en.rod_gravity_potential)
+SLIDER_GRAVITY = Energy("slider_gravity_potential", "Potential of gravity on the end mass, on the last "
+                        "element.", _on_last_element(en.slider_gravity_potential))
+
+
+def _strain_energy(ap, averaged):
+    suffix = "_averaged" if averaged else ""
+    build = (lambda: en.strain_energy_averaged(ap)) if averaged else (lambda: en.strain_energy(ap))
+    return Energy(f"strain_energy_{ap}{suffix}",
+                  f"Element strain energy U_i of approach {ap}{', element-mean membrane strain' if averaged else ''}.",
+                  build)
+
+
+def _dissipation(ap, averaged):
+    suffix = "_averaged" if averaged else ""
+    build = ((lambda: en.kelvin_voigt_dissipation_averaged(ap)) if averaged
+             else (lambda: en.kelvin_voigt_dissipation(ap)))
+    return Energy(f"dissipation_{ap}{suffix}",
+                  f"Kelvin-Voigt Rayleigh dissipation function D of approach {ap}"
+                  f"{', element-mean membrane strain rate' if averaged else ''}.", build)
+
+
+STRAIN_ENERGY = {(ap, avg): _strain_energy(ap, avg) for ap in en.APPROACHES for avg in (False, True)
+                 if not (ap == "C" and avg)}
+DISSIPATION = {(ap, avg): _dissipation(ap, avg) for ap in en.APPROACHES for avg in (False, True)
+               if not (ap == "C" and avg)}
 
 
 def rod_inertia_lagrange():
@@ -389,6 +431,41 @@ def integrate_centre_line(f):
     return integrate_element(en.centre_line_kinetic_energy_density(f))
 
 
+def _exact_space():
+    return quadrature.PointSpace(EXACT_RULE, en.QUANTITIES, en.ELEMENT_FIELDS, en.POINT_FIELDS)
+
+
+def _exact_kinetic_energy():
+    space = _exact_space()
+    f = dict(en.fields(s.q, s.qd), x=s.x0 + s.l * s.zeta)
+    return integrate_centre_line(f) + space.in_nodal(en.element_rotary_kinetic_energy(space))
+
+
+def _exact_energy(element_energy, membrane):
+    def build():
+        space = _exact_space()
+        return space.in_nodal(element_energy(space, EXACT, membrane))
+    return build
+
+
+CLASSICAL = ("A", "B", "C")      # the approaches of the paper's strain measure (closed-form integrals)
+EXACT_KINETIC = Energy("rod_kinetic_energy_exact", "Element kinetic energy of the geometrically exact rod "
+                       f"(centre line and exact section rotation; the rotation by {EXACT_RULE.text} "
+                       "quadrature).", _exact_kinetic_energy)
+EXACT_STRAIN_ENERGY = {
+    averaged: Energy(f"strain_energy_exact{'_averaged' if averaged else ''}",
+                     f"Element strain energy of the exact rod, {'element-mean' if averaged else 'pointwise'} "
+                     f"stretch, by {EXACT_RULE.text} quadrature.",
+                     _exact_energy(en.element_strain_energy, "averaged" if averaged else "pointwise"))
+    for averaged in (False, True)}
+EXACT_DISSIPATION = {
+    averaged: Energy(f"dissipation_exact{'_averaged' if averaged else ''}",
+                     "Kelvin-Voigt Rayleigh dissipation function of the exact rod, "
+                     f"{'element-mean' if averaged else 'pointwise'} stretch rate, by {EXACT_RULE.text} quadrature.",
+                     _exact_energy(en.element_dissipation, "averaged" if averaged else "pointwise"))
+    for averaged in (False, True)}
+
+
 def slider_inertia_lagrange():
     r = kinetic_residual(en.slider_kinetic_energy(), s.qs, s.qsd, s.qsdd)
     return Term(on_last_element(_weighted(r, SLIDER_VARS, SLIDER_AXIAL_ROWS, INERTIA_GROUPS)))
@@ -414,25 +491,25 @@ def _elastic_variants():
             suffix = "_averaged" if averaged else ""
             out.append(Variant(f"lagrange_{ap}{suffix}",
                                {"formulation": "lagrange", "approach": ap, "membrane": membrane},
-                               elastic_lagrange(ap, averaged),
                                f"dU/dq of approach {ap}, {membrane} membrane strain",
-                               ELASTIC_GROUPS if ap == "A" else (), f"strain_energy_{ap}{suffix}"))
+                               ELASTIC_GROUPS if ap == "A" else (), STRAIN_ENERGY[ap, averaged],
+                               build=elastic_lagrange(ap, averaged)))
     out.append(Variant("lagrange_C", {"formulation": "lagrange", "approach": "C"},
-                       elastic_lagrange("C", False), "dU/dq of approach C (linear strain)",
-                       energy="strain_energy_C"))
-    for membrane, suffix in (("pointwise", ""), ("averaged", "_averaged")):
-        out.append(Variant(f"lagrange_exact{suffix}", {"formulation": "lagrange", "approach": "exact",
-                                                        "membrane": membrane},
-                           by_quadrature("potential", lambda space, m=membrane: en.element_strain_energy(
-                               space, "exact", m)),
-                           f"dU/dq of the geometrically exact rod, {membrane} stretch, by "
-                           f"{EXACT_RULE.text} quadrature", energy=f"strain_energy_exact{suffix}",
-                           quadrature=EXACT_RULE))
+                       "dU/dq of approach C (linear strain)", energy=STRAIN_ENERGY["C", False],
+                       build=elastic_lagrange("C", False)))
+    for membrane, averaged in (("pointwise", False), ("averaged", True)):
+        out.append(Variant(f"lagrange_exact{'_averaged' if averaged else ''}",
+                           {"formulation": "lagrange", "approach": EXACT, "membrane": membrane},
+                           f"dU/dq of the geometrically exact rod, {membrane} stretch, by {EXACT_RULE.text} "
+                           "quadrature", energy=EXACT_STRAIN_ENERGY[averaged], quadrature=EXACT_RULE,
+                           build=by_quadrature("potential", lambda space, m=membrane: en.element_strain_energy(
+                               space, EXACT, m))))
     for ap in ("A", "B", "C"):
-        out.append(Variant(f"paper_{ap}", {"formulation": "paper", "approach": ap}, elastic_paper(ap),
+        out.append(Variant(f"paper_{ap}", {"formulation": "paper", "approach": ap},
                            f"printed (k_uu + k_psipsi + k_pvv + k_non) q of approach {ap}, P_i of "
                            "eq. (B9) taken at q; printed secant for eq. (37)",
-                           energy=f"strain_energy_{ap}"))     # nominal: the printed form has no potential
+                           energy=STRAIN_ENERGY[ap, False],       # nominal: the printed form has no potential
+                           build=elastic_paper(ap)))
     return tuple(out)
 
 
@@ -443,56 +520,57 @@ def _damping_variants():
             suffix = "_averaged" if averaged else ""
             out.append(Variant(f"kelvin_voigt_{ap}{suffix}",
                                {"damping": "kelvin-voigt", "approach": ap, "membrane": membrane},
-                               kelvin_voigt(ap, averaged),
                                f"dD/dqd, strain-rate damping of approach {ap}, {membrane} membrane strain",
-                               energy=f"dissipation_{ap}{suffix}"))
+                               energy=DISSIPATION[ap, averaged], build=kelvin_voigt(ap, averaged)))
     out.append(Variant("kelvin_voigt_C", {"damping": "kelvin-voigt", "approach": "C"},
-                       kelvin_voigt("C", False), "dD/dqd, strain-rate damping of approach C",
-                       energy="dissipation_C"))
-    for membrane, suffix in (("pointwise", ""), ("averaged", "_averaged")):
-        out.append(Variant(f"kelvin_voigt_exact{suffix}", {"damping": "kelvin-voigt", "approach": "exact",
-                                                            "membrane": membrane},
-                           by_quadrature("dissipation", lambda space, m=membrane: en.element_dissipation(
-                               space, "exact", m)),
+                       "dD/dqd, strain-rate damping of approach C", energy=DISSIPATION["C", False],
+                       build=kelvin_voigt("C", False)))
+    for membrane, averaged in (("pointwise", False), ("averaged", True)):
+        out.append(Variant(f"kelvin_voigt_exact{'_averaged' if averaged else ''}",
+                           {"damping": "kelvin-voigt", "approach": EXACT, "membrane": membrane},
                            f"dD/dqd, strain-rate damping of the exact strain and curvature, {membrane} "
-                           f"stretch rate, by {EXACT_RULE.text} quadrature", energy=f"dissipation_exact{suffix}",
-                           quadrature=EXACT_RULE))
+                           f"stretch rate, by {EXACT_RULE.text} quadrature", energy=EXACT_DISSIPATION[averaged],
+                           quadrature=EXACT_RULE,
+                           build=by_quadrature("dissipation", lambda space, m=membrane: en.element_dissipation(
+                               space, EXACT, m))))
     for ap in ("A", "B", "C"):
-        out.append(Variant(f"paper_{ap}", {"damping": "paper", "approach": ap}, damping_paper(ap),
-                           f"printed damping mu (K_lin + K_non) qd of approach {ap}, eq. (24)"))
+        out.append(Variant(f"paper_{ap}", {"damping": "paper", "approach": ap},
+                           f"printed damping mu (K_lin + K_non) qd of approach {ap}, eq. (24)",
+                           build=damping_paper(ap)))
     return tuple(out)
 
 
 FAMILIES = (
     Family("inertia", "rod", "inertia forces of the rod element, from T_c of eqs. (4)-(5)", "kinetic", (
-        Variant("lagrange", {"formulation": "lagrange", "approach": ("A", "B", "C")}, rod_inertia_lagrange,
-                "d/dt dT/dqd - dT/dq, exact", INERTIA_GROUPS, "rod_kinetic_energy"),
-        Variant("lagrange_exact", {"formulation": "lagrange", "approach": "exact"}, rod_inertia_exact(),
+        Variant("lagrange", {"formulation": "lagrange", "approach": CLASSICAL}, "d/dt dT/dqd - dT/dq, exact",
+                INERTIA_GROUPS, ROD_KINETIC, build=rod_inertia_lagrange),
+        Variant("lagrange_exact", {"formulation": "lagrange", "approach": EXACT},
                 "d/dt dT/dqd - dT/dq with the exact section rotation (rho I part by "
-                f"{EXACT_RULE.text} quadrature)", INERTIA_GROUPS, "rod_kinetic_energy_exact", EXACT_RULE),
-        Variant("paper", {"formulation": "paper"}, rod_inertia_paper,
-                "printed m1 qdd - m2 q - (m4 - d/dt m3), eqs. (20)-(25)", energy="rod_kinetic_energy"),
+                f"{EXACT_RULE.text} quadrature)", INERTIA_GROUPS, EXACT_KINETIC, quadrature=EXACT_RULE,
+                build=rod_inertia_exact()),
+        Variant("paper", {"formulation": "paper"}, "printed m1 qdd - m2 q - (m4 - d/dt m3), eqs. (20)-(25)",
+                energy=ROD_KINETIC, build=rod_inertia_paper),
     )),
     Family("elastic", "rod", "internal elastic force of the rod element, from U_c of eq. (2)", "potential",
            _elastic_variants()),
     Family("dissipation", "rod", "damping force of the rod element", "dissipation", _damping_variants()),
     Family("gravity", "rod", "weight of the rod element, dV/dq with V = -int rho A g.R dx", "potential", (
-        Variant("uniform", {}, rod_gravity, "consistent load vector of a uniform gravity field",
-                energy="rod_gravity_potential"),
+        Variant("uniform", {}, "consistent load vector of a uniform gravity field", energy=ROD_GRAVITY,
+                build=rod_gravity),
     ), vanishes_with=("gX", "gY")),
     Family("slider_inertia", "end", "inertia forces of the slider on (u, v) of the last node, eqs. (6)-(7)", "kinetic", (
-        Variant("lagrange", {"formulation": "lagrange"}, slider_inertia_lagrange,
-                "d/dt dT_s/dqd - dT_s/dq, exact", INERTIA_GROUPS, "slider_kinetic_energy"),
-        Variant("paper", {"formulation": "paper"}, slider_inertia_paper,
-                "printed m_s1, m_s2, m_s3, m_s4 terms of eqs. (27)-(29)", energy="slider_kinetic_energy"),
+        Variant("lagrange", {"formulation": "lagrange"}, "d/dt dT_s/dqd - dT_s/dq, exact", INERTIA_GROUPS,
+                SLIDER_KINETIC, build=slider_inertia_lagrange),
+        Variant("paper", {"formulation": "paper"}, "printed m_s1, m_s2, m_s3, m_s4 terms of eqs. (27)-(29)",
+                energy=SLIDER_KINETIC, build=slider_inertia_paper),
     )),
     Family("slider_dissipation", "end", "damping force of the slider", "dissipation", (
-        Variant("paper", {"damping": "paper"}, slider_damping_paper,
-                "printed -mu m_s2 qd of eqs. (24), (28)"),
+        Variant("paper", {"damping": "paper"}, "printed -mu m_s2 qd of eqs. (24), (28)",
+                build=slider_damping_paper),
     )),
     Family("slider_gravity", "end", "weight of the slider, dV_s/dq with V_s = -m_s g.R_s", "potential", (
-        Variant("uniform", {}, slider_gravity, "gravity on the slider; the guide carries its normal part",
-                energy="slider_gravity_potential"),
+        Variant("uniform", {}, "gravity on the slider; the guide carries its normal part",
+                energy=SLIDER_GRAVITY, build=slider_gravity),
     ), vanishes_with=("gX", "gY")),
 )
 FAMILY = {f.name: f for f in FAMILIES}
@@ -513,23 +591,55 @@ MOTIONS = motions.MOTIONS
 
 
 @dataclass(frozen=True)
-class Output:
-    """A quantity a result can give.  kind: "engine" (computed by the engine at every step: v_mid,
-    u_end, extension), "step" (one value per stored step, from `build(options)`, an expression in the
-    inputs it names) or "field" (per stored step at any x* in [0, 1]).  Inputs a build may use:
-    q (the nodal vector of the element holding x*), zeta (x / l in it), geo, coef, kin, params (the
-    kinematic parameters), q_end ((u, v) of the rod's end node in the moving frame), qd_end (their
-    time derivatives), s (the end map's reduced co-ordinate), pin ((F_i, F_j): the force the crank
-    pin applies to the rod, in the moving frame), end ((F_i, F_j): the force the guide applies to
-    the rod's end, with the end mass included), fiber.  units: the unit of the value (SI views multiply by it)."""
+class Output(records.Output):
+    """A quantity a result can give (crankgen.records.Output: name, kind, doc, units, arguments,
+    guides, options, engine) with `build(options)`, its expression in the inputs it names.  kind:
+    "step" (one value per stored step), "field" (per stored step at any x* in [0, 1]) or
+    "reduction" (per stored step, the sum over the rod's elements of the element expression the
+    build gives: an integral over the rod).  Inputs a build may use: q, qd (the nodal vector of the
+    element holding x*, or of each element for a reduction, and its rate), zeta (x / l in it), geo,
+    coef, kin, the parameters' symbols, q_end ((u, v) of the rod's end node in the moving frame),
+    qd_end (their time derivatives), s (the end map's reduced co-ordinate), pin ((F_i, F_j): the
+    force the crank pin applies to the rod, in the moving frame), end ((F_i, F_j): the force the
+    guide applies to the rod's end, with the end mass included), fiber, and the engine's
+    primitives (at_point, over_rod).  options: the model options the expression depends on (its
+    kernels by their values).  engine: the engine computes it at every step (its build may use
+    q_end, the parameters and the primitives only).  guides None: every guide."""
 
-    name: str
-    kind: str
-    doc: str
-    units: str
     build: Callable = None
-    arguments: tuple = ()        # extra arguments of a field, e.g. ("fiber",)
-    guides: tuple = None         # the guides it exists for (None: every guide)
+
+
+@dataclass(frozen=True)
+class Primitive(records.Primitive):
+    """A quantity of the nodal state the engine accumulates at every step for its outputs
+    (crankgen.records.Primitive: name, kind, field, at) with its symbol in the outputs' builds and,
+    for an integral, its integrand (quadratic in the element's nodal vector q)."""
+
+    symbol: sp.Symbol = None
+    integrand: sp.Expr = None
+
+
+PRIMITIVES = {}
+
+
+def at_point(field, x):
+    """The interpolated field u, v or psi (eqs. 8-10) at x* (in the element holding it)."""
+    name = f"{field}_at_{str(sp.nsimplify(x)).replace('/', '_')}"
+    if name not in PRIMITIVES:
+        PRIMITIVES[name] = Primitive(name, "point", field=field, at=float(x), symbol=sp.Symbol(name, real=True))
+    return PRIMITIVES[name].symbol
+
+
+def over_rod(name, integrand):
+    """int_0^1 integrand dx over the rod, the integrand quadratic in the element's nodal vector q."""
+    if name not in PRIMITIVES:
+        PRIMITIVES[name] = Primitive(name, "integral", kernel=f"gram_{name}", symbol=sp.Symbol(name, real=True),
+                                     integrand=integrand)
+    return PRIMITIVES[name].symbol
+
+
+V_AT_MIDSPAN = at_point("v", sp.Rational(1, 2))
+SLOPE_SQUARED = over_rod("slope_squared", en.fields(s.q, s.q)["v_x"] ** 2)
 
 
 fiber = sp.Symbol("fiber", real=True)
@@ -542,7 +652,7 @@ s_end = sp.Symbol("s", real=True)
 
 def _exact_element():
     """The exact rod's point space (EXACT_RULE) and the element stretch lambda in q."""
-    space = quadrature.PointSpace(EXACT_RULE, en.QUANTITIES, en.ELEMENT_FIELDS, en.POINT_FIELDS)
+    space = _exact_space()
     return space, space.in_nodal(space.fields(0)["lam"])
 
 
@@ -552,7 +662,7 @@ def membrane_strain(options, q=s.q):
     f = en.fields(q, q)
     if options["approach"] == "C":
         return f["u_x"]
-    if options["approach"] == "exact":
+    if options["approach"] == EXACT:
         if options["membrane"] == "averaged":
             space, _ = _exact_element()
             return space.in_nodal(space.fields(0)["ebar"])
@@ -565,7 +675,7 @@ def membrane_strain(options, q=s.q):
 def _curvature(options, q=s.q):
     """v_xx (A, B, C); the exact section rotation's d theta / dx (exact)."""
     f = en.fields(q, q)
-    if options["approach"] != "exact":
+    if options["approach"] != EXACT:
         return f["v_xx"]
     return en.exact_curvature(dict(f, lam=_exact_element()[1]))
 
@@ -609,58 +719,63 @@ def chord_deflection():
     return ((1 + q_end[0]) * f["v"] - q_end[1] * (x + f["u"])) / length
 
 
+# the options the membrane strain depends on
+MEMBRANE_OPTIONS = ("approach", "membrane")
 # N* = N L^2/EI = EA e / EI = e / eps^2 = e EA/EI;  M* = M L / EI = v_xx (L = 1).  Forces in rho A L^2
 # omega_b^2 and torques in rho A L^3 omega_b^2 are crankgen's units (rho A = L = omega_b = 1).
 FORCE, TORQUE = "rhoA L^2 omega_b^2", "rhoA L^3 omega_b^2"
 OUTPUTS = (
-    Output("v_mid", "engine", "v* = v/r at x* = 1/2 (shape-function interpolation)", "r"),
-    Output("u_end", "engine", "u*(1) = L u(L) / r^2", "r^2/L"),
-    Output("extension", "engine", "delta* = u(L)/L + (1/2) int (dv/dx)^2 dx / L, eq. (40)", "1"),
-    Output("crank_speed", "step", "crank speed theta' (units of omega_b)", "omega_b", lambda o: s.thetad),
+    Output("v_mid", "step", "v* = v/r at x* = 1/2 (shape-function interpolation)", "r", engine=True,
+           build=lambda o: V_AT_MIDSPAN / eps),
+    Output("u_end", "step", "u*(1) = L u(L) / r^2", "r^2/L", engine=True, build=lambda o: q_end[0] / eps**2),
+    Output("extension", "step", "delta* = u(L)/L + (1/2) int (dv/dx)^2 dx / L, eq. (40)", "1", engine=True,
+           build=lambda o: q_end[0] + SLOPE_SQUARED / 2),
+    Output("crank_speed", "step", "crank speed theta' (units of omega_b)", "omega_b", build=lambda o: s.thetad),
     Output("slider_position", "step", "X/L of the rod's end (the slider; the rocker's tip)", "L",
-           lambda o: end_position()[0]),
-    Output("end_height", "step", "Y/L of the rod's end", "L", lambda o: end_position()[1]),
+           build=lambda o: end_position()[0]),
+    Output("end_height", "step", "Y/L of the rod's end", "L", build=lambda o: end_position()[1]),
     Output("rocker_angle", "step", "the rocker's angle (rad, counter-clockwise from the X axis)", "rad",
-           lambda o: s.beta + s_end, guides=("circle",)),
+           build=lambda o: s.beta + s_end, guides=("circle",)),
     Output("transmission_angle", "step",
            "the four-bar's transmission angle: the angle at the rocker's tip between the coupler's "
            "chord and the rocker, in [0, pi] (pi/2 transmits the crank's force best)", "rad",
-           lambda o: sp.acos(sp.cos(sp.atan2(q_end[1], 1 + q_end[0]) - s.phi - s.beta - s_end)),
+           build=lambda o: sp.acos(sp.cos(sp.atan2(q_end[1], 1 + q_end[0]) - s.phi - s.beta - s_end)),
            guides=("circle",)),
     Output("chord_angle", "step",
            "inertial angle of the rod's chord, the line from the crank pin to the rod's end (rad, "
-           "counter-clockwise from the X axis)", "rad", lambda o: chord_angle()),
+           "counter-clockwise from the X axis)", "rad", build=lambda o: chord_angle()),
     Output("chord_rate", "step", "angular velocity of the rod's chord (d/dt chord_angle, counter-clockwise)",
-           "omega_b", lambda o: _rate(chord_angle())),
+           "omega_b", build=lambda o: _rate(chord_angle())),
     Output("chord_elongation", "step",
            "change of the chord's length: the distance from the crank pin to the rod's end, less L",
-           "L", lambda o: chord_elongation()),
+           "L", build=lambda o: chord_elongation()),
     Output("slider_velocity", "step", "X velocity of the rod's end (the slider; the rocker's tip)",
-           "L omega_b", lambda o: _rate(end_position()[0])),
+           "L omega_b", build=lambda o: _rate(end_position()[0])),
     Output("torque", "step",
            "driving torque the crank needs to hold its prescribed motion (counter-clockwise), "
            "a (e_r x F_pin), units of rho A L^3 omega_b^2", TORQUE,
-           lambda o: s.a * (sp.cos(s.theta) * _inertial(pin)[1] - sp.sin(s.theta) * _inertial(pin)[0])),
+           build=lambda o: s.a * (sp.cos(s.theta) * _inertial(pin)[1] - sp.sin(s.theta) * _inertial(pin)[0])),
     Output("pin_force_x", "step", "X component of the force the crank pin applies to the rod", FORCE,
-           lambda o: _inertial(pin)[0]),
+           build=lambda o: _inertial(pin)[0]),
     Output("pin_force_y", "step", "Y component of the force the crank pin applies to the rod", FORCE,
-           lambda o: _inertial(pin)[1]),
+           build=lambda o: _inertial(pin)[1]),
     Output("end_force_x", "step",
            "X component of the end reaction: the force the guide (the slider's guide normal force; the "
            "rocker) applies at the rod's end, the end mass's inertia included", FORCE,
-           lambda o: _inertial(end_force)[0]),
+           build=lambda o: _inertial(end_force)[0]),
     Output("end_force_y", "step", "Y component of the end reaction (see end_force_x)", FORCE,
-           lambda o: _inertial(end_force)[1]),
+           build=lambda o: _inertial(end_force)[1]),
     Output("axial_force", "field", "N* = N L^2 / EI, N = EA times the approach's membrane strain", "EI/L^2",
-           lambda o: membrane_strain(o) * s.EA / s.EI),
-    Output("bending_moment", "field", "M* = M L / EI = v_xx (M = EI v_xx; exact: EI kappa, kappa the "
-           "exact curvature)", "EI/L", lambda o: _curvature(o)),
+           options=MEMBRANE_OPTIONS, build=lambda o: membrane_strain(o) * s.EA / s.EI),
+    Output("bending_moment", "field", "M* = M L / EI = v_xx (M = EI v_xx; exact: EI kappa, kappa the exact "
+           "curvature)", "EI/L", options=MEMBRANE_OPTIONS, build=lambda o: _curvature(o)),
     Output("surface_strain", "field",
            "axial strain of the fibre at distance fiber*r from the neutral axis (towards e_j), "
-           "e_m - fiber r v_xx (eq. 1 with y = fiber r; exact: e - fiber r kappa)", "1",
-           lambda o: membrane_strain(o) - fiber * sp.sqrt(s.EI / s.EA) * _curvature(o),
-           ("fiber",)),
+           "e_m - fiber r v_xx (eq. 1 with y = fiber r; exact: e - fiber r kappa)", "1", arguments=("fiber",),
+           options=MEMBRANE_OPTIONS,
+           build=lambda o: membrane_strain(o) - fiber * sp.sqrt(s.EI / s.EA) * _curvature(o)),
     Output("chord_deflection", "field",
            "signed distance of the rod's point at x* from its chord (the line from the crank pin to "
-           "the rod's end), positive counter-clockwise", "L", lambda o: chord_deflection()),
+           "the rod's end), positive counter-clockwise", "L", options=MEMBRANE_OPTIONS,
+           build=lambda o: chord_deflection()),
 )

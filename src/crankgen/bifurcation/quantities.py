@@ -1,0 +1,124 @@
+"""The physical quantities of the orbits along a mechanism's branches.
+
+Every point of a branch of a BifurcationDiagram (crankgen.continuation) is an orbit: its state at
+theta0 and its period.  Marched for its period from that state (the points of a branch in engine
+batches), its declared outputs (outputs.StateHistory, every one from the generated kernels) give,
+over the orbit:
+- peak_v: max |v*(1/2)| over the steps (the branch's amplitude is the same refined between steps);
+- peak_torque: the driving torque of largest magnitude, signed;
+- peak_pin_force, peak_end_force: the largest magnitude of the crank pin's and of the end's
+  (guide's or rocker's) force on the rod;
+- peak_axial_force: the axial force N* of largest magnitude along the rod, signed (tension > 0);
+- peak_strain: the largest |surface_strain| at the outer fibres, fiber = +-sqrt(3) radii of
+  gyration (a rectangular section's outer fibres) or, with a section, its own;
+- peak_stress (with a crankgen.sections.Section): the stress of largest magnitude at the outer
+  fibres, sigma = N/A - M y/I (crankgen.stress), in units of E (or Pa with si, the
+  crankgen.SIMechanism of the diagram).
+Fields are read at the nodes and the element midpoints.  Units: those the outputs declare
+(crankgen's units), listed in UNITS; a point whose orbit cannot be marched has NaN and its reason in
+the branch's quantity_notes.
+"""
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from .. import engine, schema
+from .. import kinematics as _kinematics
+from ..outputs import DeclaredOutputs
+from .mechanism import V_MID
+
+QUANTITIES = ("peak_v", "peak_torque", "peak_pin_force", "peak_end_force", "peak_axial_force",
+              "peak_strain", "peak_stress")
+RECTANGLE_FIBRE = math.sqrt(3.0)        # outer fibre of a rectangle, in radii of gyration
+CHUNK = 64                              # orbits marched in one batch
+
+
+def units(section=None, si=None):
+    """{quantity: units text} (crankgen's units, or SI with si)."""
+    out = {"peak_v": "r (v* = v/r)", "peak_torque": schema.OUTPUTS["torque"].units,
+           "peak_pin_force": schema.OUTPUTS["pin_force_x"].units,
+           "peak_end_force": schema.OUTPUTS["end_force_x"].units,
+           "peak_axial_force": schema.OUTPUTS["axial_force"].units, "peak_strain": "1"}
+    if section is not None:
+        out["peak_stress"] = "Pa" if si is not None else "E"
+    return out
+
+
+@dataclass(frozen=True)
+class Orbit(DeclaredOutputs):
+    """One orbit of a branch point, every declared output by name (outputs.DeclaredOutputs)."""
+
+    case: object
+    t: np.ndarray = field(repr=False)
+    theta: np.ndarray = field(repr=False)
+    v_mid: np.ndarray = field(repr=False)
+    states: np.ndarray = field(repr=False)
+    rates: np.ndarray = field(repr=False)
+    accelerations: np.ndarray = field(repr=False)
+
+
+def _peak_signed(values):
+    values = np.asarray(values, dtype=float)
+    k = int(np.argmax(np.abs(values)))
+    return float(values.ravel()[k])
+
+
+def _magnitude(orbit, parts):
+    try:
+        return float(np.max(np.hypot(*(np.asarray(orbit.quantity(p), dtype=float) for p in parts))))
+    except Exception:                   # an output its guide does not declare
+        return math.nan
+
+
+def orbit_quantities(orbit, section=None, si=None):
+    """{quantity: value} of one Orbit (module docstring)."""
+    n = orbit.case.n_elements
+    xs = np.arange(2 * n + 1) / (2 * n)
+    out = {"peak_v": float(np.max(np.abs(orbit.v_mid)))}
+    try:
+        out["peak_torque"] = _peak_signed(orbit.quantity("torque"))
+    except Exception:
+        out["peak_torque"] = math.nan
+    out["peak_pin_force"] = _magnitude(orbit, ("pin_force_x", "pin_force_y"))
+    out["peak_end_force"] = _magnitude(orbit, ("end_force_x", "end_force_y"))
+    out["peak_axial_force"] = _peak_signed(orbit.quantity("axial_force", xs))
+    fibres = ((section.c_top / section.radius_of_gyration, -section.c_bottom / section.radius_of_gyration)
+              if section is not None else (RECTANGLE_FIBRE, -RECTANGLE_FIBRE))
+    out["peak_strain"] = max(float(np.max(np.abs(orbit.quantity("surface_strain", xs, fiber=f)))) for f in fibres)
+    if section is not None:
+        from ..stresses import stress
+        hist = stress(orbit, section, si=si)
+        out["peak_stress"] = hist.largest.value
+    return out
+
+
+def branch_quantities(case, parameter, branch, section=None, si=None):
+    """({quantity: (points,) array}, notes): the quantities of every point of a Branch whose states
+    are the mechanism's (d, v) at theta0, `parameter` the diagram's, case the diagram's case."""
+    names = list(units(section, si))
+    values = {k: np.full(len(branch), math.nan) for k in names}
+    notes = []
+    period = int(branch.period)
+    cases = [replace(case, **{parameter: float(p)}) for p in branch.parameter]
+    template = None
+    for lo in range(0, len(cases), CHUNK):
+        part = cases[lo:lo + CHUNK]
+        batch = engine.Batch(part, like=template, entries=("march",))
+        template = template or batch
+        spr, N = batch.steps_per_rev, batch.N
+        X = np.asarray(branch.states[lo:lo + CHUNK], dtype=float)
+        res = engine.march(batch, period * spr, D0=X[:, :N], V0=X[:, N:], keep_history=True,
+                           parallel=len(part) > 1)
+        for j, c in enumerate(part):
+            i = lo + j
+            if res.status[j] != engine.OK:
+                notes.append(f"point {i}: the orbit's march failed ({engine.STATUS_TEXT[int(res.status[j])]})")
+                continue
+            t = float(batch.dt[j]) * np.arange(period * spr + 1)
+            orbit = Orbit(c, t, _kinematics.case_state(c, t).theta, res.y[j, :, V_MID], res.D_history[j],
+                          res.V_history[j], res.A_history[j])
+            for k, v in orbit_quantities(orbit, section, si).items():
+                values[k][i] = v
+    return values, notes
