@@ -3,11 +3,12 @@ independent of derive/ and SymPy).
 
 From the kinematics, not from the derivation: the centre line's tangent r' = (1 + u_x, v_x) in
 the moving frame, the stretch |r'| (numpy.hypot), the section rotation theta of an element of
-constant stretch, the chord's (lambda_c sin(theta) = v_x, numpy.arcsin), the curvature
+constant stretch lambda (lambda sin(theta) = v_x, numpy.arcsin), lambda by its stated closed form
+(element_stretch; implicit_stretch solves its defining equation exactly, to check it), the curvature
 kappa = d theta / dx by a central difference of theta along the element (not a closed formula), the strain and curvature rates and the section's angular velocity
 theta' by central differences in time along q + s qd.  Integrals by the Gauss-Legendre rule whose
-number of points the schema declares for the exact kernels (crankgen.schema.QUADRATURE): the
-discrete model is defined by that rule.
+number of points the schema declares for the exact kernels (their Variant.quadrature, "3-point
+Gauss-Legendre ..."): the discrete model is defined by that rule.
 """
 
 import numpy as np
@@ -15,8 +16,9 @@ import numpy as np
 import reference as ref
 from crankgen import schema
 
-EXACT_POINTS = {v["points"] for v in schema.QUADRATURE.values()}
-assert len(EXACT_POINTS) == 1, schema.QUADRATURE
+QUADRATURE = {v.kernel: v.quadrature for f in schema.FAMILIES for v in f.variants if v.quadrature}
+EXACT_POINTS = {int(text.split("-point")[0]) for text in QUADRATURE.values()}
+assert len(EXACT_POINTS) == 1, QUADRATURE
 N_POINTS = EXACT_POINTS.pop()
 
 
@@ -38,17 +40,38 @@ def strain(q, l, z):
     return np.hypot(1 + u_x, v_x) - 1
 
 
-def chord_stretch(q, l):
-    """lambda_c = |chord| / l of the element: sqrt((l + u_{i+1} - u_i)^2 + (v_{i+1} - v_i)^2) / l."""
-    q, l = np.asarray(q, float), np.asarray(l, float)
-    return np.hypot(l + q[..., 3] - q[..., 0], q[..., 4] - q[..., 1]) / l
+def element_stretch(q, l, n=N_POINTS):
+    """lambda of an element of constant stretch, the discrete model's closed form: lambda^2 =
+    c^2 + <v_x^2> + var(v_x^2) / (4 c^2), c = 1 + u_x, the means by the rule (the second-order
+    solution of implicit_stretch's equation)."""
+    z, w = rule(n)
+    u_x, v_x, _ = _fields_at(q, l, z)
+    c = 1 + u_x[..., 0]
+    m2, m4 = np.sum(w * v_x**2, -1), np.sum(w * v_x**4, -1)
+    return np.sqrt(c**2 + m2 + (m4 - m2**2) / (4 * c**2))
+
+
+def implicit_stretch(q, l, n=40):
+    """lambda solving <sqrt(lambda^2 - v_x^2)> = 1 + u_x over the element (an n-point rule): the
+    constant stretch whose tangents lambda (cos(theta), sin(theta)), sin(theta) = v_x / lambda,
+    span the element's axial extent l (1 + u_x).  Bisection."""
+    z, w = rule(n)
+    u_x, v_x, _ = _fields_at(q, l, z)
+    c = 1 + u_x[..., 0]
+    low = np.max(np.abs(v_x), -1)
+    high = np.sqrt(c**2 + np.max(v_x**2, -1)) + 1.0
+    for _ in range(200):
+        mid = (low + high) / 2
+        axial = np.sum(w * np.sqrt(np.maximum(mid[..., None] ** 2 - v_x**2, 0.0)), -1)
+        low, high = np.where(axial < c, mid, low), np.where(axial < c, high, mid)
+    return (low + high) / 2
 
 
 def rotation(q, l, z):
-    """theta at zeta = z of an element of constant stretch lambda_c whose tangent's e_j component is
-    the slope v_x: lambda_c sin(theta) = v_x."""
+    """theta at zeta = z of an element of constant stretch lambda whose tangent's e_j component is
+    the slope v_x: lambda sin(theta) = v_x."""
     _, v_x, _ = _fields_at(q, l, z)
-    return np.arcsin(v_x / chord_stretch(q, l)[..., None])
+    return np.arcsin(v_x / element_stretch(q, l)[..., None])
 
 
 def curvature(q, l, z, h=1e-4):
@@ -66,15 +89,19 @@ def integrate(values, l, w):
     return np.asarray(l) * np.sum(values * w, -1)
 
 
+def element_strain(q, l):
+    """The element's membrane strain lambda - 1 (the averaged membrane)."""
+    return element_stretch(q, l) - 1
+
+
 def strain_energy(q, l, EA, EI, averaged, n=N_POINTS):
     """1/2 int (EA e^2 + EI kappa^2) dx; averaged: the membrane part l EA e_bar^2 / 2 with e_bar the
-    element mean of e."""
+    element's stretch less 1 (element_strain)."""
     z, w = rule(n)
     e, kappa = strain(q, l, z), curvature(q, l, z)
     bending = integrate(EI * kappa**2 / 2, l, w)
     if averaged:
-        e_bar = np.sum(e * w, -1)
-        return np.asarray(l) * EA * e_bar**2 / 2 + bending
+        return np.asarray(l) * EA * element_strain(q, l) ** 2 / 2 + bending
     return integrate(EA * e**2 / 2, l, w) + bending
 
 
@@ -84,7 +111,8 @@ def dissipation(q, qd, l, EA, EI, mu, averaged, n=N_POINTS):
     ed, kd = rate(strain, q, qd, l, z), rate(curvature, q, qd, l, z)
     bending = integrate(mu * EI * kd**2 / 2, l, w)
     if averaged:
-        return mu * np.asarray(l) * EA * np.sum(ed * w, -1) ** 2 / 2 + bending
+        e_bar_rate = ref.fd_derivative(lambda s: element_strain(np.asarray(q) + s * np.asarray(qd), l), 0.0, 1e-4)
+        return mu * np.asarray(l) * EA * e_bar_rate**2 / 2 + bending
     return integrate(mu * EA * ed**2 / 2, l, w) + bending
 
 

@@ -13,7 +13,7 @@ rest, Newton on the NumPy reference's residual and tangent: tests/statics.py).
   degrees (and at the elastica's load it has no equilibrium near the buckled state).
 * The small-rotation limit: under a transverse load, exact and approach A (element-mean membrane
   strain) deflect alike to second order: their relative difference scales as the deflection
-  squared over a halving sequence of loads.
+  squared over a halving sequence of loads (the exact rod is 1.9 % stiffer at 0.062 L, 21 % at 0.2 L).
 """
 
 import numpy as np
@@ -90,14 +90,17 @@ def _midspan_deflections(model_options, loads):
 
 
 def test_exact_and_consistent_deflect_alike_to_second_order_under_a_transverse_load():
-    """Loads halving from one that bends the rod to 0.24 L: the exact rod and approach A with the
+    """Loads halving from one that bends the rod to 0.062 L (the slider free to slide: no membrane
+    stiffening, approach A's deflection is linear in the load): the exact rod and approach A with the
     element-mean membrane strain agree to second order, their relative difference falling as the
-    deflection squared (ratio 4 per halving)."""
-    loads = 2.5 / 2 ** np.arange(5)
+    deflection squared (ratio 4 per halving; measured 3.89, 3.97, 3.99, 4.00; 1.9 % at 0.062 L,
+    8e-5 at 0.004 L)."""
+    loads = 0.05 / 2 ** np.arange(5)
     exact = _midspan_deflections(dict(model="exact"), loads[::-1])[::-1]
     consistent = _midspan_deflections(dict(model="consistent"), loads[::-1])[::-1]
-    assert 0.2 < abs(exact[0]) < 0.3
+    assert 0.05 < abs(exact[0]) < 0.08
+    assert np.allclose(consistent / loads, consistent[0] / loads[0], rtol=1e-9)      # A: linear here
     relative = np.abs(exact / consistent - 1)
     ratios = relative[:-1] / relative[1:]
-    assert np.all(np.abs(ratios - 4) < 0.3), (relative, ratios)
-    assert relative[-1] < 1e-3
+    assert np.all(np.abs(ratios - 4) < 0.15), (relative, ratios)
+    assert relative[-1] < 1e-4

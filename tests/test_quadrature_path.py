@@ -11,7 +11,7 @@ integrates the same densities exactly (shape_functions.integrate_element)."""
 import numpy as np
 import pytest
 
-from crankgen._derive import emit, kernels, model, quadrature
+from crankgen._derive import declaration, emit, kernels, quadrature
 from crankgen._derive import energies as en
 from crankgen._generated import elements as E
 from reference import assert_close
@@ -20,10 +20,10 @@ EXACT_FOR_A = quadrature.gauss(9)        # degree 9: u_x v_x^2 and v_x^4 (8), th
 
 
 def _kernel(kind, element_energy, rule=EXACT_FOR_A):
-    term = model.by_quadrature(kind, element_energy, rule)()
+    term = declaration.by_quadrature(kind, element_energy, rule)()
     spec = kernels.Kernel("by_quadrature", "", kernels.ELEMENT_INPUTS,
                           kernels._residual_outputs(term.residual, term.printed_stiffness, term.tangents),
-                          term.definitions)
+                          definitions=term.definitions)
     namespace = {}
     exec("import math\nimport numpy\n" + emit.emit_kernel(spec), namespace)
     return namespace["by_quadrature"]
