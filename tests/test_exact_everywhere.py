@@ -75,3 +75,20 @@ def test_si_and_an_initial_state_take_the_exact_model():
     runs = [crankgen.simulate(steel, units="si", initial=bent, times=[0.05, 0.1], model=m, n_elements=4)
             for m in ("exact", "consistent")]
     _close(runs[0].si.at_times.slider_position, runs[1].si.at_times.slider_position, 1e-3)
+
+
+def test_a_section_turning_90_degrees_from_the_chord_ends_the_run_in_words():
+    """eps = 0.01, Omega* = 1.2 from rest: the rod snaps through and, at t* = 34.6, the section at
+    the crank pin turns to 90 degrees from the rod's chord, where the element's slope v_x reaches
+    its stretch (theta = asin(v_x / lambda)); the run stops there with a message that says so, and
+    its partial result shows the rotation (|v_x| / lambda above 0.99 at a Gauss point)."""
+    with pytest.raises(crankgen.ConvergenceError, match="90 degrees from the rod's chord") as info:
+        crankgen.simulate(MECH, model="exact", omega=1.2, revolutions=8, n_elements=16, steps_per_rev=100)
+    partial = info.value.partial
+    assert 34.0 < partial.t[-1] < 34.7
+    model = Model(partial.case)
+    q = model.mesh.gather(partial.states[-1:])[0, :-1]           # the interior elements
+    l = float(np.mean(model.mesh.length))
+    z, _ = xr.rule()
+    _, v_x, _ = xr._fields_at(q, l, z)
+    assert np.max(np.abs(v_x) / xr.element_stretch(q, l)[:, None]) > 0.99
