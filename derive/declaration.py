@@ -76,7 +76,8 @@ PRESETS = (
            "(free of membrane locking)"),
     Preset("paper", {"formulation": "paper", "damping": "paper", "membrane": "pointwise"},
            "the printed matrix form (eqs. 17-29, Appendix B, transcription problems corrected), the "
-           "printed damping of eq. (24), the element as derived from eq. (2)"),
+           "printed damping of eq. (24), the element as derived from eq. (2), integrated with the "
+           "paper's Newmark rule (rho_inf = 1)", {"rho_inf": 1.0}),
     Preset("exact", {"approach": "exact", "formulation": "lagrange", "damping": "kelvin-voigt",
                      "membrane": "averaged"},
            "the geometrically exact rod: exact stretch, curvature and section rotation, the exact "
@@ -132,11 +133,13 @@ PARAMETERS = (
               "a* (cos theta, sin theta)), units of L omega_b^2", units="L omega_b^2", metavar="GX,GY",
               symbol=(s.gX, s.gY)),
     Parameter("guide", "choice", "line", "guide",
-              "the curve the rod's end travels on: line (a slider on the line Y = offset) or circle "
+              "the curve the rod's end travels on: line (a slider on the line Y = offset), circle "
               "(the tip of a rigid massless rocker of length c pivoted at (d, offset): a four-bar "
-              "linkage with a flexible coupler)", choices=guides.GUIDES),
+              "linkage with a flexible coupler), cam (a slider on a wavy track) or incline (a slider on a "
+              "line at an angle inclination to the X axis)", choices=guides.GUIDES),
     Parameter("offset", "real", 0.0, "offset (guide offset e/L)",
-              "guide offset e/L: the line Y = e, or the ordinate of the rocker's pivot",
+              "guide offset e/L: the line Y = e (a cam track's mean line; an inclined line's "
+              "distance from the crank's axis), or the ordinate of the rocker's pivot",
               units="L", continuable=True, symbol=s.e, axis="offset e/L"),
     Parameter("c", "real", 0.8, "c (rocker length c/L)", "rocker length c/L",
               low=0.0, low_open=True, units="L", cli="rocker", continuable=True,
@@ -148,6 +151,16 @@ PARAMETERS = (
               "closure of the four-bar: +1 puts the rocker's tip on the counter-clockwise side of the "
               "line from the crank pin to the ground pivot, -1 on the other",
               symbol=s.branch),
+    Parameter("cam_height", "real", 0.02, "cam_height (cam track height h/L)",
+              "height h/L of a cam track's waves, Y = e + h cos(2 pi X / lambda)", low=0.0, units="L",
+              continuable=True, symbol=guides.cam_height, axis="cam height h/L"),
+    Parameter("cam_wavelength", "real", 0.25, "cam_wavelength (cam track wavelength lambda/L)",
+              "wavelength lambda/L of a cam track's waves", low=0.0, low_open=True, units="L",
+              symbol=guides.cam_wavelength),
+    Parameter("inclination", "real", 0.0, "inclination (incline's angle alpha, rad)",
+              "angle alpha of an inclined guide to the X axis (counter-clockwise); the line lies at the "
+              "distance offset from the crank's axis", units="rad", continuable=True,
+              symbol=guides.inclination, axis="inclination alpha (rad)"),
     Parameter("motion", "choice", "constant", "motion",
               "the crank's prescribed motion: constant speed, a run-up from omega0 to omega over "
               "`ramp` revolutions, or a cyclic fluctuation omega (1 + k sin(j theta))", owner="run",
@@ -174,12 +187,17 @@ PARAMETERS = (
               symbol=motions.theta0),
     Parameter("n_elements", "count", 16, "n_elements", "number of rod elements", owner="run", low=1,
               cli="elements"),
-    Parameter("steps_per_rev", "count", 100, "steps_per_rev", "Newmark steps per crank revolution",
+    Parameter("steps_per_rev", "count", 100, "steps_per_rev", "time steps per crank revolution",
               owner="run", low=4),
     Parameter("integrator", "choice", "newton", "integrator",
               "newton: Newton iterations on the exact tangent, its factorization reused while they "
               "converge fast; full-newton: the tangent refreshed at every iteration; one-pass: the "
               "paper's eqs. (34)-(39)", owner="run", choices=("newton", "full-newton", "one-pass")),
+    Parameter("rho_inf", "real", 0.8, "rho_inf (time scheme's spectral radius at infinite frequency)",
+              "the time scheme: 1 is Newmark's trapezoidal rule (beta 1/4, gamma 1/2, the paper's: no "
+              "numerical damping); below 1, generalized-alpha (Chung & Hulbert), second order, which "
+              "damps what a step cannot resolve: a mode's step factor tends to -rho_inf at high "
+              "frequency", owner="run", low=0.0, high=1.0, cli="rho-inf"),
 )
 
 # The crank's (nominal) speed: simulate's `omega` argument, the default continued parameter; the
@@ -587,6 +605,9 @@ PRINTED_ITERATION = {"formulation": "paper"}
 # The curves the rod's end may travel on (derive/guides.py) and the crank's prescribed motions
 # (derive/motions.py).
 GUIDES = guides.GUIDES
+# the guides whose end mass is a slider (the joint forces at B are the rod-on-slider and
+# guide-on-slider pairs); a four-bar's circle has the rocker's tip instead
+SLIDER_GUIDES = ("line", "cam", "incline")
 MOTIONS = motions.MOTIONS
 
 
@@ -601,7 +622,9 @@ class Output(records.Output):
     coef, kin, the parameters' symbols, q_end ((u, v) of the rod's end node in the moving frame),
     qd_end (their time derivatives), s (the end map's reduced co-ordinate), pin ((F_i, F_j): the
     force the crank pin applies to the rod, in the moving frame), end ((F_i, F_j): the force the
-    guide applies to the rod's end, with the end mass included), fiber, and the engine's
+    guide applies to the rod's end with the end mass, i.e. to the end mass), rod_end ((F_i, F_j):
+    the force the end mass applies to the rod at B, the rod's own terms at its end node), fiber,
+    and the engine's
     primitives (at_point, over_rod).  options: the model options the expression depends on (its
     kernels by their values).  engine: the engine computes it at every step (its build may use
     q_end, the parameters and the primitives only).  guides None: every guide."""
@@ -647,6 +670,7 @@ q_end = sp.Matrix(sp.symbols("qe0:2", real=True))
 qd_end = sp.Matrix(sp.symbols("qde0:2", real=True))
 pin = sp.Matrix(sp.symbols("pin0:2", real=True))
 end_force = sp.Matrix(sp.symbols("end0:2", real=True))
+rod_end = sp.Matrix(sp.symbols("rodend0:2", real=True))
 s_end = sp.Symbol("s", real=True)
 
 
@@ -678,6 +702,12 @@ def _curvature(options, q=s.q):
     if options["approach"] != EXACT:
         return f["v_xx"]
     return en.exact_curvature(dict(f, lam=_exact_element()[1]))
+
+
+def _strain_energy_of(options):
+    """The Energy of the approach and membrane strain in use."""
+    averaged = options["approach"] != "C" and options["membrane"] == "averaged"
+    return EXACT_STRAIN_ENERGY[averaged] if options["approach"] == EXACT else STRAIN_ENERGY[options["approach"], averaged]
 
 
 def _inertial(vector):
@@ -755,16 +785,44 @@ OUTPUTS = (
            "driving torque the crank needs to hold its prescribed motion (counter-clockwise), "
            "a (e_r x F_pin), units of rho A L^3 omega_b^2", TORQUE,
            build=lambda o: s.a * (sp.cos(s.theta) * _inertial(pin)[1] - sp.sin(s.theta) * _inertial(pin)[0])),
-    Output("pin_force_x", "step", "X component of the force the crank pin applies to the rod", FORCE,
-           build=lambda o: _inertial(pin)[0]),
-    Output("pin_force_y", "step", "Y component of the force the crank pin applies to the rod", FORCE,
+    # the joint forces, named "<body>_on_<body>": who acts on whom (inertial X, Y components)
+    Output("crank_on_rod_x", "step",
+           "X component of the force the crank applies to the rod at the crank pin A (sizes the pin "
+           "and bearing at A)", FORCE, build=lambda o: _inertial(pin)[0]),
+    Output("crank_on_rod_y", "step", "Y component of the force the crank applies to the rod at A", FORCE,
            build=lambda o: _inertial(pin)[1]),
-    Output("end_force_x", "step",
-           "X component of the end reaction: the force the guide (the slider's guide normal force; the "
-           "rocker) applies at the rod's end, the end mass's inertia included", FORCE,
-           build=lambda o: _inertial(end_force)[0]),
-    Output("end_force_y", "step", "Y component of the end reaction (see end_force_x)", FORCE,
-           build=lambda o: _inertial(end_force)[1]),
+    Output("rod_on_slider_x", "step",
+           "X component of the force the rod applies to the slider at B, through the pin at B (sizes "
+           "that pin)", FORCE, build=lambda o: -_inertial(rod_end)[0], guides=SLIDER_GUIDES),
+    Output("rod_on_slider_y", "step", "Y component of the force the rod applies to the slider at B", FORCE,
+           build=lambda o: -_inertial(rod_end)[1], guides=SLIDER_GUIDES),
+    Output("guide_on_slider_x", "step",
+           "X component of the force the guide applies to the slider (normal to the guide, no "
+           "friction: zero on the horizontal line Y = e)", FORCE, build=lambda o: _inertial(end_force)[0],
+           guides=SLIDER_GUIDES),
+    Output("guide_on_slider_y", "step",
+           "Y component of the force the guide applies to the slider: the guide's normal force (sizes "
+           "the guide)", FORCE, build=lambda o: _inertial(end_force)[1], guides=SLIDER_GUIDES),
+    Output("rod_on_tip_x", "step",
+           "X component of the force the coupler (the rod) applies to the rocker's tip at B, through "
+           "the pin at B (sizes that pin)", FORCE, build=lambda o: -_inertial(rod_end)[0], guides=("circle",)),
+    Output("rod_on_tip_y", "step", "Y component of the force the rod applies to the rocker's tip at B", FORCE,
+           build=lambda o: -_inertial(rod_end)[1], guides=("circle",)),
+    Output("rocker_on_tip_x", "step",
+           "X component of the force the rocker applies to its tip mass at B (along the rocker, a "
+           "massless two-force member: the force at its pivot D too)", FORCE,
+           build=lambda o: _inertial(end_force)[0], guides=("circle",)),
+    Output("rocker_on_tip_y", "step", "Y component of the force the rocker applies to its tip mass at B",
+           FORCE, build=lambda o: _inertial(end_force)[1], guides=("circle",)),
+    Output("kinetic_energy", "reduction",
+           "the rod's kinetic energy T = sum of the elements' T_i, eqs. (4)-(5) (the end mass's not "
+           "included; the exact rod's with its unit director), units of rho A L^3 omega_b^2", TORQUE,
+           options=("approach",),
+           build=lambda o: EXACT_KINETIC.build() if o["approach"] == EXACT else en.rod_kinetic_energy()),
+    Output("strain_energy", "reduction",
+           "the rod's strain energy U = sum of the elements' U_i of the approach in use (eq. 2 for A; "
+           "B without the quartic term; C linear; the exact rod's), units of rho A L^3 omega_b^2", TORQUE,
+           options=MEMBRANE_OPTIONS, build=lambda o: _strain_energy_of(o).build()),
     Output("axial_force", "field", "N* = N L^2 / EI, N = EA times the approach's membrane strain", "EI/L^2",
            options=MEMBRANE_OPTIONS, build=lambda o: membrane_strain(o) * s.EA / s.EI),
     Output("bending_moment", "field", "M* = M L / EI = v_xx (M = EI v_xx; exact: EI kappa, kappa the exact "

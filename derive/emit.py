@@ -81,6 +81,15 @@ def _validate(kernel):
             raise KernelSpecError(f"{kernel.name}: definition of {sym} uses symbols not among the inputs: "
                                   f"{', '.join(sorted(map(str, missing)))}")
         declared[sym] = "definition"
+    solve = getattr(kernel, "solve", None)
+    if solve is not None:
+        for expr in (solve.guess, solve.residual, solve.slope):
+            missing = sp.sympify(expr).free_symbols - set(declared) - {solve.unknown}
+            if missing:
+                raise KernelSpecError(f"{kernel.name}: the solve reads symbols not among the inputs: {missing}")
+        declared[solve.unknown] = "solve"
+        for sym, _ in solve.bound:
+            declared[sym] = "solve"
     for out in kernel.outputs:
         missing = out.expr.free_symbols - set(declared)
         if missing:
@@ -108,6 +117,10 @@ def _spec_text(kernel):
         order = {"order": "none"} if kernel.__dict__.get("definitions") else {}
         parts += [f"{sym}:={sp.srepr(expr, **order)};" for sym, expr in _definitions(kernel)]
         parts += [f"{out.name}={sp.srepr(out.expr, **order)};" for out in kernel.outputs]
+        solve = getattr(kernel, "solve", None)
+        if solve is not None:
+            solved = (solve.unknown, solve.guess, solve.residual, solve.slope) + tuple(e for pair in solve.bound for e in pair)
+            parts.append("solve:" + ";".join(sp.srepr(sp.sympify(e)) for e in solved))
         text = "".join(parts).encode()
         object.__setattr__(kernel, "_spec_text", text)
     return text
@@ -177,15 +190,51 @@ def _is_vector(inp):
     return len(inp.symbols) > 1
 
 
+NEWTON_ITERATIONS = 50        # a solve's Newton iterations at most
+NEWTON_TOL = 1e-12            # ... stopping one iteration after the step is this small (relative)
+
+
+def _solve_used(kernel):
+    """The input symbols a kernel's solve reads (bound before it)."""
+    solve = getattr(kernel, "solve", None)
+    if solve is None:
+        return set()
+    return set().union(*(sp.sympify(e).free_symbols for e in (solve.guess, solve.residual, solve.slope)))
+
+
+def _solve_lines(kernel, printer, vectorized):
+    """A kernel's solve: the unknown by Newton from its guess (one more iteration after the step falls
+    below NEWTON_TOL relative: quadratic convergence leaves it at round-off), then the bound symbols."""
+    solve = getattr(kernel, "solve", None)
+    if solve is None:
+        return []
+    x = solve.unknown.name
+    absolute = "numpy.abs" if vectorized else "abs"
+    small = (f"numpy.all({absolute}(_step) <= {NEWTON_TOL!r} * (1.0 + {absolute}({x})))" if vectorized
+             else f"{absolute}(_step) <= {NEWTON_TOL!r} * (1.0 + {absolute}({x}))")
+    lines = [f"    {x} = {printer.doprint(solve.guess)}" + (" + numpy.zeros(shape)" if vectorized else ""),
+             "    _last = False",
+             f"    for _newton in range({NEWTON_ITERATIONS}):",
+             f"        _step = ({printer.doprint(solve.residual)}) / ({printer.doprint(solve.slope)})",
+             f"        {x} = {x} - _step",
+             "        if _last:",
+             "            break",
+             f"        _last = {small}"]
+    lines += [f"    {sym.name} = {printer.doprint(expr)}" for sym, expr in solve.bound]
+    return lines
+
+
 def _scalar_prologue(kernel, used, assignments, printer):
-    """Body lines of a one-element variant: the used components of vector inputs, then the
+    """Body lines of a one-element variant: the used components of vector inputs, a solve, then the
     assignments (definitions and common subexpressions)."""
     lines = []
+    used = set(used) | _solve_used(kernel)
     for inp in kernel.inputs:
         if _is_vector(inp):
             for k, sym in enumerate(inp.symbols):
                 if sym in used:
                     lines.append(f"    {sym.name} = {inp.name}[{k}]")
+    lines += _solve_lines(kernel, printer, vectorized=False)
     for sym, expr in assignments:
         lines.append(f"    {sym} = {printer.doprint(expr)}")
     return lines
@@ -277,15 +326,17 @@ def emit_kernel(kernel):
     lines += doc
 
     shape_terms = []
+    used_or_solved = used | _solve_used(kernel)
     for inp in kernel.inputs:
         if _is_vector(inp):
             for k, sym in enumerate(inp.symbols):
-                if sym in used:
+                if sym in used_or_solved:
                     lines.append(f"    {sym.name} = {inp.name}[..., {k}]")
             shape_terms.append(f"numpy.shape({inp.name})[:-1]")
         else:
             shape_terms.append(f"numpy.shape({inp.name})")
     lines.append(f"    shape = numpy.broadcast_shapes({', '.join(shape_terms)})")
+    lines += _solve_lines(kernel, printer, vectorized=True)
 
     for sym, expr in replacements:
         lines.append(f"    {sym} = {printer.doprint(expr)}")

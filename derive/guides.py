@@ -55,11 +55,14 @@ END_MAP_ROWS = ("q", "qd", "qdd", "g_s", "dqd_ds", "dqdd_ds", "dqdd_dsd", "g_ss"
 @dataclass(frozen=True)
 class Guide(records.Guide):
     """A guide (crankgen.records.Guide: name, title of its runtime record, parameters it reads
-    besides a, doc, keyword aliases of its record) with its geometry: the curve C(beta), the step
-    C(beta + s) - C(beta) written without cancellation for small s, the rigid position analysis
-    phi(theta), beta(theta) in closed form, the full-turn margins ((expression, text), ...: every
-    expression > 0 iff the crank turns fully) and the natural size of s (end_scale, in eps and the
-    parameters: Newton's scaled increments)."""
+    besides a, doc, keyword aliases of its record) with its geometry: the curve C(beta) (a
+    parametric curve), the step C(beta + s) - C(beta) written without cancellation for small s
+    (None: the plain difference), the rigid position analysis phi(theta), beta(theta) in closed form
+    or, when they are None, a `guess` of beta(theta) from which the closure |C(beta) - A(theta)| = L
+    is solved by Newton at run time (closure: the residual, its derivative and phi are generated),
+    the full-turn margins ((expression, text), ...: every expression > 0 iff the crank turns fully;
+    a numerical closure is checked by sampling the crank angle instead) and the natural size of s
+    (end_scale, in eps and the parameters: Newton's scaled increments)."""
 
     curve: sp.Matrix = None
     step: sp.Matrix = None
@@ -68,6 +71,8 @@ class Guide(records.Guide):
     margin: tuple = ()
     end_scale: sp.Expr = None
     pivot: sp.Matrix = None      # the ground pivot of a link carrying the end (a rocker), if any
+    guess: sp.Expr = None        # without phi and beta: a starting value of beta(theta) for the
+                                 # closure's Newton iterations at run time (a numerical closure)
 
 
 def line():
@@ -106,7 +111,42 @@ def circle():
         end_scale=s.eps**2 / s.c, pivot=D)
 
 
-GUIDES = (line(), circle())
+# a cam track's height and wavelength (units of L)
+cam_height, cam_wavelength = sp.symbols("h_cam lambda_cam", positive=True)
+
+
+def cam():
+    k = 2 * sp.pi / cam_wavelength
+    sin_phi = s.a * sp.sin(s.theta) - s.e               # the straight guide's closure: Newton's guess
+    return Guide(
+        "cam", "Cam", ("offset", "cam_height", "cam_wavelength"),
+        "cam track Y = e + h cos(2 pi X / lambda): a slider (the end mass ms) on a wavy guide, its "
+        "closure solved by Newton at run time", label="slider on a cam track",
+        curve=sp.Matrix([s.beta, s.e + cam_height * sp.cos(k * s.beta)]),
+        step=sp.Matrix([sp_s, -2 * cam_height * sp.sin(k * sp_s / 2) * sp.sin(k * (s.beta + sp_s / 2))]),
+        guess=s.a * sp.cos(s.theta) + sp.sqrt(1 - sin_phi**2), end_scale=s.eps**2)
+
+
+# the angle of an inclined straight guide to the X axis
+inclination = sp.Symbol("alpha_g", real=True)
+
+
+def incline():
+    direction = sp.Matrix([sp.cos(inclination), sp.sin(inclination)])
+    sin_phi = s.a * sp.sin(s.theta - inclination) - s.e     # the slider-crank turned by the inclination
+    return Guide(
+        "incline", "Incline", ("offset", "inclination"),
+        "straight guide at an angle alpha to the X axis, at a distance e from the crank's axis: a "
+        "slider (the end mass ms) on an inclined line", label="slider on an incline",
+        curve=s.e * sp.Matrix([-sp.sin(inclination), sp.cos(inclination)]) + s.beta * direction,
+        step=sp_s * direction, phi=sp.asin(sin_phi) - inclination,
+        beta=s.a * sp.cos(s.theta - inclination) + sp.sqrt(1 - sin_phi**2),
+        margin=((1 - s.a - sp.Abs(s.e), "a* + |offset| < 1 (the rod must reach the guide at every "
+                                        "crank angle)"),),
+        end_scale=s.eps**2)
+
+
+GUIDES = (line(), circle(), cam(), incline())
 
 
 def closure_rates(guide):
@@ -124,21 +164,39 @@ def closure_rates(guide):
 
 
 def kinematics(guide):
-    """kin = derive/symbols.KINEMATICS as expressions in (theta, thetad, thetadd) and the parameters."""
+    """kin = derive/symbols.KINEMATICS as expressions in (theta, thetad, thetadd) and the parameters
+    (and, for a numerical closure, in the phi and beta its Newton iterations find: closure)."""
     phid, betad, phidd, betadd = closure_rates(guide)
-    position = {s.phi: guide.phi, s.beta: guide.beta}
+    if guide.phi is None:
+        position = {}
+        phi, beta = s.phi, s.beta
+    else:
+        position = {s.phi: guide.phi, s.beta: guide.beta}
+        phi, beta = guide.phi, guide.beta
     values = {s.a: s.a, s.theta: s.theta, s.thetad: s.thetad, s.thetadd: s.thetadd,
-              s.phi: guide.phi, s.beta: guide.beta,
+              s.phi: phi, s.beta: beta,
               s.phid: phid.subs(position), s.betad: betad.subs(position),
               s.phidd: phidd.subs(position), s.betadd: betadd.subs(position)}
     return sp.Matrix([values[sym] for sym in s.KINEMATICS])
 
 
+def closure(guide):
+    """A numerical closure, (unknown beta, its guess, the residual |C(beta) - A|^2 - L^2, its
+    derivative in beta, ((phi, phi from beta),)): the rod's chord B - A = e_i = (cos phi, -sin phi)
+    from the crank pin A to the guide's point C(beta) has the rod's length L = 1; None for a guide
+    whose phi and beta are in closed form."""
+    if guide.phi is not None:
+        return None
+    chord = guide.curve - PIN
+    residual = sp.expand(chord.dot(chord) - 1)
+    return (s.beta, guide.guess, residual, sp.diff(residual, s.beta), ((s.phi, sp.atan2(-chord[1], chord[0])),))
+
+
 def end_map(guide):
     """The (8, 2) matrix of the end map (rows END_MAP_ROWS): the end node's (u, v) and rates, and
     their derivatives in the reduced co-ordinate s and its rates, in s, sd, sdd and kin."""
-    step = guide.step
     exact = guide.curve.subs(s.beta, s.beta + sp_s) - guide.curve
+    step = exact if guide.step is None else guide.step
     assert (step - exact).applyfunc(lambda x: sp.simplify(sp.expand_trig(x))) == sp.zeros(2, 1), guide.name
     g = sp.Matrix([step.dot(E_I), step.dot(E_J)]).applyfunc(lambda x: TR10i(sp.factor_terms(x)))
     coords, rates, accels = (sp_s,), (sp_sd,), (sp_sdd,)

@@ -46,12 +46,26 @@ class Output:
 
 
 @dataclass(frozen=True)
+class Solve:
+    """A scalar unknown a kernel finds before its outputs: Newton on residual(unknown) = 0 from
+    `guess`, with `slope` = d residual / d unknown (derive/emit.py), then the `bound` symbols
+    ((symbol, expression), ...) from it; the outputs may read the unknown and the bound symbols."""
+
+    unknown: sp.Symbol
+    guess: sp.Expr
+    residual: sp.Expr
+    slope: sp.Expr
+    bound: tuple = ()
+
+
+@dataclass(frozen=True)
 class Kernel:
     name: str
     doc: str
     inputs: tuple
     outputs: tuple
     cse: bool = True             # False: each output printed as it stands (no common subexpressions)
+    solve: Solve = None          # a numerical closure solved at run time before the outputs
     definitions: tuple = ()      # stages of ((symbol, expression in the inputs), ...): computed before the outputs
 
 
@@ -140,16 +154,24 @@ def kinematics_kernels():
                           (Output("T", sp.Matrix([form.step_period]), "step period"),)))
     for form in rep.guides:
         g = form.record
-        out.append(Kernel(f"guide_{g.name}", f"Rigid kinematics kin of the {g.name} guide: {g.doc}.",
-                          (CRANK, PARAMS), (Output("kin", form.kinematics, "kinematics vector"),)))
+        solve = None if form.closure is None else Solve(*form.closure)
+        how = "" if solve is None else " (its closure by Newton at run time, the generated derivatives)"
+        out.append(Kernel(f"guide_{g.name}", f"Rigid kinematics kin of the {g.name} guide{how}: {g.doc}.",
+                          (CRANK, PARAMS), (Output("kin", form.kinematics, "kinematics vector"),), solve=solve))
+        if solve is not None:
+            out.append(Kernel(f"closure_{g.name}", f"The {g.name} guide's closure at the crank angle: "
+                              "(beta, phi, its residual, its slope d residual / d beta).", (CRANK, PARAMS),
+                              (Output("closure", sp.Matrix([s.beta, s.phi, solve.residual, solve.slope]),
+                                      "beta, phi, residual, slope"),), solve=solve))
         out.append(Kernel(f"end_map_{g.name}", f"End map of the {g.name} guide: (u, v) of the rod's end "
                           "and its rates and derivatives in (s, sd, sdd) (rows guides.END_MAP_ROWS).",
                           (SEND, KIN, PARAMS_BESIDE_KIN), (Output("E", form.end_map, "end map"),)))
         out.append(Kernel(f"rigid_end_{g.name}", f"(X, Y) of the rigid end point on the {g.name} guide.",
                           (KIN, PARAMS_BESIDE_KIN), (Output("X", form.rigid_end, "rigid end point"),)))
-        out.append(Kernel(f"margins_{g.name}", "Full-turn margins (each > 0 iff the crank turns a full "
-                          "revolution): " + "; ".join(g.margins) + ".", (PARAMS,),
-                          (Output("m", form.margins, "margins"),)))
+        if g.margins:
+            out.append(Kernel(f"margins_{g.name}", "Full-turn margins (each > 0 iff the crank turns a full "
+                              "revolution): " + "; ".join(g.margins) + ".", (PARAMS,),
+                              (Output("m", form.margins, "margins"),)))
         out.append(Kernel(f"end_scale_{g.name}", "Natural size of the end map's reduced co-ordinate.",
                           (scalar(s.eps), PARAMS), (Output("scale", sp.Matrix([form.end_scale]), "scale"),)))
 

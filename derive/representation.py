@@ -98,7 +98,7 @@ def _kinematic_symbols():
     margins; the motions' laws and periods), in the parameter vector's order."""
     exprs = []
     for g in model.GUIDES:
-        exprs += [g.curve, g.step, g.phi, g.beta] + [m for m, _ in g.margin]
+        exprs += [g.curve, g.step, g.phi, g.beta, g.guess] + [m for m, _ in g.margin]
     for m in model.MOTIONS:
         exprs += [m.theta, m.thetad, m.thetadd, m.period, m.step_period]
     used = set().union(*(sp.sympify(e).free_symbols for e in exprs if e is not None))
@@ -125,7 +125,14 @@ def _presets():
         for option, value in p.options.items():
             if value not in names[option].choices:
                 raise ValueError(f"preset {p.name}: {option}={value!r} is not a choice")
-    return tuple(records.Preset(p.name, dict(sorted(p.options.items())), p.doc) for p in model.PRESETS)
+        for name, value in p.settings.items():
+            par = next((q for q in model.PARAMETERS if q.name == name), None)
+            if par is None or par.owner != "run" or par.kind != "real" or not (
+                    (par.low is None or value >= par.low) and (par.high is None or value <= par.high)):
+                raise ValueError(f"preset {p.name}: {name}={value!r} is not a real run parameter's value")
+    return tuple(records.Preset(p.name, dict(sorted(p.options.items())), p.doc,
+                                dict(sorted((k, float(v)) for k, v in p.settings.items())))
+                 for p in model.PRESETS)
 
 
 def _readers(name, declared):
@@ -289,6 +296,7 @@ class GuideForm:
     end_scale: sp.Expr           # natural size of the reduced co-ordinate s, in eps and the parameters
     curve: sp.Matrix             # C(beta), the guide's curve
     pivot: sp.Matrix             # the ground pivot of the link carrying the end, or None
+    closure: tuple               # a numerical closure (guides.closure), or None
 
 
 @dataclass(frozen=True)
@@ -354,10 +362,12 @@ def _guides():
     names = {sym: name for name, sym in parameter_symbols().items()}
     out = []
     for g in model.GUIDES:
-        margins = sp.Matrix([m for m, _ in g.margin])
+        margins = sp.Matrix([m for m, _ in g.margin]) if g.margin else None
         out.append(GuideForm(_guide_record(g), gd.kinematics(g), gd.end_map(g), gd.rigid_end(g), margins,
-                             g.end_scale, g.curve, g.pivot))
-        assert all(names.get(sym, "?") in g.parameters + ("a",) for sym in margins.free_symbols), g.name
+                             g.end_scale, g.curve, g.pivot, gd.closure(g)))
+        if g.phi is None and g.guess is None:
+            raise ValueError(f"guide {g.name}: neither a closed-form closure (phi, beta) nor a guess for Newton")
+        assert margins is None or all(names.get(sym, "?") in g.parameters + ("a",) for sym in margins.free_symbols), g.name
     return tuple(out)
 
 
@@ -422,7 +432,7 @@ OUTPUT_INPUTS = (
     ("kin", s.KINEMATICS), ("parameters", PARAMETERS_BESIDE_KIN),
     ("q_end", tuple(model.q_end)), ("qd_end", tuple(model.qd_end)),
     ("s", (model.s_end,)), ("pin", tuple(model.pin)), ("end", tuple(model.end_force)),
-    ("fiber", (model.fiber,)),
+    ("rod_end", tuple(model.rod_end)), ("fiber", (model.fiber,)),
 )
 # what a kind of output always reads (a field: its element and the point in it; a reduction: each element)
 KIND_INPUTS = {"field": ("q", "zeta", "geo", "coef"), "reduction": ("q", "geo"), "step": ()}
@@ -461,17 +471,19 @@ def _coarse_key(options):
     return "averaged" if averaged else "pointwise"
 
 
-def _group_suffix(cases):
-    """A kernel's suffix for the option cases sharing its expression: their membrane strain's case
-    when they share one; "exact" for the exact rod's cases alone; "" for every case of the other
-    approaches (the classical strain's, e.g. the bending moment v_xx)."""
+def _group_suffix(cases, every):
+    """A kernel's suffix for the option cases sharing its expression (of `every` case of the
+    output): their membrane strain's case when they share one; "exact" for the exact rod's cases
+    alone; "" for all the cases of the other approaches (the classical strain's, e.g. the bending
+    moment v_xx); None otherwise (the kernels are then named by the option values)."""
     keys = {_coarse_key(c) for c in cases}
     approaches = {c.get("approach") for c in cases}
     if len(keys) == 1:
         return keys.pop()
     if approaches == {model.EXACT}:
         return "exact"
-    return "" if model.EXACT not in approaches else None
+    classical = [c for c in every if c.get("approach") != model.EXACT]
+    return "" if sorted(map(str, cases)) == sorted(map(str, classical)) else None
 
 
 def _output_expression(o, options):
@@ -493,10 +505,10 @@ def _output_forms(o):
             raise ValueError(f"output {o.name}: an engine output is a step output of no option")
         _output_inputs(expr, o.name, ENGINE_INPUTS)
         return (), (OutputVariant({}, "per_step", expr),)
-    groups = {}
-    for options in _option_cases(o.options):
+    groups, every = {}, _option_cases(o.options)
+    for options in every:
         groups.setdefault(_output_expression(o, options), []).append(options)
-    suffixes = [_group_suffix(cases) for cases in groups.values()]
+    suffixes = [_group_suffix(cases, every) for cases in groups.values()]
     by_coarse = None not in suffixes and len(set(suffixes)) == len(suffixes)
     variants, inputs = [], set(KIND_INPUTS[o.kind])
     for (expr, cases), coarse in zip(groups.items(), suffixes):

@@ -25,6 +25,9 @@ class MechanismFields:
     c: object = None
     d: object = None
     branch: object = None
+    cam_height: object = None
+    cam_wavelength: object = None
+    inclination: object = None
 
 
 @dataclass(frozen=True)
@@ -42,6 +45,9 @@ class CaseFields:
     c: object = None
     d: object = None
     branch: object = None
+    cam_height: object = None
+    cam_wavelength: object = None
+    inclination: object = None
     motion: object = None
     omega: object = None
     omega0: object = None
@@ -52,6 +58,7 @@ class CaseFields:
     n_elements: object = None
     steps_per_rev: object = None
     integrator: object = None
+    rho_inf: object = None
     formulation: object = None
     approach: object = None
     membrane: object = None
@@ -75,6 +82,20 @@ class Circle(Spec):
     declaration = GUIDES[1]    # circle
 
 
+class Cam(Spec):
+    """cam track Y = e + h cos(2 pi X / lambda): a slider (the end mass ms) on a wavy guide, its closure solved by Newton at run time.  Parameters: offset, cam_height, cam_wavelength."""
+
+    kind = 'guide'
+    declaration = GUIDES[2]    # cam
+
+
+class Incline(Spec):
+    """straight guide at an angle alpha to the X axis, at a distance e from the crank's axis: a slider (the end mass ms) on an inclined line.  Parameters: offset, inclination."""
+
+    kind = 'guide'
+    declaration = GUIDES[3]    # incline
+
+
 class Constant(Spec):
     """constant crank speed Omega*: theta = theta0 + Omega* t.  Parameters: omega, theta0."""
 
@@ -96,5 +117,5 @@ class Fluctuation(Spec):
     declaration = MOTIONS[2]    # fluctuation
 
 
-GUIDE_CLASSES = (Line, Circle,)
+GUIDE_CLASSES = (Line, Circle, Cam, Incline,)
 MOTION_CLASSES = (Constant, RunUp, Fluctuation,)

@@ -25,8 +25,9 @@ def _quantities_of(result, n):
     torque = np.asarray(result.torque)
     fibre = math.sqrt(3)
     return dict(peak_torque=torque[np.argmax(np.abs(torque))],
-                peak_pin_force=np.max(np.hypot(result.pin_force_x, result.pin_force_y)),
-                peak_end_force=np.max(np.hypot(result.end_force_x, result.end_force_y)),
+                peak_pin_force_A=np.max(np.hypot(result.crank_on_rod_x, result.crank_on_rod_y)),
+                peak_pin_force_B=np.max(np.hypot(result.rod_on_slider_x, result.rod_on_slider_y)),
+                peak_support_force=np.max(np.hypot(result.guide_on_slider_x, result.guide_on_slider_y)),
                 peak_strain=max(np.max(np.abs(result.surface_strain(xs, fiber=f))) for f in (fibre, -fibre)),
                 peak_stress=crankgen.stress(result, SECTION).largest.value,
                 peak_v=np.max(np.abs(result.v_mid)))
@@ -34,8 +35,8 @@ def _quantities_of(result, n):
 
 def test_every_branch_point_has_its_orbits_quantities(diagram):
     one = next(b for b in diagram.branches if b.period == 1)
-    assert set(one.quantities) == {"peak_v", "peak_torque", "peak_pin_force", "peak_end_force",
-                                   "peak_axial_force", "peak_strain", "peak_stress"}
+    assert set(one.quantities) == {"peak_v", "peak_torque", "peak_pin_force_A", "peak_pin_force_B",
+                                   "peak_support_force", "peak_axial_force", "peak_strain", "peak_stress"}
     assert one.quantity_units["peak_torque"] == "rhoA L^3 omega_b^2" and one.quantity_units["peak_stress"] == "E"
     i = int(np.argmin(np.abs(one.parameter - 0.9)))
     st = crankgen.steady_state(crankgen.Mechanism(eps=0.02), omega=float(one.parameter[i]), **SMALL)

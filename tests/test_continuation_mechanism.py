@@ -65,14 +65,14 @@ def test_period_two_orbit_repeats_every_two_revolutions(diagram):
     stable = np.flatnonzero(two.stable & (two.parameter > 1.08) & (two.parameter < 1.12))
     i = stable[len(stable) // 2]
     batch = engine.Batch([_case(two.parameter[i])])
-    N = batch.N
-    X0 = two.states[i][None]
-    res = engine.march(batch, 2 * batch.steps_per_rev, D0=X0[:, :N], V0=X0[:, N:], keep_history=True)
+    X0 = two.states[i][None]                     # (d, v, a): generalized-alpha's state
+    assert X0.shape[1] == batch.state_size == 3 * batch.N
+    res = engine.march_state(batch, 2 * batch.steps_per_rev, X0, keep_history=True)
     assert res.status[0] == engine.OK
-    S = np.concatenate([batch.scales, batch.scales], axis=1)
+    S = np.concatenate([batch.scales] * 3, axis=1)
     spr = batch.steps_per_rev
-    X1 = np.concatenate([res.D_history[:, spr], res.V_history[:, spr]], axis=1)
-    X2 = np.concatenate([res.D, res.V], axis=1)
+    X1 = engine.join_state(res, True, [spr])
+    X2 = engine.join_state(res, True)
     assert _scaled_change(X0, X2, S)[0] < 1e-8
     assert _scaled_change(X0, X1, S)[0] > 1e-2
 
@@ -129,7 +129,7 @@ def test_exact_parameter_derivative_matches_central_differences(parameter, value
     case = Case(**{**MODEL, "n_elements": 3, "steps_per_rev": 30}, **{parameter: value})
     fmap = MechanismMap(case, parameter)
     warm = engine.march(engine.Batch([case]), 60)
-    X = np.concatenate([warm.D[0], warm.V[0]])
+    X = engine.join_state(warm, fmap.generalized)[0]
     P, jy, jp = fmap.evaluate(X / fmap.s, value, 2)
     fd = []
     for h in (4e-4 * abs(value), 2e-4 * abs(value)):
@@ -141,21 +141,25 @@ def test_exact_parameter_derivative_matches_central_differences(parameter, value
     assert scale > 0 and np.max(np.abs(jp - richardson)) < 1e-6 * scale
 
 
-def test_shooting_marches_the_same_steps_as_march():
+@pytest.mark.parametrize("rho_inf", [1.0, 0.8])
+def test_shooting_marches_the_same_steps_as_march(rho_inf):
     """engine.shoot (with and without its linearization) takes the very steps of engine.march: the
-    same states and outputs, so the orbit of a map evaluation is the marched orbit."""
-    case = _case(0.95)
+    same states and outputs, so the orbit of a map evaluation is the marched orbit (Newmark's
+    state (d, v); generalized-alpha's (d, v, a))."""
+    from dataclasses import replace
+    case = replace(_case(0.95), rho_inf=rho_inf)
     b = engine.Batch([case])
+    generalized = rho_inf < 1
     warm = engine.march(b, 80)
-    X0 = np.concatenate([warm.D, warm.V], axis=1)
-    N, spr = b.N, b.steps_per_rev
-    m = engine.march(b, 2 * spr, D0=X0[:, :N], V0=X0[:, N:], keep_history=True)
+    X0 = engine.join_state(warm, generalized)
+    assert X0.shape[1] == b.state_size == (3 if generalized else 2) * b.N
+    spr = b.steps_per_rev
+    m = engine.march_state(b, 2 * spr, X0, keep_history=True)
     for jacobian in (False, True):
         r = engine.shoot(b, X0, revolutions=2, jacobian=jacobian)
         assert np.array_equal(r.y, m.y)
-        assert np.array_equal(r.X1, np.concatenate([m.D, m.V], axis=1))
-        hist = np.concatenate([m.D_history, m.V_history], axis=2)[:, ::spr]
-        assert np.array_equal(r.states, hist)
+        assert np.array_equal(r.X1, engine.join_state(m, generalized))
+        assert np.array_equal(r.states[0], engine.join_state(m, generalized, np.arange(3) * spr))
 
 
 def test_former_corrector_and_derivative_find_the_same_special_points(diagram):

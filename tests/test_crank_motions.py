@@ -101,8 +101,8 @@ def test_a_fluctuating_crank_has_periodic_states(guide):
     T = fb.Fluctuation(0.7, 0.3, 2).period()
     assert st.t[-1] == pytest.approx(T, rel=1e-12)
     assert st.theta[-1] == pytest.approx(2 * math.pi, rel=1e-12)
-    N = len(st.state) // 2
-    r = crankgen.simulate(mech, crank=crank, revolutions=3, initial=(st.state[:N], st.state[N:]), **kw)
+    parts = np.split(st.state, len(st.state) // (3 * kw["n_elements"]))     # (d, v, a): generalized-alpha
+    r = crankgen.simulate(mech, crank=crank, revolutions=3, initial=parts, **kw)
     spr = kw["steps_per_rev"]
     scale = np.max(np.abs(st.v_mid))
     for k in range(3):
@@ -139,12 +139,11 @@ def test_a_slow_run_up_passes_through_the_steady_states():
               for w, spr in ((0.3, 150), (0.45, 100), (0.5, 90), (0.6, 75), (0.75, 60))}
     for st in steady.values():
         assert st.ok, st.message
-    start = steady[0.3].state
-    N = len(start) // 2
+    start = np.split(steady[0.3].state, len(steady[0.3].state) // (3 * n))   # (d, v, a)
 
     def errors(revolutions):
         r = crankgen.simulate(mech, crank=crankgen.RunUp(start=0.3, stop=0.9, revolutions=revolutions),
-                              revolutions=revolutions, initial=(start[:N], start[N:]), n_elements=n,
+                              revolutions=revolutions, initial=start, n_elements=n,
                               steps_per_rev=50)
         out = []
         for w, st in steady.items():

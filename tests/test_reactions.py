@@ -1,5 +1,6 @@
-"""The forces a designer needs (torque, pin_force_x/y, end_force_x/y: Model.reactions through the
-declared outputs) against independent truths.
+"""The forces a designer needs (torque; the joint forces crank_on_rod at A, rod_on_slider /
+rod_on_tip at B, guide_on_slider / rocker_on_tip: Model.reactions through the declared outputs)
+against independent truths.
 
 1. Rigid limit.  As Omega* -> 0 (the rod stiff against the crank's pace) the flexible mechanism's
    reactions tend to the rigid mechanism's inverse dynamics, written out in tests/four_bar.py by
@@ -12,7 +13,9 @@ declared outputs) against independent truths.
    slider, constant crank 1.0e-3 / 2.6e-4 (torque) and up to 2.1e-3 / 5.3e-4 (guide force);
    slider, fluctuating crank (k = 0.3, j = 2: thetadd as large as the centripetal terms) up to
    1.7e-2 / 4.1e-3 (guide force); four-bar, constant 2.4e-3 / 6.0e-4; four-bar, fluctuating
-   8e-3 / 2e-3.  Ratios 3.9 to 4.1; the slider's end_force_x is zero (< 1e-15).
+   8e-3 / 2e-3.  Ratios 3.9 to 4.1; the slider's guide_on_slider_x is zero (< 1e-15).  The end
+   mass's free-body balance: the rod's force on it at B plus the guide's (the rocker's) is ms times
+   its acceleration, the rigid mechanism's in the limit (both to O(Omega*^2) as well).
 2. Power over a steady revolution.  torque * crank_speed is the pin reaction's power F_pin . V_pin
    (pointwise, against energy_balance.py's own F_pin . V_pin, 1e-15).  Over a steady revolution
    E = T + U returns to its value (1e-12 of the work), so the balance of tests/energy_balance.py
@@ -56,7 +59,12 @@ def _rigid(st, guide):
         k = fb.four_bar(th, thd, thdd, A, g["c"], g["d"], g["offset"], 1)
     else:
         k = fb.slider_crank(th, thd, thdd, A, g["offset"])
-    return fb.inverse_dynamics(k, A, st.case.ms, st.case.eps**2)
+    torque, pin, end = fb.inverse_dynamics(k, A, st.case.ms, st.case.eps**2)
+    mass_accel = st.case.ms * fb.accelerations(k, A, 1.0)       # ms a_B of the rigid mechanism
+    return torque, pin, end, mass_accel
+
+
+NAMES = {"line": ("rod_on_slider", "guide_on_slider"), "circle": ("rod_on_tip", "rocker_on_tip")}
 
 
 @pytest.mark.parametrize("motion", ["constant", "fluctuation"])
@@ -67,13 +75,20 @@ def test_reactions_tend_to_the_rigid_mechanism_inverse_dynamics(guide, motion):
         mech = crankgen.Mechanism(a=A, eps=0.01, ms=0.5, mu=0.5, **GEOMETRY[guide])
         st = crankgen.steady_state(mech, n_elements=8, steps_per_rev=200, **_crank(motion, omega))
         assert st.ok, st.message
-        torque, pin, end = _rigid(st, guide)
-        pairs = [(st.torque, torque), (st.pin_force_x, pin[:, 0]), (st.pin_force_y, pin[:, 1]),
-                 (st.end_force_y, end[:, 1])]
+        torque, pin, end, mass_accel = _rigid(st, guide)
+        rod_on, guide_on = (np.stack([st.quantity(f"{name}_{c}") for c in "xy"], -1) for name in NAMES[guide])
+        # the end mass's free body: the rod's force at B and the guide's give it ms a_B
+        # (the flexible mass's acceleration differs from the rigid one by O(Omega*^2) and by the
+        # step's O((2 pi / steps_per_rev)^2), about 1e-4 here: to 1e-3, without a convergence rate)
+        balance = np.hypot(*(rod_on + guide_on - mass_accel).T)
+        assert np.max(balance) < 1e-3 * np.max(np.hypot(*mass_accel.T)), np.max(balance)
+        pairs = [(st.torque, torque), (st.crank_on_rod_x, pin[:, 0]), (st.crank_on_rod_y, pin[:, 1]),
+                 (guide_on[:, 1], end[:, 1]), (rod_on[:, 0], (mass_accel - end)[:, 0]),
+                 (rod_on[:, 1], (mass_accel - end)[:, 1])]
         if guide == "circle":
-            pairs.append((st.end_force_x, end[:, 0]))
+            pairs.append((guide_on[:, 0], end[:, 0]))
         else:   # the slider's guide pushes along Y only (no friction): exactly, not in the limit
-            assert np.max(np.abs(st.end_force_x)) < 1e-9 * np.max(np.abs(end[:, 1]))
+            assert np.max(np.abs(guide_on[:, 0])) < 1e-9 * np.max(np.abs(end[:, 1]))
         errors.append([np.max(np.abs(got - want)) / np.max(np.abs(want)) for got, want in pairs])
     errors = np.array(errors)
     assert np.all(errors[1] < 5e-3), errors
@@ -87,7 +102,8 @@ def test_the_rocker_force_is_along_the_rocker_and_the_slider_force_normal_to_the
     for guide in ("line", "circle"):
         mech = crankgen.Mechanism(a=0.2, **GEOMETRY[guide])
         r = crankgen.simulate(mech, omega=0.8, n_elements=4, steps_per_rev=100, revolutions=2)
-        F = np.stack([r.end_force_x, r.end_force_y], -1)
+        name = NAMES[guide][1]
+        F = np.stack([r.quantity(f"{name}_x"), r.quantity(f"{name}_y")], -1)
         if guide == "circle":
             g = GEOMETRY[guide]
             DB = np.stack([r.slider_position - g["d"], r.end_height - g["offset"]], -1)

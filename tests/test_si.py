@@ -66,7 +66,7 @@ def test_section_forces_in_si_are_e_i_v_xx_and_e_a_u_x_from_the_si_nodes(run):
 def test_torque_in_si_is_the_pin_force_moment_about_the_crank_pivot(run):
     si = run.si
     th = si.theta
-    fx, fy = si.pin_force_x, si.pin_force_y
+    fx, fy = si.crank_on_rod_x, si.crank_on_rod_y
     np.testing.assert_allclose(si.torque, A_CRANK * (np.cos(th) * fy - np.sin(th) * fx), rtol=1e-10,
                                atol=1e-12 * np.max(np.abs(si.torque)))
     assert np.max(np.abs(fx)) > 1.0                                     # newtons, not rho A L^2 omega_b^2
@@ -77,7 +77,7 @@ def test_torque_in_si_is_the_pin_force_moment_about_the_crank_pivot(run):
 def test_unit_names_follow_from_the_declared_units(run):
     si = run.si
     names = dict(t="s", theta="rad", v_mid="m", u_end="m", extension="1", slider_position="m",
-                 chord_angle="rad", chord_rate="rad/s", slider_velocity="m/s", torque="N m", pin_force_x="N",
+                 chord_angle="rad", chord_rate="rad/s", slider_velocity="m/s", torque="N m", crank_on_rod_x="N",
                  axial_force="N", bending_moment="N m", surface_strain="1", chord_deflection="m")
     for name, unit in names.items():
         assert si.units(name) == unit, name
@@ -128,7 +128,8 @@ def test_cli_si_file_in_and_si_columns_out(tmp_path):
     import pandas
     data = pandas.read_csv(out / "simulation.csv")
     assert list(data.columns[:5]) == ["t_s", "theta_rad", "v_mid_m", "u_end_m", "extension"]
-    assert {"slider_position_m", "chord_angle_rad", "torque_N_m", "pin_force_x_N", "end_force_y_N",
+    assert {"slider_position_m", "chord_angle_rad", "torque_N_m", "crank_on_rod_x_N", "guide_on_slider_y_N",
+            "rod_on_slider_x_N",
             "slider_velocity_m_per_s", "crank_speed_rad_per_s"} <= set(data.columns)
     assert data["t_s"].iloc[-1] == pytest.approx(0.5 * 2 * math.pi / OMEGA, rel=1e-12)
     assert data["crank_speed_rad_per_s"].to_numpy() == pytest.approx(OMEGA, rel=1e-12)

@@ -119,7 +119,8 @@ def test_a_section_that_is_not_the_rods_is_refused():
     with pytest.raises(crankgen.ParameterError, match="Section"):
         crankgen.stress(run, "circle:1")
     loads = crankgen.peak_loads(run, run.scales)
-    assert [p.name for p in loads] == ["torque", "pin force", "end force"] and loads[0].units == "N m"
+    assert [p.name for p in loads] == ["torque", "pin force at A (crank on rod)", "pin force at B (rod on slider)",
+                                       "guide force (on slider)"] and loads[0].units == "N m"
     torque = run.si.torque
     assert abs(loads[0].value) == np.max(np.abs(torque)) and loads[1].units == "N"
 

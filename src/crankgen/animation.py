@@ -230,6 +230,6 @@ def orbit(diagram, branch, point):
         raise ParameterError(f"point must be below {len(br)} (the branch's points), got {point}")
     info = {k: v for k, v in diagram.info.items() if k in Case.__dataclass_fields__}
     case = replace(Case.from_dict(info), **{diagram.parameter_name: float(br.parameter[point])})
-    state = np.asarray(br.states[point], dtype=float)          # (d, v) at theta0, crankgen's units
-    N = len(state) // 2
-    return simulate(case=case, initial=(state[:N], state[N:]), revolutions=br.period)
+    state = np.asarray(br.states[point], dtype=float)     # (d, v), or (d, v, a) for generalized-alpha,
+    parts = np.split(state, len(state) // (3 * case.n_elements))   # at theta0, crankgen's units
+    return simulate(case=case, initial=parts, revolutions=br.period)

@@ -1,10 +1,12 @@
 """A case: every parameter of one run, as one frozen record (the unit of sweeps and checkpoints).
 
 Its fields come from the schema (derive/declaration.py): the mechanism's and its guide's parameters, the
-run's (the crank motion and its parameters, n_elements, steps_per_rev, integrator), the model
-options (formulation, approach, membrane, damping, rotary_inertia) and the audit's switched-off
-term groups.  The model is chosen by preset and options, checked once: `Case(model="paper")`, or
-the default model (`consistent`); an option given explicitly overrides the preset's value.  Every
+run's (the crank motion and its parameters, n_elements, steps_per_rev, integrator, rho_inf), the
+model options (formulation, approach, membrane, damping, rotary_inertia) and the audit's
+switched-off term groups.  The model is chosen by preset and options, checked once:
+`Case(model="paper")`, or the default model (`consistent`); an option given explicitly overrides
+the preset's value, and a run parameter the preset sets (the paper's rho_inf = 1, Newmark) takes
+the preset's value unless given.  Every
 value is stored in canonical form (crankgen.schema), so that equal cases compare equal and share
 one key however their values were typed; an unknown or incompatible option, or a parameter out of
 range, raises ParameterError naming it when the case is built.
@@ -26,11 +28,19 @@ class CaseRules:
     """The checks and views of a Case (its fields: generated/classes.py CaseFields)."""
 
     def __post_init__(self):
+        given = {n for n in PARAMETER_FIELDS if getattr(self, n) is not None}
         settle(self, PARAMETER_FIELDS)
         check_full_turn(self.parameters())
         options = schema.resolve_options(self.model, **{n: getattr(self, n) for n in OPTION_FIELDS})
         for name, value in options.items():
             object.__setattr__(self, name, value)
+        # the run settings that go with the model (the paper's Newmark rule): the preset the options
+        # match, else the one asked for; a setting given explicitly is kept
+        preset = schema.preset_of(options) or (self.model if self.model in schema.PRESETS
+                                               else schema.DEFAULT_PRESET)
+        for name, value in schema.PRESETS[preset].settings.items():
+            if name not in given:
+                object.__setattr__(self, name, schema.PARAMETERS[name].canonical(value))
         object.__setattr__(self, "model", schema.preset_of(options))
         if not isinstance(self.groups_off, str):
             raise ParameterError(f"groups_off must be a string, got {self.groups_off!r}")

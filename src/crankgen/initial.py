@@ -251,12 +251,14 @@ def reduced_state(case, initial, scales=None):
 
 
 def initial_state(case, initial, scales=None):
-    """(d0, v0) of simulate's `initial`: None (zero: the rigid mechanism at rest), an InitialState (or
-    a dict of its fields), or a pair (d0, v0) of reduced vectors."""
+    """(d0, v0, g0) of simulate's `initial`: None (zero: the rigid mechanism at rest), an InitialState
+    (or a dict of its fields), a pair (d0, v0) of reduced vectors, or a triple (d0, v0, g0) with
+    generalized-alpha's algorithmic accelerations (the three thirds of a SteadyState.state); g0 is
+    None unless given (the run then starts from g0 = the accelerations of eq. 34)."""
     mesh = Mesh(case.n_elements)
     N = mesh.n_dofs
     if initial is None:
-        return np.zeros(N), np.zeros(N)
+        return np.zeros(N), np.zeros(N), None
     if isinstance(initial, dict):
         try:
             initial = InitialState(**initial)
@@ -264,16 +266,20 @@ def initial_state(case, initial, scales=None):
             raise ParameterError(f"initial state: {exc}; the fields are {', '.join(FIELD_UNITS)} and tol") from None
     if isinstance(initial, InitialState):
         if initial.is_rest:
-            return np.zeros(N), np.zeros(N)
-        return reduced_state(case, initial, scales)
+            return np.zeros(N), np.zeros(N), None
+        return reduced_state(case, initial, scales) + (None,)
     if scales is not None:
         raise ParameterError("initial as reduced vectors (d0, v0) is in crankgen's units; with units='si' "
                              "give a crankgen.InitialState")
     try:
-        d0, v0 = (np.asarray(x, dtype=float) for x in initial)
+        vectors = [np.asarray(x, dtype=float) for x in initial]
     except (TypeError, ValueError):
-        raise ParameterError("initial must be None, a crankgen.InitialState (or a dict of its fields) or "
-                             f"two reduced vectors (d0, v0), got {initial!r}") from None
-    if d0.shape != (N,) or v0.shape != (N,) or not (np.all(np.isfinite(d0)) and np.all(np.isfinite(v0))):
-        raise ParameterError(f"initial must be two finite vectors of length {N} (3 n_elements)")
-    return d0, v0
+        raise ParameterError("initial must be None, a crankgen.InitialState (or a dict of its fields), "
+                             f"two reduced vectors (d0, v0) or three (d0, v0, a0), got {initial!r}") from None
+    if len(vectors) not in (2, 3) or any(x.shape != (N,) or not np.all(np.isfinite(x)) for x in vectors):
+        raise ParameterError(f"initial must be two (d0, v0) or three (d0, v0, a0) finite vectors of "
+                             f"length {N} (3 n_elements)")
+    if len(vectors) == 3 and case.rho_inf == 1.0:
+        raise ParameterError("initial's third vector, algorithmic accelerations, belongs to generalized-alpha "
+                             "(rho_inf < 1); Newmark (rho_inf = 1) starts from (d0, v0)")
+    return vectors[0], vectors[1], (vectors[2] if len(vectors) == 3 else None)

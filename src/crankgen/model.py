@@ -108,10 +108,11 @@ class Model:
                                                                  slots)
         return p, pd, pdd, E
 
-    def unprojected_terms(self, kin, d, v, a, secant=False):
+    def unprojected_terms(self, kin, d, v, a, secant=False, rod_only=None):
         """(q, E, r, K, C, M): the element terms before the projection on the reduced co-ordinates
         (the eliminated rows of an element holding a constrained node are the force the constraint
-        must apply: the guide's with the end mass included)."""
+        must apply: the guide's with the end mass included).  rod_only: a list that receives a copy
+        of r with the rod's own families alone (before the constrained node's end mass's)."""
         q, qd, qdd, E = self.nodal_state(kin, d, v, a)
         geo, coef, kv = self.geometry, self.coefficients, kin.vector
         shape = q.shape[:-1]
@@ -123,6 +124,8 @@ class Model:
         parts = [("rod", lead + (slice(None),), (q, qd, qdd, geo), kb),
                  (MAPPED.name, lead + (e,), (q[..., e, :], qd[..., e, :], qdd[..., e, :], geo[e]), kv)]
         for part, where, args, kin_arg in parts:
+            if part != "rod" and rod_only is not None:
+                rod_only.append(r.copy())
             for _name, kernel in self.selection.vectorized(part):
                 out = kernel(*args, coef, kin_arg)
                 r[where] += out[0]
@@ -146,9 +149,20 @@ class Model:
         for reduced states d, v, a (..., N): the residual rows of its eliminated components (summed
         over the elements holding its node; the end node's reaction is normal to the guide:
         g_s . end = 0 at a solution)."""
-        _, _, r, _, _, _ = self.unprojected_terms(self.kinematics(t), d, v, a)
-        return tuple(sum(r[..., e, list(slots)] for e, slots, _ in self.mesh.holders(c))
-                     for c in schema.CONSTRAINTS)
+        return self.joint_forces(t, d, v, a)[0]
+
+    def joint_forces(self, t, d, v, a):
+        """(reactions, rod's): the force each constraint applies (reactions, above), and the same
+        rows of the rod's own families alone: at the guide's node, the force the end mass applies
+        to the rod (the rod applies its opposite to the end mass, through the pin at B); at the
+        crank pin, the reaction itself (no end mass there)."""
+        rod = []
+        _, _, r, _, _, _ = self.unprojected_terms(self.kinematics(t), d, v, a, rod_only=rod)
+
+        def at_constraints(x):
+            return tuple(sum(x[..., e, list(slots)] for e, slots, _ in self.mesh.holders(c))
+                         for c in schema.CONSTRAINTS)
+        return at_constraints(r), at_constraints(rod[0] if rod else r)
 
     def residual(self, t, d, v, a):
         """Reduced residual R(t, d, v, a)."""

@@ -1,4 +1,11 @@
-"""Newmark integration (beta = 1/4, gamma = 1/2 by default) of the reduced equations R = 0.
+"""Newmark integration (beta = 1/4, gamma = 1/2 by default) of the reduced equations R = 0, or
+generalized-alpha (alpha_m, alpha_f non-zero: crankgen.time_scheme), in the form of Arnold & Bruls:
+R = 0 at every step, the step's unknown the acceleration qdd_{n+1}, an algorithmic acceleration
+a_n carried beside it (for Newmark a = qdd):
+    dp = d_n + h v_n + h^2 (1/2 - beta) a_n + h^2 beta abar,  vp = v_n + h (1 - gamma) a_n + h gamma abar,
+    abar = (alpha_f qdd_n - alpha_m a_n) / (1 - alpha_m),
+    d_{n+1} = dp + cd qdd_{n+1},  v_{n+1} = vp + cv qdd_{n+1},  a_{n+1} = abar + r qdd_{n+1},
+    r = (1 - alpha_f) / (1 - alpha_m),  cd = beta r h^2,  cv = gamma r h.
 
 Three schemes (the constants and the decisions of the iteration live in newton.py, shared with the
 compiled engine):
@@ -33,7 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import kinematics as _kinematics
-from . import newton, schema
+from . import newton, schema, time_scheme
 from .errors import ConvergenceError
 from .newton import ESTIMATE_FRACTION, HISTORY, REFRESH_RATE, SCHEMES  # noqa: F401  (re-exported)
 from .validation import choice, in_range, integer
@@ -46,13 +53,28 @@ class NewmarkSettings:
     gamma: float = 0.5
     tol: float = 1e-10
     max_iterations: int = 30
+    alpha_m: float = 0.0
+    alpha_f: float = 0.0
 
     def __post_init__(self):
         choice("integrator", self.scheme, SCHEMES)
-        in_range("beta", self.beta, 0, 0.5, True)
-        in_range("gamma", self.gamma, 0, 1, True)
+        in_range("beta", self.beta, 0, 1, True)
+        in_range("gamma", self.gamma, 0, 2, True)
         in_range("tol", self.tol, 0, None, True)
         integer("max_iterations", self.max_iterations, 1)
+        in_range("alpha_m", self.alpha_m, -1, 1, False, True)
+        in_range("alpha_f", self.alpha_f, 0, 1, False, True)
+
+    @classmethod
+    def of_case(cls, case, tol=1e-10):
+        """The settings of a case: its integrator and its time scheme (rho_inf)."""
+        c = time_scheme.coefficients(case.rho_inf)
+        return cls(scheme=case.integrator, beta=c.beta, gamma=c.gamma, tol=tol, alpha_m=c.alpha_m,
+                   alpha_f=c.alpha_f)
+
+    @property
+    def generalized(self):
+        return self.alpha_m != 0.0 or self.alpha_f != 0.0
 
 
 @dataclass(frozen=True)
@@ -60,8 +82,9 @@ class NewmarkHistory:
     t: np.ndarray            # (n_steps + 1,)
     d: np.ndarray            # (n_steps + 1, N) reduced displacements
     v: np.ndarray
-    a: np.ndarray
+    a: np.ndarray            # accelerations qdd (R = 0 holds with them)
     iterations: np.ndarray   # (n_steps,) Newton iterations per step (1 for one-pass)
+    g: np.ndarray = None     # algorithmic accelerations of generalized-alpha (None for Newmark: a)
 
 
 def _singular(step, t, rhs):
@@ -93,12 +116,16 @@ def initial_acceleration(model, t0, d0, v0):
     return _solve(model, S, -R, 0, t0)
 
 
-def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progress=None, a0=None):
+def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progress=None, a0=None, g0=None):
     """March n_steps of size dt from (d0, v0) at t0 (a0: the accelerations there, by default solved
-    from eq. (34)).  progress(step, n_steps) is called per step."""
+    from eq. (34); g0: the algorithmic accelerations of generalized-alpha, by default a0).
+    progress(step, n_steps) is called per step."""
     n_steps = integer("number of steps", n_steps, 1)
     dt = in_range("dt", dt, 0, None, True)
     beta, gamma = settings.beta, settings.gamma
+    generalized = settings.generalized
+    am, af = settings.alpha_m, settings.alpha_f
+    ratio = (1.0 - af) / (1.0 - am)
     scales = model.mesh.dof_scales(schema.natural_sizes(model.case.parameters()), _kinematics.end_scale(model.case))
     scheme = SCHEMES.index(settings.scheme)
     secant = scheme == newton.ONE_PASS and model.selection.printed_iteration
@@ -107,16 +134,32 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
     N = model.n_dofs
     t = t0 + dt * np.arange(n_steps + 1)
     D, V, A = (np.empty((n_steps + 1, N)) for _ in range(3))
+    G = np.empty((n_steps + 1, N)) if generalized else A
     iterations = np.zeros(n_steps, dtype=np.int32)
     D[0], V[0] = d0, v0
     A[0] = (initial_acceleration(model, t0, np.asarray(d0, float), np.asarray(v0, float)) if a0 is None
             else a0)
-    c_d, c_v = beta * dt**2, gamma * dt
+    if generalized:
+        G[0] = A[0] if g0 is None else g0
+    starter = generalized and g0 is None       # a start: the first step is time_scheme.STARTER
+    c_d, c_v = beta * dt**2 * ratio, gamma * dt * ratio
+    steady = (beta, gamma, am, af, ratio, c_d, c_v)
 
     for m in range(n_steps):
-        d, v, a = D[m], V[m], A[m]
-        d_pred = d + dt * v + 0.5 * dt**2 * (1 - 2 * beta) * a            # eq. (35)
-        v_pred = v + dt * (1 - gamma) * a                                  # eq. (36)
+        if starter and m == 0:
+            s = time_scheme.STARTER
+            beta, gamma, am, af, ratio = s.beta, s.gamma, s.alpha_m, s.alpha_f, s.ratio
+            c_d, c_v = beta * dt**2, gamma * dt
+        elif starter and m == 1:
+            beta, gamma, am, af, ratio, c_d, c_v = steady
+        d, v, a, g = D[m], V[m], A[m], G[m]
+        d_pred = d + dt * v + 0.5 * dt**2 * (1 - 2 * beta) * g            # eq. (35)
+        v_pred = v + dt * (1 - gamma) * g                                  # eq. (36)
+        abar = 0.0
+        if generalized and not (starter and m == 0):
+            abar = (af * a - am * g) / (1.0 - am)
+            d_pred = d_pred + dt**2 * beta * abar
+            v_pred = v_pred + dt * gamma * abar
         kin = model.kinematics(t[m + 1])
         if one_pass:
             a_new = np.zeros(N)
@@ -164,6 +207,8 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
         D[m + 1] = d_new
         V[m + 1] = v_new
         A[m + 1] = a_new
+        if generalized:
+            G[m + 1] = abar + ratio * a_new if not (starter and m == 0) else a_new
         iterations[m] = it
         if not (np.all(np.isfinite(D[m + 1])) and np.all(np.isfinite(V[m + 1]))):
             raise ConvergenceError(f"non-finite state in step {m + 1} (t* = {t[m + 1]:.6g})",
@@ -173,4 +218,4 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
                                    step=m + 1, time=t[m + 1], residual=float(np.linalg.norm(R)))
         if progress is not None:
             progress(m + 1, n_steps)
-    return NewmarkHistory(t, D, V, A, iterations)
+    return NewmarkHistory(t, D, V, A, iterations, G if generalized else None)

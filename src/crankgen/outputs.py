@@ -1,6 +1,6 @@
 """The outputs a result can give, declared in derive/declaration.py (OUTPUTS) and read from the
 schema: step quantities (one value per stored step: the crank speed, the end's position, the chord
-angle, the driving torque, the pin and end reactions, ...), fields (per step, at any x* in [0, 1]:
+angle, the driving torque, the joint forces, ...), fields (per step, at any x* in [0, 1]:
 axial_force, bending_moment, surface_strain, chord_deflection, ...) and reductions (per step, a sum
 or integral over the rod).  The outputs flagged `engine` (v_mid, u_end, extension) the engine
 computes at every step, so that every result has them, with or without stored states.
@@ -8,8 +8,10 @@ computes at every step, so that every result has them, with or without stored st
 Each step, field or reduction output is a generated kernel whose inputs the schema names;
 StateHistory supplies them from the stored reduced states: the kinematics, the nodal vector (and
 rate) of the element holding x* or of every element, the end node's (u, v), their rates and the
-reduced co-ordinate, the parameter vector, and the reactions at the pin and the end (the residual
-rows of the constrained DOFs, which need the stored velocities and accelerations).  The engine's
+reduced co-ordinate, the parameter vector, and the joint forces at the crank pin A and at B (the
+residual rows of the constrained DOFs, which need the stored velocities and accelerations: the
+crank's force on the rod, the guide's on the end mass and, from the rod's own families alone, the
+end mass's on the rod).  The engine's
 outputs are the generated per_step of what they accumulate (schema.PRIMITIVES: a field at a point,
 an integral over the rod), evaluated here for stored states as the engine does at every step.
 Quantities made of element-wise derivatives (u_x is constant in an element, v_xx linear) jump at the
@@ -26,10 +28,25 @@ from . import kinematics as _kinematics
 from ._generated import per_step as _per_step
 from ._generated.shape import shape_functions
 from .errors import ParameterError
-from .mesh import NODE_DOFS, U, V, Mesh
+from .mesh import MAPPED, NODE_DOFS, U, V, Mesh
 from .validation import finite_number, in_range
 
 NODE_TOLERANCE = 1e-12      # x* closer than this (relative to an element) to a node is at the node
+
+# outputs renamed to say which body acts on which (crankgen 0.2): the old name -> the new one(s)
+RENAMED = {"pin_force_x": "crank_on_rod_x", "pin_force_y": "crank_on_rod_y",
+           "end_force_x": "guide_on_slider_x (rocker_on_tip_x on a four-bar)",
+           "end_force_y": "guide_on_slider_y (rocker_on_tip_y on a four-bar)"}
+
+
+def unknown_output(name):
+    """The ParameterError of an output name that does not exist (naming the new name of a renamed
+    one)."""
+    if name in RENAMED:
+        return ParameterError(f"{name} was renamed {RENAMED[name]}: the joint forces are named for who "
+                              f"acts on whom (crank_on_rod, rod_on_slider, guide_on_slider; rod_on_tip, "
+                              f"rocker_on_tip on a four-bar)")
+    return ParameterError(f"no output {name!r}; the outputs are {', '.join(schema.OUTPUTS)}")
 FIELDS = ("u", "v", "psi")  # the interpolated fields, in the order of the shape functions (eqs. 8-10)
 
 
@@ -148,9 +165,9 @@ class StateHistory:
         if self.rates is None or self.accelerations is None:
             raise ParameterError("the reactions need the stored velocities and accelerations, which "
                                  "this result does not hold")
-        if self._pin_end is None:            # torque, pin and end forces all read them
+        if self._pin_end is None:            # torque and every joint force read them
             from .model import Model
-            self._pin_end = Model(self.case).reactions(self.t, self.states, self.rates, self.accelerations)
+            self._pin_end = Model(self.case).joint_forces(self.t, self.states, self.rates, self.accelerations)
         return self._pin_end
 
     def _inputs(self, spec):
@@ -158,7 +175,7 @@ class StateHistory:
         (those of an element, q, qd, zeta and geo, and a field's arguments: _call)."""
         out = {}
         for name in spec.inputs:
-            if name in ("q", "qd", "zeta", "geo", "fiber"):
+            if name in ("q", "qd", "zeta", "geo", "fiber") or name in out:
                 continue
             if name == "coef":
                 out[name] = self.case.coefficients
@@ -173,7 +190,9 @@ class StateHistory:
             elif name == "s":
                 out[name] = self.states[:, self.mesh.slider_dof]
             elif name in self._constraints:          # the force a constraint applies (pin, end)
-                out.update(zip(self._constraints, self._reactions()))
+                out.update(zip(self._constraints, self._reactions()[0]))
+            elif name == "rod_end":                  # the force the end mass applies to the rod at B
+                out[name] = dict(zip(self._constraints, self._reactions()[1]))[MAPPED.name]
         return out
 
     def _call(self, kernel, spec, values, element=None, extra=()):
@@ -244,7 +263,8 @@ class StateHistory:
 
 
 class DeclaredOutputs:
-    """Mixin of results: every declared output by name.
+    """Mixin of results: every declared output by name, and the range of the theory
+    (`beyond_theory`).
 
     The engine's outputs (schema.ENGINE_OUTPUTS: v_mid, u_end, extension) are held by every result
     (its field `outputs`); the others need the stored states.  `result.quantity(name, x=None,
@@ -267,12 +287,25 @@ class DeclaredOutputs:
     def __getstate__(self):
         state = dict(self.__dict__)
         state.pop("_state_history", None)
+        state.pop("_beyond_theory", None)
         return state
+
+    @property
+    def beyond_theory(self):
+        """Whether the response leaves the range of the theory, as data (crankgen.theory.RangeFlag:
+        true when beyond; its measures deflection_over_L = eps max|v*| and the largest axial
+        strain over the stored steps, each with its value and limit, and those that tripped it)."""
+        flag = self.__dict__.get("_beyond_theory")
+        if flag is None:
+            from .theory import flag_of
+            flag = flag_of(self)
+            object.__setattr__(self, "_beyond_theory", flag)
+        return flag
 
     def quantity(self, name, x=None, **arguments):
         spec = schema.OUTPUTS.get(name)
         if spec is None:
-            raise ParameterError(f"no output {name!r}; the outputs are {', '.join(schema.OUTPUTS)}")
+            raise unknown_output(name)
         if self.case.guide_record.name not in spec.guides:
             raise ParameterError(f"{name} exists for the {' and '.join(spec.guides)} guide only "
                                  f"(this case's guide is {self.case.guide_record.name!r})")
@@ -308,6 +341,8 @@ class DeclaredOutputs:
             return lambda x, **arguments: self.quantity(name, x, **arguments)
         if spec is not None:
             return self.quantity(name)
+        if name in RENAMED:
+            raise AttributeError(str(unknown_output(name)))
         raise AttributeError(f"{type(self).__name__} has no attribute {name!r}")
 
 
@@ -334,14 +369,14 @@ class SIView:
             return self.scales.si_name(self.BASE[name])
         spec = schema.OUTPUTS.get(name)
         if spec is None:
-            raise ParameterError(f"no output {name!r}; the outputs are {', '.join(schema.OUTPUTS)}")
+            raise unknown_output(name)
         return self.scales.si_name(spec.units)
 
     def quantity(self, name, x=None, **arguments):
         """The declared output `name` in SI (a field at x in metres)."""
         spec = schema.OUTPUTS.get(name)
         if spec is None:
-            raise ParameterError(f"no output {name!r}; the outputs are {', '.join(schema.OUTPUTS)}")
+            raise unknown_output(name)
         if x is not None:
             for xj in np.atleast_1d(np.asarray(x, dtype=float)):
                 in_range(f"x (position along the rod, m; the rod is {self.scales.L:g} m long)", xj, 0.0,
@@ -374,6 +409,8 @@ class SIView:
             return lambda x, **arguments: self.quantity(name, x, **arguments)
         if spec is not None:
             return self.quantity(name)
+        if name in RENAMED:
+            raise AttributeError(str(unknown_output(name)))
         raise AttributeError(f"SIView has no attribute {name!r}")
 
     def __repr__(self):

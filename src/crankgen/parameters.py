@@ -76,12 +76,36 @@ def kinematic_parameters(values):
 MARGIN_TOLERANCE = 1e-9
 
 
+CLOSURE_SAMPLES = 720       # crank angles at which a numerical closure is checked
+CLOSURE_RESIDUAL = 1e-9     # |C(beta) - A|^2 - L^2 it must reach (units of L^2)
+CLOSURE_SLOPE = 1e-6        # |d residual / d beta| it must keep: the rod not tangent to the guide
+
+
+def _closure_failures(guide, params):
+    """The full-turn conditions a numerical closure fails (texts): solved at CLOSURE_SAMPLES crank
+    angles, it must reach the rod's length (residual) with the rod crossing the guide (slope)."""
+    theta = np.linspace(0.0, 2 * np.pi, CLOSURE_SAMPLES, endpoint=False)
+    crank = np.stack([theta, np.zeros_like(theta), np.zeros_like(theta)], axis=-1)
+    with np.errstate(all="ignore"):
+        beta, _, residual, slope = np.moveaxis(getattr(_kinematics, f"closure_{guide.name}")(crank, params), -1, 0)
+    bad = ~(np.isfinite(beta) & (np.abs(residual) <= CLOSURE_RESIDUAL) & (np.abs(slope) > CLOSURE_SLOPE))
+    if not bad.any():
+        return []
+    where = np.degrees(theta[bad])
+    return [f"the closure |C(beta) - A| = L on the {guide.name} guide at every crank angle (it has no "
+            f"solution, or the rod is tangent to the guide, at crank angles {where.min():.4g} to "
+            f"{where.max():.4g} deg)"]
+
+
 def check_full_turn(values):
     """Refuse a geometry whose crank cannot turn a full revolution (the guide's margins, each of
     which must exceed MARGIN_TOLERANCE)."""
     guide = schema.GUIDES[schema.selected(values, "guide")]
-    margins = np.atleast_1d(getattr(_kinematics, f"margins_{guide.name}")(kinematic_parameters(values)))
-    failed = [text for m, text in zip(margins, guide.margins) if not m > MARGIN_TOLERANCE]
+    if guide.closure == "numerical":
+        failed = _closure_failures(guide, kinematic_parameters(values))
+    else:
+        margins = np.atleast_1d(getattr(_kinematics, f"margins_{guide.name}")(kinematic_parameters(values)))
+        failed = [text for m, text in zip(margins, guide.margins) if not m > MARGIN_TOLERANCE]
     if failed:
         shown = ", ".join(f"{n} = {values.get(n, schema.PARAMETERS[n].default):g}"
                           for n in schema.KINEMATIC_PARAMETERS

@@ -85,11 +85,17 @@ class Option:
 @dataclass(frozen=True)
 class Preset:
     """A named set of option values: a model.  Options a preset does not set keep their default;
-    an option given explicitly overrides the preset's value."""
+    an option given explicitly overrides the preset's value.  settings: defaults of run parameters
+    that go with the model (the paper's rho_inf = 1), used where the run does not give them."""
 
     name: str
     options: dict
     doc: str
+    settings: dict = None
+
+    def __post_init__(self):
+        if self.settings is None:
+            object.__setattr__(self, "settings", {})
 
 
 @dataclass(frozen=True)

@@ -9,6 +9,7 @@ from typing import Optional
 import numpy as np
 
 from . import engine as _engine
+from . import time_scheme
 from . import kinematics as _kinematics
 from .kinematics import check_crank_steps
 from .cases import Case, run_case
@@ -20,6 +21,7 @@ from .newmark import NewmarkSettings, integrate
 from . import schema
 from .outputs import DeclaredOutputs, SIView, StateHistory, engine_columns, takes_engine_outputs
 from .parameters import SIMechanism
+from .theory import warn_beyond
 from .units import Scales, scales_of
 from .validation import choice, in_range, numbers_array
 
@@ -34,7 +36,7 @@ class SimulationResult(DeclaredOutputs):
     v* at x* = 1/2, u*(1), delta* of eq. 40; each an attribute, `result.v_mid`, and a keyword of
     the constructor), and every declared output by name (crankgen.outputs): step and reduction
     quantities as attributes (`slider_position`, `crank_speed`, `chord_angle`, `torque`,
-    `pin_force_x`, ...), fields as methods (`axial_force(x)`, `bending_moment(x)`,
+    `crank_on_rod_x`, ...), fields as methods (`axial_force(x)`, `bending_moment(x)`,
     `surface_strain(x, fiber)`, `chord_deflection(x)`), any of them by `quantity(name, ...)`.
 
     at_times: the same at the times a run was asked for (`simulate(..., times=...)`), else None.
@@ -149,9 +151,11 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
 
     initial: the rod's elastic state at t = 0, a crankgen.InitialState (displacement and velocity
     fields in the rigid moving frame at theta0, projected onto the mesh by nodal interpolation and
-    checked against the pin and the guide: crankgen.initial), a dict of its fields, or a pair (d0,
-    v0) of reduced vectors.  Default: the rigid mechanism with the rod undeformed and at rest in the
-    moving frame (the paper's initial conditions).
+    checked against the pin and the guide: crankgen.initial), a dict of its fields, a pair (d0,
+    v0) of reduced vectors, or a triple (d0, v0, a0) with generalized-alpha's algorithmic
+    accelerations (a SteadyState.state split in three: its orbit marched on exactly).  Default: the
+    rigid mechanism with the rod undeformed and at rest in the moving frame (the paper's initial
+    conditions).
 
     times: times at which to give the state and every output as well (`result.at_times`, a
     SimulationResult at those times, in the order given).  A time on a step of the run (within
@@ -186,7 +190,8 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     if revolutions is not None:
         revolutions = in_range("revolutions", revolutions, 0, None, True)
     case = run_case(mech, case, model=model, omega=omega, crank=crank, **fields)
-    settings = NewmarkSettings(scheme=case.integrator, tol=tol)
+    time_scheme.warn_steps([case], omega_b=None if scales is None else scales.omega_b)
+    settings = NewmarkSettings.of_case(case, tol=tol)
     model = Model.from_case(case)
     if not isinstance(history, (bool, np.bool_)):
         raise ParameterError(f"history must be True or False, got {history!r}")
@@ -215,24 +220,30 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     check_crank_steps(case, dt, n_steps * dt)
     if landing is not None:
         landing = list(zip(landing[0].astype(np.int64).tolist(), landing[1].tolist()))
-    d0, v0 = initial_state(case, initial, scales)
+    d0, v0, g0 = initial_state(case, initial, scales)
     info = dict(case.as_dict(), revolutions=revolutions, tol=tol, engine=engine)
     stops = sorted({k for k, _ in landing}) if landing is not None else []
     if engine == "numpy":
-        hist = integrate(model, d0, v0, 0.0, dt, n_steps, settings, progress=progress)
+        hist = integrate(model, d0, v0, 0.0, dt, n_steps, settings, progress=progress, g0=g0)
         result = _numpy_result(model, case, hist, info, store_nodes, scales)
         if landing is not None:
-            states = {k: (hist.d[k], hist.v[k], hist.a[k]) for k in stops}
+            # g: generalized-alpha's algorithmic accelerations; None at a start (step 0 without
+            # them: a step from there is the run's starter step too)
+            g = hist.a if hist.g is None else hist.g
+            states = {k: (hist.d[k], hist.v[k], hist.a[k], None if k == 0 and g0 is None else g[k])
+                      for k in stops}
             result = replace(result, at_times=_numpy_at_times(model, case, result, states, landing, t_req,
                                                               settings, store_nodes, info, scales))
         if not history:
             result = replace(result, states=None, rates=None, accelerations=None)
+        warn_beyond([result], "run")
         return result
 
     captured = {}
     y, iterations, status, fail_step, fail_res, D, V, A = _march_in_chunks(
         _engine.Batch([case]), d0[None], v0[None], n_steps, tol, history,
-        None if progress is None else (lambda done: progress(done, n_steps)), stops=stops, captured=captured)
+        None if progress is None else (lambda done: progress(done, n_steps)), stops=stops, captured=captured,
+        G0=None if g0 is None else g0[None])
     y, iterations = y[0], iterations[0].astype(np.int32)
     if history:
         D, V, A = D[0], V[0], A[0]
@@ -245,9 +256,10 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     if status[0] != _engine.OK:
         raise _failure(status[0], fail_step[0], fail_res[0], dt, result)
     if landing is not None:
-        states = {k: tuple(x[0] for x in captured[k]) for k in stops}
+        states = {k: tuple(None if x is None else x[0] for x in captured[k]) for k in stops}
         result = replace(result, at_times=_compiled_at_times(model, case, result, states, landing, t_req, tol,
                                                              store_nodes, info, scales))
+    warn_beyond([result], "run")
     return result
 
 
@@ -263,7 +275,7 @@ def _numpy_result(model, case, hist, info, store_nodes, scales):
 
 def _at_times_result(model, case, t_req, rows, info, store_nodes, scales):
     """The SimulationResult at the requested times from rows (the engine's outputs y, iterations,
-    d, v, a) each."""
+    d, v, a, ...) each."""
     y = np.array([r[0] for r in rows], dtype=float).reshape(len(rows), len(schema.ENGINE_OUTPUTS))
     D, V, A = (np.array([r[k] for r in rows], dtype=float) for k in (2, 3, 4))
     kin = _kinematics.case_state(case, t_req)
@@ -285,34 +297,40 @@ def _numpy_at_times(model, case, result, states, landing, t_req, settings, store
         if tau == 0.0:
             rows.append((_engine_row(result, k), 0) + states[k])
             continue
-        d, v, a = states[k]
-        hist = integrate(model, d, v, result.t[k], tau, 1, settings, a0=a)
+        d, v, a, g = states[k]
+        hist = integrate(model, d, v, result.t[k], tau, 1, settings, a0=a, g0=g)
         one = _numpy_result(model, case, hist, info, False, scales)
         rows.append((_engine_row(one, 1), int(hist.iterations[0]), hist.d[1], hist.v[1], hist.a[1]))
     return _at_times_result(model, case, t_req, rows, info, store_nodes, scales)
 
 
 def _compiled_at_times(model, case, result, states, landing, t_req, tol, store_nodes, info, scales):
-    """States at the requested times: steps of the run, or one Newmark step of the remaining length
-    from the step before (all such steps in one compiled batch).  states: {step: (d, v, a)}."""
+    """States at the requested times: steps of the run, or one step of the remaining length from the
+    step before (such steps in one compiled batch, those from a start in another: its step is the
+    starter).  states: {step: (d, v, a, g)}, g generalized-alpha's algorithmic accelerations (a for
+    Newmark; None at a start)."""
     between = [j for j, (_, tau) in enumerate(landing) if tau > 0.0]
     stepped = {}
-    if between:
-        ks = np.array([landing[j][0] for j in between])
-        taus = np.array([landing[j][1] for j in between])
-        batch = _engine.Batch([case] * len(between), dt=taus)
+    for group in ([j for j in between if states[landing[j][0]][3] is not None],
+                  [j for j in between if states[landing[j][0]][3] is None]):
+        if not group:
+            continue
+        ks = np.array([landing[j][0] for j in group])
+        taus = np.array([landing[j][1] for j in group])
+        batch = _engine.Batch([case] * len(group), dt=taus)
         D0, V0, A0 = (np.array([states[k][c] for k in ks]) for c in range(3))
-        res = _engine.march(batch, 1, D0=D0, V0=V0, A0=A0, t0=result.t[ks], tol=tol)
+        G0 = None if states[ks[0]][3] is None else np.array([states[k][3] for k in ks])
+        res = _engine.march(batch, 1, D0=D0, V0=V0, A0=A0, G0=G0, t0=result.t[ks], tol=tol)
         bad = np.nonzero(res.status != _engine.OK)[0]
         if bad.size:
             j = int(bad[0])
             raise ConvergenceError(
-                f"the step to the requested time t* = {t_req[between[j]]:.6g}: "
+                f"the step to the requested time t* = {t_req[group[j]]:.6g}: "
                 f"{_engine.STATUS_TEXT[int(res.status[j])]} (residual norm {res.fail_residual[j]:.3e})",
-                step=int(ks[j]) + 1, time=float(t_req[between[j]]), residual=float(res.fail_residual[j]),
+                step=int(ks[j]) + 1, time=float(t_req[group[j]]), residual=float(res.fail_residual[j]),
                 partial=result)
-        for i, j in enumerate(between):
-            stepped[j] = (res.y[i, 1], int(res.iterations[i, 0]), res.D[i], res.V[i], res.A[i])
+        for i, j in enumerate(group):
+            stepped[j] = (res.y[i, 1], int(res.iterations[i, 0]), res.D[i], res.V[i], res.A[i], res.G[i])
     rows = []
     for j, (k, tau) in enumerate(landing):
         if j in stepped:
@@ -327,7 +345,7 @@ CHUNK_BYTES = 64 * 2**20
 
 
 def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progress=None,
-                     chunks=20, stops=(), captured=None):
+                     chunks=20, stops=(), captured=None, G0=None):
     """Run the compiled engine from (D0, V0) in a few chunks, so that progress(done_steps) can be
     shown; a case that fails stops alone.  Returns (y, iterations, status, fail_step,
     fail_residual, D, V, A) with y (B, n_steps + 1, the engine's outputs) and the histories of the reduced
@@ -335,9 +353,11 @@ def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progr
     whose states (D, V, A), each (B, N), are put in the dict `captured`: taken from the states of
     the chunk that holds them (a chunk with stops keeps its states, and is at most CHUNK_BYTES of
     them long), so the work grows linearly with the stops; the marching is the same as without
-    them (chunks continue from the state and history where the last one ended)."""
+    them (chunks continue from the state and history where the last one ended).  G0: generalized-
+    alpha's algorithmic accelerations (None: the run starts, its first step the starter); the
+    captured states hold them as a fourth entry (None at step 0 of a start)."""
     B = len(batch)
-    D, V, A, previous = np.array(D0, dtype=float), np.array(V0, dtype=float), None, None
+    D, V, A, G, previous = np.array(D0, dtype=float), np.array(V0, dtype=float), None, G0, None
     status = np.zeros(B, dtype=np.int64)
     fail_step, fail_res = np.zeros(B, dtype=np.int64), np.zeros(B)
     ys, its, hist = [], [], ([], [], [])
@@ -346,15 +366,15 @@ def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progr
     if not keep_states and stops.size:
         size = min(size, max(1, CHUNK_BYTES // (3 * 8 * B * max(1, batch.N))))
     if stops.size and stops[0] == 0:
-        first = _engine.march(batch, 0, D0=D, V0=V, tol=tol, status=status)
+        first = _engine.march(batch, 0, D0=D, V0=V, G0=G, tol=tol, status=status)
         A, status = first.A, first.status
-        captured[0] = (D.copy(), V.copy(), A.copy())
+        captured[0] = (D.copy(), V.copy(), A.copy(), None if G is None else G.copy())
     done, next_stop = 0, int(np.searchsorted(stops, 1))
     while done < n_steps:
         k = min(size, n_steps - done)
         last_stop = int(np.searchsorted(stops, done + k, side="right"))
         holds = last_stop > next_stop                          # stops in (done, done + k]
-        res = _engine.march(batch, k, D0=D, V0=V, A0=A, step0=done, keep_history=bool(keep_states or holds),
+        res = _engine.march(batch, k, D0=D, V0=V, A0=A, G0=G, step0=done, keep_history=bool(keep_states or holds),
                             tol=tol, status=status, previous=previous)
         new_fail = (res.status != _engine.OK) & (status == _engine.OK)
         fail_step[new_fail], fail_res[new_fail] = res.fail_step[new_fail], res.fail_residual[new_fail]
@@ -364,12 +384,13 @@ def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progr
         for stop in stops[next_stop:last_stop]:
             j = int(stop) - done
             captured[int(stop)] = (res.D_history[:, j].copy(), res.V_history[:, j].copy(),
-                                   res.A_history[:, j].copy())
+                                   res.A_history[:, j].copy(),
+                                   (res.A_history if res.G_history is None else res.G_history)[:, j].copy())
         next_stop = last_stop
         if keep_states:
             for store, h in zip(hist, (res.D_history, res.V_history, res.A_history)):
                 store.append(h if done == 0 else h[:, 1:])
-        D, V, A, previous = res.D, res.V, res.A, res.previous
+        D, V, A, G, previous = res.D, res.V, res.A, res.G, res.previous
         done += k
         if not np.any(status == _engine.OK):
             # every case has stopped: the rest would be NaN rows (what the engine writes for a
@@ -433,6 +454,7 @@ def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=Fals
     (needed for the field outputs, e.g. axial_force)."""
     cases = [c if isinstance(c, Case) else Case.from_dict(c) for c in cases]
     revolutions = in_range("revolutions", revolutions, 0, None, True)
+    time_scheme.warn_steps(cases)
     groups = {}
     for i, c in enumerate(cases):
         groups.setdefault((c.n_elements, c.steps_per_rev, run_length(c, revolutions)[1]), []).append(i)
@@ -465,4 +487,5 @@ def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=Fals
             if status[j] != _engine.OK:
                 result = _failure(status[j], fail_step[j], fail_res[j], dt, result)
             out[i] = result
+    warn_beyond([r for r in out if isinstance(r, SimulationResult)], "run")
     return out

@@ -1,8 +1,9 @@
 """Periodic steady state over one crank revolution, computed directly by shooting.
 
-The unknown is the state x = (d, v) at theta = 0; the revolution map P (steps_per_rev Newton-
-Newmark steps) and its exact linearization J = dP/dx (engine.revolution) give Newton's method on
-P(x) - x = 0:  (J - I) dx = -(P(x) - x).  A few marched revolutions from the paper's zero initial
+The unknown is the state x = (d, v) at theta = 0, with the algorithmic accelerations a for
+generalized-alpha (crankgen.time_scheme: (d, v, a)); the revolution map P (steps_per_rev Newton
+steps of the case's time scheme) and its exact linearization J = dP/dx (engine.revolution) give
+Newton's method on P(x) - x = 0:  (J - I) dx = -(P(x) - x).  A few marched revolutions from the paper's zero initial
 conditions give the starting point.  Convergence measure: the scaled change
     |P(x) - x|_s = max_i |P(x)_i - x_i| / s_i  /  (1 + max_i |P(x)_i| / s_i)
 with s the natural size of each DOF (eps^2 for axial, eps for transverse; velocities likewise).
@@ -40,15 +41,19 @@ from typing import Optional
 
 import numpy as np
 
-from . import engine, schema
+from . import engine, schema, time_scheme
 from . import kinematics as _kinematics
 from .cases import Case, run_case
 from .errors import ParameterError
 from .limits import check_run_size
 from .outputs import DeclaredOutputs, engine_columns, takes_engine_outputs
+from .theory import warn_beyond
 from .validation import choice, in_range, integer
 
 STATUSES = ("periodic", "not-periodic", "unstable", "failed")
+# a state repeating every second revolution is a sub-harmonic response when its change per
+# revolution shrinks by less than this factor's complement over two revolutions
+STEADY_CHANGE = 0.999
 METHODS = ("shooting", "march")
 
 
@@ -75,7 +80,8 @@ class SteadyState(DeclaredOutputs):
     theta: np.ndarray = field(default=None, repr=False)
     t: np.ndarray = field(default=None, repr=False)
     outputs: dict = field(default=None, repr=False)       # the engine's outputs over the revolution, by name
-    state: np.ndarray = field(default=None, repr=False)   # reduced (d, v) at theta = 0, (2 N,)
+    state: np.ndarray = field(default=None, repr=False)   # reduced (d, v) at theta = 0, (2 N,); (d, v, a)
+    #                                                       (3 N,) for generalized-alpha (its algorithmic a)
     states: np.ndarray = field(default=None, repr=False)  # reduced displacements over the revolution
     rates: np.ndarray = field(default=None, repr=False)   # reduced velocities over the revolution
     accelerations: np.ndarray = field(default=None, repr=False)
@@ -100,6 +106,23 @@ def _scaled_change(X0, X1, S):
     return num / (1.0 + np.max(np.abs(X1) / S, axis=1))
 
 
+def _shooting_failure(history, status, J):
+    """Why shooting stopped, in numbers: the scaled changes |P(x) - x| of its iterates, and the
+    revolution map's multiplier nearest +1 at the last iterate (Newton's matrix J - I is singular
+    where a multiplier is 1: a fold, or a slowly decaying mode that the step does not damp)."""
+    parts = []
+    if status != engine.OK:
+        parts.append(f"a step of the revolution from its last iterate failed: {engine.STATUS_TEXT[int(status)]}")
+    if history:
+        parts.append("|P(x) - x| " + " -> ".join(f"{c:.2g}" for c in history[-4:]))
+    if J is not None and np.all(np.isfinite(J)):
+        mu = np.linalg.eigvals(J)
+        near = mu[np.argmin(np.abs(mu - 1.0))]
+        largest = mu[np.argmax(np.abs(mu))]
+        parts.append(f"multiplier nearest +1: {near.real:.4g}{near.imag:+.2g}j, largest |mu| = {abs(largest):.4g}")
+    return "; ".join(parts) or "no iterate"
+
+
 def _failure_text(res, b, dt, before=0, steps_per_rev=None):
     """The failure of case b in a march that started `before` steps into the run: the step counted
     from the start of the run (and its revolution)."""
@@ -120,22 +143,25 @@ class _BatchSolver:
         self.tol, self.max_revolutions = tol, max_revolutions
         self.warmup, self.max_shooting, self.method = warmup, max_shooting, method
         B, N = len(self.cases), self.batch.N
-        self.S = np.concatenate([self.batch.scales, self.batch.scales], axis=1)   # d and v alike
+        self.size = self.batch.state_size            # (d, v), or (d, v, a) for generalized-alpha
+        self.generalized = self.size == 3 * N
+        self.S = np.concatenate([self.batch.scales] * (self.size // N), axis=1)   # d, v (and a) alike
         self.status = np.array(["pending"] * B, dtype=object)
         self.message = [""] * B
         self.periods = np.zeros(B, dtype=int)
         self.iterations = np.zeros(B, dtype=int)
         self.residual = [None] * B
         self.multiplier = [None] * B
-        self.X = np.zeros((B, 2 * N))
+        self.X = np.zeros((B, self.size))
 
-    def _march(self, revs, active):
-        """March the active cases revs revolutions from their current X (theta = 0)."""
-        b, spr, N = self.batch, self.batch.steps_per_rev, self.batch.N
+    def _march(self, revs, active, start=False):
+        """March the active cases revs revolutions from their current X (theta = 0); start: from
+        (d, v) alone (a run's start: generalized-alpha's first step is its starter)."""
+        b, spr = self.batch, self.batch.steps_per_rev
         pre = np.where(active, engine.OK, engine.NOT_CONVERGED)
-        res = engine.march(b, revs * spr, D0=self.X[:, :N], V0=self.X[:, N:], status=pre,
-                           parallel=self.parallel)
-        X1 = np.concatenate([res.D, res.V], axis=1)
+        X = self.X[:, :2 * b.N] if start else self.X
+        res = engine.march_state(b, revs * spr, X, status=pre, parallel=self.parallel)
+        X1 = engine.join_state(res, self.generalized)
         for i in np.flatnonzero(active & (res.status != engine.OK)):
             self.status[i] = "failed"
             self._note(i, _failure_text(res, i, float(b.dt[i]), int(self.periods[i]) * spr, spr))
@@ -145,7 +171,7 @@ class _BatchSolver:
         B = len(self.cases)
         active = np.ones(B, dtype=bool)
         # warm-up from the paper's zero initial conditions
-        X1, _ = self._march(self.warmup, active)
+        X1, _ = self._march(self.warmup, active, start=True)
         self.periods[:] = self.warmup
         can_shoot = np.array([c.integrator == "newton" for c in self.cases]) & (self.method == "shooting")
         # a warm-up that diverged still leaves its last state before the failure: a periodic orbit
@@ -194,14 +220,18 @@ class _BatchSolver:
     def _shoot(self, active):
         best = np.full(len(self.cases), math.inf)
         start = self.X.copy()
+        history = [[] for _ in self.cases]           # the scaled change of every iterate, per case
         for it in range(1, self.max_shooting + 1):
             X1, J, st = engine.revolution(self.batch, self.X, active=active, parallel=self.parallel)
             change = _scaled_change(self.X, X1, self.S)
             for i in np.flatnonzero(active):
+                if st[i] == engine.OK and np.isfinite(change[i]):
+                    history[i].append(float(change[i]))
                 if st[i] != engine.OK or not np.isfinite(change[i]) or change[i] > 1e3 * min(best[i], 1.0):
                     active[i] = False           # shooting diverged: fall back to marching
                     self.X[i] = start[i]
-                    self._note(i, "shooting did not converge; marched instead")
+                    self._note(i, "shooting did not converge (" + _shooting_failure(
+                        history[i], st[i], J[i] if st[i] == engine.OK else None) + "); marched instead")
                     continue
                 best[i] = min(best[i], change[i])
                 self.iterations[i] = it
@@ -229,14 +259,20 @@ class _BatchSolver:
             self.X[idx] = self.X[idx] + delta
         for i in np.flatnonzero(active):
             self.X[i] = start[i]
-            self._note(i, f"shooting did not converge in {self.max_shooting} iterations; marched instead")
+            self._note(i, f"shooting did not converge in {self.max_shooting} iterations (" + _shooting_failure(
+                history[i], engine.OK, J[i]) + "); marched instead")
 
     def _march_until_periodic(self, active):
         """March revolution by revolution until the state repeats every revolution (periodic),
         every second revolution (a period-2, sub-harmonic response: reported, not averaged away),
-        or max_revolutions is reached."""
+        or max_revolutions is reached.  Repeating every second revolution is a sub-harmonic
+        response only when the change per revolution has stopped shrinking (by less than
+        1 - STEADY_CHANGE over two revolutions): a response settling onto a period-1 state through
+        an alternation that decays slowly (a Floquet multiplier near -1) repeats every second
+        revolution long before it repeats every revolution, and is marched on."""
         prev2 = np.full_like(self.X, np.nan)
         prev = self.X.copy()
+        changes = [[] for _ in self.cases]
         while active.any():
             X1, _ = self._march(1, active)
             for i in np.flatnonzero(active):
@@ -246,14 +282,23 @@ class _BatchSolver:
                 self.periods[i] += 1
                 change = _scaled_change(prev[i:i + 1], X1[i:i + 1], self.S[i:i + 1])[0]
                 two = _scaled_change(prev2[i:i + 1], X1[i:i + 1], self.S[i:i + 1])[0]
+                changes[i].append(float(change))
                 self.residual[i] = float(change)
                 self.X[i] = X1[i]
+                shrink = changes[i][-1] / changes[i][-3] if len(changes[i]) >= 3 and changes[i][-3] > 0 else 0.0
                 if change < self.tol:
                     self.status[i] = "periodic"
                     active[i] = False
-                elif two < self.tol or self.periods[i] >= self.max_revolutions:
-                    kind = ("repeats every 2 revolutions (sub-harmonic response)" if two < self.tol
-                            else "no periodic state with the crank period")
+                elif (two < self.tol and shrink >= STEADY_CHANGE) or self.periods[i] >= self.max_revolutions:
+                    if two < self.tol and shrink >= STEADY_CHANGE:
+                        kind = "repeats every 2 revolutions (sub-harmonic response)"
+                    else:
+                        kind = "no periodic state with the crank period"
+                        if 0.0 < shrink < 1.0:
+                            more = math.log(self.tol / change) / math.log(shrink) * 2
+                            kind += (f" within max_revolutions = {self.max_revolutions} (the change per "
+                                     f"revolution shrinks by {shrink:.3g} every 2 revolutions: about "
+                                     f"{more:.0f} more would reach tol)")
                     self.status[i] = "not-periodic"
                     self.message[i] = (f"{kind}: state still changing by {change:.2e} per revolution "
                                        f"after {self.periods[i]} revolutions")
@@ -264,8 +309,7 @@ class _BatchSolver:
         b, spr, N = self.batch, self.batch.steps_per_rev, self.batch.N
         show = np.array([s in ("periodic", "unstable") for s in self.status])
         pre = np.where(show, engine.OK, engine.NOT_CONVERGED)
-        res = engine.march(b, spr, D0=self.X[:, :N], V0=self.X[:, N:], status=pre,
-                           parallel=self.parallel, keep_history=True)
+        res = engine.march_state(b, spr, self.X, status=pre, parallel=self.parallel, keep_history=True)
         out = []
         for i, case in enumerate(self.cases):
             if show[i] and res.status[i] == engine.OK:
@@ -317,23 +361,27 @@ def _check_resolved(case, where=""):
 
 
 def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="shooting",
-                  warmup=3, max_shooting=12, parallel=None):
+                  warmup=3, max_shooting=12, parallel=None, _stacklevel=3):
     """Steady states of many cases (list in, list out, same order), batched: cases that share
     n_elements and steps_per_rev run together in the compiled engine.  A failing case comes back
     with status "failed" and its message; it does not stop the others.
     progress(done, total) is called after each batch.  parallel: run a batch's cases on all cores
     (default: when there is more than one case), or serially (False).  A case with
-    Omega* * steps_per_rev < 1 raises ParameterError before any work (see the module docstring)."""
+    Omega* * steps_per_rev < 1 raises ParameterError before any work (see the module docstring).
+    A StepWarning (once) says when a case's step leaves the rod's first bending or axial mode
+    unresolved and undamped (crankgen.time_scheme.step_warning)."""
     cases = [c if isinstance(c, Case) else Case.from_dict(c) for c in cases]
     for i, c in enumerate(cases):
         _check_resolved(c, f"cases[{i}]: " if len(cases) > 1 else "")
+    time_scheme.warn_steps(cases, stacklevel=_stacklevel)
     tol = in_range("tol", tol, 0, None, True)
     max_revolutions = integer("max_revolutions", max_revolutions, 1)
     warmup = integer("warmup", warmup, 1)
     choice("method", method, METHODS)
     groups = {}
     for i, c in enumerate(cases):
-        groups.setdefault((c.n_elements, c.steps_per_rev), []).append(i)
+        generalized = time_scheme.coefficients(c.rho_inf).generalized    # shooting's state size
+        groups.setdefault((c.n_elements, c.steps_per_rev, generalized), []).append(i)
     results = [None] * len(cases)
     done = 0
     for key in sorted(groups):
@@ -350,6 +398,8 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
         done += len(idx)
         if progress is not None:
             progress(done, len(cases))
+    warn_beyond(results, "periodic response" if len(results) == 1 else "periodic response of a case",
+                stacklevel=_stacklevel)
     return results
 
 
@@ -359,4 +409,4 @@ def steady_state(mech=None, omega=None, *, model=None, case=None, crank=None, to
     with the run's settings (omega, any Case field, the model `model` with explicit options
     overriding it, a periodic crank motion `crank`), or case=Case(...)."""
     case = run_case(mech, case, model=model, omega=omega, crank=crank, **fields)
-    return steady_states([case], tol=tol, max_revolutions=max_revolutions, method=method)[0]
+    return steady_states([case], tol=tol, max_revolutions=max_revolutions, method=method, _stacklevel=4)[0]

@@ -215,15 +215,23 @@ class PeakLoad:
 
 
 def peak_loads(result, scales: Optional[Scales] = None):
-    """The driving torque of largest magnitude, and the largest crank-pin and end (guide or
-    rocker) forces |F| over a result, with when: crankgen's units, or SI with `scales`."""
+    """The driving torque of largest magnitude, and the largest joint forces |F| over a result (the
+    pins at A and B, the guide or the rocker), with when: crankgen's units, or SI with `scales`."""
     from . import schema
     from .outputs import SIView
     view = result if scales is None else SIView(result, scales)
     t = np.asarray(view.t, dtype=float)
     out = []
-    for name, parts in (("torque", ("torque",)), ("pin force", ("pin_force_x", "pin_force_y")),
-                        ("end force", ("end_force_x", "end_force_y"))):
+    here = result.case.guide_record.name
+
+    def declared(*choices):
+        """(name, output) of the first choice whose output the case's guide has."""
+        return next((name, out) for name, out in choices if here in schema.OUTPUTS[out + "_x"].guides)
+    at_b = declared(("pin force at B (rod on slider)", "rod_on_slider"), ("pin force at B (rod on rocker tip)",
+                                                                        "rod_on_tip"))
+    guide = declared(("guide force (on slider)", "guide_on_slider"), ("rocker force (on its tip)", "rocker_on_tip"))
+    for name, parts in (("torque", ("torque",)), ("pin force at A (crank on rod)", ("crank_on_rod_x", "crank_on_rod_y")),
+                        (at_b[0], (at_b[1] + "_x", at_b[1] + "_y")), (guide[0], (guide[1] + "_x", guide[1] + "_y"))):
         values = [np.asarray(view.quantity(p), dtype=float) for p in parts]
         magnitude = np.sqrt(sum(v ** 2 for v in values))
         k = int(np.argmax(magnitude))

@@ -33,6 +33,7 @@ from .errors import ParameterError
 from .limits import check_run_size
 from .pool_workers import worker_init  # noqa: F401 (the command line's pool initializer)
 from .provenance import code_version
+from . import notices, time_scheme
 from .steady import _check_resolved, steady_states
 from .sweep_table import SweepTable, failed_row, plain
 from .validation import in_range, integer
@@ -53,7 +54,8 @@ def _run_chunk(cases, tol=1e-8, max_revolutions=400, parallel=None):
     serially (parallel=False): the executor is the parallelism, and a worker forked from a process
     whose OpenMP threads are running must not start OpenMP threads of its own."""
     try:
-        states = steady_states(cases, tol=tol, max_revolutions=max_revolutions, parallel=parallel)
+        with notices.quiet():                # the sweep warned once for all its cases
+            states = steady_states(cases, tol=tol, max_revolutions=max_revolutions, parallel=parallel)
         if len(states) != len(cases):
             raise RuntimeError(f"steady_states returned {len(states)} results for {len(cases)} cases")
         return [{k: plain(v) for k, v in s.row().items()} for s in states]
@@ -116,6 +118,7 @@ def sweep(cases, executor=None, checkpoint=None, batch_size=BATCH_SIZE, tol=1e-8
         raise ParameterError(f"progress must be None or a function progress(done, total), got "
                              f"{progress!r}")
     cases = _as_cases(cases)
+    time_scheme.warn_steps(cases)
     batch_size = integer("batch_size", batch_size, 1)
     tol = in_range("tol", tol, 0, None, low_open=True)
     max_revolutions = integer("max_revolutions", max_revolutions, 1)

@@ -52,8 +52,7 @@ def group_weights(case, steady):
     mesh, N = model.mesh, model.n_dofs
     geo, coef = model.geometry, model.coefficients
     batch = engine.Batch([case])
-    res = engine.march(batch, case.steps_per_rev, D0=steady.state[None, :N], V0=steady.state[None, N:],
-                       keep_history=True)
+    res = engine.march_state(batch, case.steps_per_rev, steady.state[None], keep_history=True)
     axial = np.zeros(N, dtype=bool)
     for node in range(1, mesh.n_elements + 1):
         axial[mesh.reduced_index(node, U)] = True

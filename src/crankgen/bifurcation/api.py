@@ -6,7 +6,8 @@ from dataclasses import replace
 import numpy as np
 
 from .. import kinematics as _kinematics
-from .. import schema
+from .. import notices, schema, time_scheme
+from ..notices import BeyondTheoryWarning
 from ..cases import run_case
 from ..errors import NoResultError, ParameterError
 from ..parameters import check_full_turn
@@ -81,14 +82,14 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
     BifurcationDiagram: branches (period, parameter, amplitude = max |v*(1/2)| over the orbit,
     stable, Floquet multipliers, states) and special points (fold, period-doubling,
     neimark-sacker), with the period-2 (then 4, ... up to max_period) branches born at period
-    doublings.  parameter: any continuable parameter of the schema (crankgen.schema.CONTINUABLE):
-    omega, eps, ms, mu, a, offset, a four-bar's rocker length c and ground pivot abscissa d
-    (guide=crankgen.Circle(...)), and a fluctuating crank's amplitude fluctuation
-    (crank=crankgen.Fluctuation(...)).  The case as in steady_state (a Mechanism with the run's
+    doublings.  parameter: any continuable parameter of the schema (crankgen.schema.CONTINUABLE:
+    {continuable}; a guide's or a crank motion's with that guide or motion, e.g.
+    guide=crankgen.Circle(...) or crank=crankgen.Fluctuation(...)).  The case as in steady_state (a Mechanism with the run's
     fields and model=, or case=Case(...)); the value of `parameter` given among them is replaced
     by start.  The start must have a periodic response (NoResultError otherwise; a continuation
     can start from either end of its range).  Steps ds, ds_min, ds_max are arclengths in the metric
-    |dy|^2 / dim + dp^2, y the state in v*-like units; no step changes the parameter by more than
+    |dy|^2 / dim + dp^2, y the state (d, v) in v*-like units (generalized-alpha's algorithmic
+    accelerations, slaved to the orbit, do not count); no step changes the parameter by more than
     dp_max (default |stop - start| / 50).  progress(text) receives progress lines.
     corrector ("broyden" or "newton"), predictor ("quadratic" or "tangent") and derivative
     ("exact" or "central", the map's parameter derivative) select the methods
@@ -121,7 +122,8 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
     t0 = time.perf_counter()
     fmap = MechanismMap(c0, parameter, derivative=choice("derivative", derivative, ("exact", "central")))
     from ..steady import steady_states
-    first = steady_states([c0])[0]
+    with notices.quiet(BeyondTheoryWarning):            # the continuation warns once, for every point
+        first = steady_states([c0])[0]
     if first.state is None:
         other = ("; a continuation can start from the other end of the range (swap its start and "
                  f"stop: from {stop:g} to {start:g})" if first.status != "failed" else "")
@@ -146,7 +148,18 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
                 corrector=corrector, predictor=predictor, derivative=derivative,
                 map_evaluations=cont.evaluations, map_values=cont.values, wall_time=time.perf_counter() - t0)
     diagram.info = info
+    diagram.flag_range()
+    flag = diagram.beyond_theory
+    if flag:
+        notices.warn(BeyondTheoryWarning, f"branches of the continuation reach beyond the theory "
+                     f"({flag.reason}): their numbers there are the equations' output, not a prediction of the "
+                     f"rod; branch.beyond_theory marks the points", stacklevel=2)
     return diagram
+
+
+continuation.__doc__ = continuation.__doc__.replace("{continuable}", ", ".join(
+    f"{n} ({' and '.join(p.readers)} {p.owner})" if p.owner in ("guide", "motion") and len(p.readers) == 1 else n
+    for n, p in schema.PARAMETERS.items() if p.continuable))
 
 
 def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up", *, model=None, transient=100,
@@ -174,10 +187,11 @@ def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up
         make_case(None, parameter, v, c0)                      # validates every value
     transient = integer("transient", transient, 0)
     samples = integer("samples", samples, 2)
+    time_scheme.warn_steps([c0])
     max_period = integer("max_period", max_period, 1)
     t0 = time.perf_counter()
     fmap = MechanismMap(c0, parameter)
-    x0 = np.zeros(fmap.dim)
+    x0 = fmap.rest()
     result = sweep_map(fmap, values, x0, direction, transient, samples, max_period,
                        in_range("tol", tol, 0, None, True),
                        in_range("lyapunov_tol", lyapunov_tol, 0, None, True), progress)

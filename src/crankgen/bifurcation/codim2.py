@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .defining import Defining
-from .maps import MapError
+from .maps import MapError, state_weights
 from ..errors import CrankgenError, NoResultError, ParameterError
 
 CODIM2 = {
@@ -138,7 +138,8 @@ class CurveContinuer:
         self.hi = np.asarray(hi, dtype=float)
         n = defining.n
         self.W = np.ones(defining.size)
-        self.W[:n] = 1.0 / n        # scaled by the start's state size (start)
+        weights = state_weights(defining.map)       # the map's (maps.state_weights), or 1/n each
+        self.W[:n] = 1.0 / n if weights is None else weights
         self.log = log or (lambda text: None)
         self.names = defining.map.names
 

@@ -1,9 +1,11 @@
 """Pseudo-arclength continuation of the fixed points of P^k for a map x -> P(x, p) (maps.Map).
 
-Unknown z = (x, p); metric <a, b> = a_x . b_x / dim + a_p b_p.  A step predicts z + ds t along the
+Unknown z = (x, p); metric <a, b> = sum_i w_i a_x,i b_x,i + a_p b_p, w_i = 1/dim unless the map
+weighs its components (maps.state_weights: the generalized-alpha mechanism's (d, v) as Newmark's, its
+algorithmic accelerations 0).  A step predicts z + ds t along the
 unit tangent t (plus a curvature term: _predict) and corrects on
     P^k(x, p) - x = 0,   <t, z - z_pred> = 0
-(bordered Jacobian [[dP/dx - I, dP/dp], [t_x / dim, t_p]]) with one of two correctors:
+(bordered Jacobian [[dP/dx - I, dP/dp], [w t_x, t_p]]) with one of two correctors:
 - "broyden" (default): quasi-Newton from the Jacobians of the accepted point the step starts from
   (or of the prediction where there is none), with Broyden's rank-one update after each iteration,
   which evaluates P^k alone (for the mechanism a march, several times cheaper than P^k with its
@@ -25,8 +27,11 @@ Test functions between consecutive points (each is located by the Illinois false
 the arclength from the earlier point, to ~1e-9 in the test function, or, once it is below 1e-6, until
 STALLED iterations in a row fail to halve its smallest value: its noise floor, set by the
 corrector's tolerance, is reached):
-- fold: t_p, the parameter component of the tangent, changes sign (turning point) and so does
-  det(dP/dx - I) (a real multiplier through +1); located on the latter, or on t_p if that fails;
+- fold: the branch turns, t_p, the parameter component of the tangent, changes sign between two
+  points or the parameter's direction along the branch reverses at a point (a turn whose t_p sign
+  change falls outside the interval), and det(dP/dx - I) changes sign across the bracket (a real
+  multiplier through +1); located on the latter, or on t_p if that fails, along the tangent of the
+  bracket's first point, or where both fail (a sharp turn) along the chord of the bracket;
 - period-doubling: (mu_c + 1) times the sign of prod(mu + 1) over the others, mu_c the real
   multiplier nearest -1 (det(dP/dx + I) changes sign);
 - Neimark-Sacker: the parity of the number of complex multipliers outside the unit circle changes;
@@ -48,7 +53,7 @@ import numpy as np
 
 from ._blas import single_thread
 from .diagram import BifurcationDiagram, Branch, SpecialPoint
-from .maps import MapError
+from .maps import MapError, state_weights
 from ..errors import CrankgenError, NoResultError, ParameterError
 
 KINDS = ("fold", "period-doubling", "neimark-sacker")
@@ -63,7 +68,7 @@ EASY, HARD = {"broyden": 4, "newton": 2}, {"broyden": 8, "newton": 5}
 
 @dataclass
 class Settings:
-    """Step control and tolerances (the metric is <a, b> = a_x . b_x / dim + a_p b_p)."""
+    """Step control and tolerances (the metric is <a, b> = w a_x . b_x + a_p b_p: module docstring)."""
 
     ds: float = 0.01             # first step
     ds_min: float = 1e-5         # smallest step before the branch is given up
@@ -139,13 +144,16 @@ class Continuer:
         self.map = fmap
         self.s = (settings or Settings()).check()
         self.lo, self.hi = min(p_lo, p_hi), max(p_lo, p_hi)
-        self.w = 1.0 / fmap.dim
+        weights = state_weights(fmap)    # per state component, or 1/dim each (maps.state_weights)
+        self.w = 1.0 / fmap.dim if weights is None else weights
         self.log = log or (lambda text: None)
         self.evaluations = 0         # of P^k with its Jacobians
         self.values = 0              # of P^k alone
 
     # -- linear algebra ------------------------------------------------------------------------
     def _dot(self, a, b):
+        if np.ndim(self.w):
+            return float(np.dot(self.w * a[:-1], b[:-1])) + float(a[-1] * b[-1])
         return self.w * float(np.dot(a[:-1], b[:-1])) + float(a[-1] * b[-1])
 
     def _bordered(self, jx, jp, row):
@@ -335,19 +343,38 @@ class Continuer:
 
     def _locate(self, kind, a, b, period):
         """Special point between accepted points a and b (b corrected from a along a.t).  A fold
-        is located on det(dP/dx - I) (its critical multiplier), or on t_p where that fails."""
+        is located on det(dP/dx - I) (its critical multiplier), or on t_p where that fails; where
+        both fail along a.t (a sharp turn: the hyperplanes normal to a.t beyond the turning point
+        miss the branch), along the chord from a to b (the hyperplanes normal to the chord cross
+        the branch once on either side of the turning point), on t_p then on the determinant."""
         sp = self._illinois(kind, a, b, period, True)
         if sp is None and kind == "fold":
             sp = self._illinois(kind, a, b, period, False)
+        if sp is None and kind == "fold":
+            chord = b.z - a.z
+            along = chord / math.sqrt(max(self._dot(chord, chord), 1e-300))
+            sp = self._illinois(kind, a, b, period, False, along)
+            if sp is None:
+                sp = self._illinois(kind, a, b, period, True, along)
         if sp is None:
             self.log(f"period {period}: {kind} test changed sign between {self.map.parameter} = "
                      f"{a.p:.6g} and {b.p:.6g}, but no critical multiplier was found there; "
                      f"not reported")
         return sp
 
-    def _illinois(self, kind, a, b, period, locate):
-        s_a, s_b = 0.0, self._dot(a.t, b.z - a.z)
-        f_a, f_b = self._test(kind, a, locate), self._test(kind, b, locate)
+    def _oriented(self, kind, pt, locate, along):
+        """The test function of pt; a fold's t_p with the tangent oriented along `along`."""
+        if kind == "fold" and not locate and along is not None:
+            return float(pt.t[-1]) * (1.0 if self._dot(pt.t, along) >= 0.0 else -1.0)
+        return self._test(kind, pt, locate)
+
+    def _illinois(self, kind, a, b, period, locate, along=None):
+        """Illinois false position for the test function between a and b, on the points corrected
+        on hyperplanes normal to `along` (a unit vector in the metric; default a.t) at distances s
+        from a along it."""
+        d = a.t if along is None else along
+        s_a, s_b = 0.0, self._dot(d, b.z - a.z)
+        f_a, f_b = self._oriented(kind, a, locate, along), self._oriented(kind, b, locate, along)
         if f_a * f_b >= 0:
             return None
         best = a if abs(f_a) < abs(f_b) else b
@@ -357,17 +384,17 @@ class Continuer:
         for _ in range(40):
             s_c = (s_a * f_b - s_b * f_a) / (f_b - f_a)
             try:
-                pt = self.correct(a.z + s_c * a.t, a.t, period, max_jump=jump, near=(a.jx, a.jp))
-                pt.t = self._tangent(pt, a.t)
+                pt = self.correct(a.z + s_c * d, d, period, max_jump=jump, near=(a.jx, a.jp))
+                pt.t = self._tangent(pt, d)
             except (_Failed, np.linalg.LinAlgError):
                 s_c = 0.5 * (s_a + s_b)
                 try:
-                    pt = self.correct(a.z + s_c * a.t, a.t, period, max_jump=jump, near=(a.jx, a.jp))
-                    pt.t = self._tangent(pt, a.t)
+                    pt = self.correct(a.z + s_c * d, d, period, max_jump=jump, near=(a.jx, a.jp))
+                    pt.t = self._tangent(pt, d)
                 except (_Failed, np.linalg.LinAlgError):
                     break
-            f_c = self._test(kind, pt, locate)
-            f_best = abs(self._test(kind, best, locate))
+            f_c = self._oriented(kind, pt, locate, along)
+            f_best = abs(self._oriented(kind, best, locate, along))
             near = f_best < NOISE * self.s.locate_tol
             stalled = stalled + 1 if near and abs(f_c) >= 0.5 * f_best else 0
             if abs(f_c) < f_best:
@@ -389,6 +416,26 @@ class Continuer:
               "neimark-sacker": abs(abs(mu_c) - 1.0)}[kind] < 1e-4
         return self._finish(best, period) if ok else None
 
+    def _fold(self, points, new, period, turned):
+        """(a, fold or None) where the branch turns: t_p changes sign from prev = points[-1] to new
+        (bracket [prev, new]), or p's direction reverses at prev (bracket [before, new]); and
+        det(dP/dx - I) changes sign across [before, new] (t_p alone is noise where the branch runs
+        flat in p).  a: the bracket's first point (module docstring)."""
+        prev = points[-1]
+        before = points[-2] if len(points) > 1 else None
+        if prev.t[-1] * new.t[-1] < 0:
+            a = prev
+        elif (before is not None and (new.p - prev.p) * (prev.p - before.p) < 0
+              and id(before) not in turned and id(prev) not in turned):
+            a = before
+        else:
+            return prev, None
+        outer = before if before is not None and id(before) not in turned else prev
+        if self._test("fold", outer, True) * self._test("fold", new, True) >= 0 and \
+                self._test("fold", a, True) * self._test("fold", new, True) >= 0:
+            return a, None
+        return a, self._locate("fold", a, new, period)
+
     # -- one branch ----------------------------------------------------------------------------
     def first_point(self, x0, p0, period=1):
         """Fixed point of P^k at p = p0 from the guess x0 (natural-parameter Newton)."""
@@ -408,6 +455,7 @@ class Continuer:
         s = self.s
         start.t = self._tangent(start, t0)
         points, specials = [start], []
+        turned = set()                # ids of the points next to a located fold
         ds = s.ds
         e_p = np.zeros(self.map.dim + 1)
         e_p[-1] = 1.0
@@ -445,20 +493,26 @@ class Continuer:
                     break
             found = []
             for kind in KINDS:
-                if kind == "fold" and merge is not None and max(
-                        abs(prev.p - merge[2]), abs(new.p - merge[2])) < 1e-6 * (1 + abs(merge[2])):
-                    continue      # flat start of a branch born at a period doubling: see docstring
+                if kind == "fold":
+                    if merge is not None and max(abs(prev.p - merge[2]),
+                                                 abs(new.p - merge[2])) < 1e-6 * (1 + abs(merge[2])):
+                        continue  # flat start of a branch born at a period doubling: see docstring
+                    a, sp = self._fold(points, new, period, turned)
+                    if sp is not None:
+                        turned.add(id(a))
+                        turned.add(id(new))
+                        found.append((self._dot(a.t, sp.z - a.z) - self._dot(a.t, prev.z - a.z), kind, sp))
+                    continue
                 fa, fb = self._test(kind, prev), self._test(kind, new)
-                if kind == "fold" and fa * fb < 0:
-                    # a turning point also has a real multiplier through +1 (a sign change of
-                    # t_p alone is noise where the branch runs flat in p)
-                    fa, fb = self._test(kind, prev, True), self._test(kind, new, True)
                 if fa * fb < 0:
                     sp = self._locate(kind, prev, new, period)
                     if sp is not None:
                         found.append((self._dot(prev.t, sp.z - prev.z), kind, sp))
-            for _, kind, sp in sorted(found, key=lambda f: f[0]):
-                points.append(sp)
+            for where, kind, sp in sorted(found, key=lambda f: f[0]):
+                if where < 0:                 # a fold before prev (the branch turned at prev)
+                    points.insert(len(points) - 1, sp)
+                else:
+                    points.append(sp)
                 specials.append((kind, sp))
                 self.log(f"period {period}: {kind} at {self.map.parameter} = {sp.p:.7g}, "
                          f"amplitude {sp.amplitude:.6g}")
@@ -481,7 +535,7 @@ class Continuer:
         mu, vec = np.linalg.eig(pd.jx)
         c = int(np.argmin(np.abs(mu + 1.0)))
         e = np.real(vec[:, c])
-        e = e / math.sqrt(self.w * float(e @ e))
+        e = e / math.sqrt(float(np.sum(self.w * (e * e))) if np.ndim(self.w) else self.w * float(e @ e))
         t_e = np.append(e, 0.0)
         h = self.s.switch_step
         for _ in range(4):
@@ -509,6 +563,7 @@ class Continuer:
         first = self.first_point(x0, p0)
         work = [(first, t0, 1, None, "start")]
         branches, specials = [], []
+        shown = getattr(self.map, "reported", self.map.dim)   # as the branches report them
         while work:
             start, t_start, period, merge, origin = work.pop(0)
             pts, found, reason = self.branch(start, t_start, period, merge)
@@ -518,7 +573,7 @@ class Continuer:
                 specials.append(SpecialPoint(
                     kind=kind, parameter=sp.p, amplitude=float(sp.amplitude), period=period,
                     branch=index, multiplier=self.critical(kind, sp),
-                    state=self.map.physical(sp.x), multipliers=np.array(sp.mu),
+                    state=self.map.physical(sp.x), multipliers=np.array(sp.mu[:shown]),
                     parameter_name=self.map.parameter, range=(self.lo, self.hi)))
                 if kind == "period-doubling" and 2 * period <= self.s.max_period:
                     pt, t_e, h = self.switch(sp, period)
@@ -532,13 +587,13 @@ class Continuer:
                                   sorted(specials, key=lambda s: (s.period, s.parameter)))
 
     def _make_branch(self, pts, period, origin, reason):
-        dim = self.map.dim
+        shown = getattr(self.map, "reported", self.map.dim)   # a map may hold algorithmic roots
         return Branch(
             period=period, parameter_name=self.map.parameter,
             parameter=np.array([p.p for p in pts]),
             amplitude=np.array([p.amplitude for p in pts]),
             stable=np.array([bool(abs(p.mu[0]) < 1.0) for p in pts]),
-            multipliers=np.array([p.mu for p in pts]).reshape(len(pts), dim),
+            multipliers=np.array([p.mu[:shown] for p in pts]).reshape(len(pts), shown),
             states=np.array([self.map.physical(p.x) for p in pts]).reshape(len(pts), -1),
             section=np.array([p.section[:period] for p in pts]).reshape(len(pts), period),
             origin=origin, stop_reason=reason)

@@ -1,6 +1,7 @@
 """BifurcationDiagram: branches of periodic orbits and their special points; CSV and plot."""
 
 import csv
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -60,6 +61,10 @@ class Branch:
     #                              start of each revolution of the orbit (mechanism: v* at theta = 0)
     origin: str = "start"
     stop_reason: str = ""
+    # the range of the theory point by point (crankgen.theory; the mechanism's diagrams): |v|/L =
+    # eps amplitude, and whether it exceeds theory.DEFLECTION_LIMIT (None for another map)
+    deflection_over_L: np.ndarray = field(default=None, repr=False)
+    beyond_theory: np.ndarray = field(default=None, repr=False)
     quantities: dict = field(default_factory=dict)   # name -> (n,): the orbits' physical quantities
     quantity_units: dict = field(default_factory=dict)   # name -> units (bifurcation/quantities.py)
     quantity_notes: list = field(default_factory=list)   # points whose quantities failed, and why
@@ -89,6 +94,25 @@ class BifurcationDiagram:
     branches: list
     special_points: list
     info: dict = field(default_factory=dict)   # the model and settings it was computed for
+
+    def flag_range(self):
+        """Set every branch's deflection_over_L and beyond_theory (a mechanism's diagram: eps known)."""
+        from ..theory import DEFLECTION_LIMIT
+        for br in self.branches:
+            if len(br) and self.eps_at(br.parameter[0]) is not None:
+                eps = np.array([self.eps_at(p) for p in br.parameter])
+                br.deflection_over_L = np.abs(eps * br.amplitude)
+                br.beyond_theory = br.deflection_over_L > DEFLECTION_LIMIT
+
+    @property
+    def beyond_theory(self):
+        """The RangeFlag (crankgen.theory) of the whole diagram: its largest |v|/L over every branch
+        point (the axial strain is not computed along branches); each branch's beyond_theory gives
+        the points."""
+        from ..theory import range_flag
+        values = [np.max(br.deflection_over_L) for br in self.branches
+                  if br.deflection_over_L is not None and len(br)]
+        return range_flag(max(values) if values else math.nan)
 
     def eps_at(self, p):
         """The amplitude's unit (v* = v / r: the radius of gyration r) in L at parameter value p, the

@@ -111,7 +111,9 @@ def from_dict(x):
             parameter_name=s.get("parameter_name") or name,
             case=case_of(info, name, s["parameter"]),
             range=None if s.get("range") is None else tuple(s["range"])))
-    return BifurcationDiagram(name, branches, points, info)
+    d = BifurcationDiagram(name, branches, points, info)
+    d.flag_range()
+    return d
 
 
 def write_json(d, path):
@@ -199,4 +201,6 @@ def read_csv(folder, info=None):
             kind=r["kind"], parameter=p, amplitude=_value(r["amplitude"]), period=int(r["period"]), branch=b,
             multiplier=complex(_value(r["multiplier_re"]), _value(r["multiplier_im"])), state=br.states[i].copy(),
             multipliers=br.multipliers[i].copy(), parameter_name=name, case=case_of(info, name, p)))
-    return BifurcationDiagram(name, branches, points, info)
+    d = BifurcationDiagram(name, branches, points, info)
+    d.flag_range()
+    return d

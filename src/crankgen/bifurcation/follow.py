@@ -49,8 +49,8 @@ def follow(point, parameter, start, stop, *, bounds=None, ds=0.02, ds_min=1e-5, 
     codimension-two points met (cusp, fold-flip, 1:2 resonance, ...; codim2.py).  The curve is
     followed both ways from the point inside the box: the first parameter within `bounds` (default
     the diagram's range), the second within [start, stop], which must hold the point's value.  Steps
-    ds, ds_min, ds_max are arclengths in the metric |dy|^2 / dim + |dq|^2 (y the state in v*-like
-    units, q the parameters in units of the box's widths); no step changes a parameter by more than
+    ds, ds_min, ds_max are arclengths in the metric |dy|^2 / dim + |dq|^2 (y the state (d, v) in
+    v*-like units, generalized-alpha's algorithmic accelerations left out, q the parameters in units of the box's widths); no step changes a parameter by more than
     dq_max of its width.  tol: the corrector's tolerance; fd_step: the relative step of the second
     derivatives (defining.py); progress(text) receives progress lines."""
     from .diagram import SpecialPoint

@@ -8,13 +8,26 @@ Periodic orbits of period k are the fixed points of P^k.  A map supplies
   applications of P and the observable at each of them (its points on the Poincare section);
 - iterate(x, p, n): the states after 0..n applications and one observable sample each
   (the Poincare section of the brute-force sweeps);
-- physical(x): the state in the user's units (the core may work in scaled coordinates).
+- physical(x): the state in the user's units (the core may work in scaled coordinates);
+- reported (optional): how many multipliers, the largest, a branch reports (the mechanism's map
+  under generalized-alpha has algorithmic roots besides the mechanism's: crankgen.time_scheme);
+- weights (optional): the weight of each state component in the continuation's metric (default
+  1/dim each; state_weights).  The mechanism's map under generalized-alpha weighs (d, v) as
+  Newmark's map does and its algorithmic accelerations not at all: they are slaved to the orbit,
+  and their stiff components, large in the scaled units, would otherwise set the step length.
 FunctionMap builds all of this from a one-application function f(x, p) -> (f, df/dx, df/dp).
 """
 
 import numpy as np
 
 from ..errors import CrankgenError
+
+
+def state_weights(fmap):
+    """(dim,) weights of the state's components in a continuation's metric, the map's own
+    `weights`; None where it has none (1/dim each)."""
+    w = getattr(fmap, "weights", None)
+    return None if w is None else np.asarray(w, dtype=float)
 
 
 class MapError(CrankgenError):

@@ -1,7 +1,8 @@
 """The slider-crank as a map: the crank-revolution shooting map of the engine.
 
-State y = x / s, x = (d, v) the reduced displacements and velocities at theta = 0 and s the natural
-size of each DOF at the starting case (eps^2 axial, eps transverse; velocities alike), so that every
+State y = x / s, x = (d, v) the reduced displacements and velocities at theta = 0 (with the
+algorithmic accelerations a for generalized-alpha: (d, v, a), crankgen.time_scheme) and s the natural
+size of each DOF at the starting case (eps^2 axial, eps transverse; rates alike), so that every
 component is of the order of v* and the arclength metric is well conditioned.  P^k and its exact
 Jacobian come from engine.shoot(..., revolutions=k), and so does dP^k/dp (derivative="exact", the
 default): one more sensitivity column of the linearized steps, forced by dR/dp at the converged
@@ -28,6 +29,17 @@ V_MID = schema.ENGINE_OUTPUTS.index("v_mid")     # the observable: v* at x* = 1/
 
 # the parameters a continuation may vary: those the schema declares continuable
 PARAMETERS = schema.CONTINUABLE
+
+
+def state_metric(N):
+    """The weights of generalized-alpha's state (d, v, a) in the continuation's metric
+    (maps.state_weights): 1/(2N) on (d, v), as Newmark's map (whose metric is the default 1/dim),
+    and 0 on the algorithmic accelerations, which are slaved to the orbit; in the scaled units their
+    stiff (axial) components are several times larger than (d, v) and would otherwise set the step
+    length and let the corrector jump between branches."""
+    w = np.full(3 * N, 1.0 / (2 * N))
+    w[2 * N:] = 0.0
+    return w
 
 
 def orbit_peak(v):
@@ -67,8 +79,11 @@ class MechanismMap(Map):
         self.case, self.parameter, self.dp_step, self.derivative = case, parameter, dp_step, derivative
         b = self._template = engine.Batch([case], entries=("march", "revolution"))
         self.N, self.spr = b.N, b.steps_per_rev
-        self.s = np.concatenate([b.scales[0], b.scales[0]])
-        self.dim = 2 * self.N
+        self.dim = b.state_size
+        self.generalized = self.dim == 3 * self.N
+        self.s = np.concatenate([b.scales[0]] * (self.dim // self.N))
+        self.reported = 2 * self.N        # the multipliers reported (time_scheme.reported_multipliers)
+        self.weights = state_metric(self.N) if self.generalized else None
         self._cache = {}
         self._orbits = {}
 
@@ -135,18 +150,27 @@ class MechanismMap(Map):
         """dP^k/dp by a central difference of two marches at p -/+ h (derivative="central")."""
         h = self.dp_step * max(1.0, abs(p))
         b2 = self._batch(("pair", p), [p - h, p + h])
-        N = self.N
         XX = np.repeat(X[None], 2, axis=0)
-        res = engine.march(b2, period * self.spr, D0=XX[:, :N], V0=XX[:, N:], parallel=False)
+        res = engine.march_state(b2, period * self.spr, XX, parallel=False)
         self._check(res.status, p, "march for dP/dp")
-        Xh = np.concatenate([res.D, res.V], axis=1)
+        Xh = engine.join_state(res, self.generalized)
         return (Xh[1] - Xh[0]) / (2 * h) / self.s
+
+    def rest(self):
+        """The scaled state of the mechanism at rest at theta = 0 (the rod undeformed): zero, with
+        generalized-alpha's algorithmic accelerations None (NaN): a march from it starts the run
+        (the scheme's starter step)."""
+        y = np.zeros(self.dim)
+        if self.generalized:
+            y[2 * self.N:] = np.nan
+        return y
 
     def march(self, y, p, revolutions, history=False):
         X = np.asarray(y, dtype=float) * self.s
+        if self.generalized and np.isnan(X[2 * self.N:]).all():
+            X = X[:2 * self.N]                 # from rest: a start
         b = self._batch(("one", p), [p])
-        res = engine.march(b, revolutions * self.spr, D0=X[None, :self.N], V0=X[None, self.N:],
-                           keep_history=history, parallel=False)
+        res = engine.march_state(b, revolutions * self.spr, X[None], keep_history=history, parallel=False)
         if res.status[0] != engine.OK:
             step = int(res.fail_step[0])
             raise MapError(f"march at {self.parameter} = {p:.6g} failed: "
@@ -159,13 +183,13 @@ class MechanismMap(Map):
             return known
         res = self.march(y, p, period, history=True)
         idx = np.arange(period + 1) * self.spr
-        states = np.concatenate([res.D_history[0, idx], res.V_history[0, idx]], axis=1) / self.s
+        states = engine.join_state(res, self.generalized, idx) / self.s
         return orbit_peak(res.y[0, :, V_MID]), states, res.y[0, idx, V_MID]
 
     def iterate(self, y, p, n, jacobian=False):
         res = self.march(y, p, n, history=True)
         idx = np.arange(n + 1) * self.spr
-        states = np.concatenate([res.D_history[0, idx], res.V_history[0, idx]], axis=1) / self.s
+        states = engine.join_state(res, self.generalized, idx) / self.s
         jacs = None
         if jacobian:
             jacs = np.array([self.evaluate(states[j], p, 1, dp=False)[1] for j in range(n)])

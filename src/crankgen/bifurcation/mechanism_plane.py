@@ -1,6 +1,7 @@
 """The mechanism's crank-revolution map in two parameters (a PlaneMap for codim2.py).
 
-The same map as MechanismMap (mechanism.py): scaled state y = x / s at theta = 0, P^k and its exact
+The same map as MechanismMap (mechanism.py): scaled state y = x / s at theta = 0 ((d, v), or (d, v, a)
+for generalized-alpha), P^k and its exact
 Jacobian from engine.shoot.  dP^k/dp for both parameters: the engine's exact parameter column
 (one sensitivity column more, forced by dR/dp at each converged step) for the case perturbed along
 p1, and for a copy of it perturbed along p2, in one batch (the engine shoots a batch's cases on
@@ -20,7 +21,7 @@ import numpy as np
 from .. import engine
 from ..errors import ParameterError
 from .maps import MapError
-from .mechanism import PARAMETERS, V_MID, orbit_peak
+from .mechanism import PARAMETERS, V_MID, orbit_peak, state_metric
 from .plane_maps import PlaneMap
 
 
@@ -45,8 +46,10 @@ class MechanismPlaneMap(PlaneMap):
         self.case, self.names, self.dp_step = case, names, float(dp_step)
         b = self._template = engine.Batch([case], entries=("march", "revolution"))
         self.N, self.spr = b.N, b.steps_per_rev
-        self.s = np.concatenate([b.scales[0], b.scales[0]])
-        self.dim = 2 * self.N
+        self.dim = b.state_size                 # (d, v), or (d, v, a) for generalized-alpha
+        self.generalized = self.dim == 3 * self.N
+        self.s = np.concatenate([b.scales[0]] * (self.dim // self.N))
+        self.weights = state_metric(self.N) if self.generalized else None
         self._orbits = {}
         self.shootings = 0          # cases shot (each with its Jacobian)
 
@@ -119,11 +122,11 @@ class MechanismPlaneMap(PlaneMap):
         h = self._step(p, k)
         b2 = self._batch([self._moved(p, k, -1.0), self._moved(p, k, 1.0)])
         X = np.repeat((y * self.s)[None], 2, axis=0)
-        res = engine.march(b2, period * self.spr, D0=X[:, :self.N], V0=X[:, self.N:], parallel=False)
+        res = engine.march_state(b2, period * self.spr, X, parallel=False)
         for st in res.status:
             if st != engine.OK:
                 raise MapError(f"march for dP/d{self.names[k]} at {self._where(p)}: {engine.STATUS_TEXT[int(st)]}")
-        Xh = np.concatenate([res.D, res.V], axis=1)
+        Xh = engine.join_state(res, self.generalized)
         return (Xh[1] - Xh[0]) / (2 * h) / self.s
 
     def orbit(self, y, p, period=1):
@@ -132,13 +135,19 @@ class MechanismPlaneMap(PlaneMap):
         if known is not None:
             return known
         X = y * self.s
-        res = engine.march(self._batch([self.case_at(p)]), period * self.spr, D0=X[None, :self.N],
-                           V0=X[None, self.N:], keep_history=True, parallel=False)
+        res = engine.march_state(self._batch([self.case_at(p)]), period * self.spr, X[None], keep_history=True,
+                                 parallel=False)
         if res.status[0] != engine.OK:
             raise MapError(f"march at {self._where(p)} failed: {engine.STATUS_TEXT[int(res.status[0])]}")
         idx = np.arange(period + 1) * self.spr
-        states = np.concatenate([res.D_history[0, idx], res.V_history[0, idx]], axis=1) / self.s
+        states = engine.join_state(res, self.generalized, idx) / self.s
         return orbit_peak(res.y[0, :, V_MID]), states, res.y[0, idx, V_MID]
+
+    def multipliers(self, jx):
+        """By decreasing modulus; for generalized-alpha the 2N largest (its map on (d, v, a) has N
+        algorithmic roots besides the mechanism's: crankgen.time_scheme)."""
+        mu = super().multipliers(jx)
+        return mu[:2 * self.N] if self.generalized else mu
 
     def physical(self, y):
         return np.asarray(y, dtype=float) * self.s

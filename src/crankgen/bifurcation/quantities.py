@@ -6,8 +6,10 @@ batches), its declared outputs (outputs.StateHistory, every one from the generat
 over the orbit:
 - peak_v: max |v*(1/2)| over the steps (the branch's amplitude is the same refined between steps);
 - peak_torque: the driving torque of largest magnitude, signed;
-- peak_pin_force, peak_end_force: the largest magnitude of the crank pin's and of the end's
-  (guide's or rocker's) force on the rod;
+- peak_pin_force_A, peak_pin_force_B, peak_support_force: the largest magnitude of the joint
+  forces (outputs.py): the crank's on the rod at A (crank_on_rod), the rod's on the slider or the
+  rocker's tip at B (rod_on_slider, rod_on_tip), the guide's on the slider or the rocker's on its
+  tip (guide_on_slider, rocker_on_tip);
 - peak_axial_force: the axial force N* of largest magnitude along the rod, signed (tension > 0);
 - peak_strain: the largest |surface_strain| at the outer fibres, fiber = +-sqrt(3) radii of
   gyration (a rectangular section's outer fibres) or, with a section, its own;
@@ -29,8 +31,11 @@ from .. import kinematics as _kinematics
 from ..outputs import DeclaredOutputs
 from .mechanism import V_MID
 
-QUANTITIES = ("peak_v", "peak_torque", "peak_pin_force", "peak_end_force", "peak_axial_force",
-              "peak_strain", "peak_stress")
+QUANTITIES = ("peak_v", "peak_torque", "peak_pin_force_A", "peak_pin_force_B", "peak_support_force",
+              "peak_axial_force", "peak_strain", "peak_stress")
+# the joint forces each quantity reads, the first whose output the case's guide declares
+JOINTS = {"peak_pin_force_A": ("crank_on_rod",), "peak_pin_force_B": ("rod_on_slider", "rod_on_tip"),
+          "peak_support_force": ("guide_on_slider", "rocker_on_tip")}
 RECTANGLE_FIBRE = math.sqrt(3.0)        # outer fibre of a rectangle, in radii of gyration
 CHUNK = 64                              # orbits marched in one batch
 
@@ -38,8 +43,9 @@ CHUNK = 64                              # orbits marched in one batch
 def units(section=None, si=None):
     """{quantity: units text} (crankgen's units, or SI with si)."""
     out = {"peak_v": "r (v* = v/r)", "peak_torque": schema.OUTPUTS["torque"].units,
-           "peak_pin_force": schema.OUTPUTS["pin_force_x"].units,
-           "peak_end_force": schema.OUTPUTS["end_force_x"].units,
+           "peak_pin_force_A": schema.OUTPUTS["crank_on_rod_x"].units,
+           "peak_pin_force_B": schema.OUTPUTS["rod_on_slider_x"].units,
+           "peak_support_force": schema.OUTPUTS["guide_on_slider_x"].units,
            "peak_axial_force": schema.OUTPUTS["axial_force"].units, "peak_strain": "1"}
     if section is not None:
         out["peak_stress"] = "Pa" if si is not None else "E"
@@ -65,11 +71,11 @@ def _peak_signed(values):
     return float(values.ravel()[k])
 
 
-def _magnitude(orbit, parts):
-    try:
-        return float(np.max(np.hypot(*(np.asarray(orbit.quantity(p), dtype=float) for p in parts))))
-    except Exception:                   # an output its guide does not declare
-        return math.nan
+def _joint_magnitude(orbit, choices):
+    """max |F| over the orbit of the first joint force of choices the case's guide declares."""
+    here = orbit.case.guide_record.name
+    name = next(c for c in choices if here in schema.OUTPUTS[c + "_x"].guides)
+    return float(np.max(np.hypot(*(np.asarray(orbit.quantity(name + p), dtype=float) for p in ("_x", "_y")))))
 
 
 def orbit_quantities(orbit, section=None, si=None):
@@ -81,8 +87,8 @@ def orbit_quantities(orbit, section=None, si=None):
         out["peak_torque"] = _peak_signed(orbit.quantity("torque"))
     except Exception:
         out["peak_torque"] = math.nan
-    out["peak_pin_force"] = _magnitude(orbit, ("pin_force_x", "pin_force_y"))
-    out["peak_end_force"] = _magnitude(orbit, ("end_force_x", "end_force_y"))
+    for quantity, choices in JOINTS.items():
+        out[quantity] = _joint_magnitude(orbit, choices)
     out["peak_axial_force"] = _peak_signed(orbit.quantity("axial_force", xs))
     fibres = ((section.c_top / section.radius_of_gyration, -section.c_bottom / section.radius_of_gyration)
               if section is not None else (RECTANGLE_FIBRE, -RECTANGLE_FIBRE))
@@ -96,7 +102,7 @@ def orbit_quantities(orbit, section=None, si=None):
 
 def branch_quantities(case, parameter, branch, section=None, si=None):
     """({quantity: (points,) array}, notes): the quantities of every point of a Branch whose states
-    are the mechanism's (d, v) at theta0, `parameter` the diagram's, case the diagram's case."""
+    are the revolution map's at theta0 ((d, v), or (d, v, a) for generalized-alpha), `parameter` the diagram's, case the diagram's case."""
     names = list(units(section, si))
     values = {k: np.full(len(branch), math.nan) for k in names}
     notes = []
@@ -107,10 +113,9 @@ def branch_quantities(case, parameter, branch, section=None, si=None):
         part = cases[lo:lo + CHUNK]
         batch = engine.Batch(part, like=template, entries=("march",))
         template = template or batch
-        spr, N = batch.steps_per_rev, batch.N
+        spr = batch.steps_per_rev
         X = np.asarray(branch.states[lo:lo + CHUNK], dtype=float)
-        res = engine.march(batch, period * spr, D0=X[:, :N], V0=X[:, N:], keep_history=True,
-                           parallel=len(part) > 1)
+        res = engine.march_state(batch, period * spr, X, keep_history=True, parallel=len(part) > 1)
         for j, c in enumerate(part):
             i = lo + j
             if res.status[j] != engine.OK:

@@ -292,7 +292,9 @@ def main(argv=None):
             and signal.getsignal(signal.SIGTERM) == signal.SIG_DFL:
         handler = signal.signal(signal.SIGTERM, _terminate)
     try:
-        return _main(argv)
+        from ..notices import BeyondTheoryWarning, quiet
+        with quiet(BeyondTheoryWarning):     # every command reports the range in its own lines and files
+            return _main(argv)
     finally:
         if handler is not None:
             signal.signal(signal.SIGTERM, handler)

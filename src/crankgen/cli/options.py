@@ -55,7 +55,9 @@ def _help(p, many):
     if p.owner in ("guide", "motion") and set(p.readers) != set(every):
         where = f" [{' and '.join(p.readers)} {p.owner}]"
     rng = f", {p.range_text}" if (p.kind == "real" and (p.low, p.high) != (None, None)) or p.kind == "count" else ""
-    return f"{p.doc}{rng}{where} (default {_default_text(p)})" + many
+    by_model = "".join(f"; with --model {name}: {preset.settings[p.name]:g}"
+                       for name, preset in schema.PRESETS.items() if p.name in preset.settings)
+    return f"{p.doc}{rng}{where} (default {_default_text(p)}{by_model})" + many
 
 
 def _parameter_type(p, grid):

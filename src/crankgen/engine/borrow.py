@@ -54,13 +54,14 @@ def borrowed_work(w):
         borrowed(w.send), borrowed(w.E), borrowed(w.r1), borrowed(w.S1), borrowed(w.K1), borrowed(w.C1),
         borrowed(w.M1), borrowed(w.lanes), borrowed(w.prims), borrowed(w.q_end), borrowed(w.mapped),
         borrowed(w.held), borrowed(w.held_slots), borrowed(w.held_reduced), borrowed(w.qc), borrowed(w.qdc),
-        borrowed(w.qddc), borrowed(w.Ec), borrowed(w.px), borrowed(w.pr))
+        borrowed(w.qddc), borrowed(w.Ec), borrowed(w.px), borrowed(w.pr),
+        borrowed(w.dp), borrowed(w.vp))
 
 
 @jit(python=False)
 def borrowed_cases(c):
     return Cases(borrowed(c.select), borrowed(c.coef), borrowed(c.params), borrowed(c.dt), borrowed(c.p),
-                 borrowed(c.scheme), borrowed(c.printed), borrowed(c.scales))
+                 borrowed(c.scheme), borrowed(c.printed), borrowed(c.scales), borrowed(c.integ))
 
 
 @jit(python=False)

@@ -107,7 +107,7 @@ def _compile_entry(name):
     if name == "march":
         march(batch, 1, parallel=False)
     else:
-        revolution(batch, np.zeros((1, 2 * batch.N)), parallel=False)
+        revolution(batch, np.zeros((1, batch.state_size)), parallel=False)
 
 
 def _run(items, progress, start, compiled=None):

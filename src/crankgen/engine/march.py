@@ -13,7 +13,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from .. import kinematics as _kinematics
-from .. import newton, schema
+from .. import newton, schema, time_scheme
 from ..outputs import primitive_data
 from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
 from .compiled import call, jit
@@ -71,7 +71,9 @@ class Batch:
             np.array([newton.SCHEMES.index(c.integrator) for c in cases], dtype=np.int64),
             printed.astype(np.bool_),
             np.array([self.mesh.dof_scales(schema.natural_sizes(c.parameters()), _kinematics.end_scale(c))
-                      for c in cases]))
+                      for c in cases]),
+            np.array([time_scheme.coefficients(c.rho_inf).as_array() for c in cases], dtype=float))
+        self.generalized = np.array([time_scheme.coefficients(c.rho_inf).generalized for c in cases])
 
     def _new_mesh(self, n):
         from ..assembly import BandedAssembler
@@ -97,6 +99,17 @@ class Batch:
     def scales(self):
         return self.records.scales
 
+    @property
+    def state_size(self):
+        """Numbers in a state of the revolution map: (d, v), 2 N, for Newmark; (d, v, a), 3 N, for
+        generalized-alpha (its algorithmic accelerations carry memory).  Every case of a batch
+        that shoots has the same (steady.py groups them so)."""
+        if self.generalized.all():
+            return 3 * self.N
+        if not self.generalized.any():
+            return 2 * self.N
+        raise ValueError("a batch that shoots must not mix Newmark and generalized-alpha cases")
+
     def __len__(self):
         return len(self.cases)
 
@@ -110,8 +123,9 @@ class MarchResult:
 
 
 @jit
-def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, A0, P, n_prev, keep_history,
-                 keep_rates, out_y, out_iter, status, fail_step, fail_res, Dh, Vh, Ah, D1, V1, A1):
+def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, A0, G0, start, P, n_prev,
+                 keep_history, keep_rates, keep_alg, out_y, out_iter, status, fail_step, fail_res, Dh, Vh, Ah, Gh,
+                 D1, V1, A1, G1):
     """Advance cases lo..hi-1 of the batch n_steps in lock step (see march)."""
     n = mesh.dofs.shape[0]
     N = D0.shape[1]
@@ -121,8 +135,8 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, 
         w = borrowed_work(owned)
         sel, params = cases.select[b], cases.params[b]
         dt = cases.dt[b]
-        d, v, acc = D0[b].copy(), V0[b].copy(), A0[b].copy()
-        dn, vn, an = np.zeros(N), np.zeros(N), np.zeros(N)
+        d, v, acc, alg = D0[b].copy(), V0[b].copy(), A0[b].copy(), G0[b].copy()
+        dn, vn, an, gn = np.zeros(N), np.zeros(N), np.zeros(N), np.zeros(N)
         y = np.zeros(N_OUTPUTS)
         kinematics(kern, sel, params, t0[b] + step0 * dt, w)
         step_outputs(kern, sel, params, cases.p[b], mesh, d, w, y)
@@ -135,12 +149,15 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, 
             for i in range(N):
                 Vh[b, 0, i] = v[i]
                 Ah[b, 0, i] = acc[i]
+        if keep_alg:
+            for i in range(N):
+                Gh[b, 0, i] = alg[i]
         for m in range(n_steps):
             if status[b] != OK:
                 break
             t_new = t0[b] + (step0 + m + 1) * dt
-            st, it, rn = newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, P[b], n_prev[b],
-                                      dn, vn, an, w)
+            st, it, rn = newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, alg, P[b], n_prev[b],
+                                      dn, vn, an, gn, w, start and m == 0)
             out_iter[b, m] = it
             if st == OK:
                 for i in range(N):
@@ -160,6 +177,7 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, 
                 d[i] = dn[i]
                 v[i] = vn[i]
                 acc[i] = an[i]
+                alg[i] = gn[i]
             n_prev[b] = min(n_prev[b] + 1, HISTORY)
             step_outputs(kern, sel, params, cases.p[b], mesh, d, w, y)
             for k in range(N_OUTPUTS):
@@ -171,10 +189,14 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, 
                 for i in range(N):
                     Vh[b, m + 1, i] = v[i]
                     Ah[b, m + 1, i] = acc[i]
+            if keep_alg:
+                for i in range(N):
+                    Gh[b, m + 1, i] = alg[i]
         for i in range(N):
             D1[b, i] = d[i]
             V1[b, i] = v[i]
             A1[b, i] = acc[i]
+            G1[b, i] = alg[i]
         keep(owned)
 
 
@@ -233,15 +255,20 @@ def parallel_slices(fn, batch, parallel, leading, trailing, active=None):
 
 
 def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False, parallel=None,
-          beta=0.25, gamma=0.5, tol=1e-10, max_iter=30, status=None, previous=None, t0=None):
-    """Advance all cases of the batch from step index step0 (t = t0 + step0 dt) by n_steps Newmark
-    steps.  t0: (B,) time origins (default 0).
+          tol=1e-10, max_iter=30, status=None, previous=None, t0=None, G0=None):
+    """Advance all cases of the batch from step index step0 (t = t0 + step0 dt) by n_steps steps of
+    each case's time scheme (Newmark or generalized-alpha: crankgen.time_scheme).  t0: (B,) time
+    origins (default 0).
 
     D0, V0: (B, N) initial reduced states (zero by default); A0 the accelerations, by default
-    solved from eq. (34).  previous: the `previous` of the MarchResult this run continues (the
+    solved from eq. (34); G0 the algorithmic accelerations of generalized-alpha (Newmark ignores
+    them).  Without G0 the run starts: its first generalized-alpha step is the starter
+    (time_scheme.STARTER), after which a = qdd.  The result's G: their final values (A for
+    Newmark).  previous: the `previous` of the MarchResult this run continues (the
     displacements of the steps before D0, for the Newton starting guess; none by default).
     keep_history: True stores the displacements, velocities and accelerations of every step
-    (D_history, V_history, A_history), "displacements" the displacements only.
+    (D_history, V_history, A_history; and G_history, the algorithmic accelerations, when a case
+    uses generalized-alpha), "displacements" the displacements only.
     Cases whose status is not OK on entry are not advanced.  parallel: slices of the batch on
     threads (default: when it holds more than one case)."""
     B, N = len(batch), batch.N
@@ -257,6 +284,8 @@ def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False
         parallel_slices(_initial_accelerations, batch, parallel, (cases, mesh), (t0, step0, D0, V0, A0, status))
     else:
         A0 = np.ascontiguousarray(A0, dtype=float)
+    start = G0 is None
+    G0 = A0 if G0 is None else np.ascontiguousarray(G0, dtype=float)
     if previous is None:
         P, n_prev = np.zeros((B, HISTORY, N)), np.zeros(B, dtype=np.int64)
     else:
@@ -269,13 +298,40 @@ def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False
     keep_history = bool(keep_history)
     hist_shape = (B, n_steps + 1, N) if keep_history else (1, 1, 1)
     rate_shape = hist_shape if keep_rates else (1, 1, 1)
+    keep_alg = keep_rates and bool(batch.generalized.any())
     Dh, Vh, Ah = np.zeros(hist_shape), np.zeros(rate_shape), np.zeros(rate_shape)
-    D1, V1, A1 = np.zeros((B, N)), np.zeros((B, N)), np.zeros((B, N))
-    scheme = Scheme(float(beta), float(gamma), float(tol), int(max_iter))
+    Gh = np.zeros(rate_shape if keep_alg else (1, 1, 1))
+    D1, V1, A1, G1 = np.zeros((B, N)), np.zeros((B, N)), np.zeros((B, N)), np.zeros((B, N))
+    scheme = Scheme(float(tol), int(max_iter))
     parallel_slices(_march_cases, batch, parallel, (cases, mesh, scheme),
-                    (t0, step0, n_steps, D0, V0, A0, P, n_prev, keep_history, keep_rates, out_y, out_iter,
-                     status, fail_step, fail_res, Dh, Vh, Ah, D1, V1, A1), active=status == OK)
+                    (t0, step0, n_steps, D0, V0, A0, G0, start, P, n_prev, keep_history, keep_rates, keep_alg, out_y,
+                     out_iter, status, fail_step, fail_res, Dh, Vh, Ah, Gh, D1, V1, A1, G1), active=status == OK)
     return MarchResult(y=out_y, iterations=out_iter, status=status, fail_step=fail_step,
-                       fail_residual=fail_res, D=D1, V=V1, A=A1, previous=(P, n_prev),
+                       fail_residual=fail_res, D=D1, V=V1, A=A1, G=G1, previous=(P, n_prev),
                        D_history=Dh if keep_history else None, V_history=Vh if keep_rates else None,
-                       A_history=Ah if keep_rates else None)
+                       A_history=Ah if keep_rates else None, G_history=Gh if keep_alg else None)
+
+
+def split_state(X, N):
+    """(D0, V0, G0) of states X (B, 2N or 3N) of the revolution map (Batch.state_size); G0 None for
+    (d, v)."""
+    X = np.asarray(X, dtype=float)
+    return X[:, :N], X[:, N:2 * N], (X[:, 2 * N:3 * N] if X.shape[1] == 3 * N else None)
+
+
+def join_state(res, generalized, steps=None):
+    """The states (B, 2N or 3N) a march ended in: (D, V), with G for generalized-alpha; with
+    steps (indices), the states of case 0 at those steps of its history (steps, 2N or 3N)."""
+    if steps is not None:
+        parts = [res.D_history[0, steps], res.V_history[0, steps]] + (
+            [res.G_history[0, steps]] if generalized else [])
+    else:
+        parts = [res.D, res.V] + ([res.G] if generalized else [])
+    return np.concatenate(parts, axis=1)
+
+
+def march_state(batch, n_steps, X, **kw):
+    """march from states X (B, batch.state_size) of the revolution map: (d, v), or (d, v, a) for
+    generalized-alpha, whose algorithmic accelerations go on as G0."""
+    D0, V0, G0 = split_state(X, batch.N)
+    return march(batch, n_steps, D0=D0, V0=V0, G0=G0, **kw)

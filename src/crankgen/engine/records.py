@@ -8,12 +8,14 @@
 - Cases: one row per case of a batch: `select` (the table index of each family's variant, -1 when
   absent, then the guide and the motion), `coef` (the element kernels' coefficients), `params`
   (the kinematic parameters), the time step, `p` (the parameter vector, for the engine's
-  outputs), the Newmark scheme code (newton.SCHEMES), whether the one-pass scheme iterates with the
-  printed eq. (37) matrices, and the natural size of every reduced DOF (`scales`).
+  outputs), the Newton scheme code (newton.SCHEMES), whether the one-pass scheme iterates with the
+  printed eq. (37) matrices, the natural size of every reduced DOF (`scales`), and the time
+  scheme's (beta, gamma, alpha_m, alpha_f) (`integ`: crankgen.time_scheme; alpha_m = alpha_f = 0
+  is Newmark).
 - MeshData: the mesh as the engine reads it: the element DOF map, bandwidth, element length, and
   what the engine's outputs accumulate (schema.PRIMITIVES): for each point primitive its place in
   prims, its element and its shape functions there; for each integral its place and Gram matrix.
-- Scheme: Newmark's beta and gamma, the Newton tolerance and iteration limit.
+- Scheme: the Newton tolerance and iteration limit.
 - Work: the scratch arrays of one case's Newmark steps (allocated once per case and reused).
 Every record is a namedtuple of arrays and numbers: numba compiles them as such, and with
 NUMBA_DISABLE_JIT=1 the same code runs as plain Python.
@@ -48,12 +50,12 @@ Kernels = namedtuple("Kernels", [
     "end_map", "guide", "motion",       # (one entry each)
 ])
 
-Cases = namedtuple("Cases", ["select", "coef", "params", "dt", "p", "scheme", "printed", "scales"])
+Cases = namedtuple("Cases", ["select", "coef", "params", "dt", "p", "scheme", "printed", "scales", "integ"])
 
 MeshData = namedtuple("MeshData", ["dofs", "kb", "l", "point_slots", "point_elements", "point_weights",
                                    "gram_slots", "grams"])
 
-Scheme = namedtuple("Scheme", ["beta", "gamma", "tol", "max_iter"])
+Scheme = namedtuple("Scheme", ["tol", "max_iter"])
 
 Work = namedtuple("Work", [
     "rE", "SE", "KE", "CE", "ME",       # element residuals, iteration and tangent matrices
@@ -69,6 +71,7 @@ Work = namedtuple("Work", [
     "mapped", "held", "held_slots", "held_reduced",    # the DOF map's condensation: `condensation`
     "qc", "qdc", "qddc", "Ec",          # per holding element: its mapped nodal state and map values
     "px", "pr",                         # the projection's scratch: eliminated entries (3, K_ELIM), reduced (3, M_RED)
+    "dp", "vp",                         # a step's predictors (N)
 ])
 
 
@@ -113,7 +116,8 @@ def _make_work(n, N, kb):
                 np.zeros(NDOF), np.zeros((NDOF, NDOF)), np.zeros((NDOF, NDOF)), np.zeros((NDOF, NDOF)),
                 np.zeros((NDOF, NDOF)), np.zeros(((n + LANES - 1) // LANES, LANE_SIZE)), np.zeros(N_PRIMITIVES),
                 np.zeros(K_ELIM), mapped, held, held_slots, held_reduced, np.zeros((h, NDOF)), np.zeros((h, NDOF)),
-                np.zeros((h, NDOF)), np.zeros((h, END_ROWS, K_ELIM)), np.zeros((3, K_ELIM)), np.zeros((3, M_RED)))
+                np.zeros((h, NDOF)), np.zeros((h, END_ROWS, K_ELIM)), np.zeros((3, K_ELIM)), np.zeros((3, M_RED)),
+                np.zeros(N), np.zeros(N))
 
 
 make_work = jit(_make_work, python=False)       # inside compiled code

@@ -1,7 +1,7 @@
-"""The revolution map of the Newton-Newmark scheme and its exact linearization (compiled), for
-shooting on periodic states (steady.py) and continuation.
+"""The revolution map of the Newton-Newmark (or generalized-alpha) scheme and its exact
+linearization (compiled), for shooting on periodic states (steady.py) and continuation.
 
-The linearization propagates the sensitivities of (d, v, a) to the 2N initial state components
+The linearization propagates the sensitivities of (d, v, qdd) (and a) to the state's components
 (and optionally to a parameter) through every converged step, as (N, columns) arrays whose rows
 are updated whole (the innermost loops run over the columns, which LLVM vectorizes; the columns
 are padded to a multiple of 8).  Per step: K dd~ + C dv~ row by row from the assembled band
@@ -83,40 +83,50 @@ def _solve_fixed_columns(F, B):
 @jit
 def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0, active, minus, plus, h,
                       with_j, with_p, X1, J, Y, XR, status):
-    """For every active case of lo..hi-1: state x = (d, v) at step step0 -> state after n_steps
-    Newton steps, and (with_j) J = dx1/dx0, the exact linearization of the converged Newmark steps:
-        S da' = -(K dd~ + C dv~),  dd' = dd~ + beta dt^2 da',  dv' = dv~ + gamma dt da'
-    with S, K, C the exact tangents at the converged state of each step (a0 from eq. 34).
+    """For every active case of lo..hi-1: state x at step step0 -> state after n_steps Newton
+    steps, and (with_j) J = dx1/dx0, the exact linearization of the converged steps.  x = (d, v)
+    for Newmark (S = 2N numbers), x = (d, v, a) for generalized-alpha (S = 3N: its algorithmic
+    accelerations carry memory); the accelerations qdd at the start solve eq. (34).  Per step,
+    with abar = (alpha_f qdd - alpha_m a) / (1 - alpha_m) (0 for Newmark, where a = qdd):
+        dd~ = dd + dt dv + dt^2 (1/2 - beta) da + dt^2 beta dabar,  dv~ = dv + dt (1 - gamma) da + dt gamma dabar,
+        S dqdd' = -(K dd~ + C dv~),  dd' = dd~ + cd dqdd',  dv' = dv~ + cv dqdd',  da' = dabar + r dqdd'
+    with S, K, C the exact tangents at the converged state of each step (time_scheme: cd, cv, r).
     with_p: J has one more column, dx1/dp for the parameter whose perturbed cases are `minus`
     (p - h) and `plus` (p + h), rows matching `cases`; x0 does not depend on p, the steps do
     through R (at the fixed state: _parameter_forcing) and through dt:
-        dd~ += (v + dt (1 - 2 beta) a + 2 beta dt a') ddt/dp,  dv~ += ((1 - gamma) a + gamma a') ddt/dp
+        dd~ += (v + dt (1 - 2 beta) a + 2 beta dt abar + 2 beta r dt qdd') ddt/dp,
+        dv~ += ((1 - gamma) a + gamma abar + gamma r qdd') ddt/dp
     (with a fixed number of steps per revolution the crank angles of the steps need not depend on
     p, the times t = k dt do).
     Y[b, m]: the engine's outputs (schema.ENGINE_OUTPUTS) at step step0 + m; XR[b, r]: the state after r
     times spr steps (r = 0 .. n_steps // spr)."""
     n = mesh.dofs.shape[0]
-    N = X0.shape[1] // 2
-    ncol = 2 * N + (1 if with_p else 0)
-    width = (ncol + PAD - 1) // PAD * PAD if with_j else 0
-    P = 2 * N                                   # the parameter column
+    S = X0.shape[1]
     kern, cases, mesh = borrowed_kernels(kern), borrowed_cases(cases), borrowed_mesh(mesh)    # the caller's
     minus, plus = borrowed_cases(minus), borrowed_cases(plus)
     dofs, kb, l = mesh.dofs, mesh.kb, mesh.l
-    beta, gamma = scheme.beta, scheme.gamma
     for b in range(lo, hi):
         if not active[b]:
             continue
+        beta, gamma, am, af = cases.integ[b, 0], cases.integ[b, 1], cases.integ[b, 2], cases.integ[b, 3]
+        generalized = am != 0.0 or af != 0.0
+        N = S // 3 if generalized else S // 2
+        ncol = S + (1 if with_p else 0)
+        width = (ncol + PAD - 1) // PAD * PAD if with_j else 0
+        P = S                                       # the parameter column
+        ratio = (1.0 - af) / (1.0 - am)
         owned = make_work(n, N, kb)
         w = borrowed_work(owned)
         sel, coef, params = cases.select[b], cases.coef[b], cases.params[b]
         dt = cases.dt[b]
         ddt = (plus.dt[b] - minus.dt[b]) / (2.0 * h) if with_p else 0.0
-        cd, cv = beta * dt * dt, gamma * dt
+        cd, cv = beta * dt * dt * ratio, gamma * dt * ratio
         c1, c2 = 0.5 * dt * dt * (1.0 - 2.0 * beta), dt * (1.0 - gamma)
-        d, v = X0[b, :N].copy(), X0[b, N:].copy()
+        c3, c4 = dt * dt * beta, dt * gamma
+        d, v = X0[b, :N].copy(), X0[b, N:2 * N].copy()
         acc = np.zeros(N)
-        dn, vn, an = np.zeros(N), np.zeros(N), np.zeros(N)
+        alg = X0[b, 2 * N:3 * N].copy() if generalized else np.zeros(N)
+        dn, vn, an, gn = np.zeros(N), np.zeros(N), np.zeros(N), np.zeros(N)
         rm, rp, g = np.zeros(N), np.zeros(N), np.zeros(N)
         Kb = np.zeros((N, 3 * kb + 1))
         Cb = np.zeros((N, 3 * kb + 1))
@@ -124,19 +134,25 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
         if not initial_acceleration(kern, cases, b, mesh, step0 * dt, d, v, acc, w):
             status[b] = SINGULAR
             continue
+        if not generalized:
+            for i in range(N):
+                alg[i] = acc[i]
         step_outputs(kern, sel, params, cases.p[b], mesh, d, w, y)
         for k in range(N_OUTPUTS):
             Y[b, 0, k] = y[k]
-        for i in range(2 * N):
+        for i in range(S):
             XR[b, 0, i] = X0[b, i]
         # sensitivities (N, width)
         Dd = np.zeros((N, width))
         Dv = np.zeros((N, width))
         Da = np.zeros((N, width))
+        Dg = np.zeros((N, width if generalized else 0))
         if with_j:
             for i in range(N):
                 Dd[i, i] = 1.0
                 Dv[i, N + i] = 1.0
+                if generalized:
+                    Dg[i, 2 * N + i] = 1.0
             # da0 = -M^-1 (K dd0 + C dv0 + dR/dp) at t0 (initial_acceleration left the kinematics
             # at t0 in w)
             element_loop(FULL, kern, sel, coef, params, False, dofs, l, d, v, acc, 0.0, 0.0, w)
@@ -157,8 +173,8 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
         hist = np.zeros((HISTORY, N))
         for m in range(n_steps):
             t_new = (step0 + m + 1) * dt
-            st, it, rn = newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, hist, min(m, HISTORY),
-                                      dn, vn, an, w)
+            st, it, rn = newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, alg, hist, min(m, HISTORY),
+                                      dn, vn, an, gn, w)
             if st != OK:
                 status[b] = st
                 ok = False
@@ -181,15 +197,29 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
                         break
                 if with_p:
                     _parameter_forcing(kern, minus, plus, b, sel, mesh, step0 + m + 1, h, dn, vn, an, w, rm, rp, g)
-                # predictor sensitivities (in place): Dd <- dd~, Dv <- dv~
-                for i in range(N):
-                    for c in range(width):
-                        Dd[i, c] += dt * Dv[i, c] + c1 * Da[i, c]
-                        Dv[i, c] += c2 * Da[i, c]
+                # predictor sensitivities (in place): Dd <- dd~, Dv <- dv~ (and Dg <- dabar)
+                if generalized:
+                    for i in range(N):
+                        for c in range(width):
+                            ab = (af * Da[i, c] - am * Dg[i, c]) / (1.0 - am)
+                            Dd[i, c] += dt * Dv[i, c] + c1 * Dg[i, c] + c3 * ab
+                            Dv[i, c] += c2 * Dg[i, c] + c4 * ab
+                            Dg[i, c] = ab
+                else:
+                    for i in range(N):
+                        for c in range(width):
+                            Dd[i, c] += dt * Dv[i, c] + c1 * Da[i, c]
+                            Dv[i, c] += c2 * Da[i, c]
                 if with_p:
                     for i in range(N):
-                        Dd[i, P] += (v[i] + dt * (1.0 - 2.0 * beta) * acc[i] + 2.0 * beta * dt * an[i]) * ddt
-                        Dv[i, P] += ((1.0 - gamma) * acc[i] + gamma * an[i]) * ddt
+                        if generalized:
+                            abar = (af * acc[i] - am * alg[i]) / (1.0 - am)
+                            Dd[i, P] += (v[i] + dt * (1.0 - 2.0 * beta) * alg[i] + 2.0 * beta * dt * abar
+                                         + 2.0 * beta * ratio * dt * an[i]) * ddt
+                            Dv[i, P] += ((1.0 - gamma) * alg[i] + gamma * abar + gamma * ratio * an[i]) * ddt
+                        else:
+                            Dd[i, P] += (v[i] + dt * (1.0 - 2.0 * beta) * acc[i] + 2.0 * beta * dt * an[i]) * ddt
+                            Dv[i, P] += ((1.0 - gamma) * acc[i] + gamma * an[i]) * ddt
                 _tangent_rhs(Kb, Cb, kb, Dd, Dv, Da)
                 if with_p:
                     for i in range(N):
@@ -202,6 +232,10 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
                     for c in range(width):
                         Dd[i, c] += cd * Da[i, c]
                         Dv[i, c] += cv * Da[i, c]
+                if generalized:
+                    for i in range(N):
+                        for c in range(width):
+                            Dg[i, c] += ratio * Da[i, c]
             for k in range(HISTORY - 1, 0, -1):
                 for i in range(N):
                     hist[k, i] = hist[k - 1, i]
@@ -210,6 +244,7 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
                 d[i] = dn[i]
                 v[i] = vn[i]
                 acc[i] = an[i]
+                alg[i] = gn[i]
             if with_p:                  # _parameter_forcing moved the kinematics to p +- h
                 kinematics(kern, sel, params, t_new, w)
             step_outputs(kern, sel, params, cases.p[b], mesh, d, w, y)
@@ -220,37 +255,47 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
                 for i in range(N):
                     XR[b, r, i] = d[i]
                     XR[b, r, N + i] = v[i]
+                    if generalized:
+                        XR[b, r, 2 * N + i] = alg[i]
         keep(owned)
         if not ok:
             continue
         for i in range(N):
             X1[b, i] = d[i]
             X1[b, N + i] = v[i]
+            if generalized:
+                X1[b, 2 * N + i] = alg[i]
         if with_j:
             for i in range(N):
                 for c in range(ncol):
                     J[b, i, c] = Dd[i, c]
                     J[b, N + i, c] = Dv[i, c]
+                    if generalized:
+                        J[b, 2 * N + i, c] = Dg[i, c]
 
 
 class Revolution:
-    """Result of shoot: X1 (B, 2N) the states after the revolutions, J (B, 2N, 2N) = dX1/dX0 (None
-    without jacobian), Jp (B, 2N) = dX1/dp (None without a parameter), y (B, steps + 1, outputs) the
-    engine's outputs (schema.ENGINE_OUTPUTS), states (B, revolutions + 1, 2N) at theta = 0, status (B,)."""
+    """Result of shoot: X1 (B, S) the states after the revolutions, J (B, S, S) = dX1/dX0 (None
+    without jacobian), Jp (B, S) = dX1/dp (None without a parameter), y (B, steps + 1, outputs) the
+    engine's outputs (schema.ENGINE_OUTPUTS), states (B, revolutions + 1, S) at theta = 0, status
+    (B,).  S = batch.state_size: 2N, (d, v), for Newmark; 3N, (d, v, a), for generalized-alpha."""
 
     def __init__(self, **kw):
         self.__dict__.update(kw)
 
 
-def shoot(batch, X0, step0=0, active=None, parallel=None, beta=0.25, gamma=0.5, tol=1e-10, max_iter=30,
-          revolutions=1, jacobian=True, parameter=None):
-    """The map over `revolutions` crank revolutions of the Newton-Newmark scheme, with its exact
-    Jacobian (jacobian=True) and the orbit it marches, for states X0 (B, 2N) = (d, v) at step
-    index step0.  parameter: (minus, plus, h): Batches of the cases at p - h and p + h (case for
-    case like `batch`, same mesh and steps per revolution) for the exact derivative dX1/dp
-    (docstring of _revolution_cases)."""
-    B, N = len(batch), batch.N
+def shoot(batch, X0, step0=0, active=None, parallel=None, tol=1e-10, max_iter=30, revolutions=1, jacobian=True,
+          parameter=None):
+    """The map over `revolutions` crank revolutions of the cases' time scheme, with its exact
+    Jacobian (jacobian=True) and the orbit it marches, for states X0 (B, S) at step index step0
+    (S = batch.state_size: (d, v) for Newmark, (d, v, a) for generalized-alpha).  parameter:
+    (minus, plus, h): Batches of the cases at p - h and p + h (case for case like `batch`, same
+    mesh and steps per revolution) for the exact derivative dX1/dp (docstring of
+    _revolution_cases)."""
+    B, N, S = len(batch), batch.N, batch.state_size
     X0 = np.ascontiguousarray(X0, dtype=float)
+    if X0.shape != (B, S):
+        raise ValueError(f"the states must be ({B}, {S}) (the batch's state size), got {X0.shape}")
     active = np.ones(B, dtype=np.bool_) if active is None else np.asarray(active, dtype=np.bool_)
     with_p = parameter is not None
     if with_p:
@@ -259,30 +304,31 @@ def shoot(batch, X0, step0=0, active=None, parallel=None, beta=0.25, gamma=0.5, 
         minus, plus, h = parameter
         if (len(minus) != B or len(plus) != B or minus.N != N or plus.N != N
                 or not np.array_equal(minus.records.select, batch.records.select)
-                or not np.array_equal(plus.records.select, batch.records.select)):
+                or not np.array_equal(plus.records.select, batch.records.select)
+                or not np.array_equal(minus.records.integ, batch.records.integ)
+                or not np.array_equal(plus.records.integ, batch.records.integ)):
             raise ValueError("the perturbed batches must match the batch case for case (same models)")
         minus, plus, h = minus.records, plus.records, float(h)
     else:
         minus, plus, h = batch.records, batch.records, 1.0
     n_steps = int(revolutions) * batch.steps_per_rev
-    X1 = np.full((B, 2 * N), np.nan)
-    J = np.full((B, 2 * N, 2 * N + (1 if with_p else 0)) if jacobian else (1, 1, 1), np.nan)
+    X1 = np.full((B, S), np.nan)
+    J = np.full((B, S, S + (1 if with_p else 0)) if jacobian else (1, 1, 1), np.nan)
     Y = np.full((B, n_steps + 1, N_OUTPUTS), np.nan)
-    XR = np.full((B, int(revolutions) + 1, 2 * N), np.nan)
+    XR = np.full((B, int(revolutions) + 1, S), np.nan)
     status = np.zeros(B, dtype=np.int64)
     if parallel is None:
         parallel = int(active.sum()) > 1
-    scheme = Scheme(float(beta), float(gamma), float(tol), int(max_iter))
+    scheme = Scheme(float(tol), int(max_iter))
     parallel_slices(_revolution_cases, batch, parallel, (batch.records, batch.meshdata, scheme),
                     (step0, n_steps, batch.steps_per_rev, X0, active, minus, plus, h, bool(jacobian), with_p,
                      X1, J, Y, XR, status), active=active)
-    return Revolution(X1=X1, J=J[:, :, :2 * N] if jacobian else None, Jp=J[:, :, 2 * N] if with_p else None,
+    return Revolution(X1=X1, J=J[:, :, :S] if jacobian else None, Jp=J[:, :, S] if with_p else None,
                       y=Y, states=XR, status=status)
 
 
-def revolution(batch, X0, step0=0, active=None, parallel=None, beta=0.25, gamma=0.5, tol=1e-10,
-               max_iter=30, revolutions=1):
-    """(X1, J, status): the map over `revolutions` crank revolutions of the Newton-Newmark scheme and
-    its Jacobian, for states X0 (B, 2N) = (d, v) at step index step0."""
-    r = shoot(batch, X0, step0, active, parallel, beta, gamma, tol, max_iter, revolutions)
+def revolution(batch, X0, step0=0, active=None, parallel=None, tol=1e-10, max_iter=30, revolutions=1):
+    """(X1, J, status): the map over `revolutions` crank revolutions of the cases' time scheme and
+    its Jacobian, for states X0 (B, batch.state_size) at step index step0."""
+    r = shoot(batch, X0, step0, active, parallel, tol, max_iter, revolutions)
     return r.X1, r.J, r.status

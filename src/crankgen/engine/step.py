@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from .. import newton
+from .. import newton, time_scheme
 from .banded import (KB_FIXED, assemble_band, assemble_band_newmark, assemble_fixed, assemble_vector,
                      band_factor, band_lu_solve, band_solve, factor_fixed, solve_fixed)
 from .compiled import jit
@@ -22,6 +22,7 @@ STATUS_TEXT = {OK: "ok", NOT_CONVERGED: "Newton did not converge", SINGULAR: "si
                NOT_FINITE: "non-finite state", TOO_LARGE: newton.DIVERGED_TEXT}
 ONE_PASS = newton.ONE_PASS
 DIVERGED = newton.DIVERGED
+STARTER_BETA, STARTER_GAMMA = time_scheme.STARTER.beta, time_scheme.STARTER.gamma
 
 @jit(python=False)
 def initial_acceleration(kern, cases, b, mesh, t0, d, v, out, w):
@@ -45,34 +46,58 @@ def initial_acceleration(kern, cases, b, mesh, t0, d, v, out, w):
 
 
 @jit(python=False)
-def newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, hist, n_prev, d_new, v_new, a_new, w):
-    """One Newmark step of case b from (d, v, acc) to (d_new, v_new, a_new) at t_new.
+def newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, alg, hist, n_prev, d_new, v_new, a_new, alg_new, w,
+                 start=False):
+    """One step of case b from (d, v, acc, alg) to (d_new, v_new, a_new, alg_new) at t_new: Newmark,
+    or generalized-alpha in Arnold & Bruls' form (crankgen.time_scheme; the case's row of
+    cases.integ: beta, gamma, alpha_m, alpha_f).  acc: the accelerations qdd (R = 0 holds with
+    them), alg: the algorithmic accelerations (for Newmark read as acc).  The predictors
+        dp = d + dt v + dt^2 (1/2 - beta) alg + dt^2 beta abar,  vp = v + dt (1 - gamma) alg + dt gamma abar,
+        abar = (alpha_f acc - alpha_m alg) / (1 - alpha_m)  (0 for Newmark: eqs. 35-36),
+    then Newton on a_new = qdd_{n+1}, d_new = dp + cd a_new, v_new = vp + cv a_new (eqs. 38-39),
+    cd = beta r dt^2, cv = gamma r dt, r = (1 - alpha_f) / (1 - alpha_m); alg_new = abar + r a_new.
     hist[k]: the displacements k + 1 steps before d, of which the first n_prev (0 to HISTORY) are
-    known, for the starting guess.  Returns (status, iterations, residual norm)."""
+    known, for the starting guess.  start: the first step of a generalized-alpha run from a state
+    without algorithmic accelerations, taken with Newmark's beta = 1/2, gamma = 1 (STARTER:
+    crankgen.time_scheme), alg_new = a_new.  Returns (status, iterations, residual norm)."""
     N = d.shape[0]
     sel, coef, params, scales = cases.select[b], cases.coef[b], cases.params[b], cases.scales[b]
     dofs, kb, l = mesh.dofs, mesh.kb, mesh.l
-    beta, gamma, tol, max_iter = scheme.beta, scheme.gamma, scheme.tol, scheme.max_iter
+    tol, max_iter = scheme.tol, scheme.max_iter
+    beta, gamma, am, af = cases.integ[b, 0], cases.integ[b, 1], cases.integ[b, 2], cases.integ[b, 3]
+    generalized = am != 0.0 or af != 0.0
+    if start and generalized:
+        beta, gamma, am, af = STARTER_BETA, STARTER_GAMMA, 0.0, 0.0
+        generalized = False
+    ratio = (1.0 - af) / (1.0 - am)
     dt = cases.dt[b]
     code = cases.scheme[b]
     one_pass = code == ONE_PASS
     printed = one_pass and cases.printed[b]
-    cd = beta * dt * dt
-    cv = gamma * dt
+    cd = beta * dt * dt * ratio
+    cv = gamma * dt * ratio
     kinematics(kern, sel, params, t_new, w)
-    R, rhs = w.R, w.rhs
+    R, rhs, dp, vp = w.R, w.rhs, w.dp, w.vp
+    for i in range(N):                  # predictors
+        if generalized:
+            abar = (af * acc[i] - am * alg[i]) / (1.0 - am)
+            alg_new[i] = abar
+            dp[i] = d[i] + dt * v[i] + 0.5 * dt * dt * (1.0 - 2.0 * beta) * alg[i] + dt * dt * beta * abar
+            vp[i] = v[i] + dt * (1.0 - gamma) * alg[i] + dt * gamma * abar
+        else:
+            dp[i] = d[i] + dt * v[i] + 0.5 * dt * dt * (1.0 - 2.0 * beta) * acc[i]
+            vp[i] = v[i] + dt * (1.0 - gamma) * acc[i]
     for i in range(N):
         if one_pass:
             a_new[i] = 0.0
         elif n_prev == 0:
             a_new[i] = acc[i]
         else:                           # d_{m+1} on the extrapolation of the last displacements
-            dp = d[i] + dt * v[i] + 0.5 * dt * dt * (1.0 - 2.0 * beta) * acc[i]
             dx = 0.0
             for k in range(n_prev, 0, -1):
                 dx += extrapolation_weight(n_prev, k) * hist[k - 1, i]
             dx += extrapolation_weight(n_prev, 0) * d[i]
-            a_new[i] = (dx - dp) / cd
+            a_new[i] = (dx - dp[i]) / cd
     rnorm = 0.0
     refresh = True
     full = False
@@ -80,10 +105,8 @@ def newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, hist, n_prev, d
     previous = 0.0
     reused_before = False
     for i in range(N):                  # eqs. (38)-(39) at the starting guess
-        dp = d[i] + dt * v[i] + 0.5 * dt * dt * (1.0 - 2.0 * beta) * acc[i]
-        vp = v[i] + dt * (1.0 - gamma) * acc[i]
-        d_new[i] = dp + cd * a_new[i]
-        v_new[i] = vp + cv * a_new[i]
+        d_new[i] = dp[i] + cd * a_new[i]
+        v_new[i] = vp[i] + cv * a_new[i]
     for it in range(1, max_iter + 1):
         mode = NEWMARK if refresh else RESIDUAL
         element_loop(mode, kern, sel, coef, params, printed, dofs, l, d_new, v_new, a_new, cv, cd, w)
@@ -117,8 +140,8 @@ def newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, hist, n_prev, d
             if x > inc:
                 inc = x
         for i in range(N):
-            d_new[i] = d[i] + dt * v[i] + 0.5 * dt * dt * (1.0 - 2.0 * beta) * acc[i] + cd * a_new[i]
-            v_new[i] = v[i] + dt * (1.0 - gamma) * acc[i] + cv * a_new[i]
+            d_new[i] = dp[i] + cd * a_new[i]
+            v_new[i] = vp[i] + cv * a_new[i]
             x = abs(d_new[i]) / scales[i]
             if x > size:
                 size = x
@@ -131,12 +154,14 @@ def newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, hist, n_prev, d
         if done:
             if not largest < DIVERGED:
                 return TOO_LARGE, it, rnorm
+            for i in range(N):
+                alg_new[i] = alg_new[i] + ratio * a_new[i] if generalized else a_new[i]
             return OK, it, rnorm
         if reject:                      # undo the update of a diverging reused factorization
             for i in range(N):
                 a_new[i] -= rhs[i, 0]
-                d_new[i] = d[i] + dt * v[i] + 0.5 * dt * dt * (1.0 - 2.0 * beta) * acc[i] + cd * a_new[i]
-                v_new[i] = v[i] + dt * (1.0 - gamma) * acc[i] + cv * a_new[i]
+                d_new[i] = dp[i] + cd * a_new[i]
+                v_new[i] = vp[i] + cv * a_new[i]
             continue
         previous = inc
     return NOT_CONVERGED, max_iter, rnorm
