@@ -168,7 +168,7 @@ def test_failed_simulate_writes_history_up_to_the_failure_and_exits_1(tmp_path, 
     rows = read_csv(out / "simulation.csv")
     *good, last = rows
     assert {r["status"] for r in good} == {"ok"} and last["status"].startswith("failed: ")
-    assert last["v_mid"] == "" and float(last["t"]) > float(good[-1]["t"])
+    assert last["v_mid_r"] == "" and float(last["t_per_omega_b"]) > float(good[-1]["t_per_omega_b"])
     assert (out / "v_mid.png").stat().st_size > 1000
     assert "Traceback" not in line
     # the rows are the run's real history: a run stopped just before the failure gives them again
@@ -176,7 +176,7 @@ def test_failed_simulate_writes_history_up_to_the_failure_and_exits_1(tmp_path, 
     ref = crankgen.simulate(crankgen.Mechanism(), omega=0.8, approach="B", formulation="lagrange",
                             damping="paper", n_elements=4, revolutions=n / 100)
     assert len(ref.t) == len(good)
-    np.testing.assert_allclose([float(r["v_mid"]) for r in good], ref.v_mid, rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose([float(r["v_mid_r"]) for r in good], ref.v_mid, rtol=1e-9, atol=1e-12)
 
 
 # ---- steady ----------------------------------------------------------------------------------
@@ -190,7 +190,7 @@ def test_steady_end_to_end(tmp_path, capsys):
     assert 0 < float(s["multiplier"]) < 1
     orbit = read_csv(out / "orbit.csv")
     theta = np.array([float(r["theta_deg"]) for r in orbit])
-    v = np.array([float(r["v_mid"]) for r in orbit])
+    v = np.array([float(r["v_mid_r"]) for r in orbit])
     assert len(orbit) == 21 and theta[0] == 0 and theta[-1] == pytest.approx(360.0)
     assert v[-1] == pytest.approx(v[0], rel=1e-5, abs=1e-8)              # one period: it closes
     assert float(s["amplitude"]) == pytest.approx(np.max(np.abs(v)))
@@ -334,7 +334,7 @@ def test_every_model_ingredient_on_the_command_line_reaches_the_run(tmp_path):
             "--gravity", "0.2,-0.3", "--offset", "0.1", "--rotary-inertia", "off", "--quiet"]
     assert cli.main(args + ["--out", str(out)]) == 0
     with open(out / "simulation.csv") as fh:
-        v_cli = [float(row["v_mid"]) for row in csv.DictReader(fh)]
+        v_cli = [float(row["v_mid_r"]) for row in csv.DictReader(fh)]
     ref = crankgen.simulate(crankgen.Mechanism(gravity=(0.2, -0.3), offset=0.1), n_elements=2,
                             steps_per_rev=20, revolutions=1, formulation="lagrange",
                             damping="kelvin-voigt", membrane="averaged", rotary_inertia=False)

@@ -42,7 +42,7 @@ def test_the_kinetic_energy_reaches_every_result_and_its_si_view(tmp_path):
     assert main(["simulate", "--elements", "2", "--steps-per-rev", "20", "--revolutions", "0.5",
                  "--out", str(tmp_path), "--quiet"]) == 0
     header = (tmp_path / "simulation.csv").read_text().splitlines()[0].split(",")
-    assert "kinetic_energy" in header
+    assert "kinetic_energy_rhoA_L3_omega_b2" in header                     # named with its unit
 
 
 @pytest.mark.parametrize("approach,membrane", [("A", "pointwise"), ("A", "averaged"), ("C", "pointwise")])

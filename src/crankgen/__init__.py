@@ -12,7 +12,7 @@ from .provenance import VERSION as __version__  # noqa: F401
 
 # public name -> module that defines it
 _LAZY = {
-    "Mechanism": "parameters", "SIMechanism": "parameters", "Case": "cases", "Model": "model",
+    "Mechanism": "parameters", "SIMechanism": "si", "Case": "cases", "Model": "model",
     "InitialState": "initial", "Scales": "units", "SIView": "outputs",
     "NewmarkSettings": "newmark", "integrate": "newmark",
     "SimulationResult": "simulation", "simulate": "simulation", "simulate_many": "simulation",

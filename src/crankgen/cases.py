@@ -112,14 +112,18 @@ class CaseRules:
     @classmethod
     def from_dict(cls, data):
         """Case from a mapping (extra keys ignored).  Text (from CSV) is converted by each
-        parameter's kind: numbers, pairs "x,y", booleans "true"/"false"; anything else is validated
-        and normalised by the constructor, which names the field."""
+        parameter's kind: numbers, pairs "x,y", booleans "true"/"false"; an empty field (or None)
+        is a parameter left at its default (a row leaves empty those its guide or crank motion does
+        not read); anything else is validated and normalised by the constructor, which names the
+        field."""
         kwargs = {}
         for f in fields(cls):
             if f.name not in data or f.name in _NOT_KEYED:
                 continue
             value = data[f.name]
             kind = schema.PARAMETERS[f.name].kind if f.name in schema.PARAMETERS else None
+            if kind is not None and (value is None or (isinstance(value, str) and not value.strip())):
+                continue                      # an empty field: a parameter the case does not read
             if isinstance(value, str) and kind in ("real", "count", "sign"):
                 try:
                     value = float(value)

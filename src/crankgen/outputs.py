@@ -306,7 +306,7 @@ class DeclaredOutputs:
         spec = schema.OUTPUTS.get(name)
         if spec is None:
             raise unknown_output(name)
-        if self.case.guide_record.name not in spec.guides:
+        if getattr(self, "case", None) is not None and self.case.guide_record.name not in spec.guides:
             raise ParameterError(f"{name} exists for the {' and '.join(spec.guides)} guide only "
                                  f"(this case's guide is {self.case.guide_record.name!r})")
         if spec.kind == "field":
@@ -321,6 +321,50 @@ class DeclaredOutputs:
         if spec.kind == "reduction":
             return self._history().reduction(name)
         return self._history().step(name)
+
+    def output_names(self):
+        """The declared outputs this result gives per step (the engine's; with stored states every
+        step and reduction output of its guide), in the schema's order."""
+        from .exports import output_names
+        return output_names(self)
+
+    def table(self, x=(0.5,), fiber=None):
+        """(columns, arrays): t, the crank angle in degrees, every output of output_names, the field
+        outputs at x* in x (default the mid-span; surface_strain with `fiber`), the range of the
+        theory per step; each column named with its unit (crankgen.exports)."""
+        from .exports import per_step
+        return per_step(self, None, x, fiber)
+
+    def to_csv(self, path, x=(0.5,), fiber=None):
+        """Write the table (crankgen's units, each column named with its unit: t_per_omega_b,
+        theta_deg, v_mid_r, torque_rhoA_L3_omega_b2, ..., bending_moment_at_0.5_EI_per_L, ...,
+        deflection_over_L, axial_strain, beyond_theory) as CSV in full precision, atomically;
+        a number that does not exist is an empty field."""
+        from .exports import write
+        return write(path, *self.table(x, fiber))
+
+    @property
+    def si(self):
+        """The result in SI (crankgen.outputs.SIView) of a run given in SI (units="si")."""
+        scales = self.__dict__.get("scales")
+        if scales is None:
+            raise ParameterError("this result was computed in crankgen's units: result.si needs a run made "
+                                 "with units='si' from a crankgen.SIMechanism; result.si_view(si_mechanism) "
+                                 "converts any result")
+        return SIView(self, scales)
+
+    def si_view(self, si_mechanism):
+        """The result in SI for the SIMechanism whose dimensionless form it was computed for."""
+        from .units import scales_of
+        return SIView(self, scales_of(si_mechanism))
+
+    def __dir__(self):
+        """The attributes, and every declared output this result gives by name."""
+        names = set(super().__dir__())
+        if getattr(self, "case", None) is not None:
+            guide = self.case.guide_record.name
+            names.update(n for n, spec in schema.OUTPUTS.items() if guide in spec.guides)
+        return sorted(names)
 
     @property
     def slider_position(self):
@@ -357,8 +401,7 @@ class SIView:
     history with u, v in m (psi, a slope, is dimensionless); `at_times` the SI view of the result at
     the requested times."""
 
-    # the result's own per-step arrays beside the declared outputs, and their units
-    BASE = {"t": "1/omega_b", "theta": "rad"}
+    from .exports import BASE      # the result's own per-step arrays beside the outputs, and their units
 
     def __init__(self, result, scales):
         self.result, self.scales = result, scales
@@ -396,8 +439,28 @@ class SIView:
 
     @property
     def at_times(self):
-        inner = self.result.at_times
+        inner = getattr(self.result, "at_times", None)
         return None if inner is None else SIView(inner, self.scales)
+
+    def table(self, x=None, fiber=None):
+        """(columns, arrays) of the result's table in SI (crankgen.exports): t_s, theta_rad, every
+        output of the result's output_names, the fields at x in metres (default the mid-span;
+        surface_strain with `fiber`), the range of the theory per step."""
+        from .exports import per_step
+        return per_step(self.result, self, (self.scales.L / 2,) if x is None else x, fiber)
+
+    def to_csv(self, path, x=None, fiber=None):
+        """Write the table in SI (t_s, theta_rad, v_mid_m, ..., torque_N_m, crank_on_rod_x_N, ...) as
+        CSV in full precision, atomically."""
+        from .exports import write
+        return write(path, *self.table(x, fiber))
+
+    def __dir__(self):
+        names = set(super().__dir__()) | set(self.BASE)
+        case = getattr(self.result, "case", None)
+        if case is not None:
+            names.update(n for n, spec in schema.OUTPUTS.items() if case.guide_record.name in spec.guides)
+        return sorted(names)
 
     def __getattr__(self, name):
         if name in ("result", "scales"):

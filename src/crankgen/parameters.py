@@ -14,7 +14,6 @@ default, and refuses a geometry whose crank cannot turn a full revolution (the g
 margins).
 """
 
-import math
 from dataclasses import dataclass, fields
 
 import numpy as np
@@ -162,17 +161,21 @@ class MechanismRules:
         return self.section["EI"]
 
     @classmethod
-    def from_si(cls, *, L, a, E, rho, A, I, slider_mass, crank_speed, damping=0.0):
-        """(Mechanism, Omega*) from SI quantities.
-
-        L, a in m; E in Pa; rho in kg/m^3; A in m^2; I in m^4; slider_mass in kg; crank_speed in
-        rad/s; damping mu in s: the time constant of the model's damping (Kelvin-Voigt strain-rate
-        damping D = (mu/2) int [EA (de/dt)^2 + EI (dv_xx/dt)^2] dx in the default model; eq. 24,
-        C = mu (K_lin + K_non), with damping="paper").
-        """
-        si = SIMechanism(L=L, a=a, E=E, rho=rho, A=A, I=I, slider_mass=slider_mass,
-                         crank_speed=crank_speed, damping=damping)
-        return si.mechanism, si.omega
+    def from_si(cls, **fields):
+        """(Mechanism, crank) from SI quantities: the fields of a crankgen.SIMechanism (the rod: L
+        in m, E in Pa, rho in kg/m^3, A in m^2, I in m^4; every parameter of the mechanism, its
+        guide and its crank motion by its SI name in the SI unit of its declared units: a in m,
+        slider_mass in kg, damping mu in s (the time constant of the model's damping: Kelvin-Voigt
+        strain-rate damping D = (mu/2) int [EA (de/dt)^2 + EI (dv_xx/dt)^2] dx in the default model;
+        eq. 24, C = mu (K_lin + K_non), with damping="paper"), gravity in m/s^2, offset, c, d in m,
+        crank_speed and omega0 in rad/s, ramp in revolutions, ...; crankgen.si).  crank: Omega* (a
+        number) for a constant crank speed, else the crank motion's record in crankgen's units
+        (crankgen.RunUp(...): pass it as simulate's crank=)."""
+        from .si import SIMechanism
+        si = SIMechanism(**fields)
+        crank = si.crank
+        steady = schema.PARAMETERS[schema.SELECTOR["motion"]].default
+        return si.mechanism, (si.omega if crank.name == steady and len(crank.values) <= 1 else crank)
 
 
 @dataclass(frozen=True)
@@ -180,79 +183,9 @@ class Mechanism(MechanismRules, _classes.MechanismFields):
     __doc__ = MechanismRules.__doc__
 
 
-_SI_UNIT = {"L": "m", "a": "m", "E": "Pa", "rho": "kg/m^3", "A": "m^2", "I": "m^4", "slider_mass": "kg",
-            "crank_speed": "rad/s", "damping": "s"}
-
-
-@dataclass(frozen=True)
-class SIMechanism:
-    """A mechanism in SI units; `.mechanism` and `.omega` give the paper's dimensionless form."""
-
-    L: float
-    a: float
-    E: float
-    rho: float
-    A: float
-    I: float
-    slider_mass: float
-    crank_speed: float
-    damping: float = 0.0
-
-    def __post_init__(self):
-        from .validation import in_range
-        for f in fields(self)[:6]:              # the lengths and the material: positive
-            in_range(f"{f.name} (SI)", getattr(self, f.name), 0, None, True)
-        in_range("slider_mass (kg)", self.slider_mass, 0)
-        in_range("crank_speed (rad/s)", self.crank_speed, 0)
-        in_range("damping (mu, s)", self.damping, 0)
-        self._check_magnitudes()
-
-    # the scales and dimensionless numbers an SI mechanism gives, as powers of its fields:
-    # every one must lie within 10^-MAGNITUDE .. 10^MAGNITUDE (zero where a field may be zero)
-    MAGNITUDE = 50
-    DERIVED = (("L (the unit of length)", {"L": 1}),
-               ("omega_b = (pi/L)^2 sqrt(E I / (rho A))", {"L": -2, "E": 0.5, "I": 0.5, "rho": -0.5, "A": -0.5}),
-               ("rho A (the unit of mass per length)", {"rho": 1, "A": 1}),
-               ("eps = sqrt(I/A) / L", {"I": 0.5, "A": -0.5, "L": -1}),
-               ("a* = a / L", {"a": 1, "L": -1}),
-               ("ms* = slider_mass / (rho A L)", {"slider_mass": 1, "rho": -1, "A": -1, "L": -1}),
-               ("mu* = omega_b damping", {"damping": 1, "L": -2, "E": 0.5, "I": 0.5, "rho": -0.5, "A": -0.5}),
-               ("Omega* = crank_speed / omega_b", {"crank_speed": 1, "L": 2, "E": -0.5, "I": -0.5, "rho": 0.5,
-                                                   "A": 0.5}))
-
-    def _check_magnitudes(self):
-        """Refuse fields whose scales overflow or underflow in floating point (or come near it),
-        naming the field that weighs most; computed on logarithms, so nothing overflows here."""
-        for what, powers in self.DERIVED:
-            values = {name: float(getattr(self, name)) for name in powers}
-            if any(v == 0 for v in values.values()):
-                continue                  # a zero mass, damping or speed: the number is zero
-            terms = {name: p * math.log10(values[name]) for name, p in powers.items()}
-            exponent = sum(terms.values()) + (2 * math.log10(math.pi) if what.startswith(("omega_b", "mu*"))
-                                              else -2 * math.log10(math.pi) if what.startswith("Omega*") else 0.0)
-            if abs(exponent) > self.MAGNITUDE:
-                name = max(terms, key=lambda n: abs(terms[n]))
-                raise ParameterError(
-                    f"SIMechanism: {name} = {values[name]:g} makes {what} about 1e{exponent:+.0f}, beyond "
-                    f"1e-{self.MAGNITUDE} .. 1e{self.MAGNITUDE} (floating point would overflow or underflow); "
-                    f"give {name} in SI units ({_SI_UNIT[name]}) of a real mechanism")
-
-    @property
-    def omega_b(self):
-        """Lowest bending natural frequency of the pinned-pinned rod, rad/s."""
-        return (math.pi / self.L) ** 2 * math.sqrt(self.E * self.I / (self.rho * self.A))
-
-    @property
-    def radius_of_gyration(self):
-        return math.sqrt(self.I / self.A)
-
-    @property
-    def mechanism(self):
-        return Mechanism(a=self.a / self.L, eps=self.radius_of_gyration / self.L,
-                         ms=self.slider_mass / (self.rho * self.A * self.L),
-                         mu=self.omega_b * self.damping)
-
-    @property
-    def omega(self):
-        """Omega* = crank speed / omega_b."""
-        return self.crank_speed / self.omega_b
+def __getattr__(name):
+    """crankgen.parameters.SIMechanism: defined in crankgen.si (kept here for older imports)."""
+    if name == "SIMechanism":
+        from .si import SIMechanism
+        return SIMechanism
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,6 +1,8 @@
 """Plots (matplotlib, Agg backend, imported only when a figure is written), and their layout:
 measured, so that nothing is clipped and no legend or label covers data or another panel."""
 
+import textwrap
+
 import numpy as np
 
 from . import schema
@@ -32,6 +34,12 @@ def _title(s):
     return (f"approach {s['approach']}, {s['formulation']} formulation, {s['damping']} damping, "
             f"{s.get('membrane', 'pointwise')} membrane\n" + ", ".join(main + [f"n = {s['n_elements']}"])
             + ("\n" + ", ".join(other) if other else ""))
+
+
+def listed(parts):
+    """Items joined with ", " for a title that is wrapped (textwrap): the spaces inside an item
+    non-breaking, so that a line breaks between items, never between a value and its unit."""
+    return ", ".join(p.replace(" ", "\u00a0") for p in parts)
 
 
 def shade_beyond(ax, limit, color):
@@ -180,31 +188,55 @@ def runup_figure(result, ramp_end, failure=None, si=None, strain=None):
     return fig
 
 
-def plot_orbit(state, path, strain=None):
-    """A steady revolution (crankgen.SteadyState): v* at x* = 1/2 and the extension delta*
-    against the crank angle, written atomically to path (returned); beyond the range of the
-    theory: shaded and named in the title.  strain: theory.axial_strain(state, per_step=True)
-    when the caller has it already."""
-    from . import theory
+def plot_orbit(state, path, strain=None, si=None):
+    """orbit_figure written atomically to path (returned)."""
     from .io import save_figure
-    fig, (a1, a2) = subplots(2, 1, figsize=(7, 5.4), sharex=True, constrained_layout=True)
+    return save_figure(orbit_figure(state, strain, si), path)
+
+
+def orbit_figure(state, strain=None, si=None):
+    """A steady revolution (crankgen.SteadyState) against the crank angle: v* at x* = 1/2, the
+    extension delta* and the driving torque (the declared output `torque`, which a motor and its
+    bearings are sized from); beyond the range of the theory: shaded and named in the title.
+    strain: theory.axial_strain(state, per_step=True) when the caller has it already.  si: the
+    state's SI view (crankgen.outputs.SIView): v in mm, the torque in N m."""
+    from . import theory
+    fig, (a1, a2, a3) = subplots(3, 1, figsize=(7, 7.0), sharex=True, constrained_layout=True)
     deg = np.degrees(state.theta)
-    a1.plot(deg, state.v_mid, lw=1.2, color="C0")
-    a1.set_ylabel("v* at x* = 1/2")
+    v = state.v_mid if si is None else si.v_mid * 1e3
+    a1.plot(deg, v, lw=1.2, color="C0")
+    a1.set_ylabel("v* at x* = 1/2" if si is None else "v at x = L/2 (mm)")
     a2.plot(deg, state.extension, lw=1.2, color="C2")
     a2.set_ylabel("extension delta*")
-    a2.set_xlabel("crank angle theta (degrees)")
-    a2.set_xticks(np.arange(0, 361, 60))
-    for ax in (a1, a2):
+    torque = state.torque if si is None else si.torque
+    a3.plot(deg, torque, lw=1.2, color="C3")
+    a3.axhline(0.0, color="0.5", lw=0.6)
+    a3.set_ylabel("driving torque (N m)" if si is not None else
+                  f"driving torque\n({schema.OUTPUTS['torque'].units})")
+    a3.set_xlabel("crank angle theta (degrees)")
+    a3.set_xticks(np.arange(0, 361, 60))
+    for ax in (a1, a2, a3):
         ax.grid(alpha=0.3)
     s = dict(state.case.as_dict())
     mult = (f", largest |multiplier| {state.multiplier:.4f}"
             if state.multiplier is not None and np.isfinite(state.multiplier) else "")
     if strain is None:
         strain = theory.axial_strain(state, per_step=True)
-    note = _beyond_theory(a1, in_L(schema.OUTPUTS["v_mid"].units, state.case.parameters()), state.v_mid, strain)
-    a1.set_title(f"steady state: {state.status}{mult}\n" + _title(s) + note, fontsize=9)
-    return save_figure(fig, path)
+    eps = in_L(schema.OUTPUTS["v_mid"].units, state.case.parameters()) if si is None else 1e-3 / si.scales.L
+    note = _beyond_theory(a1, eps, v, strain)
+    a1.set_title(f"steady state: {state.status}{mult}\n" + (_title(s) if si is None else _si_title(state, si))
+                 + note, fontsize=9)
+    return fig
+
+
+def _si_title(result, si):
+    """The model, the rod and the case's parameters in SI (crankgen.si.describe_si), for a title."""
+    from .si import describe_si
+    s, sc = result.case.as_dict(), si.scales
+    return (f"approach {s['approach']}, {s['formulation']} formulation, {s['damping']} damping, "
+            f"{s.get('membrane', 'pointwise')} membrane, n = {s['n_elements']}\n"
+            f"L = {sc.L:g} m, omega_b = {sc.omega_b:.5g} rad/s, rho A = {sc.rhoA:.4g} kg/m, r = {sc.base['r']:.4g} m\n"
+            + textwrap.fill(listed(describe_si(result.case.parameters(), sc)), 88))
 
 
 # --- helpers for multi-panel figures (crankgen reproduce) -------------------------------------

@@ -114,9 +114,12 @@ class Parameter:
     low), "choice" (one of `choices`).  owner: "mechanism" (a Mechanism field) or "run" (a setting
     of the run) as declared; the representation makes it "guide" or "motion" when guides or
     motions read it (`readers`: those that do; it must stay at its default for the others).
-    units: the unit of the value (crankgen's units: L, rho A L, 1/omega_b).  continuable: a
-    continuation may vary it.  slots: its entries' places in the parameter vector (a pair has two;
-    () for a parameter that enters no equation: a choice, the mesh, the integrator)."""
+    units: the unit of the value (crankgen's units: L, rho A L, 1/omega_b, ...; crankgen.units),
+    which converts it from SI.  continuable: a continuation may vary it.  slots: its entries'
+    places in the parameter vector (a pair has two; () for a parameter that enters no equation: a
+    choice, the mesh, the integrator).  si: its field's name in SI (crankgen.SIMechanism; default
+    its name); si_default: its SI value when an SIMechanism leaves it out, where that is not the
+    value its default gives (the damping of a real rod is unknown: 0)."""
 
     name: str
     kind: str
@@ -137,6 +140,8 @@ class Parameter:
     slots: tuple = ()
     selects: str = None
     axis: str = None             # the text of an axis along it (plots of a continuation); default: its name
+    si: str = None               # its name in SI (a crankgen.SIMechanism field; default: its name)
+    si_default: object = None    # its SI value when left out, where not the default's (None: the default's)
 
     @property
     def range_text(self):

@@ -48,6 +48,11 @@ MECHANISM_PARAMETERS = tuple(n for n, p in PARAMETERS.items() if p.owner in ("me
 RUN_PARAMETERS = tuple(n for n, p in PARAMETERS.items() if p.owner in ("run", "motion"))
 CONTINUABLE = tuple(n for n, p in PARAMETERS.items() if p.continuable)
 EXCLUSIONS = _table.EXCLUSIONS            # option values refused together (records.Exclusion)
+# the parameters of a mechanism and its crank motion in SI (crankgen.SIMechanism's fields beside the
+# rod's), by SI name: those entering an equation or choosing the guide or motion, but the units that
+# are parameters (the rod's section gives them)
+SI_FIELDS = {p.si or p.name: p for p in PARAMETERS.values()
+             if (p.slots or p.selects) and p.name not in UNIT_PARAMETERS.values()}
 
 
 def resolve_options(model=None, **options):

@@ -2,7 +2,6 @@
 (or from a given elastic state: crankgen.initial), with the state and every output at requested
 times, in crankgen's units or in SI."""
 
-import csv
 from dataclasses import dataclass, field, replace
 from typing import Optional
 
@@ -19,14 +18,13 @@ from .model import Model
 from .initial import initial_state
 from .newmark import NewmarkSettings, integrate
 from . import schema
-from .outputs import DeclaredOutputs, SIView, StateHistory, engine_columns, takes_engine_outputs
-from .parameters import SIMechanism
+from .outputs import DeclaredOutputs, StateHistory, engine_columns, takes_engine_outputs
+from .si import si_input
 from .theory import warn_beyond
-from .units import Scales, scales_of
+from .units import Scales
 from .validation import choice, in_range, numbers_array
 
 ENGINES = ("compiled", "numpy")
-UNITS = ("crankgen", "si")
 
 
 @takes_engine_outputs
@@ -55,30 +53,6 @@ class SimulationResult(DeclaredOutputs):
     accelerations: Optional[np.ndarray] = field(default=None, repr=False)
     at_times: Optional["SimulationResult"] = field(default=None, repr=False)
     scales: Optional[Scales] = field(default=None, repr=False)      # crankgen's units in SI (units="si")
-
-    def to_csv(self, path):
-        """Write t*, theta (degrees) and the engine's outputs (v_mid, u_end, extension) as CSV (full
-        double precision), atomically."""
-        from .io import atomic_file
-        names = schema.ENGINE_OUTPUTS
-        with atomic_file(path) as fh:
-            w = csv.writer(fh)
-            w.writerow(["t", "theta_deg", *names])
-            for row in zip(self.t, np.degrees(self.theta), *(self.outputs[n] for n in names)):
-                w.writerow([repr(float(x)) for x in row])
-
-    @property
-    def si(self):
-        """The result in SI (crankgen.outputs.SIView) of a run given in SI (units="si")."""
-        if self.scales is None:
-            raise ParameterError("this run was given in crankgen's units: result.si needs a run made with "
-                                 "units='si' from a crankgen.SIMechanism; result.si_view(si_mechanism) "
-                                 "converts any run")
-        return SIView(self, self.scales)
-
-    def si_view(self, si_mechanism):
-        """The result in SI for the SIMechanism whose dimensionless form this run used."""
-        return SIView(self, scales_of(si_mechanism))
 
 
 def run_length(case, revolutions):
@@ -166,27 +140,15 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     are then given at the requested times only), for long runs asked at a few times.
 
     units: "crankgen" (dimensionless, the default) or "si": then mech is a crankgen.SIMechanism
-    (its crank speed is the constant crank speed; omega and crank are not given), times are in
-    seconds, the initial state's fields in metres and m/s, and `result.si` gives every output in
-    SI (crankgen.outputs.SIView).
+    (with its crank motion: omega, crank and case are not given), times are in seconds, the
+    initial state's fields in metres and m/s, and `result.si` gives every output in SI
+    (crankgen.outputs.SIView).
 
     progress(step, n_steps) is called as the run advances.
     engine: "compiled" (numba, crankgen.engine) or "numpy" (model.py + newmark.py, the reference).
     """
-    choice("units", units, UNITS)
     choice("engine", engine, ENGINES)
-    scales = None
-    if units == "si":
-        if not isinstance(mech, SIMechanism):
-            raise ParameterError(f"units='si' needs the mechanism as a crankgen.SIMechanism, got "
-                                 f"{type(mech).__name__}")
-        if omega is not None or crank is not None or case is not None:
-            raise ParameterError("with units='si' the crank turns at the SIMechanism's crank_speed: give "
-                                 "neither omega, crank nor case")
-        scales = scales_of(mech)
-        mech, omega = mech.mechanism, mech.omega
-    elif isinstance(mech, SIMechanism):
-        raise ParameterError("a crankgen.SIMechanism needs units='si' (or use its .mechanism and .omega)")
+    mech, crank, scales = si_input(mech, units, fields, omega=omega, crank=crank, case=case, what="simulate")
     if revolutions is not None:
         revolutions = in_range("revolutions", revolutions, 0, None, True)
     case = run_case(mech, case, model=model, omega=omega, crank=crank, **fields)

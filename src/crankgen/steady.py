@@ -48,6 +48,8 @@ from .errors import ParameterError
 from .limits import check_run_size
 from .outputs import DeclaredOutputs, engine_columns, takes_engine_outputs
 from .theory import warn_beyond
+from .si import si_input
+from .units import Scales
 from .validation import choice, in_range, integer
 
 STATUSES = ("periodic", "not-periodic", "unstable", "failed")
@@ -85,19 +87,18 @@ class SteadyState(DeclaredOutputs):
     states: np.ndarray = field(default=None, repr=False)  # reduced displacements over the revolution
     rates: np.ndarray = field(default=None, repr=False)   # reduced velocities over the revolution
     accelerations: np.ndarray = field(default=None, repr=False)
+    scales: Optional[Scales] = field(default=None, repr=False)    # crankgen's units in SI (units="si")
 
     @property
     def ok(self):
         return self.status == "periodic"
 
     def row(self):
-        """Flat record for tables: the case's parameters and the scalar results."""
-        out = self.case.as_dict()
-        out.update(status=self.status, amplitude=self.amplitude,
-                   half_peak_to_peak=self.half_peak_to_peak, periods=self.periods,
-                   iterations=self.iterations, residual=self.residual,
-                   multiplier=self.multiplier, wall_time=self.wall_time, message=self.message)
-        return out
+        """Flat record for tables (crankgen.steady_row): the case's parameters (None where its guide
+        or crank motion does not read them), its model and options, the scalar results, the range
+        of the theory and the peak loads over the orbit."""
+        from .steady_row import row
+        return row(self)
 
 
 def _scaled_change(X0, X1, S):
@@ -404,9 +405,13 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
 
 
 def steady_state(mech=None, omega=None, *, model=None, case=None, crank=None, tol=1e-8,
-                 max_revolutions=400, method="shooting", **fields):
+                 max_revolutions=400, method="shooting", units="crankgen", **fields):
     """Periodic response over one crank revolution of one case (see module docstring): a Mechanism
     with the run's settings (omega, any Case field, the model `model` with explicit options
-    overriding it, a periodic crank motion `crank`), or case=Case(...)."""
+    overriding it, a periodic crank motion `crank`), or case=Case(...).  units="si": mech is a
+    crankgen.SIMechanism with its crank motion (omega, crank and case are not given), and
+    `result.si` gives the orbit in SI (crankgen.outputs.SIView)."""
+    mech, crank, scales = si_input(mech, units, fields, omega=omega, crank=crank, case=case, what="steady_state")
     case = run_case(mech, case, model=model, omega=omega, crank=crank, **fields)
-    return steady_states([case], tol=tol, max_revolutions=max_revolutions, method=method, _stacklevel=4)[0]
+    result = steady_states([case], tol=tol, max_revolutions=max_revolutions, method=method, _stacklevel=4)[0]
+    return result if scales is None else replace(result, scales=scales)

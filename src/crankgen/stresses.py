@@ -26,7 +26,7 @@ from typing import Optional
 import numpy as np
 
 from .errors import ParameterError
-from .parameters import SIMechanism
+from .si import SIMechanism
 from .sections import Section
 from .units import Scales, in_L, scales_of
 

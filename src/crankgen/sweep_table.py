@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from .cases import Case
+from .errors import ParameterError
 from .io import atomic_file
 from .steady import SteadyState
 
@@ -95,6 +96,39 @@ class SweepTable:
             writer.writeheader()
             writer.writerows({k: plain(v) for k, v in row.items()} for row in self.rows)
         return Path(path)
+
+    def si_view(self, si):
+        """The table with every row's SI columns added (crankgen.si.row_in_si: the rod, each
+        parameter with a unit by its SI name, the amplitude in m, the peak loads in N and N m; each
+        column named with its SI unit): si is the crankgen.SIMechanism whose rod (L, E, rho, A, I)
+        every row is of, or a sequence of them, one per row."""
+        from .si import SIMechanism, row_in_si
+        mechs = [si] * len(self.rows) if isinstance(si, SIMechanism) else list(si)
+        if len(mechs) != len(self.rows) or not all(isinstance(m, SIMechanism) for m in mechs):
+            raise ParameterError(f"si must be a crankgen.SIMechanism or {len(self.rows)} of them (one per row)")
+        out = []
+        for k, (row, mech) in enumerate(zip(self.rows, mechs)):
+            try:
+                out.append(dict(row, **row_in_si(row, mech)))
+            except ParameterError as exc:
+                raise ParameterError(f"row {k}: {exc}") from None
+        table = SweepTable(out)
+        table._si = mechs
+        return table
+
+    def describe(self, columns=None):
+        """[{column, units, meaning}] of every column (or of `columns`: the CSV's, with gravity as
+        gravity_x, gravity_y): the units are crankgen's declared units strings (crankgen.units),
+        or SI for the columns si_view adds."""
+        from .steady_row import describe
+        columns = list(self.columns if columns is None else columns)
+        out = {d["column"]: d for d in describe(columns)}
+        mechs = getattr(self, "_si", None)
+        if mechs and self.rows:
+            from .si import describe_row_in_si
+            for d in describe_row_in_si(self.rows[0], mechs[0]):
+                out[d["column"]] = d
+        return [out[c] for c in columns]
 
     def to_pandas(self):
         """The table as a pandas DataFrame (needs pandas, which crankgen does not require)."""

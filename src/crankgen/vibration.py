@@ -19,9 +19,7 @@ buckles (the axial force beyond the rod's buckling load): its frequency is repor
 mode as divergent.
 
 Units: frequencies in units of omega_b (rad per unit of crankgen's time; the pinned-pinned rod's
-k-th bending frequency is k^2), or rad/s and Hz for a crankgen.SIMechanism (a slider-crank: the
-SI mechanisms crankgen has; a four-bar's frequencies are in crankgen's units, to be multiplied by
-its omega_b).
+k-th bending frequency is k^2), or rad/s and Hz for a crankgen.SIMechanism (units="si", any guide).
 """
 
 from dataclasses import dataclass, field, replace
@@ -35,8 +33,8 @@ from .cases import run_case
 from .errors import ConvergenceError, ParameterError
 from .mesh import PSI, U, V
 from .model import Model
-from .parameters import SIMechanism
-from .units import Scales, scales_of
+from .si import SIMechanism
+from .units import Scales
 from .validation import choice, finite_number, integer
 
 UNITS = ("crankgen", "si")
@@ -202,7 +200,8 @@ class FrozenModel:
 
 def frozen_case(mech=None, omega=None, *, model=None, case=None, units="crankgen", **fields):
     """(case, scales) of a frozen mechanism: a Mechanism (or a crankgen.SIMechanism with
-    units="si", its crank speed the frozen speed) and the run's fields, or case=."""
+    units="si": its crank speed the frozen speed unless omega, in rad/s, is given) and the run's
+    fields, or case=."""
     choice("units", units, UNITS)
     scales = None
     if units == "si":
@@ -211,8 +210,11 @@ def frozen_case(mech=None, omega=None, *, model=None, case=None, units="crankgen
                                  f"{type(mech).__name__}")
         if case is not None:
             raise ParameterError("with units='si' give the SIMechanism, not case=")
-        scales = scales_of(mech)
-        omega = mech.omega if omega is None else finite_number("omega (rad/s)", omega) / mech.omega_b
+        scales = mech.scales
+        if omega is None:
+            fields = dict(fields, crank=mech.crank)
+        else:
+            omega = finite_number("omega (rad/s)", omega) / scales.omega_b
         mech = mech.mechanism
     elif isinstance(mech, SIMechanism):
         raise ParameterError("a crankgen.SIMechanism needs units='si' (or use its .mechanism and .omega)")

@@ -63,6 +63,23 @@ def _check_progress(progress):
         raise ParameterError(f"progress must be None or a function, got {progress!r}")
 
 
+def si_parameter(mech, parameter, units, fields, case, values):
+    """(mechanism, fields, scales, values in crankgen's units) of an analysis over `parameter`: with
+    units="si" the SIMechanism's dimensionless mechanism and crank motion, and the parameter's
+    values given in its SI unit (crankgen.si), a parameter that is a unit (the slenderness: the
+    rod's section, which sets the units) refused."""
+    from ..si import si_input, to_crankgen
+    mech, crank, scales = si_input(mech, units, fields, case=case, crank=fields.pop("crank", None),
+                                   what="a continuation")
+    if scales is None:
+        return mech, dict(fields, crank=crank) if crank is not None else fields, None, values
+    if parameter in schema.UNIT_PARAMETERS.values():
+        raise ParameterError(f"in SI, {schema.PARAMETERS[parameter].label} is the rod's section (it sets the "
+                             f"units: omega_b, r): vary it in crankgen's units, or the SI mechanism's I and A")
+    choice("parameter", parameter, PARAMETERS)
+    return mech, dict(fields, crank=crank), scales, [to_crankgen(parameter, v, scales) for v in values]
+
+
 def _add_quantities(diagram, case, parameter, section, progress):
     """Every branch point's physical quantities (quantities.py)."""
     from .quantities import branch_quantities, units
@@ -76,7 +93,7 @@ def _add_quantities(diagram, case, parameter, section, progress):
 def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *, model=None, max_period=4, ds=0.05,
                  ds_min=1e-4, ds_max=100.0, dp_max=None, max_points=400, tol=1e-9, switch_step=0.05,
                  case=None, progress=None, corrector="broyden", predictor="quadratic", derivative="exact",
-                 quantities=True, section=None, **fields):
+                 quantities=True, section=None, units="crankgen", **fields):
     """Follow the periodic response of the mechanism as `parameter` goes from start to stop, by
     pseudo-arclength continuation of the fixed points of the crank-revolution map, and return a
     BifurcationDiagram: branches (period, parameter, amplitude = max |v*(1/2)| over the orbit,
@@ -97,7 +114,10 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
     "central" together are the former method, kept as a baseline.  quantities: every branch
     point also stores the physical quantities of its orbit (Branch.quantities: peak torque, pin and
     end forces, axial force, |v*|, outer-fibre strain, and with a crankgen.sections.Section
-    `section` the peak stress in units of E; bifurcation/quantities.py)."""
+    `section` the peak stress in units of E; bifurcation/quantities.py).  units="si": mech is a
+    crankgen.SIMechanism with its crank motion, start and stop are in the parameter's SI unit
+    (crank speed in rad/s, a four-bar's c and d in m, ...), and `diagram.si` gives the diagram in
+    SI (the parameter in its SI unit, the amplitude in m, the quantities in N, N m, Pa)."""
     _check_progress(progress)
     if section is not None:
         from ..sections import Section
@@ -105,6 +125,8 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
             raise ParameterError(f"section must be a crankgen.sections.Section, got {type(section).__name__}")
     start = in_range("start", start)
     stop = in_range("stop", stop)
+    given = mech
+    mech, fields, scales, (start, stop) = si_parameter(mech, parameter, units, fields, case, (start, stop))
     if start == stop:
         raise ParameterError(f"start and stop must differ, got {start:g}")
     c0 = make_case(mech, parameter, start, case, model=model, **fields)
@@ -148,6 +170,7 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
                 corrector=corrector, predictor=predictor, derivative=derivative,
                 map_evaluations=cont.evaluations, map_values=cont.values, wall_time=time.perf_counter() - t0)
     diagram.info = info
+    diagram.si_mechanism = None if scales is None else given
     diagram.flag_range()
     flag = diagram.beyond_theory
     if flag:
@@ -163,14 +186,17 @@ continuation.__doc__ = continuation.__doc__.replace("{continuable}", ", ".join(
 
 
 def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up", *, model=None, transient=100,
-             samples=64, max_period=8, tol=1e-8, lyapunov_tol=0.01, case=None, progress=None, **fields):
+             samples=64, max_period=8, tol=1e-8, lyapunov_tol=0.01, case=None, progress=None, units="crankgen",
+             **fields):
     """Brute-force bifurcation diagram (a PoincareDiagram): for each value of `parameter` in
     `values`, swept "up", "down" or "both" (up, then down from where up ended), march `transient`
     crank revolutions from the last state of the previous value (the first from rest), then sample
     v*(1/2) at theta = 0 once per revolution for `samples` revolutions and classify the response:
     period-k (k <= max_period), quasi-periodic, irregular or unsettled, with the evidence (repeat
     residual, largest Lyapunov exponent of the revolution map, distinct samples).  The case as in
-    steady_state.  progress(done, total) after each value."""
+    steady_state.  progress(done, total) after each value.  units="si": mech is a
+    crankgen.SIMechanism, the values are in the parameter's SI unit, and `result.si` gives the
+    diagram in SI (the samples in m)."""
     from .sweeps import sweep_map
 
     _check_progress(progress)
@@ -181,6 +207,8 @@ def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up
     if not values:
         raise ParameterError("values must hold at least one parameter value")
     values = [in_range(f"values ({parameter})", v) for v in values]
+    given = mech
+    mech, fields, scales, values = si_parameter(mech, parameter, units, fields, case, values)
     choice("direction", direction, ("up", "down", "both"))
     c0 = make_case(mech, parameter, min(values), case, model=model, **fields)
     for v in values:
@@ -200,4 +228,5 @@ def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up
     info.update(parameter=parameter, direction=direction, transient=transient, samples=samples,
                 wall_time=time.perf_counter() - t0)
     result.info = info
+    result.si_mechanism = None if scales is None else given
     return result

@@ -114,6 +114,17 @@ class BifurcationDiagram:
                   if br.deflection_over_L is not None and len(br)]
         return range_flag(max(values) if values else math.nan)
 
+    @property
+    def si(self):
+        """The diagram in SI (bifurcation/si_view.py) of a continuation made with units="si"."""
+        from .si_view import si_of
+        return si_of(self)
+
+    def si_view(self, si_mechanism):
+        """The diagram in SI for the crankgen.SIMechanism whose dimensionless form it was computed for."""
+        from .si_view import DiagramSI
+        return DiagramSI(self, si_mechanism)
+
     def eps_at(self, p):
         """The amplitude's unit (v* = v / r: the radius of gyration r) in L at parameter value p, the
         slenderness (None: not a mechanism diagram)."""

@@ -62,6 +62,17 @@ class PoincareDiagram:
     points: list
     info: dict = field(default_factory=dict)
 
+    @property
+    def si(self):
+        """The diagram in SI (bifurcation/si_view.py) of a sweep made with units="si"."""
+        from .si_view import si_of
+        return si_of(self)
+
+    def si_view(self, si_mechanism):
+        """The diagram in SI for the crankgen.SIMechanism whose dimensionless form it was computed for."""
+        from .si_view import DiagramSI
+        return DiagramSI(self, si_mechanism)
+
     def to_csv(self, folder):
         """poincare_summary.csv (one row per value and direction) and poincare_samples.csv (every
         sample) in folder; returns the paths."""

@@ -43,9 +43,9 @@ def _cmd_animate(args):
     from ..errors import ParameterError
     from ..validation import in_range, integer
 
-    from .runs import _si_case, _si_mechanism
-    si = None if args.si is None else _si_mechanism(args.si)
-    case = _case(args) if si is None else _si_case(args, si)
+    from . import si_file
+    si = None if args.si is None else si_file.read(args.si)
+    case = _case(args) if si is None else si_file.case(args, si)
     revolutions = in_range("revolutions", args.revolutions, 0, None, True)
     if args.magnify is not None:
         in_range("--magnify", args.magnify, 0, None, True)

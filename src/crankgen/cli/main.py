@@ -18,6 +18,7 @@ from ..errors import ConvergenceError, CrankgenError, NoResultError
 from ..provenance import VERSION
 from .options import (_Parser, _add_mechanism_options, _add_model_options, _add_output_options,
                       _figure_list, _number_list)
+from . import si_file
 from .compile import _cmd_compile
 from .animate import add_command as add_animate_command
 from .chart import add_command as add_chart_command
@@ -47,10 +48,11 @@ def build_parser():
 
     p = sub.add_parser("simulate", help="one run from zero initial conditions; writes CSV and a PNG of v*(t*)",
                        description="Integrate one mechanism from the paper's zero initial conditions and "
-                                   "write simulation.csv (t*, the crank angle, v* at x*=1/2, u*(1), the "
-                                   "extension delta*, every declared step output of the guide: crank speed, "
-                                   "slider position, chord angle, driving torque, pin and end forces, ...; "
-                                   "the range-of-the-theory flags and a status; in SI with --si) and "
+                                   "write simulation.csv (every column named with its unit: t*, the crank "
+                                   "angle, v* at x*=1/2, u*(1), the extension delta*, every declared step "
+                                   "output of the guide: crank speed, slider position, chord angle, driving "
+                                   "torque, pin and end forces, ...; the section forces at mid-span; the "
+                                   "range-of-the-theory flags and a status; in SI with --si) and "
                                    "v_mid.png (against the crank speed for a run-up) to the output folder. "
                                    "If the integration fails, "
                                    "the history up to the failure is written, a last row with status "
@@ -61,15 +63,9 @@ def build_parser():
     g.add_argument("--revolutions", type=float, default=10, help="number of crank revolutions to simulate, > 0 (default 10)")
     g.add_argument("--tol", type=float, default=1e-10, help="Newton tolerance on the scaled displacement increment (default 1e-10)")
     p.add_argument("--nodes", action="store_true", help="also write the nodal history nodes.csv")
-    p.add_argument("--si", metavar="FILE", default=None,
-                   help="the mechanism in SI from a JSON file: {\"L\": m, \"a\": m, \"E\": Pa, \"rho\": "
-                        "kg/m^3, \"A\": m^2, \"I\": m^4, \"slider_mass\": kg, \"crank_speed\": rad/s, "
-                        "\"damping\": s (optional, default 0: mu, the damping time constant of the "
-                        "model's damping, Kelvin-Voigt strain-rate damping by default, eq. 24 with "
-                        "--damping paper)}; it replaces the mechanism "
-                        "options and --omega (the crank turns at crank_speed), and simulation.csv is "
-                        "written in SI: t_s, theta_rad, v_mid_m, u_end_m, extension, slider_position_m, "
-                        "chord_angle_rad (nodes.csv: u, v in m), v_mid.png in mm against s")
+    si_file.add_option(p, "simulation.csv is written in SI, every column named with its SI unit (t_s, "
+                          "theta_rad, v_mid_m, ..., torque_N_m, crank_on_rod_x_N, ...; nodes.csv: u, v in m), "
+                          "v_mid.png in mm against s")
     _add_section_option(p)
     _add_output_options(p, "out", "simulation.csv, v_mid.png (and nodes.csv with --nodes)")
     p.set_defaults(func=_cmd_simulate)
@@ -77,9 +73,14 @@ def build_parser():
     p = sub.add_parser("steady", help="one periodic steady state: amplitude, status, Floquet multiplier; CSV and PNG of the orbit",
                        description="Find the periodic response over one crank revolution by shooting "
                                    "(crankgen.steady_state) and write steady.csv (one row: the case, "
-                                   "status, amplitude max|v*|, half peak-to-peak, iterations, residual, "
-                                   "largest |Floquet multiplier|, message), orbit.csv (theta, t*, v*, "
-                                   "u*(1), delta* over the revolution) and orbit.png. Status: periodic, "
+                                   "status, amplitude max|v*|, half peak-to-peak, the range of the theory, "
+                                   "the peak loads, iterations, residual, largest |Floquet multiplier|, "
+                                   "message), orbit.csv (over the revolution, every column named with its "
+                                   "unit: t*, the crank angle, v*, u*(1), delta*, every declared step output "
+                                   "of the guide, driving torque and joint forces included, the section "
+                                   "forces at mid-span, the range of the theory) and orbit.png (v*, delta* and the "
+                                   "driving torque against the crank angle); in SI with "
+                                   "--si. Status: periodic, "
                                    "unstable (orbit exists, multiplier > 1), not-periodic (no orbit, no "
                                    "orbit files) or failed (exit code 1). A missing number is an empty "
                                    "CSV field.")
@@ -88,6 +89,8 @@ def build_parser():
     _add_steady_options(g)
     g.add_argument("--method", choices=("shooting", "march"), default="shooting",
                    help="shooting: Newton on the revolution map; march: revolution by revolution (default shooting)")
+    si_file.add_option(p, "steady.csv adds the case and the results in SI, orbit.csv and orbit.png are in SI "
+                          "(t_s, theta_rad, v_mid_m, ..., torque_N_m, ...)")
     _add_section_option(p)
     _add_output_options(p, "out", "steady.csv, orbit.csv and orbit.png")
     p.set_defaults(func=_cmd_steady)
@@ -99,9 +102,13 @@ def build_parser():
                                    "(default OUT/sweep.jsonl) batch by batch; running the same command "
                                    "again after an interruption resumes from it, and a command with more "
                                    "values (--force to replace sweep.csv) reuses it. sweep.csv (one row per "
-                                   "case, in grid order; missing numbers are empty fields) is written at "
-                                   "the end. Cases that fail or have no periodic state are rows with their "
-                                   "status and message; the exit code is 0 once every case has a row.")
+                                   "case, in grid order: the case's parameters, empty where its guide or "
+                                   "crank motion does not read them, its model and options, status, "
+                                   "amplitude, the range of the theory, the peak loads over the orbit, "
+                                   "...; missing numbers are empty fields), sweep_columns.csv (what every "
+                                   "column is, with its units) and sweep.png are written at the end. Cases "
+                                   "that fail or have no periodic state are rows with their status and "
+                                   "message; the exit code is 0 once every case has a row.")
     _add_mechanism_options(p, grid=True)
     g = _add_model_options(p, grid=True)
     _add_steady_options(g)
@@ -119,8 +126,13 @@ def build_parser():
     p.add_argument("--fresh", action="store_true",
                    help="discard the checkpoint's records and compute every case again")
     p.add_argument("--retry-failed", action="store_true", help="recompute cases recorded as failed in the checkpoint")
-    _add_output_options(p, "out", "sweep.csv and the checkpoint sweep.jsonl (--force replaces "
-                        "sweep.csv and keeps the checkpoint's records)")
+    si_file.add_option(p, "every value of a parameter the file holds (--omega, --a, --ms, ...) is then in the "
+                          "file's SI unit for it and replaces the file's field, and sweep.csv adds every row's "
+                          "columns in SI (crank_speed_rad_per_s, amplitude_m, peak_torque_N_m, ...)")
+    _add_output_options(p, "out", "sweep.csv (one row per case), sweep_columns.csv (every column's units "
+                        "and meaning), sweep.png (the amplitude and the peak driving torque against the "
+                        "parameter swept with the most values) and the checkpoint sweep.jsonl (--force "
+                        "replaces them and keeps the checkpoint's records)")
     p.set_defaults(func=_cmd_sweep)
 
     p = sub.add_parser("reproduce", help="recompute the paper's Figures 2-8 and findings.md (paper and consistent models)",
@@ -194,12 +206,16 @@ def build_parser():
     p.add_argument("--section", metavar="SPEC", default=None,
                    help="the rod's cross-section (rectangle:B,H, circle:D, tube:D,T or A,I,C), for the "
                         "peak outer-fibre stress of every point's orbit (in units of Young's modulus E; "
-                        "only its shape counts) beside the peak torque, forces and strain")
+                        "only its shape counts; with --si the rod's section, the stress in Pa) beside the "
+                        "peak torque, forces and strain")
     p.add_argument("--sweep", type=int, default=None, metavar="VALUES",
                    help="also march the mechanism at VALUES evenly spaced values, up then down (each from "
                         "the previous value's state: the hysteresis a run-up and a run-down show), and draw "
                         "the marched amplitudes over the branches; writes poincare_summary.csv and "
                         "poincare_samples.csv too")
+    si_file.add_option(p, f"--from and --to are then in the parameter's SI unit ({si_file.range_text()}), the "
+                          "CSV files and the figure in SI (the parameter with its unit, amplitudes and the "
+                          "quantities in m, N, N m, Pa, the figure in mm)")
     _add_output_options(p, "continuation", ", ".join(CONTINUE_NAMES + ("continuation.json",)))
     p.set_defaults(func=_cmd_continue)
 
@@ -221,6 +237,8 @@ def build_parser():
                    help="also run the continuation over the same range and draw its branches over the samples")
     p.add_argument("--max-period", type=int, default=4,
                    help="with --with-continuation: follow period doublings up to this period (default 4)")
+    si_file.add_option(p, f"--from and --to are then in the parameter's SI unit ({si_file.range_text()}), the "
+                          "CSV files and the figure in SI (samples in m, the figure in mm)")
     _add_output_options(p, "poincare", ", ".join(POINCARE_NAMES) + " (and, with --with-continuation, "
                         + ", ".join(CONTINUE_NAMES[:4]) + ")")
     p.set_defaults(func=_cmd_poincare)

@@ -67,19 +67,17 @@ def add_commands(sub):
 
 def _mechanism(args):
     """(mech, fields, units): the Mechanism and the command line's case fields, or with --si the
-    crankgen.SIMechanism (mechanism options and --omega refused)."""
+    crankgen.SIMechanism and the fields that may go with it (crankgen.cli.si_file)."""
     from .. import schema
     from ..parameters import Mechanism
-    from .runs import _si_mechanism
+    from . import si_file
 
-    given = _explicit(args)
     if args.si is None:
+        given = _explicit(args)
         mech = Mechanism(**{n: given.pop(n) for n in schema.MECHANISM_PARAMETERS if n in given})
         return mech, given, "crankgen"
-    clash = [n for n in schema.MECHANISM_PARAMETERS + (schema.CRANK_SPEED,) if n in given]
-    if clash:
-        raise UsageError(f"--si gives the mechanism and its crank speed: leave out --{schema.PARAMETERS[clash[0]].cli}")
-    return _si_mechanism(args.si), given, "si"
+    si = si_file.read(args.si)
+    return si, si_file.run_fields(args, si), "si"
 
 
 def _cmd_modes(args):

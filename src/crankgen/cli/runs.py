@@ -13,7 +13,8 @@ from pathlib import Path
 from .. import schema
 from ..errors import ConvergenceError
 from ..limits import check_run_size
-from .options import CASE_FIELDS, UsageError, _Outputs, _case, _describe, _explicit, _flag, _say
+from . import si_file
+from .options import CASE_FIELDS, UsageError, _Outputs, _case, _describe, _flag, _say
 
 
 
@@ -36,59 +37,11 @@ def _theory_note(deflection, strain):
     return f"; BEYOND THE THEORY ({why}; criterion {CRITERION})" if why else ""
 
 
-# the SI file of `simulate --si`: crankgen.SIMechanism's fields
-def _si_fields():
-    from dataclasses import MISSING, fields
-
-    from ..parameters import SIMechanism
-    every = tuple(f.name for f in fields(SIMechanism))
-    return every, tuple(f.name for f in fields(SIMechanism) if f.default is MISSING)
-
-
-def _si_mechanism(path):
-    """The crankgen.SIMechanism of a JSON file (UsageError naming what is wrong)."""
-    import json
-
-    from ..io import read_regular
-    from ..parameters import SIMechanism
-    si_fields, si_required = _si_fields()
-    try:
-        data = json.loads(read_regular(path))
-    except OSError as exc:
-        raise UsageError(f"--si {path}: {exc.strerror or exc}; give the path of a JSON file") from None
-    except ValueError as exc:
-        raise UsageError(f"--si {path}: not valid JSON ({exc})") from None
-    if not isinstance(data, dict):
-        raise UsageError(f"--si {path}: expected a JSON object with the fields {', '.join(si_fields)}")
-    unknown = sorted(set(data) - set(si_fields))
-    missing = [k for k in si_required if k not in data]
-    if unknown or missing:
-        what = (f"unknown field {unknown[0]!r}" if unknown else f"missing field {missing[0]!r}")
-        raise UsageError(f"--si {path}: {what}; the fields are {', '.join(si_fields)} (damping optional)")
-    return SIMechanism(**data)
-
-
-def _si_case(args, si):
-    """The Case of `simulate --si`: the SI mechanism's dimensionless form, its crank speed, and the
-    run's options of the command line (mechanism options and --omega refused)."""
-    from .. import schema
-    from ..cases import make_case
-    given = _explicit(args)
-    clash = [n for n in schema.MECHANISM_PARAMETERS + (schema.CRANK_SPEED,) if n in given]
-    if clash:
-        flag = schema.PARAMETERS[clash[0]].cli
-        raise UsageError(f"--si gives the mechanism and its crank speed: leave out --{flag}")
-    motion = schema.PARAMETERS[schema.SELECTOR["motion"]]
-    if given.get(motion.name, motion.default) != motion.default:
-        raise UsageError(f"--si: the crank turns at the file's constant crank_speed (--{motion.cli} {motion.default})")
-    return make_case(model=args.model, **si.mechanism.values(), **{schema.CRANK_SPEED: si.omega}, **given)
-
-
 def _cmd_simulate(args):
     from ..validation import in_range
 
-    si = None if args.si is None else _si_mechanism(args.si)
-    case = _case(args) if si is None else _si_case(args, si)    # validates every parameter ...
+    si = None if args.si is None else si_file.read(args.si)
+    case = _case(args) if si is None else si_file.case(args, si)    # validates every parameter ...
     section = _section(args, si)
     revolutions = in_range("revolutions", args.revolutions, 0, None, True)
     in_range("tol", args.tol, 0, None, True)
@@ -154,16 +107,11 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
             if exc.partial is None:
                 raise
             failure, res = exc, exc.partial
-    from .. import theory
-
-    strain = theory.axial_strain(res, per_step=True)
-    defl = np.abs(np.asarray(res.v_mid, dtype=float)) * _in_L(res, case)
     view = None if si is None else res.si_view(si)
-    columns, values = _simulation_columns(res, case, view)
-    rows = (dict(zip(columns, row), deflection_over_L=d, axial_strain=st,
-                 beyond_theory=theory.beyond(d, st), status="ok")                    # streamed
-            for *row, d, st in zip(*values, defl, strain))
-    columns = columns + ["deflection_over_L", "axial_strain", "beyond_theory", "status"]
+    columns, values = (res if view is None else view).table()      # every output, the range per step
+    strain, defl = values[columns.index("axial_strain")], values[columns.index("deflection_over_L")]
+    rows = (dict(zip(columns, row), status="ok") for row in zip(*values))                 # streamed
+    columns = columns + ["status"]
     if failure is not None:
         t_fail = failure.time if view is None else failure.time * view.scales.factor("1/omega_b")
         theta = float(_theta_at(case, failure.time))
@@ -179,8 +127,8 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
         # and the slope psi = dv/dx (rad)
         # then every node's inertial position X, Y (crankgen.animation.inertial_nodes)
         from ..animation import inertial_nodes
-        length, time = ("L", "t") if view is None else ("m", "t_s")
-        node_columns = [time, columns[1]] + [f"{q}{i}_{unit}" for i in range(n)
+        length = "L" if view is None else "m"
+        node_columns = columns[:2] + [f"{q}{i}_{unit}" for i in range(n)
                                              for q, unit in (("u", length), ("v", length),
                                                              ("psi", "rad"))]
         node_columns += [f"{q}{i}_{length}" for i in range(n) for q in ("X", "Y")]
@@ -211,48 +159,6 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
     if section is not None:
         print("\n".join(_loads_and_stress(res, section, si)))
     return 0
-
-
-def _in_L(res, case):
-    """The unit of v_mid (the radius of gyration r) in L: |v_mid| times it is the deflection over L."""
-    from .. import schema
-    from ..units import in_L
-    return in_L(schema.OUTPUTS["v_mid"].units, case.parameters())
-
-
-def output_names(res, case):
-    """The declared outputs a result gives per step, in the schema's order: the engine's (every
-    result), then, for a result with stored states, every step and reduction output of the case's
-    guide (one list for every CSV and SI view of per-step values)."""
-    from .. import schema
-
-    names = [name for name, spec in schema.OUTPUTS.items() if spec.engine]
-    if getattr(res, "states", None) is not None:
-        names += [name for name, spec in schema.OUTPUTS.items()
-                  if not spec.engine and spec.kind in ("step", "reduction")
-                  and case.guide_record.name in spec.guides]
-    return names
-
-
-def _simulation_columns(res, case, view):
-    """simulation.csv's columns and their per-step values: t, the crank angle (degrees, or rad with
-    --si), then every output of output_names (crankgen.outputs; scaled units, or SI with --si, each
-    column named with its unit)."""
-    import numpy as np
-
-    names = output_names(res, case)
-    if view is None:
-        values = [res.t, np.degrees(res.theta)] + [np.asarray(getattr(res, name), dtype=float)
-                                                    for name in names]
-        return ["t", "theta_deg"] + names, values
-    names = ["t", "theta"] + names
-    return [_si_column(view, name) for name in names], [getattr(view, name) for name in names]
-
-
-def _si_column(view, name):
-    """Column name of a quantity in SI: its name and its SI unit (t_s, v_mid_m; none if dimensionless)."""
-    unit = view.units(name)
-    return name if unit == "1" else f"{name}_{unit.replace('/', '_per_').replace(' ', '_')}"
 
 
 def _theta_at(case, t):
@@ -290,8 +196,9 @@ def _resolved(case, where=""):
 def _cmd_steady(args):
     from ..validation import in_range, integer
 
-    case = _case(args)
-    section = _section(args, None)
+    si = None if args.si is None else si_file.read(args.si)
+    case = _case(args) if si is None else si_file.case(args, si)
+    section = _section(args, si)
     in_range("tol", args.tol, 0, None, True)
     integer("max_revolutions", args.max_revolutions, 1)
     check_run_size(case.n_elements, case.steps_per_rev, stored="steady",
@@ -299,7 +206,7 @@ def _cmd_steady(args):
     _resolved(case)
     out = _Outputs(args.out, STEADY_NAMES, args.force)
     try:
-        return _steady(args, case, out, section)
+        return _steady(args, case, out, section, si)
     finally:
         out.abandon()
 
@@ -315,8 +222,8 @@ def _method_text(args, case):
             f"per revolution{why}")
 
 
-def _steady(args, case, out, section=None):
-    import numpy as np
+def _steady(args, case, out, section=None, si=None):
+    from dataclasses import replace
 
     from .. import theory
     from ..io import write_csv
@@ -327,37 +234,40 @@ def _steady(args, case, out, section=None):
     _say(args, f"steady: {_describe(case)}; {_method_text(args, case)}")
     st = steady_states([case], tol=args.tol, max_revolutions=args.max_revolutions,
                        method=args.method)[0]
+    if si is not None:
+        st = replace(st, scales=si.scales)
     row = st.row()
-    scale = _in_L(st, case)
-    defl = theory.deflection_over_L(scale, st.amplitude)
-    steps = theory.axial_strain(st, per_step=True) if st.v_mid is not None else None   # per stored step
-    strain = float(steps.max()) if steps is not None and steps.size else math.nan
-    row.update(deflection_over_L=defl, axial_strain=strain, beyond_theory=theory.beyond(defl, strain),
-               strain_energy=theory.strain_energy(case.approach))
+    row["strain_energy"] = theory.strain_energy(case.approach)
     if st.status == "failed":
         row["message"] = _failure_text(st.message, case.approach)
+    if si is not None:
+        from ..si import row_in_si
+        row.update(row_in_si(row, si))
     out.wrote(write_csv(out.path("steady.csv"), *flat_table(list(row), [row])))
     if st.v_mid is not None:
-        names = output_names(st, case)
-        columns = ["theta_deg", "t"] + names + ["deflection_over_L", "axial_strain"]
-        values = [np.degrees(st.theta), st.t] + [np.asarray(getattr(st, n), dtype=float) for n in names]
-        rows = [dict(zip(columns, (*row, theory.deflection_over_L(scale, row[2 + names.index("v_mid")]), a)))
-                for *row, a in zip(*values, steps)]
-        out.wrote(write_csv(out.path("orbit.csv"), columns, rows))
-        out.wrote(plot_orbit(st, out.path("orbit.png"), strain=steps))
+        columns, values = (st if si is None else st.si).table()
+        steps = values[columns.index("axial_strain")]
+        out.wrote(write_csv(out.path("orbit.csv"), columns, (dict(zip(columns, r)) for r in zip(*values))))
+        out.wrote(plot_orbit(st, out.path("orbit.png"), strain=steps, si=None if si is None else st.si))
     else:                                    # no orbit: leave no orbit of an earlier run beside it
         for name in ("orbit.csv", "orbit.png"):
             out.path(name).unlink(missing_ok=True)
 
     def num(x, fmt):
         return "—" if x is None or not math.isfinite(x) else fmt.format(x)
-    print(f"status {st.status}; amplitude max|v*| {num(st.amplitude, '{:.6g}')}, half peak-to-peak "
-          f"{num(st.half_peak_to_peak, '{:.6g}')}; largest |Floquet multiplier| "
+    amplitude = (f"max|v*| {num(st.amplitude, '{:.6g}')}, half peak-to-peak {num(st.half_peak_to_peak, '{:.6g}')}"
+                 if si is None else
+                 f"max|v| {num(row.get('amplitude_m'), '{:.6g}')} m, half peak-to-peak "
+                 f"{num(row.get('half_peak_to_peak_m'), '{:.6g}')} m")
+    nan = math.nan
+    print(f"status {st.status}; amplitude {amplitude}; largest |Floquet multiplier| "
           f"{num(st.multiplier, '{:.4f}')}; {st.iterations} shooting iterations, {st.periods} "
           f"revolutions marched, residual {num(st.residual, '{:.2e}')}"
-          + (f"; {row['message']}" if row["message"] else "") + _theory_note(defl, strain))
+          + (f"; {row['message']}" if row["message"] else "")
+          + _theory_note(nan if row["deflection_over_L"] is None else row["deflection_over_L"],
+                         nan if row["axial_strain"] is None else row["axial_strain"]))
     if section is not None and st.states is not None:
-        print("\n".join(_loads_and_stress(st, section, None)))
+        print("\n".join(_loads_and_stress(st, section, si)))
     print(f"wrote {', '.join(str(p) for p in out.written)}")
     if st.status == "failed":
         print(f"crankgen steady: run failed: {row['message']}", file=sys.stderr)
@@ -379,20 +289,47 @@ def _sweep_grid(args):
     return models, axes
 
 
-def _sweep_cases(args, models, axes):
-    """The grid: every combination of the listed values and models, validated."""
+def _sweep_cases(args, models, axes, si=None):
+    """The grid: every combination of the listed values and models, validated.  With --si (si: the
+    file's crankgen.SIMechanism) a value of a parameter the file can hold is in SI and replaces the
+    file's field; the others are the run's settings."""
+    from dataclasses import replace
+
     from ..cases import make_case
     from ..errors import ParameterError
+    from ..si import SI_NAME
 
     cases = []
     for model in models:
         for combo in itertools.product(*axes):
+            values = dict(combo)
             try:
-                cases.append(make_case(model=model, **dict(combo)))
+                if si is None:
+                    cases.append(make_case(model=model, **values))
+                else:
+                    fields = {SI_NAME[n]: values.pop(n) for n in list(values) if n in SI_NAME}
+                    cases.append(replace(si, **fields).case(model=model, **values))
             except ParameterError as exc:
                 where = dict(combo, model=model) if model else dict(combo)
                 raise ParameterError(f"{exc} (in the grid: {where})") from None
     return list(dict.fromkeys(cases))
+
+
+def _si_grid(args):
+    """The --si file of a sweep, its grid flags checked: each of a parameter the file can hold is in
+    SI (the file's unit for it), a unit that is a parameter (the slenderness: the section's) is
+    refused."""
+    if args.si is None:
+        return None
+    si = si_file.read(args.si)
+    for name in schema.UNIT_PARAMETERS.values():
+        if getattr(args, name, None) is not None:
+            raise UsageError(f"with --si, {schema.PARAMETERS[name].label} is the rod's section (sqrt(I/A)/L): "
+                             f"leave out --{schema.PARAMETERS[name].cli} (give I and A in the file)")
+    return si
+
+
+SWEEP_NAMES = ["sweep.csv", "sweep_columns.csv", "sweep.png"]
 
 
 def _cmd_sweep(args):
@@ -402,6 +339,7 @@ def _cmd_sweep(args):
     integer("max_revolutions", args.max_revolutions, 1)
     batch_size = integer("batch_size", args.batch_size, 1)
     integer("workers", args.workers, 1)
+    si = _si_grid(args)
     models, axes = _sweep_grid(args)
     size = len(models) * math.prod(len(axis) for axis in axes)
     given = [f"--{_flag(axis[0][0])} ({len(axis)})" for axis in axes
@@ -416,16 +354,16 @@ def _cmd_sweep(args):
                           "n_steps": "--steps-per-rev"})
     if size > 10000:
         _say(args, f"sweep: building the grid of {size} cases")
-    cases = _sweep_cases(args, models, axes)
+    cases = _sweep_cases(args, models, axes, si)
     for c in cases:
         _resolved(c, "in the grid: ")
     if args.checkpoint is not None and not args.checkpoint.strip():
         raise UsageError("--checkpoint is an empty name; give a file")
     checkpoint = Path(args.checkpoint) if args.checkpoint else Path(args.out) / "sweep.jsonl"
     _check_checkpoint(checkpoint, Path(args.out))
-    out = _Outputs(args.out, ["sweep.csv"], args.force)
+    out = _Outputs(args.out, SWEEP_NAMES, args.force)
     try:
-        return _sweep(args, cases, checkpoint, out)
+        return _sweep(args, cases, checkpoint, out, si)
     finally:
         out.abandon()
 
@@ -450,7 +388,7 @@ def _check_checkpoint(path, out):
             raise UsageError(f"checkpoint {exc}") from None
 
 
-def _sweep(args, cases, checkpoint, out):
+def _sweep(args, cases, checkpoint, out, si=None):
     from collections import Counter
 
     from ..progress import Progress
@@ -489,10 +427,21 @@ def _sweep(args, cases, checkpoint, out):
             _stop_pool(executor, now=not finished)
     from ..io import write_csv
     from ..tables import flat_table
-    out.wrote(write_csv(out.path("sweep.csv"), *flat_table(table.columns, table.rows)))
+    shown = table if si is None else table.si_view(si)
+    columns, rows = flat_table(shown.columns, shown.rows)
+    out.wrote(write_csv(out.path("sweep.csv"), columns, rows))
+    out.wrote(write_csv(out.path("sweep_columns.csv"), ["column", "units", "meaning"], shown.describe(columns)))
+    from ..sweep_plot import plot_sweep, varying
+    drawn = [c for c in varying(table.rows, table.columns)
+             if c in schema.PARAMETERS and schema.PARAMETERS[c].kind in ("real", "count")]
+    if drawn:
+        out.wrote(plot_sweep(table, out.path("sweep.png"), si=si))
+    else:                                    # nothing numeric swept: no curve to draw
+        out.path("sweep.png").unlink(missing_ok=True)
     counts = Counter(row["status"] for row in table.rows)
-    print(f"wrote {out.path('sweep.csv')}: {len(table)} cases, "
-          + ", ".join(f"{n} {status}" for status, n in sorted(counts.items())))
+    print(f"wrote {', '.join(str(p) for p in out.written)}: {len(table)} cases, "
+          + ", ".join(f"{n} {status}" for status, n in sorted(counts.items()))
+          + ("" if drawn else " (no numeric parameter swept: no sweep.png)"))
     return 0
 
 

@@ -3,6 +3,7 @@
 import sys
 
 from .. import schema
+from . import si_file
 from .options import UsageError, _Outputs, _add_model_options, _explicit, _model_options, _say
 
 
@@ -84,6 +85,10 @@ def _branch_model(args):
     if args.parameter in fields:
         raise UsageError(f"--{p.cli} is the parameter varied (--parameter {args.parameter}): its values "
                          "are --from and --to; leave out --" + p.cli)
+    si = getattr(args, "si_mechanism", None)
+    if si is not None:                          # the file's mechanism, the range's start in its place
+        from dataclasses import replace
+        return replace(si.case(model=args.model, **si_file.run_fields(args, si)), **{args.parameter: args.start})
     guide = fields.get("guide", schema.PARAMETERS["guide"].default)
     motion = fields.get("motion", schema.PARAMETERS["motion"].default)
     if not p.read_by(guide, motion):
@@ -96,10 +101,46 @@ def _branch_model(args):
     return make_case(model=args.model, **fields)
 
 
+def _si_range(args, values=None):
+    """With --si: the file's SIMechanism (args.si_mechanism) and --from, --to (and the swept values)
+    converted from the parameter's SI unit into crankgen's units (args.si_range keeps them in SI);
+    the slenderness, the rod's section, cannot be varied in SI.  Returns the values (converted)."""
+    args.si_mechanism = None
+    if args.si is None:
+        return values
+    from ..si import to_crankgen
+    from ..validation import in_range
+    args.parameter = _parameter(args)
+    if args.parameter in schema.UNIT_PARAMETERS.values():
+        raise UsageError(f"with --si, {schema.PARAMETERS[args.parameter].label} is the rod's section (sqrt(I/A)/L): "
+                         "vary it without --si, or give the file's I and A")
+    si = si_file.read(args.si)
+    start, stop = in_range("--from", args.start), in_range("--to", args.stop)
+    args.si_range = (start, stop)
+    args.start, args.stop = (to_crankgen(args.parameter, v, si.scales) for v in (start, stop))
+    args.si_mechanism = si
+    return None if values is None else [to_crankgen(args.parameter, v, si.scales) for v in values]
+
+
 def _checked_branch_model(args, continuation, values=()):
     """Every option of continue / poincare checked before anything is created or computed: the
     case at both ends of the range (and at every swept value), the continuation's own settings
-    when it runs, and the steady state it starts from.  Returns the case of the first point."""
+    when it runs, and the steady state it starts from.  Returns the case of the first point.
+    With --si a refusal in crankgen's units says what the range given in SI is in them."""
+    from ..errors import ParameterError
+    try:
+        return _checked(args, continuation, values)
+    except ParameterError as e:
+        if getattr(args, "si_mechanism", None) is None:
+            raise
+        from ..si import si_unit
+        unit = si_unit(args.parameter)
+        lo, hi = args.si_range
+        raise UsageError(f"{e} (with --si: --from {lo:g} --to {hi:g}{'' if unit == '1' else ' ' + unit} "
+                         f"is {args.start:g} to {args.stop:g} in crankgen's units)") from None
+
+
+def _checked(args, continuation, values):
     from .. import schema
     from ..bifurcation.api import make_case
     from ..validation import in_range, integer
@@ -109,8 +150,9 @@ def _checked_branch_model(args, continuation, values=()):
     case = _branch_model(args)
     speed = args.parameter == schema.CRANK_SPEED
     if speed and min(start, stop) <= 0:
+        lo, hi = getattr(args, "si_range", None) or (start, stop)       # as given: in SI with --si
         raise UsageError(f"--parameter {args.parameter}: the range must stay above 0 (a crank at rest has no "
-                         f"revolution to follow), got --from {start:g} --to {stop:g}")
+                         f"revolution to follow), got --from {lo:g} --to {hi:g}")
     for value in (start, stop, *values):
         make_case(None, args.parameter, value, case)
     if continuation:
@@ -134,14 +176,17 @@ def _cmd_continue(args):
     from ..progress import Progress
     from ..validation import integer
 
-    section = None
-    if args.section is not None:
-        from ..sections import parse
-        section = parse(args.section)
     if args.sweep is not None:
         integer("--sweep", args.sweep, 2)
         if args.sweep > 10000:
             raise UsageError(f"--sweep must be at most 10000, got {args.sweep}")
+    _si_range(args)
+    section = None
+    if args.section is not None:                 # with --si: the rod's, its stresses in Pa
+        from ..sections import parse
+        from ..stresses import check_section
+        section = parse(args.section)
+        check_section(section, args.si_mechanism)
     case = _checked_branch_model(args, continuation=True)
     folder = _Outputs(args.out, CONTINUE_NAMES + ("continuation.json",)
                       + (POINCARE_NAMES[:2] if args.sweep else ()), args.force)
@@ -149,29 +194,48 @@ def _cmd_continue(args):
         log = None if args.quiet else (lambda text: print(f"continue: {text}", file=sys.stderr, flush=True))
         d = continuation(parameter=args.parameter, start=args.start, stop=args.stop, case=case,
                          max_period=args.max_period, progress=log, section=section)
-        paths = [folder.wrote(p) for p in d.to_csv(folder.folder)]
-        paths.append(folder.wrote(d.to_json(folder.path("continuation.json"))))
+        view = _in_si(args, d)
+        paths = [folder.wrote(p) for p in view.to_csv(folder.folder)]
+        paths.append(folder.wrote(d.to_json(folder.path("continuation.json"))))     # crankgen's units
         pc = None
         if args.sweep:
             values = np.linspace(args.start, args.stop, args.sweep)
             with Progress("continue: sweep up and down", 2 * args.sweep, enabled=not args.quiet) as progress:
                 pc = poincare(parameter=args.parameter, values=values, direction="both", case=case,
                               transient=100, samples=16, progress=progress)
-            paths += [folder.wrote(p) for p in pc.to_csv(folder.folder)]
-        png = folder.wrote(d.plot(folder.path("continuation.png"), title=_title(args, "continuation"),
-                                  ylabel="max |v*(1/2)| over the orbit", xlabel=_axis(args.parameter), sweep=pc))
+            paths += [folder.wrote(p) for p in _in_si(args, pc).to_csv(folder.folder)]
+        if view is d:
+            png = folder.wrote(d.plot(folder.path("continuation.png"), title=_title(args, "continuation"),
+                                      ylabel="max |v*(1/2)| over the orbit", xlabel=_axis(args.parameter), sweep=pc))
+        else:
+            png = folder.wrote(view.plot(folder.path("continuation.png"), sweep=pc))
     finally:
         folder.abandon()
-    for s in d.special_points:
-        print(f"{s.kind} on the period-{s.period} branch at {args.parameter} = {s.parameter:.7g}, "
-              f"amplitude {s.amplitude:.6g}, multiplier {s.multiplier.real:.6g}{s.multiplier.imag:+.6g}j")
-    for k, b in enumerate(d.branches):
-        print(f"branch {k} (period {b.period}, {b.origin}): {len(b)} points, {args.parameter} from "
-              f"{b.parameter[0]:.6g} to {b.parameter[-1]:.6g}; ends: {b.stop_reason}")
+    name, unit, amp = _printed(args, view)
+    for s in view.special_points:
+        print(f"{s.kind} on the period-{s.period} branch at {name} = {s.parameter:.7g}{unit}, "
+              f"amplitude {s.amplitude:.6g}{amp}, multiplier {s.multiplier.real:.6g}{s.multiplier.imag:+.6g}j")
+    for k, (b, v) in enumerate(zip(d.branches, view.branches)):
+        print(f"branch {k} (period {b.period}, {getattr(v, 'origin', b.origin)}): {len(b)} points, {name} from "
+              f"{v.parameter[0]:.6g} to {v.parameter[-1]:.6g}{unit}; ends: {getattr(v, 'stop_reason', b.stop_reason)}")
     print(f"{len(d.branches)} branches, {sum(len(b) for b in d.branches)} points, "
           f"{len(d.special_points)} special points in {d.info['wall_time']:.1f} s; wrote "
           f"{', '.join(str(p) for p in paths)} and {png}")
     return 0
+
+
+def _in_si(args, diagram):
+    """The diagram, or with --si its SI view (bifurcation/si_view.py)."""
+    si = getattr(args, "si_mechanism", None)
+    return diagram if si is None else diagram.si_view(si)
+
+
+def _printed(args, view):
+    """(the parameter's name, ' unit', ' unit of the amplitude') for the printed lines."""
+    if getattr(args, "si_mechanism", None) is None:
+        return args.parameter, "", ""
+    p = schema.PARAMETERS[args.parameter]
+    return p.si or p.name, f" {view.parameter_unit}" if view.parameter_unit != "1" else "", " m"
 
 
 def _axis(parameter):
@@ -198,7 +262,7 @@ def _cmd_poincare(args):
         raise UsageError(f"--values must be at most 100000, got {args.values}")
     integer("--transient", args.transient, 0)
     integer("--samples", args.samples, 2)
-    values = np.linspace(args.start, args.stop, args.values)
+    values = _si_range(args, np.linspace(args.start, args.stop, args.values))
     case = _checked_branch_model(args, args.with_continuation, values)
     names = POINCARE_NAMES + (CONTINUE_NAMES[:4] if args.with_continuation else ())
     folder = _Outputs(args.out, names, args.force)
@@ -213,12 +277,16 @@ def _cmd_poincare(args):
             diagram = continuation(parameter=args.parameter, start=min(args.start, args.stop),
                                    stop=max(args.start, args.stop), case=case,
                                    max_period=args.max_period, progress=log)
-            for p in diagram.to_csv(folder.folder):
+            for p in _in_si(args, diagram).to_csv(folder.folder):
                 folder.wrote(p)
-        paths = [folder.wrote(p) for p in pc.to_csv(folder.folder)]
-        png = folder.wrote(pc.plot(folder.path("poincare.png"), diagram, title=_title(args, "Poincare sweep"),
-                                   ylabel="v*(1/2) at theta = 0, once per revolution",
-                                   xlabel=_axis(args.parameter)))
+        view = _in_si(args, pc)
+        paths = [folder.wrote(p) for p in view.to_csv(folder.folder)]
+        if view is pc:
+            png = folder.wrote(pc.plot(folder.path("poincare.png"), diagram, title=_title(args, "Poincare sweep"),
+                                       ylabel="v*(1/2) at theta = 0, once per revolution",
+                                       xlabel=_axis(args.parameter)))
+        else:
+            png = folder.wrote(view.plot(folder.path("poincare.png"), diagram=diagram))
     finally:
         folder.abandon()
     counts = {}

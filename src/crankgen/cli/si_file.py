@@ -1,0 +1,106 @@
+"""`--si FILE`: the mechanism and its crank motion in SI from a JSON file, for every command that
+runs a mechanism (simulate, steady, sweep, continue, poincare, modes, campbell, animate).
+
+The file holds the fields of a crankgen.SIMechanism (crankgen.si): the rod's L, E, rho, A, I and
+every parameter of the mechanism, its guide and its crank motion by its SI name, in the SI unit of
+its declared units.  With --si a parameter with a unit (the crank length, the end mass, the
+damping, gravity, the offset, a four-bar's c and d, the crank speeds) and the choice of guide and
+crank motion come from the file only; a dimensionless one (the start angle, a run-up's ramp in
+revolutions, a fluctuation's amplitude and order, a four-bar's branch) from the file or its flag,
+not both; the slenderness is the section's.  The run's settings (elements, steps, model options)
+stay flags."""
+
+import json
+
+from .. import schema
+from .options import UsageError, _explicit
+
+
+def fields_text():
+    """The file's fields with their units, for --help: {"L": m, ..., "crank_speed": rad/s, ...}."""
+    from ..units import ROD, Scales
+
+    def what(p):
+        if p.kind == "choice":
+            return "|".join(f'"{c}"' for c in p.choices)
+        if p.kind == "sign":
+            return "1|-1"
+        if p.kind == "count":
+            return "integer"
+        unit = Scales.si_name(p.units)
+        return ("number" if unit == "1" else unit) + (" (two)" if p.kind == "pair" else "")
+    parts = [f'"{n}": {u}' for n, u, _ in ROD] + [f'"{si}": {what(p)}' for si, p in schema.SI_FIELDS.items()]
+    return "{" + ", ".join(parts) + "}"
+
+
+def add_option(p, what):
+    """--si FILE, its help naming every field with its unit and `what` the command does with it."""
+    p.add_argument("--si", metavar="FILE", default=None,
+                   help=f"the mechanism and its crank motion in SI from a JSON file, {fields_text()} (the "
+                        "rod's L, E, rho, A, I and the fields its guide and crank motion need are required; "
+                        "damping, the time constant mu of the model's damping (Kelvin-Voigt strain-rate "
+                        "damping by default, eq. 24 with --damping paper), defaults to 0; a left-out "
+                        "dimensionless field takes its flag's default); it replaces the mechanism and "
+                        f"crank-motion flags with units; {what}")
+
+
+def range_text():
+    """The SI unit of each parameter a continuation can vary with --si, from the declaration
+    ("crank_speed (omega) in rad/s, a in m, ..."); the slenderness left out (the rod's section)."""
+    from ..si import si_unit
+    out = []
+    for name in schema.CONTINUABLE:
+        if name in schema.UNIT_PARAMETERS.values():
+            continue
+        p, unit = schema.PARAMETERS[name], si_unit(name)
+        label = f"{p.si} ({name})" if p.si else name
+        out.append(f"{label} in {unit}" if unit != "1" else f"{label} as a number")
+    return ", ".join(out)
+
+
+def read(path):
+    """The crankgen.SIMechanism of a JSON file (UsageError naming what is wrong)."""
+    from ..io import read_regular
+    from ..si import SIMechanism
+    names = SIMechanism.field_names()
+    try:
+        data = json.loads(read_regular(path))
+    except OSError as exc:
+        raise UsageError(f"--si {path}: {exc.strerror or exc}; give the path of a JSON file") from None
+    except ValueError as exc:
+        raise UsageError(f"--si {path}: not valid JSON ({exc})") from None
+    if not isinstance(data, dict):
+        raise UsageError(f"--si {path}: expected a JSON object with the fields {', '.join(names)}")
+    unknown = sorted(set(data) - set(names))
+    if unknown:
+        raise UsageError(f"--si {path}: unknown field {unknown[0]!r}; the fields are {', '.join(names)}")
+    return SIMechanism(**data)
+
+
+def run_fields(args, si, keep=()):
+    """The command line's case fields that may go with the SI file: the run's settings, the model
+    options and the dimensionless parameters the file leaves out.  A flag for a parameter the
+    file gives, for one with a unit, or choosing the guide or crank motion is refused (UsageError
+    naming the file's field).  keep: names the command reads itself, passed on unchecked."""
+    from ..si import SI_NAME, dimensioned
+    given = _explicit(args)
+    in_file = si.values()
+    for name in given:
+        p = schema.PARAMETERS.get(name)
+        if name in keep:
+            continue
+        if p is None or not (p.slots or p.selects):
+            continue
+        field = SI_NAME.get(name)
+        if name in in_file:
+            where = f"as {field}" if field else "from the rod's section"
+            raise UsageError(f"--si gives {p.label} ({where}): leave out --{p.cli}")
+        if dimensioned(p) or p.selects:
+            raise UsageError(f"with --si, {p.label} comes from the file: give \"{field}\" there "
+                             f"(in {'SI' if dimensioned(p) else 'the file'}) and leave out --{p.cli}")
+    return given
+
+
+def case(args, si, keep=()):
+    """The Case of the SI file and the command line's run settings (run_fields)."""
+    return si.case(model=args.model, **run_fields(args, si, keep))
