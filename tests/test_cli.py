@@ -206,7 +206,7 @@ def test_failed_steady_exits_1_and_failed_sweep_case_is_a_row_without_nan(tmp_pa
     one_line_error(capsys, "run failed")
     row = read_csv(tmp_path / "st" / "steady.csv")[0]
     assert row["status"] == "failed" and row["amplitude"] == "" and row["message"]
-    assert "unbounded below" in row["message"] and row["strain_energy"] == "unbounded below (ill-posed)"
+    assert "unbounded below" in row["message"] and row["strain_energy_bound"] == "unbounded below (ill-posed)"
     assert not (tmp_path / "st" / "orbit.csv").exists()
     assert run(["sweep", "--out", str(tmp_path / "sw")] + diverging) == 0
     text = (tmp_path / "sw" / "sweep.csv").read_text()

@@ -24,9 +24,13 @@ def test_simulate_writes_units_a_time_column_and_the_theory_flags(tmp_path):
                     "end_height": "end_height_L", "chord_angle": "chord_angle_rad",
                     "chord_rate": "chord_rate_omega_b", "chord_elongation": "chord_elongation_L",
                     "slider_velocity": "slider_velocity_L_omega_b", "torque": "torque_rhoA_L3_omega_b2",
-                    **{f"{joint}_{c}": f"{joint}_{c}_rhoA_L2_omega_b2"
-                       for joint in ("crank_on_rod", "rod_on_slider", "guide_on_slider") for c in "xy"}}
-    reductions = {"kinetic_energy": "kinetic_energy_rhoA_L3_omega_b2",
+                    "crank_on_rod_x": "crank_on_rod_x_rhoA_L2_omega_b2",
+                    "crank_on_rod_y": "crank_on_rod_y_rhoA_L2_omega_b2",
+                    "rod_on_slider_x": "rod_on_slider_x_rhoA_L2_omega_b2",
+                    "rod_on_slider_y": "rod_on_slider_y_rhoA_L2_omega_b2",
+                    "guide_on_slider_x": "guide_on_slider_x_rhoA_L2_omega_b2",
+                    "guide_on_slider_y": "guide_on_slider_y_rhoA_L2_omega_b2"}
+    reductions = {"kinetic_energy": "kinetic_energy_rhoA_L3_omega_b2",     # the rod's energies, per step
                   "strain_energy": "strain_energy_rhoA_L3_omega_b2"}
     fields = {"axial_force": "axial_force_at_0.5_EI_per_L2", "bending_moment": "bending_moment_at_0.5_EI_per_L",
               "chord_deflection": "chord_deflection_at_0.5_L"}

@@ -24,7 +24,7 @@ def test_a_four_bars_csv_holds_every_declared_output_of_its_guide(tmp_path):
     table = check_csv(tmp_path / "run.csv")
     # the four-bar's own outputs (rocker angle, transmission angle), the loads, every field at both x
     expect = {"rocker_angle_rad": run.rocker_angle, "transmission_angle_rad": run.transmission_angle,
-              "torque_rhoA_L3_omega_b2": run.torque, "end_force_x_rhoA_L2_omega_b2": run.end_force_x,
+              "torque_rhoA_L3_omega_b2": run.torque, "rocker_on_tip_x_rhoA_L2_omega_b2": run.rocker_on_tip_x,
               "v_mid_r": run.v_mid, "t_per_omega_b": run.t, "theta_deg": np.degrees(run.theta),
               "bending_moment_at_0.25_EI_per_L": run.bending_moment(0.25),
               "surface_strain_fiber_1.5_at_0.5": run.surface_strain(0.5, fiber=1.5)}
@@ -33,7 +33,7 @@ def test_a_four_bars_csv_holds_every_declared_output_of_its_guide(tmp_path):
     steps = [n for n, o in schema.OUTPUTS.items() if o.kind in ("step", "reduction") and "circle" in o.guides]
     fields = [n for n, o in schema.OUTPUTS.items() if o.kind == "field" and "circle" in o.guides]
     assert len(table.columns) == 2 + len(steps) + 2 * len(fields) + 3       # t, theta, ..., the range
-    assert {"torque", "end_force_y", "rocker_angle", "chord_deflection"} <= set(dir(run))
+    assert {"torque", "rocker_on_tip_y", "rocker_angle", "chord_deflection"} <= set(dir(run))
     assert "rocker_angle" not in dir(crankgen.simulate(crankgen.Mechanism(), n_elements=2, steps_per_rev=20,
                                                        revolutions=0.1))       # not a slider's
 
@@ -50,7 +50,7 @@ def mixed_sweep(tmp_path_factory):
 def test_sweep_csv_has_the_model_the_range_and_empty_inapplicable_parameters(mixed_sweep):
     table = check_csv(mixed_sweep / "sweep.csv")
     assert len(table) == 24 and set(table["model"]) == {"paper", "consistent"}
-    for col in ("deflection_over_L", "axial_strain", "beyond_theory", "peak_torque", "peak_end_force_y"):
+    for col in ("deflection_over_L", "axial_strain", "beyond_theory", "peak_torque", "peak_crank_on_rod_y"):
         assert col in table.columns
     periodic = table[table["status"] == "periodic"]
     np.testing.assert_allclose(periodic["deflection_over_L"], periodic["eps"] * periodic["amplitude"], rtol=1e-14)
@@ -168,5 +168,5 @@ def test_steady_writes_every_declared_output_of_its_guide(tmp_path):
                                                           and c[len(name) + 1:] not in ("x", "y"))]
         assert len(col) == 1, (name, col)
         np.testing.assert_allclose(orbit[col[0]], getattr(st, name), rtol=1e-9, atol=1e-12, err_msg=name)
-    for name in ("torque", "pin_force_x", "pin_force_y", "end_force_x", "end_force_y"):
+    for name in ("torque", "crank_on_rod_x", "crank_on_rod_y", "rod_on_tip_x", "rocker_on_tip_y"):
         assert row[f"peak_{name}"] == pytest.approx(np.abs(getattr(st, name)).max(), rel=1e-9)

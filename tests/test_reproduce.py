@@ -225,8 +225,8 @@ def test_tiny_run_reports_failed_cases_in_table_and_findings(tiny_run):
     assert failed and all(r["model"] == "consistent" and r["approach"] == "B" for r in failed)
     assert {r["status"] for r in failed} == {"diverged"}
     assert all(r["message"] and r["amplitude"] == "" and r["orbit_amplitude"] == "" for r in failed)
-    assert all(r["strain_energy"] == "unbounded below (ill-posed)" for r in failed)
-    assert {r["strain_energy"] for r in rows if r["approach"] != "B"} == {"bounded below"}
+    assert all(r["strain_energy_bound"] == "unbounded below (ill-posed)" for r in failed)
+    assert {r["strain_energy_bound"] for r in rows if r["approach"] != "B"} == {"bounded below"}
     text = (out / "findings.md").read_text()
     assert "## Cases without a stable periodic steady state" in text
     assert "| 6 | consistent | B |" in text

@@ -56,7 +56,7 @@ def test_a_four_bar_with_gravity_and_a_run_up_in_si_is_its_dimensionless_twin(fo
     np.testing.assert_allclose(view.crank_speed[[0, -1]], [0.2 * OMEGA_B, 0.6 * OMEGA_B], rtol=1e-12)
     force, torque = MASS * L * OMEGA_B ** 2, MASS * L ** 2 * OMEGA_B ** 2       # rho A L^2 omega_b^2, ...
     np.testing.assert_allclose(view.torque, scaled.torque * torque, rtol=1e-12)
-    np.testing.assert_allclose(view.end_force_y, scaled.end_force_y * force, rtol=1e-12)
+    np.testing.assert_allclose(view.rocker_on_tip_y, scaled.rocker_on_tip_y * force, rtol=1e-12)
     np.testing.assert_allclose(view.slider_position, scaled.slider_position * L, rtol=1e-12)
     np.testing.assert_allclose(view.rocker_angle, scaled.rocker_angle, rtol=1e-12)
     # the rocker tip stays on its circle of c = 0.4 m about D = (0.5 m, 0.02 m), in metres
@@ -115,11 +115,11 @@ def test_a_steady_state_in_si_is_the_scaled_one_with_every_output(heavy_slider, 
     assert st.status == twin.status == "periodic"
     np.testing.assert_allclose(st.states, twin.states, rtol=1e-9, atol=1e-12 * np.abs(twin.states).max())
     force = MASS * L * OMEGA_B ** 2
-    np.testing.assert_allclose(st.si.pin_force_x, twin.pin_force_x * force, rtol=1e-8,
-                               atol=1e-9 * force * np.abs(twin.pin_force_x).max())
+    np.testing.assert_allclose(st.si.crank_on_rod_x, twin.crank_on_rod_x * force, rtol=1e-8,
+                               atol=1e-9 * force * np.abs(twin.crank_on_rod_x).max())
     assert st.si.v_mid.max() == pytest.approx(twin.v_mid.max() * math.sqrt(INERTIA / AREA), rel=1e-8)
     # torque and forces are discoverable, and every declared step output is in its CSV, with units
-    assert {"torque", "pin_force_x", "end_force_y", "axial_force"} <= set(dir(st)) & set(dir(st.si))
+    assert {"torque", "crank_on_rod_x", "guide_on_slider_y", "axial_force"} <= set(dir(st)) & set(dir(st.si))
     st.si.to_csv(tmp_path / "orbit_si.csv")
     twin.to_csv(tmp_path / "orbit.csv")
     orbit_si, orbit = check_csv(tmp_path / "orbit_si.csv"), check_csv(tmp_path / "orbit.csv")
@@ -145,6 +145,8 @@ def test_steady_and_sweep_on_the_command_line_in_si(heavy_slider, tmp_path, caps
     assert row["amplitude_m"] == pytest.approx(twin.amplitude * math.sqrt(INERTIA / AREA), rel=1e-8)
     assert row["peak_torque_N_m"] == pytest.approx(np.abs(orbit["torque_N_m"]).max(), rel=1e-12)
     assert math.isnan(row["c"]) and math.isnan(row["omega0"])           # a slider has no rocker, no run-up
+    printed = capsys.readouterr().out                                   # the summary names the peak loads
+    assert f"peak loads: torque {row['peak_torque_N_m']:.4g} N m" in printed
     # a sweep of the crank speed given in rad/s: the file's crank speed replaced
     speeds = [0.3 * OMEGA_B, 0.5 * OMEGA_B]
     assert main(["sweep", "--si", str(path), "--omega", ",".join(f"{w!r}" for w in speeds),
@@ -197,7 +199,7 @@ def test_a_continuation_in_si_finds_the_scaled_special_points_in_rad_per_s(tmp_p
     q = {k: np.concatenate([b.quantities[k] for b in d.branches]) for k in d.branches[0].quantities}
     np.testing.assert_allclose(branches["peak_torque_N_m"], q["peak_torque"] * rhoA * 0.3 ** 3 * omega_b ** 2,
                                rtol=1e-12)
-    np.testing.assert_allclose(branches["peak_pin_force_N"], q["peak_pin_force"] * rhoA * 0.3 ** 2 * omega_b ** 2,
+    np.testing.assert_allclose(branches["peak_pin_force_A_N"], q["peak_pin_force_A"] * rhoA * 0.3 ** 2 * omega_b ** 2,
                                rtol=1e-12)
     np.testing.assert_allclose(branches["peak_v_m"], q["peak_v"] * r, rtol=1e-12)
     assert "peak_strain" in branches.columns
@@ -211,7 +213,7 @@ def test_a_continuation_in_si_finds_the_scaled_special_points_in_rad_per_s(tmp_p
     # a branch's origin names the parameter in SI, with the digits it was printed with
     assert d.si.text("period-doubling of branch 0 at omega = 0.9352908; merged at omega = 1.1") == \
         f"period-doubling of branch 0 at crank_speed = {0.9352908 * omega_b:.7g} rad/s; " \
-        f"merged at crank_speed = {1.1 * omega_b:.2g} rad/s"
+        f"merged at crank_speed = {round(1.1 * omega_b)} rad/s"           # its whole digits, not 1.4e+03
     # a marching sweep in SI: its amplitudes in m, and in mm where it is drawn over the branches
     pc = crankgen.poincare(steel, "omega", [700.0], units="si", transient=2, samples=2, n_elements=2,
                            steps_per_rev=40)
@@ -221,3 +223,22 @@ def test_a_continuation_in_si_finds_the_scaled_special_points_in_rad_per_s(tmp_p
     assert drawn.points[0].amplitude == pytest.approx(pc.points[0].amplitude * r * 1e3, rel=1e-12)
     with pytest.raises(crankgen.ParameterError, match="section"):
         crankgen.continuation(steel, "eps", 0.01, 0.02, units="si", **run)
+
+
+def test_a_guide_declared_later_has_its_si_fields():
+    """The inclined guide and the cam were declared after SIMechanism was written: their parameters
+    are SI fields by their declared units (the inclination in rad, the cam's height and wavelength
+    in m), and a run in SI is its dimensionless twin's."""
+    si = crankgen.SIMechanism(**ROD, a=0.1, slider_mass=0.05, damping=3e-4, crank_speed=0.5 * OMEGA_B,
+                              guide="incline", inclination=0.3, offset=0.01)
+    twin = crankgen.Mechanism(a=0.2, eps=math.sqrt(INERTIA / AREA) / L, ms=0.05 / MASS, mu=3e-4 * OMEGA_B,
+                              guide="incline", inclination=0.3, offset=0.01 / L)
+    settings = dict(n_elements=2, steps_per_rev=20, revolutions=0.5)
+    run, ref = crankgen.simulate(si, units="si", **settings), crankgen.simulate(twin, omega=0.5, **settings)
+    np.testing.assert_array_equal(run.states, ref.states)
+    np.testing.assert_allclose(run.si.torque, ref.torque * MASS * L ** 2 * OMEGA_B ** 2, rtol=1e-12)
+    cam = crankgen.SIMechanism(**ROD, a=0.1, slider_mass=0.05, crank_speed=100.0, guide="cam", cam_height=0.005,
+                               cam_wavelength=0.2)
+    assert cam.mechanism.cam_height == pytest.approx(0.005 / L) and cam.mechanism.cam_wavelength == pytest.approx(0.2 / L)
+    with pytest.raises(crankgen.ParameterError, match=r"missing cam_wavelength \(m"):
+        crankgen.SIMechanism(**ROD, a=0.1, slider_mass=0.05, crank_speed=100.0, guide="cam", cam_height=0.005)

@@ -47,8 +47,8 @@ from .cases import Case, run_case
 from .errors import ParameterError
 from .limits import check_run_size
 from .outputs import DeclaredOutputs, engine_columns, takes_engine_outputs
-from .theory import warn_beyond
 from .si import si_input
+from .theory import warn_beyond
 from .units import Scales
 from .validation import choice, in_range, integer
 

@@ -45,10 +45,10 @@ def varying(rows, columns):
 def independent(rows, columns):
     """The columns of `columns` that name a series: each dropped whose value follows from those
     kept before it (a rocker's length from the guide, a fluctuation from the crank motion, the
-    options from the model)."""
-    order = sorted(columns, key=lambda c: (c in schema.OPTIONS, c == "model"))
-    order = [c for c in order if c != "model"] if "model" not in columns else \
-        [c for c in order if c not in schema.OPTIONS] + ["model"] + [c for c in order if c in schema.OPTIONS]
+    options and a preset's run settings, rho_inf, from the model)."""
+    by_model = set(schema.OPTIONS) | {k for p in schema.PRESETS.values() for k in getattr(p, "settings", {})}
+    order = [c for c in columns if c not in by_model and c != "model"]
+    order += (["model"] if "model" in columns else []) + [c for c in columns if c in by_model]
     kept = []
     for c in order:
         seen = {}

@@ -95,6 +95,17 @@ class BifurcationDiagram:
     special_points: list
     info: dict = field(default_factory=dict)   # the model and settings it was computed for
 
+    @property
+    def si(self):
+        """The diagram in SI (bifurcation/si_view.py) of a continuation made with units="si"."""
+        from .si_view import si_of
+        return si_of(self)
+
+    def si_view(self, si_mechanism):
+        """The diagram in SI for the crankgen.SIMechanism whose dimensionless form it was computed for."""
+        from .si_view import DiagramSI
+        return DiagramSI(self, si_mechanism)
+
     def flag_range(self):
         """Set every branch's deflection_over_L and beyond_theory (a mechanism's diagram: eps known)."""
         from ..theory import DEFLECTION_LIMIT
@@ -113,17 +124,6 @@ class BifurcationDiagram:
         values = [np.max(br.deflection_over_L) for br in self.branches
                   if br.deflection_over_L is not None and len(br)]
         return range_flag(max(values) if values else math.nan)
-
-    @property
-    def si(self):
-        """The diagram in SI (bifurcation/si_view.py) of a continuation made with units="si"."""
-        from .si_view import si_of
-        return si_of(self)
-
-    def si_view(self, si_mechanism):
-        """The diagram in SI for the crankgen.SIMechanism whose dimensionless form it was computed for."""
-        from .si_view import DiagramSI
-        return DiagramSI(self, si_mechanism)
 
     def eps_at(self, p):
         """The amplitude's unit (v* = v / r: the radius of gyration r) in L at parameter value p, the

@@ -11,6 +11,7 @@ diagram's own, read back by BifurcationDiagram.from_json).
 """
 
 import csv
+import math
 import re
 import textwrap
 from dataclasses import replace
@@ -69,7 +70,9 @@ class DiagramSI:
             for end in ends:                  # an end of the range, rounded when printed: the end
                 if abs(value - end) <= 5 * 10.0 ** -digits * abs(end):
                     return f"{name} = {float(self.parameter(end)):.7g}{unit}"
-            return f"{name} = {float(self.parameter(value)):.{digits}g}{unit}"
+            si = float(self.parameter(value))
+            whole = int(math.floor(math.log10(abs(si)))) + 1 if si and math.isfinite(si) else 1
+            return f"{name} = {si:.{max(digits, whole)}g}{unit}"        # 1256, not 1.26e+03
         return re.sub(rf"\b{re.escape(self.parameter_name)} = ([-+0-9.eE]+[0-9])", si, text)
 
 

@@ -71,15 +71,18 @@ def _section(args, si):
     return section
 
 
-def _loads_and_stress(result, section, si):
-    """The summary lines of the peak loads and the outer-fibre stresses of a result."""
-    from ..stresses import peak_loads, stress
+def _loads_and_stress(result, section, si, stress=True):
+    """The summary lines of the peak loads and (stress=True) the outer-fibre stresses of a result."""
+    from ..stresses import peak_loads
+    from ..stresses import stress as stress_of
     from ..units import scales_of
     scales = None if si is None else scales_of(si)
     loads = "; ".join(f"{p.name} {p.value:.4g} {p.units} (t{'' if scales else '*'} = {p.t:.4g}"
                       f"{' s' if scales else ''}, crank angle {math.degrees(p.theta) % 360:.1f} deg)"
                       for p in peak_loads(result, scales))
-    return [f"peak loads: {loads}", stress(result, section, si=si).summary()
+    if not stress:
+        return [f"peak loads: {loads}"]
+    return [f"peak loads: {loads}", stress_of(result, section, si=si).summary()
             + ("" if si is not None else " (units of E: the fibre's strain)")]
 
 
@@ -237,7 +240,7 @@ def _steady(args, case, out, section=None, si=None):
     if si is not None:
         st = replace(st, scales=si.scales)
     row = st.row()
-    row["strain_energy"] = theory.strain_energy(case.approach)
+    row["strain_energy_bound"] = theory.strain_energy(case.approach)
     if st.status == "failed":
         row["message"] = _failure_text(st.message, case.approach)
     if si is not None:
@@ -268,6 +271,8 @@ def _steady(args, case, out, section=None, si=None):
                          nan if row["axial_strain"] is None else row["axial_strain"]))
     if section is not None and st.states is not None:
         print("\n".join(_loads_and_stress(st, section, si)))
+    elif st.states is not None:                  # the loads a motor and its bearings are sized from
+        print(_loads_and_stress(st, None, si, stress=False)[0])
     print(f"wrote {', '.join(str(p) for p in out.written)}")
     if st.status == "failed":
         print(f"crankgen steady: run failed: {row['message']}", file=sys.stderr)

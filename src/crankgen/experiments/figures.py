@@ -152,7 +152,7 @@ def steady_row(model_key, s, **extra):
                multiplier=_num(getattr(s, "multiplier", None)), message=s.message,
                envelope=math.nan, envelope_note="",
                axial_strain=theory.axial_strain(s) if orbit else math.nan,
-               strain_energy=theory.strain_energy(c.approach))
+               strain_energy_bound=theory.strain_energy(c.approach))
     row.update(extra)
     flag_theory(row)
     return row
@@ -499,15 +499,15 @@ def extension_crossings_of(data, model_key, rel_tol):
 
 # ----------------------------------------------------------------------------- CSV tables
 
-STEADY_COLUMNS = ["model", "formulation", "damping", "approach", "strain_energy", "n_elements",
+STEADY_COLUMNS = ["model", "formulation", "damping", "approach", "strain_energy_bound", "n_elements",
                   "steps_per_rev", "omega", "eps", "ms", "status", "amplitude", "ratio_to_A",
                   "orbit_amplitude", "half_peak_to_peak", "envelope", "envelope_note",
                   "deflection_over_L", "axial_strain", "beyond_theory", "iterations", "periods",
                   "residual", "multiplier", "message"]
-TRANSIENT_COLUMNS = ["model", "formulation", "damping", "approach", "strain_energy", "n_elements",
+TRANSIENT_COLUMNS = ["model", "formulation", "damping", "approach", "strain_energy_bound", "n_elements",
                      "steps_per_rev", "omega", "eps", "ms", "status", "message", "t", "theta_deg",
                      "v_mid", "deflection_over_L", "axial_strain", "beyond_theory"]
-EXTENSION_COLUMNS = ["model", "formulation", "damping", "approach", "strain_energy", "n_elements",
+EXTENSION_COLUMNS = ["model", "formulation", "damping", "approach", "strain_energy_bound", "n_elements",
                      "steps_per_rev", "omega", "eps", "ms", "status", "message", "deflection_over_L",
                      "axial_strain", "beyond_theory", "theta_deg", "extension", "u_end"]
 CONVERGENCE_COLUMNS = ["check", "model", "approach", "omega", "eps", "n_elements", "status",
@@ -523,7 +523,7 @@ def csv_table(data):
         for c in data["curves"]:
             s, m = c.spec, model_spec(c.spec.model)
             base = dict(model=s.model, formulation=m.formulation, damping=m.damping, membrane=m.membrane,
-                        approach=s.approach, strain_energy=theory.strain_energy(s.approach),
+                        approach=s.approach, strain_energy_bound=theory.strain_energy(s.approach),
                         n_elements=s.n_elements, steps_per_rev=s.steps_per_rev,
                         omega=s.omega, eps=s.eps, ms=s.ms, status=c.status, message=c.message)
             if c.has_history:     # a failed run: its rows up to the last good step
