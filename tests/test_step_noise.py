@@ -61,8 +61,9 @@ def runs():
 
 def test_default_forces_carry_no_step_to_step_alternation(runs):
     """Every force and torque output, over the last revolution: alternation below 1 % of the force's
-    peak (measured: 0.05 % for the torque); the peak torque within 3 % of the rigid mechanism's
-    (measured 0.06 %)."""
+    peak (measured: 0.04 % for the torque, 0.06 % at most); the peak torque within 3 % of the rigid
+    mechanism's (measured 0.19 %: 69.52 against 69.65 N m), the torque within 10 % of its peak at
+    every step (measured 5.5 %: the rod's vibration)."""
     r = runs[0]
     assert r.case.rho_inf == 0.8 and r.case.model == "consistent"
     spr = r.case.steps_per_rev

@@ -221,3 +221,16 @@ def test_a_start_takes_the_damped_starter_step_and_stays_second_order():
         d, v, acc, g = _march(case, model, h, 1, d0, v0, rho_inf=0.8, which=which)
         assert np.max(np.abs(d - starter.d[1])) < 1e-12 * np.max(np.abs(d0)), which
         assert np.array_equal(g, acc), which                    # a = qdd after the starter
+
+
+@pytest.mark.parametrize("flags, scheme", [([], "generalized-alpha (rho_inf = 0.8)"),
+                                           (["--model", "paper"], "Newmark's trapezoidal rule"),
+                                           (["--rho-inf", "0.5"], "generalized-alpha (rho_inf = 0.5)")])
+def test_the_command_lines_run_line_names_the_time_scheme(tmp_path, capsys, flags, scheme):
+    from crankgen.cli.main import main
+    rc = main(["simulate", "--omega", "0.5", "--elements", "2", "--revolutions", "0.1", "--out",
+               str(tmp_path)] + flags)
+    err = capsys.readouterr().err
+    assert rc == 0
+    line = next(ln for ln in err.splitlines() if ln.startswith("simulate: approach"))
+    assert f"membrane, {scheme}, " in line

@@ -121,7 +121,7 @@ def spectral_radius(coef, omega_h, zeta=0.0):
 def label(rho_inf):
     """The scheme in a few words, for the command line's lines."""
     return ("Newmark's trapezoidal rule" if float(rho_inf) == 1.0
-            else f"generalized-alpha, rho_inf = {float(rho_inf):g}")
+            else f"generalized-alpha (rho_inf = {float(rho_inf):g})")
 
 
 def first_axial_frequency(eps, ms):

@@ -1,9 +1,8 @@
 """Pseudo-arclength continuation of the fixed points of P^k for a map x -> P(x, p) (maps.Map).
 
-Unknown z = (x, p); metric <a, b> = sum_i w_i a_x,i b_x,i + a_p b_p, w_i = 1/dim unless the map
-weighs its components (maps.state_weights: the generalized-alpha mechanism's (d, v) as Newmark's, its
-algorithmic accelerations 0).  A step predicts z + ds t along the
-unit tangent t (plus a curvature term: _predict) and corrects on
+Unknown z = (x, p); metric <a, b> = sum_i w_i a_x,i b_x,i + a_p b_p, w_i = 1/dim or the map's weights
+(maps.state_weights).  A step predicts z + ds t along the unit tangent t (plus a curvature term:
+_predict) and corrects on
     P^k(x, p) - x = 0,   <t, z - z_pred> = 0
 (bordered Jacobian [[dP/dx - I, dP/dp], [w t_x, t_p]]) with one of two correctors:
 - "broyden" (default): quasi-Newton from the Jacobians of the accepted point the step starts from
@@ -16,22 +15,20 @@ unit tangent t (plus a curvature term: _predict) and corrects on
 - "newton": the Jacobians at every iterate (the former corrector, kept as a baseline).
 Both accept a point on the same residual test, so they find the same points to within the
 tolerance, and the special points, located on the exact Jacobians, to within the location's.
-The step grows after easy corrections,
-shrinks after hard ones and is halved on failure or on a sharp turn of the tangent (backtracking)
-down to ds_min; no step changes p by more than dp_max.  The tangent solves
-[[dP/dx - I, dP/dp], [t_old]] t = (0, 1), which keeps its orientation through folds.  A branch ends
-on the ends of the parameter range (its last point exactly there), after max_points, or when the
-step falls below ds_min (the reason is kept in Branch.stop_reason).
+The step grows after easy corrections, shrinks after hard ones and is halved on failure or on a
+sharp turn of the tangent (backtracking) down to ds_min; no step changes p by more than dp_max.
+The tangent solves [[dP/dx - I, dP/dp], [t_old]] t = (0, 1), which keeps its orientation through
+folds.  A branch ends on the ends of the parameter range (its last point exactly there), after
+max_points, or when the step falls below ds_min (the reason is kept in Branch.stop_reason).
 
 Test functions between consecutive points (each is located by the Illinois false-position method on
 the arclength from the earlier point, to ~1e-9 in the test function, or, once it is below 1e-6, until
 STALLED iterations in a row fail to halve its smallest value: its noise floor, set by the
 corrector's tolerance, is reached):
-- fold: the branch turns, t_p, the parameter component of the tangent, changes sign between two
-  points or the parameter's direction along the branch reverses at a point (a turn whose t_p sign
-  change falls outside the interval), and det(dP/dx - I) changes sign across the bracket (a real
-  multiplier through +1); located on the latter, or on t_p if that fails, along the tangent of the
-  bracket's first point, or where both fail (a sharp turn) along the chord of the bracket;
+- fold: the branch turns (t_p, the tangent's parameter component, changes sign between two points,
+  or p's direction reverses at a point: a sign change outside the interval) and det(dP/dx - I)
+  changes sign across the bracket (a real multiplier through +1); located on the latter, or on t_p,
+  along the bracket's first tangent or, where both fail (a sharp turn), along its chord;
 - period-doubling: (mu_c + 1) times the sign of prod(mu + 1) over the others, mu_c the real
   multiplier nearest -1 (det(dP/dx + I) changes sign);
 - Neimark-Sacker: the parity of the number of complex multipliers outside the unit circle changes;
@@ -343,10 +340,9 @@ class Continuer:
 
     def _locate(self, kind, a, b, period):
         """Special point between accepted points a and b (b corrected from a along a.t).  A fold
-        is located on det(dP/dx - I) (its critical multiplier), or on t_p where that fails; where
-        both fail along a.t (a sharp turn: the hyperplanes normal to a.t beyond the turning point
-        miss the branch), along the chord from a to b (the hyperplanes normal to the chord cross
-        the branch once on either side of the turning point), on t_p then on the determinant."""
+        is located on det(dP/dx - I), or on t_p where that fails; where both fail along a.t (a sharp
+        turn: the hyperplanes normal to a.t miss the branch beyond it), along the chord from a to b
+        (its normal hyperplanes cross the branch on either side of the turn)."""
         sp = self._illinois(kind, a, b, period, True)
         if sp is None and kind == "fold":
             sp = self._illinois(kind, a, b, period, False)
@@ -417,10 +413,9 @@ class Continuer:
         return self._finish(best, period) if ok else None
 
     def _fold(self, points, new, period, turned):
-        """(a, fold or None) where the branch turns: t_p changes sign from prev = points[-1] to new
-        (bracket [prev, new]), or p's direction reverses at prev (bracket [before, new]); and
-        det(dP/dx - I) changes sign across [before, new] (t_p alone is noise where the branch runs
-        flat in p).  a: the bracket's first point (module docstring)."""
+        """(a, fold or None) where the branch turns (t_p changes sign from prev = points[-1] to new, or
+        p reverses at prev: bracket [before, new]) and det(dP/dx - I) changes sign across it (t_p
+        alone is noise where the branch runs flat in p); a: the bracket's first point."""
         prev = points[-1]
         before = points[-2] if len(points) > 1 else None
         if prev.t[-1] * new.t[-1] < 0:
@@ -439,8 +434,7 @@ class Continuer:
     # -- one branch ----------------------------------------------------------------------------
     def first_point(self, x0, p0, period=1):
         """Fixed point of P^k at p = p0 from the guess x0 (natural-parameter Newton)."""
-        e_p = np.zeros(self.map.dim + 1)
-        e_p[-1] = 1.0
+        e_p = np.eye(self.map.dim + 1)[-1]
         try:
             return self._finish(self.correct(np.append(x0, p0), e_p, period), period)
         except _Failed as exc:
@@ -448,17 +442,15 @@ class Continuer:
                                 f"state at {self.map.parameter} = {p0:g}: {exc}") from None
 
     def branch(self, start, t0, period, merge=None):
-        """Continue from the accepted point start (tangent oriented like t0).  merge: (h, k, p_pd)
-        for a period-2k branch born at a period doubling at p_pd: it ends when x and P^k(x) come
-        closer than h / 4.
-        Returns (points, [(kind, point)], stop reason)."""
+        """Continue from the accepted point start (tangent oriented like t0); merge: (h, k, p_pd)
+        for a period-2k branch born at a period doubling at p_pd, which ends when x and P^k(x) come
+        closer than h / 4.  Returns (points, [(kind, point)], stop reason)."""
         s = self.s
         start.t = self._tangent(start, t0)
         points, specials = [start], []
         turned = set()                # ids of the points next to a located fold
         ds = s.ds
-        e_p = np.zeros(self.map.dim + 1)
-        e_p[-1] = 1.0
+        e_p = np.eye(self.map.dim + 1)[-1]
         reason = f"{s.max_points} points (max_points)"
         while len(points) < s.max_points:
             prev = points[-1]

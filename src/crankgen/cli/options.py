@@ -247,8 +247,10 @@ def _case(args):
 def _describe(case):
     main, other = schema.describe(case.parameters())
     extra = "" if case.rotary_inertia else ", no rotary inertia"
+    from ..time_scheme import label
     return (f"approach {case.approach}, {case.formulation} formulation, {case.damping} damping, "
-            f"{case.membrane} membrane, " + ", ".join(main + [f"n = {case.n_elements}"] + other) + extra)
+            f"{case.membrane} membrane, {label(case.rho_inf)}, "
+            + ", ".join(main + [f"n = {case.n_elements}"] + other) + extra)
 
 
 def _say(args, text):
