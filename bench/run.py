@@ -3,6 +3,8 @@
 Every ratio is measured in one run, on this machine, now.  Timings are best-of-k wall times on a
 shared machine: read them as estimates, not guarantees.  Targets (2-core machine):
   one Newmark step, Newton, approach A, 16 elements, one case           < 100 us
+  one step of the geometrically exact rod (model "exact", quadrature kernels), 16 elements
+    <= 3 x a step of approach A (issue 26; both in the same run)
   batch of 100+ cases, per case and step                                 < 10 us (issue 19: <= 5 us)
 Both are measured for the default "newton" scheme (factorization reused while the iteration
 converges fast, extrapolated start) and, for comparison, for "full-newton" (tangent refreshed and
@@ -50,12 +52,15 @@ def best_of(fn, repeats=3):
 
 
 def step_times(steps=1000):
-    """One case at a time: the default "newton" scheme for A, B, C, and "full-newton" (tangent
-    refreshed at every iteration) for A, for comparison."""
+    """One case at a time: the default "newton" scheme for A, B, C and the exact rod (lagrange only:
+    it has no printed form), and "full-newton" (tangent refreshed at every iteration) for A, for
+    comparison."""
     rows = []
     for n in (4, 16):
-        for approach, integrator in (("A", "newton"), ("B", "newton"), ("C", "newton"), ("A", "full-newton")):
-            for formulation, rho_inf in (("lagrange", 1.0), ("paper", 1.0), ("lagrange", 0.8), ("paper", 0.8)):
+        for approach, integrator in (("A", "newton"), ("B", "newton"), ("C", "newton"), ("A", "full-newton"),
+                                     ("exact", "newton")):
+            pairs = (("lagrange", 1.0), ("paper", 1.0), ("lagrange", 0.8), ("paper", 0.8))
+            for formulation, rho_inf in pairs if approach != "exact" else pairs[::2]:
                 omega = 0.8 if not (approach == "B" and formulation == "lagrange") else 0.3
                 case = Case(omega=omega, approach=approach, formulation=formulation, n_elements=n,
                             integrator=integrator, rho_inf=rho_inf)
@@ -386,6 +391,11 @@ def main(argv=None):
                    batch_case_step_n16_lt_10us=results["batch"]["n16_batch_us_per_case_step"] < 10,
                    batch_case_step_n16_full_newton_lt_10us=(
                        results["batch"]["n16_full_newton_batch_us_per_case_step"] < 10))
+    exact16 = {r["rho_inf"]: r["us_per_step"] for r in results["steps"] if r["n_elements"] == 16
+               and r["approach"] == "exact"}
+    results["exact_over_A_step_n16"] = exact16[1.0] / single_A16["newton"]
+    results["exact_over_A_step_n16_alpha"] = exact16[0.8] / alpha_A16["newton"]
+    targets["exact_step_n16_le_3x_A"] = max(results["exact_over_A_step_n16"], results["exact_over_A_step_n16_alpha"]) <= 3
     targets["batch_case_step_n16_le_5us"] = results["batch"]["n16_batch_us_per_case_step"] <= 5
     targets["step_A16_alpha_lt_100us"] = alpha_A16["newton"] < 100
     targets["batch_case_step_n16_alpha_lt_10us"] = results["batch"]["n16_alpha_batch_us_per_case_step"] < 10
@@ -415,6 +425,8 @@ def main(argv=None):
     for r in results["steps"]:
         print(f"{r['n_elements']:>3} {r['approach']:>3} {r['formulation']:>11} {r['integrator']:>11} "
               f"{r['rho_inf']:>7g} {r['omega']:>6.2f} {r['us_per_step']:>9.1f} {r['newton_iterations_per_step']:>9.2f}")
+    print("one step of the exact rod / one step of approach A (n = 16, newton): "
+          f"{results['exact_over_A_step_n16']:.2f} (Newmark), {results['exact_over_A_step_n16_alpha']:.2f} (rho_inf 0.8)")
     k = results["kernels"]
     print(f"\nelement terms, {k['n_elements']} elements (lagrange A, Kelvin-Voigt): generated NumPy "
           f"{k['generated_numpy_us']:.0f} us, Gauss quadrature {k['quadrature_numpy_us']:.0f} us "

@@ -39,9 +39,11 @@ from crankgen.records import Option, Preset
 from . import energies as en
 from . import guides, motions
 from . import printed
+from . import quadrature
 from . import symbols as s
-from .euler_lagrange import gradient, kinetic_residual, total_time_derivative
+from .euler_lagrange import gradient, jacobian, kinetic_residual, total_time_derivative
 from .groups import ELEMENT_VARS, ROD_AXIAL_ROWS, SLIDER_AXIAL_ROWS, SLIDER_VARS, group_vector
+from .shape_functions import integrate_element
 
 
 # ----------------------------------------------------------------------------------------------
@@ -52,11 +54,14 @@ OPTIONS = (
     Option("formulation", ("lagrange", "paper"), None,
            "lagrange: the exact Euler-Lagrange equations of T_c + T_s - U_c; paper: the printed "
            "matrix form, eqs. (17)-(29) and Appendix B with its transcription problems corrected"),
-    Option("approach", ("A", "B", "C"), "A",
-           "strain energy: A full non-linear (eq. 2), B without the quartic v_x^4 term, C linear strain"),
+    Option("approach", ("A", "B", "C", "exact"), "A",
+           "strain energy: A full non-linear (eq. 2), B without the quartic v_x^4 term, C linear strain, "
+           "exact the geometrically exact rod (stretch |r'| - 1, curvature of the exact section "
+           "rotation, exact rotary inertia; lagrange formulation and kelvin-voigt damping only)"),
     Option("membrane", ("pointwise", "averaged"), None,
-           "membrane strain of approaches A and B: pointwise (eq. 1) or its element mean "
-           "(u_x + <v_x^2>/2, no membrane locking); no effect on approach C or on printed matrices"),
+           "membrane strain of approaches A, B and exact: pointwise (eq. 1; exact: |r'| - 1) or its "
+           "element mean (u_x + <v_x^2>/2; exact: the element's deformed length over l, less 1; no "
+           "membrane locking); no effect on approach C or on printed matrices"),
     Option("damping", ("paper", "kelvin-voigt"), None,
            "paper: C = mu (K_lin + K_non), eq. (24) as printed; kelvin-voigt: strain-rate damping "
            "from the Rayleigh function of the approach's strain"),
@@ -73,8 +78,26 @@ PRESETS = (
            "the printed matrix form (eqs. 17-29, Appendix B, transcription problems corrected), the "
            "printed damping of eq. (24), the element as derived from eq. (2), integrated with the "
            "paper's Newmark rule (rho_inf = 1)", {"rho_inf": 1.0}),
+    Preset("exact", {"approach": "exact", "formulation": "lagrange", "damping": "kelvin-voigt",
+                     "membrane": "averaged"},
+           "the geometrically exact rod: exact stretch, curvature and section rotation, the exact "
+           "Lagrange equations, strain-rate (Kelvin-Voigt) damping, the element-mean stretch as "
+           "membrane strain (free of membrane locking)"),
 )
 DEFAULT_PRESET = "consistent"
+
+
+EXACT = "exact"                  # the approach of the geometrically exact rod
+
+# Option values that have no meaning together (crankgen.records.Exclusion): a case choosing them is
+# refused with the reason.
+EXCLUSIONS = (
+    records.Exclusion({"approach": EXACT, "formulation": "paper"},
+                      "approach 'exact' has no printed matrix form: use formulation='lagrange' (or model='exact')"),
+    records.Exclusion({"approach": EXACT, "damping": "paper"},
+                      "approach 'exact' has no printed damping (eq. 24 is built from the matrices of eq. 2): "
+                      "use damping='kelvin-voigt' (or model='exact')"),
+)
 
 # ----------------------------------------------------------------------------------------------
 # Parameters of a case: the mechanism, its guide, the crank's motion, the run's discretization
@@ -238,10 +261,14 @@ COEFFICIENTS = {
 class Term:
     """An element residual (6-vector in q, qd, qdd of eq. 14) and, where the printed one-pass scheme
     of eq. (37) iterates with another stiffness than the exact tangent, that `printed_stiffness`
-    ("exact": dr/dq; "none": no stiffness; a 6x6 Matrix: the printed secant)."""
+    ("exact": dr/dq; "none": no stiffness; a 6x6 Matrix: the printed secant).  `tangents`: (K, C, M)
+    when the build derived them itself (at the points of a quadrature rule, derive/quadrature.py);
+    None: code generation differentiates the residual."""
 
     residual: sp.Matrix
     printed_stiffness: object = "exact"
+    tangents: tuple = None
+    definitions: tuple = ()      # stages of (symbol, expression) the terms are written in (quadrature)
 
 
 @dataclass(frozen=True)
@@ -403,6 +430,89 @@ def rod_gravity():
     return Term(gradient(en.rod_gravity_potential(), s.q))
 
 
+# ---- the geometrically exact rod: element integrals by quadrature ---------------------------------
+#
+# The exact strain, curvature and section rotation are not polynomials in the nodal values: their
+# element integrals use the rule declared here (its degree is a choice, like FFCx's
+# quadrature_degree).  Degree 5, the 3-point Gauss-Legendre rule, integrates every term of the
+# small-rotation limit that is quadratic in the deformation exactly (v_x^2 of the mean stretch,
+# v_xx^2, psi'^2 of the rotary inertia: degree 4); the centre line's kinetic energy, a polynomial, is
+# integrated in closed form.  Residuals and tangents are derived at the points (derive/quadrature.py).
+EXACT_RULE = quadrature.gauss(degree=5)
+
+
+def by_quadrature(kind, element_energy, rule=EXACT_RULE):
+    """A build whose residual and tangents derive, at the points of `rule`, from the element energy
+    element_energy(space) of kind "potential" (dE/dq), "dissipation" (dE/dqd) or "kinetic"."""
+    def build():
+        space = quadrature.PointSpace(rule, en.QUANTITIES, en.ELEMENT_FIELDS, en.POINT_FIELDS)
+        r, K, C, M, definitions = space.element_terms(space.generalized_forces(kind, element_energy(space)))
+        return Term(r, "exact", (K, C, M), definitions)      # never in the printed iteration (EXCLUSIONS)
+    return build
+
+
+def rod_inertia_exact(rule=EXACT_RULE):
+    """The exact rod's inertia forces: the centre line's (the same exact terms as
+    rod_inertia_lagrange's rho A part, closed form, with their switchable groups) and the exact
+    section rotation's rho I (theta'' - phidd) forces by quadrature, the phidd part weighted as
+    the phidd group."""
+    def build():
+        f = dict(en.fields(s.q, s.qd), x=s.x0 + s.l * s.zeta)
+        T = integrate_centre_line(f)
+        r = _weighted(kinetic_residual(T, s.q, s.qd, s.qdd), ELEMENT_VARS, ROD_AXIAL_ROWS, INERTIA_GROUPS)
+        closed = (jacobian(r, s.q), jacobian(r, s.qd), jacobian(r, s.qdd))
+        space = quadrature.PointSpace(rule, en.QUANTITIES, en.ELEMENT_FIELDS, en.POINT_FIELDS)
+        forces = space.generalized_forces("kinetic", en.element_rotary_kinetic_energy(space))
+        weighted = {}
+        for p, force in forces.items():
+            coupling = sp.diff(force, s.phidd)
+            assert not coupling.has(s.phidd)
+            weighted[p] = force.subs(s.phidd, 0) + s.WEIGHT["phidd"] * s.phidd * coupling
+        r_q, K, C, M, definitions = space.element_terms(weighted)
+        return Term(r + r_q, "exact", tuple(a + b for a, b in zip(closed, (K, C, M))), definitions)
+    return build
+
+
+def integrate_centre_line(f):
+    """Element kinetic energy of the centre line, closed form."""
+    return integrate_element(en.centre_line_kinetic_energy_density(f))
+
+
+def _exact_space():
+    return quadrature.PointSpace(EXACT_RULE, en.QUANTITIES, en.ELEMENT_FIELDS, en.POINT_FIELDS)
+
+
+def _exact_kinetic_energy():
+    space = _exact_space()
+    f = dict(en.fields(s.q, s.qd), x=s.x0 + s.l * s.zeta)
+    return integrate_centre_line(f) + space.in_nodal(en.element_rotary_kinetic_energy(space))
+
+
+def _exact_energy(element_energy, membrane):
+    def build():
+        space = _exact_space()
+        return space.in_nodal(element_energy(space, EXACT, membrane))
+    return build
+
+
+CLASSICAL = ("A", "B", "C")      # the approaches of the paper's strain measure (closed-form integrals)
+EXACT_KINETIC = Energy("rod_kinetic_energy_exact", "Element kinetic energy of the geometrically exact rod "
+                       f"(centre line and exact section rotation; the rotation by {EXACT_RULE.text} "
+                       "quadrature).", _exact_kinetic_energy)
+EXACT_STRAIN_ENERGY = {
+    averaged: Energy(f"strain_energy_exact{'_averaged' if averaged else ''}",
+                     f"Element strain energy of the exact rod, {'element-mean' if averaged else 'pointwise'} "
+                     f"stretch, by {EXACT_RULE.text} quadrature.",
+                     _exact_energy(en.element_strain_energy, "averaged" if averaged else "pointwise"))
+    for averaged in (False, True)}
+EXACT_DISSIPATION = {
+    averaged: Energy(f"dissipation_exact{'_averaged' if averaged else ''}",
+                     "Kelvin-Voigt Rayleigh dissipation function of the exact rod, "
+                     f"{'element-mean' if averaged else 'pointwise'} stretch rate, by {EXACT_RULE.text} quadrature.",
+                     _exact_energy(en.element_dissipation, "averaged" if averaged else "pointwise"))
+    for averaged in (False, True)}
+
+
 def slider_inertia_lagrange():
     r = kinetic_residual(en.slider_kinetic_energy(), s.qs, s.qsd, s.qsdd)
     return Term(on_last_element(_weighted(r, SLIDER_VARS, SLIDER_AXIAL_ROWS, INERTIA_GROUPS)))
@@ -438,6 +548,13 @@ def _elastic_variants():
     out.append(Variant("lagrange_C", {"formulation": "lagrange", "approach": "C"},
                        "dU/dq of approach C (linear strain)", energy=STRAIN_ENERGY["C", False],
                        build=elastic_lagrange("C", False)))
+    for membrane, averaged in (("pointwise", False), ("averaged", True)):
+        out.append(Variant(f"lagrange_exact{'_averaged' if averaged else ''}",
+                           {"formulation": "lagrange", "approach": EXACT, "membrane": membrane},
+                           f"dU/dq of the geometrically exact rod, {membrane} stretch, by {EXACT_RULE.text} "
+                           "quadrature", energy=EXACT_STRAIN_ENERGY[averaged], quadrature=EXACT_RULE,
+                           build=by_quadrature("potential", lambda space, m=membrane: en.element_strain_energy(
+                               space, EXACT, m))))
     for ap in ("A", "B", "C"):
         out.append(Variant(f"paper_{ap}", {"formulation": "paper", "approach": ap},
                            f"printed (k_uu + k_psipsi + k_pvv + k_non) q of approach {ap}, P_i of "
@@ -459,6 +576,14 @@ def _damping_variants():
     out.append(Variant("kelvin_voigt_C", {"damping": "kelvin-voigt", "approach": "C"},
                        "dD/dqd, strain-rate damping of approach C", energy=DISSIPATION["C", False],
                        build=kelvin_voigt("C", False)))
+    for membrane, averaged in (("pointwise", False), ("averaged", True)):
+        out.append(Variant(f"kelvin_voigt_exact{'_averaged' if averaged else ''}",
+                           {"damping": "kelvin-voigt", "approach": EXACT, "membrane": membrane},
+                           f"dD/dqd, strain-rate damping of the exact strain and curvature, {membrane} "
+                           f"stretch rate, by {EXACT_RULE.text} quadrature", energy=EXACT_DISSIPATION[averaged],
+                           quadrature=EXACT_RULE,
+                           build=by_quadrature("dissipation", lambda space, m=membrane: en.element_dissipation(
+                               space, EXACT, m))))
     for ap in ("A", "B", "C"):
         out.append(Variant(f"paper_{ap}", {"damping": "paper", "approach": ap},
                            f"printed damping mu (K_lin + K_non) qd of approach {ap}, eq. (24)",
@@ -468,8 +593,12 @@ def _damping_variants():
 
 FAMILIES = (
     Family("inertia", "rod", "inertia forces of the rod element, from T_c of eqs. (4)-(5)", "kinetic", (
-        Variant("lagrange", {"formulation": "lagrange"}, "d/dt dT/dqd - dT/dq, exact", INERTIA_GROUPS,
-                ROD_KINETIC, build=rod_inertia_lagrange),
+        Variant("lagrange", {"formulation": "lagrange", "approach": CLASSICAL}, "d/dt dT/dqd - dT/dq, exact",
+                INERTIA_GROUPS, ROD_KINETIC, build=rod_inertia_lagrange),
+        Variant("lagrange_exact", {"formulation": "lagrange", "approach": EXACT},
+                "d/dt dT/dqd - dT/dq with the exact section rotation (rho I part by "
+                f"{EXACT_RULE.text} quadrature)", INERTIA_GROUPS, EXACT_KINETIC, quadrature=EXACT_RULE,
+                build=rod_inertia_exact()),
         Variant("paper", {"formulation": "paper"}, "printed m1 qdd - m2 q - (m4 - d/dt m3), eqs. (20)-(25)",
                 energy=ROD_KINETIC, build=rod_inertia_paper),
     )),
@@ -583,19 +712,40 @@ rod_end = sp.Matrix(sp.symbols("rodend0:2", real=True))
 s_end = sp.Symbol("s", real=True)
 
 
+def _exact_element():
+    """The exact rod's point space (EXACT_RULE) and the element stretch lambda in q."""
+    space = _exact_space()
+    return space, space.in_nodal(space.fields(0)["lam"])
+
+
 def membrane_strain(options, q=s.q):
     """The membrane strain of the approach in use: u_x + v_x^2/2 for A and B (pointwise or element
-    mean), u_x for C."""
+    mean), u_x for C, for exact |r'| - 1 (pointwise) or the element's stretch less 1 (averaged)."""
     f = en.fields(q, q)
     if options["approach"] == "C":
         return f["u_x"]
+    if options["approach"] == EXACT:
+        if options["membrane"] == "averaged":
+            space, _ = _exact_element()
+            return space.in_nodal(space.fields(0)["ebar"])
+        return en.exact_strain(f)
     if options["membrane"] == "averaged":
         return f["u_x"] + en.mean_over_element(f["v_x"] ** 2) / 2
     return f["u_x"] + f["v_x"] ** 2 / 2
 
 
-def _curvature(q=s.q):
-    return en.fields(q, q)["v_xx"]
+def _curvature(options, q=s.q):
+    """v_xx (A, B, C); the exact section rotation's d theta / dx (exact)."""
+    f = en.fields(q, q)
+    if options["approach"] != EXACT:
+        return f["v_xx"]
+    return en.exact_curvature(dict(f, lam=_exact_element()[1]))
+
+
+def _strain_energy_of(options):
+    """The Energy of the approach and membrane strain in use."""
+    averaged = options["approach"] != "C" and options["membrane"] == "averaged"
+    return EXACT_STRAIN_ENERGY[averaged] if options["approach"] == EXACT else STRAIN_ENERGY[options["approach"], averaged]
 
 
 def _inertial(vector):
@@ -704,20 +854,22 @@ OUTPUTS = (
            FORCE, build=lambda o: _inertial(end_force)[1], guides=("circle",)),
     Output("kinetic_energy", "reduction",
            "the rod's kinetic energy T = sum of the elements' T_i, eqs. (4)-(5) (the end mass's not "
-           "included), units of rho A L^3 omega_b^2", TORQUE, build=lambda o: en.rod_kinetic_energy()),
+           "included; the exact rod's with its unit director), units of rho A L^3 omega_b^2", TORQUE,
+           options=("approach",),
+           build=lambda o: EXACT_KINETIC.build() if o["approach"] == EXACT else en.rod_kinetic_energy()),
     Output("strain_energy", "reduction",
            "the rod's strain energy U = sum of the elements' U_i of the approach in use (eq. 2 for A; "
-           "B without the quartic term; C linear), units of rho A L^3 omega_b^2", TORQUE,
-           options=MEMBRANE_OPTIONS, build=lambda o: STRAIN_ENERGY[
-               o["approach"], o["approach"] != "C" and o["membrane"] == "averaged"].build()),
+           "B without the quartic term; C linear; the exact rod's), units of rho A L^3 omega_b^2", TORQUE,
+           options=MEMBRANE_OPTIONS, build=lambda o: _strain_energy_of(o).build()),
     Output("axial_force", "field", "N* = N L^2 / EI, N = EA times the approach's membrane strain", "EI/L^2",
            options=MEMBRANE_OPTIONS, build=lambda o: membrane_strain(o) * s.EA / s.EI),
-    Output("bending_moment", "field", "M* = M L / EI = v_xx (M = EI v_xx)", "EI/L",
-           options=MEMBRANE_OPTIONS, build=lambda o: _curvature()),
+    Output("bending_moment", "field", "M* = M L / EI = v_xx (M = EI v_xx; exact: EI kappa, kappa the exact "
+           "curvature)", "EI/L", options=MEMBRANE_OPTIONS, build=lambda o: _curvature(o)),
     Output("surface_strain", "field",
            "axial strain of the fibre at distance fiber*r from the neutral axis (towards e_j), "
-           "e_m - fiber r v_xx (eq. 1 with y = fiber r)", "1", arguments=("fiber",), options=MEMBRANE_OPTIONS,
-           build=lambda o: membrane_strain(o) - fiber * sp.sqrt(s.EI / s.EA) * _curvature()),
+           "e_m - fiber r v_xx (eq. 1 with y = fiber r; exact: e - fiber r kappa)", "1", arguments=("fiber",),
+           options=MEMBRANE_OPTIONS,
+           build=lambda o: membrane_strain(o) - fiber * sp.sqrt(s.EI / s.EA) * _curvature(o)),
     Output("chord_deflection", "field",
            "signed distance of the rod's point at x* from its chord (the line from the crank pin to "
            "the rod's end), positive counter-clockwise", "L", options=MEMBRANE_OPTIONS,

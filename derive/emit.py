@@ -30,6 +30,7 @@ prefix and canonical order, so the same derivation always gives byte-identical s
 """
 
 import hashlib
+from functools import lru_cache
 
 import sympy as sp
 from sympy.printing.numpy import NumPyPrinter
@@ -60,6 +61,11 @@ class _ScalarPrinter(PythonCodePrinter):
         super().__init__({"fully_qualified_modules": True, "inline": True})
 
 
+def _definitions(kernel):
+    """The kernel's definitions, flat: ((symbol, expression), ...) in the order of their stages."""
+    return tuple(pair for stage in getattr(kernel, "definitions", ()) for pair in stage)
+
+
 def _validate(kernel):
     declared = {}
     for inp in kernel.inputs:
@@ -67,6 +73,14 @@ def _validate(kernel):
             if sym in declared:
                 raise KernelSpecError(f"{kernel.name}: symbol {sym} declared twice")
             declared[sym] = inp.name
+    for sym, expr in _definitions(kernel):
+        if sym in declared:
+            raise KernelSpecError(f"{kernel.name}: symbol {sym} declared twice")
+        missing = expr.free_symbols - set(declared)
+        if missing:
+            raise KernelSpecError(f"{kernel.name}: definition of {sym} uses symbols not among the inputs: "
+                                  f"{', '.join(sorted(map(str, missing)))}")
+        declared[sym] = "definition"
     solve = getattr(kernel, "solve", None)
     if solve is not None:
         for expr in (solve.guess, solve.residual, solve.slope):
@@ -87,16 +101,29 @@ def spec_hash(kernels):
     """sha256 of the specification: names, ordered inputs and output expressions."""
     h = hashlib.sha256(GENERATOR_VERSION.encode())
     for k in kernels:
-        h.update(k.name.encode())
-        for inp in k.inputs:
-            h.update(f"{inp.name}:{','.join(map(str, inp.symbols))};".encode())
-        for out in k.outputs:
-            h.update(f"{out.name}={sp.srepr(out.expr)};".encode())
-        solve = getattr(k, "solve", None)
-        if solve is not None:
-            parts = (solve.unknown, solve.guess, solve.residual, solve.slope) + tuple(e for pair in solve.bound for e in pair)
-            h.update(("solve:" + ";".join(sp.srepr(sp.sympify(e)) for e in parts)).encode())
+        h.update(_spec_text(k))
     return h.hexdigest()
+
+
+def _spec_text(kernel):
+    """What a kernel adds to the specification hash (its name, inputs, definitions and outputs),
+    kept on the kernel: the modules' hashes and the schema's read it again."""
+    text = kernel.__dict__.get("_spec_text")
+    if text is None:
+        parts = [kernel.name]
+        parts += [f"{inp.name}:{','.join(map(str, inp.symbols))};" for inp in kernel.inputs]
+        # a kernel with definitions (derived at quadrature points) prints its expressions in
+        # SymPy's stored order: sorting the terms of its large trees costs seconds and adds nothing
+        order = {"order": "none"} if kernel.__dict__.get("definitions") else {}
+        parts += [f"{sym}:={sp.srepr(expr, **order)};" for sym, expr in _definitions(kernel)]
+        parts += [f"{out.name}={sp.srepr(out.expr, **order)};" for out in kernel.outputs]
+        solve = getattr(kernel, "solve", None)
+        if solve is not None:
+            solved = (solve.unknown, solve.guess, solve.residual, solve.slope) + tuple(e for pair in solve.bound for e in pair)
+            parts.append("solve:" + ";".join(sp.srepr(sp.sympify(e)) for e in solved))
+        text = "".join(parts).encode()
+        object.__setattr__(kernel, "_spec_text", text)
+    return text
 
 
 def _output_shape(expr):
@@ -119,14 +146,44 @@ def _entries(expr):
 
 
 def _cse(kernel):
-    """Common subexpressions of all outputs of a kernel, canonical order, fixed prefix (none for a
-    kernel whose outputs are printed as they stand)."""
+    """(assignments, reduced expressions, inputs used) of all outputs of a kernel (_staged_cse); a
+    kernel whose outputs are printed as they stand (cse False) has no assignments."""
     flat = []
     for out in kernel.outputs:
         flat.extend(e for _, e in _entries(out.expr))
     if not getattr(kernel, "cse", True):
-        return [], flat
-    return sp.cse(flat, symbols=sp.numbered_symbols(CSE_PREFIX), order="canonical")
+        return (), tuple(flat), set().union(*(e.free_symbols for e in flat))
+    return _staged_cse(tuple(flat), tuple(getattr(kernel, "definitions", ())))
+
+
+@lru_cache(maxsize=64)
+def _staged_cse(exprs, stages):
+    """Common subexpressions (canonical order, fixed prefix) of expressions written in a kernel's
+    inputs and, where it has them, its definitions: stages of (symbol, expression) pairs, each
+    stage's expressions in the inputs and the earlier stages' symbols.  Returns the assignments
+    ((symbol, expression), ...) in the order to compute them (per stage the definitions the
+    expressions need: their common subexpressions, then the definitions; then the expressions'
+    common subexpressions), the reduced expressions, and the inputs' symbols used.  The one-element
+    and the lane functions share the result (cached)."""
+    symbols = sp.numbered_symbols(CSE_PREFIX)
+    chosen = []
+    if stages:
+        need = set().union(*(e.free_symbols for e in exprs))
+        for stage in reversed(stages):
+            pick = tuple((sym, e) for sym, e in stage if sym in need)
+            need |= set().union(*(e.free_symbols for _, e in pick))
+            chosen.insert(0, pick)
+    assignments = []
+    for pick in chosen:
+        if pick:
+            replacements, reduced = sp.cse([e for _, e in pick], symbols=symbols, order="canonical")
+            assignments += list(replacements) + [(sym, e) for (sym, _), e in zip(pick, reduced)]
+    replacements, reduced = sp.cse(list(exprs), symbols=symbols, order="canonical")
+    assignments += replacements
+    # the inputs used: the free symbols of the (small) reduced expressions, less those assigned
+    own = {sym for sym, _ in assignments}
+    used = set().union(*(e.free_symbols for _, e in assignments), *(e.free_symbols for e in reduced)) - own
+    return tuple(assignments), tuple(reduced), used
 
 
 def _is_vector(inp):
@@ -167,9 +224,9 @@ def _solve_lines(kernel, printer, vectorized):
     return lines
 
 
-def _scalar_prologue(kernel, used, replacements, printer):
+def _scalar_prologue(kernel, used, assignments, printer):
     """Body lines of a one-element variant: the used components of vector inputs, a solve, then the
-    common subexpressions."""
+    assignments (definitions and common subexpressions)."""
     lines = []
     used = set(used) | _solve_used(kernel)
     for inp in kernel.inputs:
@@ -178,19 +235,16 @@ def _scalar_prologue(kernel, used, replacements, printer):
                 if sym in used:
                     lines.append(f"    {sym.name} = {inp.name}[{k}]")
     lines += _solve_lines(kernel, printer, vectorized=False)
-    for sym, expr in replacements:
+    for sym, expr in assignments:
         lines.append(f"    {sym} = {printer.doprint(expr)}")
     return lines
 
 
-def emit_scalar_kernel(kernel, cse=None):
+def emit_scalar_kernel(kernel):
     """Python source of the one-element variant `<name>_into` (numba-compilable)."""
     _validate(kernel)
     printer = _ScalarPrinter()
-    replacements, reduced = cse if cse is not None else _cse(kernel)
-    used = set()
-    for out in kernel.outputs:
-        used |= out.expr.free_symbols
+    replacements, reduced, used = _cse(kernel)
     args = [inp.name for inp in kernel.inputs] + [out.name for out in kernel.outputs]
     lines = [f"def {kernel.name}_into({', '.join(args)}):",
              f'    """{kernel.name} for one element: scalars in, outputs written into '
@@ -212,14 +266,14 @@ def is_residual_kernel(kernel):
     return names[0] == "r" and "K" in names and all(n in TANGENTS or n in ("r", "K_printed") for n in names)
 
 
-def _reduced(entries):
-    """The (out name, idx, expr) entries whose expression is not identically zero, their common
-    subexpressions (canonical order, fixed prefix), the reduced expressions and the symbols used."""
-    entries = [(o, idx, e) for o, idx, e in entries if e != 0]
-    replacements, reduced = sp.cse([e for _, _, e in entries], symbols=sp.numbered_symbols(CSE_PREFIX),
-                                   order="canonical")
-    used = set().union(*(e.free_symbols for _, _, e in entries)) if entries else set()
-    return entries, replacements, reduced, used
+def _reduced(kernel, entries):
+    """The (out name, idx, expr) entries whose expression is not identically zero, the assignments
+    (definitions and common subexpressions, _staged_cse), the reduced expressions and the inputs'
+    symbols used."""
+    entries = tuple((o, idx, e) for o, idx, e in entries if e != 0)
+    assignments, reduced, used = _staged_cse(tuple(e for _, _, e in entries),
+                                             tuple(getattr(kernel, "definitions", ())))
+    return entries, assignments, reduced, used
 
 
 def _mode_branches(kernel):
@@ -255,11 +309,7 @@ def emit_kernel(kernel):
     """Python source of one kernel function."""
     _validate(kernel)
     printer = _Printer()
-    used = set()
-    for out in kernel.outputs:
-        used |= out.expr.free_symbols
-
-    replacements, reduced = _cse(kernel)
+    replacements, reduced, used = _cse(kernel)
 
     arg_names = [inp.name for inp in kernel.inputs]
     lines = [f"def {kernel.name}({', '.join(arg_names)}):"]
@@ -337,7 +387,7 @@ def _has_printed(kernel):
 def _element_statements(kernel, entries):
     """One element's statements: its inputs, the common subexpressions, then out[idx] += expr."""
     printer = _ScalarPrinter()
-    entries, replacements, reduced, used = _reduced(entries)
+    entries, replacements, reduced, used = _reduced(kernel, entries)
     lines = [line[4:] for line in _scalar_prologue(kernel, used, replacements, printer)]
     for (out, idx, _), value in zip(entries, reduced):
         index = ", ".join(str(i) for i in idx) if idx else "0"
@@ -383,7 +433,7 @@ def _lane_statements(kernel, entries, rows):
     """The statements of _element_statements in a loop over the elements e < LANES of the lane
     buffer b: the inputs from their rows of b (coef and kin shared), the outputs added into theirs."""
     printer = _LanePrinter()
-    entries, replacements, reduced, used = _reduced(entries)
+    entries, replacements, reduced, used = _reduced(kernel, entries)
     ndof = len(next(inp for inp in kernel.inputs if inp.name == "q").symbols)
 
     def at(row):

@@ -35,18 +35,29 @@ def moving_frame_velocity(xi, eta, xid, etad):
     return vel_i, vel_j
 
 
+def centre_line_kinetic_energy_density(f):
+    """rho A / 2 |dR/dt|^2 of the centre line R = a e_r + (x + u) e_i + v e_j (exact), from the
+    field dictionary f (fields(), with "x" the abscissa)."""
+    vel_i, vel_j = moving_frame_velocity(f["x"] + f["u"], f["v"], f["ud"], f["vd"])
+    return s.rhoA * (vel_i**2 + vel_j**2) / 2
+
+
+def small_rotation_kinetic_energy_density(f):
+    """rho I / 2 |d/dt(-psi e_i + e_j)|^2: the rotary inertia of the section with the
+    small-rotation director (-psi, 1) of eq. (4)."""
+    rotary_i = s.phid - f["psid"]          # d/dt(-psi e_i + e_j) . e_i
+    rotary_j = f["psi"] * s.phid           # d/dt(-psi e_i + e_j) . e_j
+    return s.rhoI * (rotary_i**2 + rotary_j**2) / 2
+
+
 def rod_kinetic_energy_density(q=s.q, qd=s.qd):
     """Kinetic energy per unit length, eq. (5) integrated over the cross-section (eq. 4).
 
     With int y dA = 0 and int y^2 dA = I the section integral splits into the centre-line part
     (rho A) and the rotary-inertia part (rho I) of the rotating section, R = ... + y (-psi e_i + e_j).
     """
-    f = fields(q, qd)
-    x = s.x0 + s.l * s.zeta
-    vel_i, vel_j = moving_frame_velocity(x + f["u"], f["v"], f["ud"], f["vd"])
-    rotary_i = s.phid - f["psid"]          # d/dt(-psi e_i + e_j) . e_i
-    rotary_j = f["psi"] * s.phid           # d/dt(-psi e_i + e_j) . e_j
-    return (s.rhoA * (vel_i**2 + vel_j**2) + s.rhoI * (rotary_i**2 + rotary_j**2)) / 2
+    f = dict(fields(q, qd), x=s.x0 + s.l * s.zeta)
+    return centre_line_kinetic_energy_density(f) + small_rotation_kinetic_energy_density(f)
 
 
 def rod_kinetic_energy(q=s.q, qd=s.qd):
@@ -68,16 +79,20 @@ def axial_strain(approach, q=s.q):
     return f["u_x"] + f["v_x"] ** 2 / 2
 
 
-def strain_energy_density(approach, q=s.q):
-    """Strain energy per unit length: eq. (2) for A, without 1/4 v_x^4 for B, linear strain for C."""
-    f = fields(q, q)
+def membrane_energy_density(approach, f):
+    """(u_x + v_x^2/2)^2 of eq. (2) for A, without v_x^4/4 for B, u_x^2 for C, of the fields f."""
     u_x, v_x = f["u_x"], f["v_x"]
-    membrane = {
+    return {
         "A": u_x**2 + u_x * v_x**2 + v_x**4 / 4,
         "B": u_x**2 + u_x * v_x**2,
         "C": u_x**2,
     }[approach]
-    return (s.EA * membrane + s.EI * f["v_xx"] ** 2) / 2
+
+
+def strain_energy_density(approach, q=s.q):
+    """Strain energy per unit length: eq. (2) for A, without 1/4 v_x^4 for B, linear strain for C."""
+    f = fields(q, q)
+    return (s.EA * membrane_energy_density(approach, f) + s.EI * f["v_xx"] ** 2) / 2
 
 
 def strain_energy(approach, q=s.q):
@@ -85,22 +100,30 @@ def strain_energy(approach, q=s.q):
     return integrate_element(strain_energy_density(approach, q))
 
 
-def strain_rate(approach, q=s.q, qd=s.qd):
-    """Time derivative of the approach's axial strain measure.
+def strain_rate_of(approach, f):
+    """Time derivative of the approach's axial strain measure, from the fields f.
 
     B keeps the non-linear strain of eq. (1) (it only truncates the energy), so it shares A's
     strain rate; C uses the linear strain.  Using a full square keeps D >= 0 in every approach.
     """
-    f = fields(q, qd)
     if approach == "C":
         return f["ud_x"]
     return f["ud_x"] + f["v_x"] * f["vd_x"]
 
 
+def strain_rate(approach, q=s.q, qd=s.qd):
+    """Time derivative of the approach's axial strain measure (strain_rate_of the element fields)."""
+    return strain_rate_of(approach, fields(q, qd))
+
+
+def kelvin_voigt_density_of(approach, f):
+    """Rayleigh dissipation per unit length, D = mu/2 [EA edot^2 + EI (d/dt v_xx)^2], of the fields f."""
+    return s.mu * (s.EA * strain_rate_of(approach, f) ** 2 + s.EI * f["vd_xx"] ** 2) / 2
+
+
 def kelvin_voigt_dissipation_density(approach, q=s.q, qd=s.qd):
     """Rayleigh dissipation per unit length, D = mu/2 [EA edot^2 + EI (d/dt v_xx)^2]."""
-    f = fields(q, qd)
-    return s.mu * (s.EA * strain_rate(approach, q, qd) ** 2 + s.EI * f["vd_xx"] ** 2) / 2
+    return kelvin_voigt_density_of(approach, fields(q, qd))
 
 
 def kelvin_voigt_dissipation(approach, q=s.q, qd=s.qd):
@@ -173,3 +196,218 @@ def slider_gravity_potential(qs=s.qs):
     """Potential of gravity on the slider, V_s = -m_s g . R_s (R_s: eq. 7's point at x = L)."""
     X, Y = inertial_position(s.L + qs[0], qs[1])
     return sp.expand(-s.ms * (s.gX * X + s.gY * Y))
+
+
+# ----------------------------------------------------------------------------------------------
+# The geometrically exact rod (approach "exact"), and every approach's element energies over the
+# points of a quadrature rule (derive/quadrature.py)
+# ----------------------------------------------------------------------------------------------
+#
+# Planar Euler-Bernoulli rod, exact kinematics in the moving frame: the centre line
+# R = a e_r + (x + u) e_i + v e_j (as in eq. 4), its tangent r' = (1 + u_x) e_i + v_x e_j = lambda
+# (cos(theta) e_i + sin(theta) e_j), lambda the stretch and e = lambda - 1 the axial strain; the
+# section stays normal to the centre line (no shear), its director d = -sin(theta) e_i +
+# cos(theta) e_j a unit vector turning at |dd/dt| = |theta' - phid| in the inertial frame (the
+# small-rotation director (-psi, 1) of eq. (4) is longer than 1 by sqrt(1 + psi^2)); the curvature
+# kappa = d theta / dx per undeformed length (Reissner's measure: the strain energy
+# 1/2 int (EA e^2 + EI kappa^2) dx makes N = EA e and M = EI kappa work-conjugate to e and kappa,
+# and the fibre at distance y stretches by lambda - y kappa).
+#
+# The element's u is linear and its v cubic: u_x jumps at the nodes and is constant inside, so the
+# tangent of the interpolated centre line, (1 + u_x, v_x), kinks at every node and its angle
+# atan2(v_x, 1 + u_x) misses the u_xx part of the rotation: its curvature
+# ((1 + u_x) v_xx - v_x u_xx) / |r'|^2 falls short by about cos(theta)^2 whatever the mesh (a
+# converged static buckling load 2.6 % low at 5 degrees of end rotation, 9 % at 11).  Instead each
+# element is taken at a constant stretch lambda (the element field `lam`, element_stretch): its
+# tangent lambda (cos(theta), sin(theta)) has e_j component v_x, the continuous cubic slope, so
+# theta = asin(v_x / lambda) and kappa = v_xx / sqrt(lambda^2 - v_x^2); its membrane strain is
+# lambda - 1 (membrane="averaged", free of membrane locking: a bent element keeps lambda = 1), or the
+# pointwise |r'| - 1 of the interpolated centre line (membrane="pointwise", which locks).  Rigid
+# motions keep lambda = 1, theta the element's angle and kappa = 0.  The price: the rod stays a
+# graph over the moving frame's e_i, |theta| < 90 degrees (|v_x| < lambda), which the slope v_x of
+# crankgen's element cannot tell apart from 180 degrees - theta.
+
+# The exact strain and the rotation are functions of a point's fields.  The derivation keeps them
+# opaque (SymPy functions), so that the Euler-Lagrange terms and their tangents come out as
+# polynomials in their partial derivatives (mixed partials cancel where they should:
+# d/dt dT/dtheta' - dT/dtheta collapses to rho I (theta'' - phidd) grad theta); `reveal` puts the
+# definitions in (quadrature.PointSpace computes each partial derivative once per point).
+STRAIN = sp.Function("strain", real=True)          # e(u_x, v_x) = |r'| - 1
+ROTATION = sp.Function("rotation", real=True)      # theta(v_x, lambda) = asin(v_x / lambda)
+_A, _B, _L = sp.symbols("_a _b _l", real=True)
+QUANTITIES = {
+    # ((1 + u_x)^2 + v_x^2 - 1) / (|r'| + 1): |r'| - 1 free of cancellation at small strain
+    STRAIN: sp.Lambda((_A, _B), (2 * _A + _A**2 + _B**2) / (sp.sqrt((1 + _A) ** 2 + _B**2) + 1)),
+    ROTATION: sp.Lambda((_B, _L), sp.asin(_B / _L)),
+}
+
+
+def _stretch_squared_less_one(space):
+    """lambda^2 - 1 of element_stretch, written without cancellation at small strain."""
+    u_x = space.fields(0)["u_x"]                        # constant in the element
+    m2 = space.integral(lambda f: f["v_x"] ** 2) / s.l
+    m4 = space.integral(lambda f: f["v_x"] ** 4) / s.l
+    return 2 * u_x + u_x**2 + m2 + (m4 - m2**2) / (4 * (1 + u_x) ** 2)
+
+
+def element_stretch(space):
+    """lambda of an element of constant stretch whose tangent lambda (c, v_x), c = cos(theta), has the
+    element's slope v_x and the mean axial component <c> = 1 + u_x (the axial extent of its nodes):
+    lambda^2 = <c^2> + <v_x^2> = <c>^2 + var(c) + <v_x^2>, var(c) = var(v_x^2) / (4 <c>^2) to leading
+    order (c = sqrt(lambda^2 - v_x^2)); the means by the rule of `space`.  Exact to O(l^4) for a smooth
+    rod (a circular arc turning 0.3 rad over the element: 1.2e-5), and to second order in the
+    rotation 1 + u_x + <v_x^2>/2: approach A's element-mean membrane strain."""
+    return sp.sqrt(1 + _stretch_squared_less_one(space))
+
+
+def element_strain(space):
+    """lambda - 1 of element_stretch, as (lambda^2 - 1) / (lambda + 1): no cancellation."""
+    return _stretch_squared_less_one(space) / (element_stretch(space) + 1)
+
+
+# fields constant in an element, built from the rule's points (quadrature.PointSpace gives each a
+# symbol, with its time derivatives)
+ELEMENT_FIELDS = {"lam": element_stretch, "ebar": element_strain}
+
+MEMBRANES = ("pointwise", "averaged")
+APPROACHES_ALL = APPROACHES + ("exact",)
+
+
+def _rate_key(key):
+    base, _, rest = key.partition("_")
+    return f"{base}d_{rest}" if rest else f"{base}d"
+
+
+def field_rate(expr, f):
+    """d/dt of an expression in the fields f (symbols of a point: u_x -> ud_x -> udd_x) and the
+    rigid kinematics."""
+    out = [sp.diff(expr, f[k]) * f[_rate_key(k)] for k in sorted(f) if isinstance(f[k], sp.Symbol)
+           and _rate_key(k) in f and expr.has(f[k])]
+    out += [sp.diff(expr, sym) * rate for sym, rate in s.TIME_DERIVATIVE.items() if expr.has(sym)]
+    return sp.Add(*out)
+
+
+def field_x_derivative(expr, f):
+    """d/dx of an expression in u_x and v_x of the fields f (u_x -> u_xx, v_x -> v_xx; the element
+    fields are constant along the element)."""
+    return sp.Add(*(sp.diff(expr, f[a]) * f[b] for a, b in (("u_x", "u_xx"), ("v_x", "v_xx"))
+                    if isinstance(f[a], sp.Symbol)))
+
+
+def reveal(expr):
+    """expr with the opaque point quantities (STRAIN, ROTATION) replaced by their definitions and
+    their derivatives evaluated."""
+    for function, definition in QUANTITIES.items():
+        expr = expr.replace(function, definition)
+    return expr.doit()
+
+
+_SLOPES = {k: sp.Symbol(f"_{k}", real=True) for k in ("u_x", "v_x", "u_xx", "v_xx", "lam")}
+
+
+def _of_slopes(build, f):
+    """build(slope symbols) at the fields f (with "lam", the element's stretch): kept opaque at the
+    point symbols of a quadrature rule, revealed where the fields are expressions (outputs)."""
+    expr = build(_SLOPES)
+    values = {sym: f.get(k, 0) for k, sym in _SLOPES.items()}
+    if all(isinstance(v, sp.Symbol) or v == 0 for v in values.values()):
+        return expr.xreplace(values)
+    return reveal(expr).xreplace(values)
+
+
+def exact_strain(f):
+    """e = |r'| - 1 at a point of the interpolated centre line, |r'| = sqrt((1 + u_x)^2 + v_x^2)."""
+    return _of_slopes(lambda g: STRAIN(g["u_x"], g["v_x"]), f)
+
+
+def _rotation_of(g):
+    return ROTATION(g["v_x"], g["lam"])
+
+
+def _curvature_of_slopes(g):
+    return field_x_derivative(_rotation_of(g), g)
+
+
+def section_rotation(f):
+    """theta = asin(v_x / lambda), lambda the element's stretch: the angle of the section's normal
+    from e_i in an element of constant stretch (a point field "th" of a quadrature rule's points)."""
+    return f["th"] if "th" in f else _of_slopes(_rotation_of, f)
+
+
+def exact_curvature(f):
+    """kappa = d theta / dx (per undeformed length), derived from section_rotation (revealed:
+    v_xx / sqrt(lambda^2 - v_x^2); a point field "kap" of a quadrature rule's points)."""
+    return f["kap"] if "kap" in f else _of_slopes(_curvature_of_slopes, f)
+
+
+# fields of a quadrature point defined from its fields and the element fields (each a symbol with
+# its time derivatives, quadrature.PointSpace): the section rotation and the curvature
+POINT_FIELDS = {"th": _rotation_of, "kap": _curvature_of_slopes}
+
+
+def exact_rotary_kinetic_energy_density(f):
+    """rho I / 2 |d/dt d|^2 = rho I / 2 (theta' - phid)^2: the section's exact rotation, whose
+    inertial angle is theta - phi."""
+    return s.rhoI * (field_rate(section_rotation(f), f) - s.phid) ** 2 / 2
+
+
+def element_kinetic_energy(space, approach):
+    """Element kinetic energy by the rule of `space`: the centre line (exact in every approach) and
+    the section's rotation, small-rotation (eq. 4) for A, B, C or exact."""
+    rotary = exact_rotary_kinetic_energy_density if approach == "exact" else small_rotation_kinetic_energy_density
+    return space.integral(lambda f: centre_line_kinetic_energy_density(f) + rotary(f))
+
+
+def element_rotary_kinetic_energy(space):
+    """The exact section rotation's part of the element kinetic energy, by the rule of `space`."""
+    return space.integral(exact_rotary_kinetic_energy_density)
+
+
+def axial_strain_of(approach, f):
+    """The approach's pointwise axial strain of the fields f: u_x + v_x^2/2 (A, B), u_x (C),
+    |r'| - 1 (exact)."""
+    if approach == "exact":
+        return exact_strain(f)
+    return f["u_x"] if approach == "C" else f["u_x"] + f["v_x"] ** 2 / 2
+
+
+def _curvature_of(approach, f):
+    return exact_curvature(f) if approach == "exact" else f["v_xx"]
+
+
+def element_strain_energy(space, approach, membrane):
+    """Element strain energy by the rule of `space`.  pointwise: 1/2 int (EA e^2 + EI kappa^2) dx
+    (eq. 2 for A, B, C; e = |r'| - 1 and the exact kappa for "exact").  averaged: the membrane
+    energy of one strain per element, l EA e_bar^2 / 2 (A and B: u_x + <v_x^2>/2, as
+    strain_energy_averaged; exact: the element's stretch less 1, element_strain)."""
+    bending = space.integral(lambda f: s.EI * _curvature_of(approach, f) ** 2 / 2)
+    if membrane == "pointwise" or approach == "C":
+        if approach == "exact":
+            return space.integral(lambda f: s.EA * exact_strain(f) ** 2 / 2) + bending
+        return space.integral(lambda f: s.EA * membrane_energy_density(approach, f) / 2) + bending
+    if approach == "exact":
+        return s.l * s.EA * space.fields(0)["ebar"] ** 2 / 2 + bending
+    u_x = space.fields(0)["u_x"]                        # constant in the element
+    m = space.integral(lambda f: f["v_x"] ** 2) / s.l
+    energy = {"A": (u_x + m / 2) ** 2, "B": u_x**2 + u_x * m}[approach]
+    return s.l * s.EA * energy / 2 + bending
+
+
+def element_dissipation(space, approach, membrane):
+    """Element Kelvin-Voigt dissipation D = mu/2 int (EA e'^2 + EI kappa'^2) dx by the rule of
+    `space` (' = d/dt); averaged: l EA e_bar'^2 for the membrane part."""
+    def strain_rate_at(f):
+        if approach == "exact":
+            return field_rate(exact_strain(f), f)
+        return strain_rate_of(approach, f)
+
+    def curvature_rate_at(f):
+        return field_rate(exact_curvature(f), f) if approach == "exact" else f["vd_xx"]
+
+    bending = space.integral(lambda f: s.mu * s.EI * curvature_rate_at(f) ** 2 / 2)
+    if membrane == "pointwise" or approach == "C":
+        return space.integral(lambda f: s.mu * s.EA * strain_rate_at(f) ** 2 / 2) + bending
+    if approach == "exact":
+        return s.mu * s.l * s.EA * space.fields(0)["ebard"] ** 2 / 2 + bending
+    rate = space.integral(strain_rate_at) / s.l
+    return s.mu * s.l * s.EA * rate**2 / 2 + bending

@@ -66,6 +66,7 @@ class Kernel:
     outputs: tuple
     cse: bool = True             # False: each output printed as it stands (no common subexpressions)
     solve: Solve = None          # a numerical closure solved at run time before the outputs
+    definitions: tuple = ()      # stages of ((symbol, expression in the inputs), ...): computed before the outputs
 
 
 def scalar(sym):
@@ -91,10 +92,11 @@ OUTPUT_INPUT = {name: (vector(name, syms) if len(syms) > 1 else scalar(syms[0]))
                 for name, syms in ir.OUTPUT_INPUTS}
 
 
-def _residual_outputs(r, printed_stiffness="exact"):
-    K = jacobian(r, s.q)
+def _residual_outputs(r, printed_stiffness="exact", tangents=None):
+    """r and its tangents: differentiated here, or those derived with r (`tangents`: K, C, M)."""
+    K, C, M = tangents if tangents is not None else (jacobian(r, s.q), jacobian(r, s.qd), jacobian(r, s.qdd))
     outs = [Output("r", r, "element residual"), Output("K", K, "d r / d q"),
-            Output("C", jacobian(r, s.qd), "d r / d qd"), Output("M", jacobian(r, s.qdd), "d r / d qdd")]
+            Output("C", C, "d r / d qd"), Output("M", M, "d r / d qdd")]
     if not (isinstance(printed_stiffness, str) and printed_stiffness == "exact"):
         Kp = sp.zeros(s.ELEMENT_DOFS, s.ELEMENT_DOFS) if isinstance(printed_stiffness, str) else printed_stiffness
         outs.append(Output("K_printed", Kp.applyfunc(sp.expand), "stiffness of the printed eq. (37)"))
@@ -107,13 +109,14 @@ def element_kernels():
     for family in ir.representation().families:
         for variant in family.variants:
             kernels.append(Kernel(variant.record.kernel, f"{family.record.doc}: {variant.record.doc}.", ELEMENT_INPUTS,
-                                  _residual_outputs(variant.residual, variant.printed_stiffness)))
+                                  _residual_outputs(variant.residual, variant.printed_stiffness, variant.tangents),
+                                  definitions=variant.definitions))
     return tuple(kernels)
 
 
 def energy_kernels():
     inputs = (Q, QD, GEO, COEF, KIN)
-    name_of = {"rod_kinetic_energy": "T", "slider_kinetic_energy": "T"}
+    name_of = {"rod_kinetic_energy": "T", "rod_kinetic_energy_exact": "T", "slider_kinetic_energy": "T"}
     out = []
     for e in ir.representation().energies:
         label = name_of.get(e.name) or ("V" if "potential" in e.name else "U" if "strain" in e.name else "D")

@@ -70,6 +70,7 @@ class Schema:
     element_dofs: int
     node: Layout                 # the components of a node, in the element's order (eq. 14)
     constraints: tuple           # the DOF map: the constraints condensed out (crankgen.records.Constraint)
+    exclusions: tuple            # option values refused together (crankgen.records.Exclusion)
 
 
 def _symbols(p):
@@ -189,8 +190,20 @@ def _energy_name(energy):
 
 def _family_record(f):
     variants = tuple(project(v, records.Variant, when=dict(sorted(v.when.items())), kernel=f"{f.name}_{v.name}",
-                             energy=_energy_name(v.energy)) for v in f.variants)
+                             energy=_energy_name(v.energy),
+                             quadrature=None if v.quadrature is None else v.quadrature.text)
+                     for v in f.variants)
     return project(f, records.Family, variants=variants)
+
+
+def _exclusions():
+    """The declared exclusions, their option values checked."""
+    names = {o.name: o for o in model.OPTIONS}
+    for x in model.EXCLUSIONS:
+        for option, value in x.options.items():
+            if option not in names or value not in names[option].choices:
+                raise ValueError(f"exclusion {x.reason!r}: {option}={value!r} is not a choice")
+    return tuple(records.Exclusion(dict(sorted(x.options.items())), x.reason) for x in model.EXCLUSIONS)
 
 
 def _parameter_name(name):
@@ -254,7 +267,7 @@ def schema():
         unit_parameters=_unit_parameters(),
         element_dofs=ELEMENT_DOFS, node=Layout("node", s.NODE, "the components of a node (eq. 14): axial "
                                                 "and transverse displacement, slope"),
-        constraints=_constraints())
+        constraints=_constraints(), exclusions=_exclusions())
 
 
 # ---- the SymPy forms ----------------------------------------------------------------------------------
@@ -291,6 +304,8 @@ class VariantForm:
     record: records.Variant
     residual: sp.Matrix          # element residual (6,) in q, qd, qdd, geo, coef, kin
     printed_stiffness: object    # "exact", "none" or a 6x6 Matrix
+    tangents: tuple = None       # (K, C, M) derived with the residual (quadrature); None: differentiate r
+    definitions: tuple = ()      # stages of (symbol, expression) the residual and tangents are written in
 
 
 @dataclass(frozen=True)
@@ -363,7 +378,8 @@ def _families():
         variants = []
         for v, vr in zip(f.variants, record.variants):
             term = v.build()
-            variants.append(VariantForm(vr, sp.Matrix(term.residual), term.printed_stiffness))
+            variants.append(VariantForm(vr, sp.Matrix(term.residual), term.printed_stiffness, term.tangents,
+                                        term.definitions))
         out.append(FamilyForm(record, tuple(variants)))
     return tuple(out)
 
@@ -445,33 +461,59 @@ def _option_cases(names):
 
 
 def _coarse_key(options):
-    """The membrane strain's three cases: linear (approach C), pointwise or averaged."""
+    """The membrane strain's cases: linear (approach C), pointwise or averaged; exact or
+    exact_averaged for the geometrically exact rod."""
     if options.get("approach") == "C":
         return "linear"
-    return "averaged" if options.get("membrane") == "averaged" else "pointwise"
+    averaged = options.get("membrane") == "averaged"
+    if options.get("approach") == model.EXACT:
+        return "exact_averaged" if averaged else "exact"
+    return "averaged" if averaged else "pointwise"
+
+
+def _group_suffix(cases, every):
+    """A kernel's suffix for the option cases sharing its expression (of `every` case of the
+    output): their membrane strain's case when they share one; "exact" for the exact rod's cases
+    alone; "" for all the cases of the other approaches (the classical strain's, e.g. the bending
+    moment v_xx); None otherwise (the kernels are then named by the option values)."""
+    keys = {_coarse_key(c) for c in cases}
+    approaches = {c.get("approach") for c in cases}
+    if len(keys) == 1:
+        return keys.pop()
+    if approaches == {model.EXACT}:
+        return "exact"
+    classical = [c for c in every if c.get("approach") != model.EXACT]
+    return "" if sorted(map(str, cases)) == sorted(map(str, classical)) else None
+
+
+def _output_expression(o, options):
+    """An output's expression for the option values: expanded (the canonical form its kernels are
+    grouped by), except the exact rod's own, whose square roots would multiply out."""
+    expr = o.build(options)
+    if options.get("approach") == model.EXACT and expr != o.build(dict(options, approach="A")):
+        return expr
+    return sp.expand(expr)
 
 
 def _output_forms(o):
     """(inputs, variants) of a declared output with a build: its expression for every combination
     of the options it depends on, one kernel per distinct expression (named by the membrane strain's
-    case when that tells them apart, else by the option values)."""
+    case when that tells them apart, _group_suffix, else by the option values)."""
     if o.engine:
         expr = sp.expand(o.build({}))
         if o.options or o.kind != "step":
             raise ValueError(f"output {o.name}: an engine output is a step output of no option")
         _output_inputs(expr, o.name, ENGINE_INPUTS)
         return (), (OutputVariant({}, "per_step", expr),)
-    groups = {}
-    for options in _option_cases(o.options):
-        groups.setdefault(sp.expand(o.build(options)), []).append(options)
-    coarse = {_coarse_key(cases[0]) for cases in groups.values()}
-    by_coarse = len(groups) > 1 and len(coarse) == len(groups) and all(
-        len({_coarse_key(c) for c in cases}) == 1 for cases in groups.values())
+    groups, every = {}, _option_cases(o.options)
+    for options in every:
+        groups.setdefault(_output_expression(o, options), []).append(options)
+    suffixes = [_group_suffix(cases, every) for cases in groups.values()]
+    by_coarse = None not in suffixes and len(set(suffixes)) == len(suffixes)
     variants, inputs = [], set(KIND_INPUTS[o.kind])
-    for expr, cases in groups.items():
-        suffix = "" if len(groups) == 1 else "_" + (_coarse_key(cases[0]) if by_coarse else
-                                                     "_".join(str(v) for v in cases[0].values()))
-        kernel = f"{o.kind}_{o.name}{suffix}"
+    for (expr, cases), coarse in zip(groups.items(), suffixes):
+        suffix = "_" + "_".join(str(v) for v in cases[0].values()) if not by_coarse else f"_{coarse}" if coarse else ""
+        kernel = f"{o.kind}_{o.name}{'' if len(groups) == 1 else suffix}"
         variants += [OutputVariant(dict(sorted(c.items())), kernel, expr) for c in cases]
         inputs.update(_output_inputs(expr, o.name))
     return tuple(n for n, _ in OUTPUT_INPUTS if n in inputs), tuple(variants)

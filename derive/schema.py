@@ -22,7 +22,7 @@ from . import symbols as _symbols
 from .emit import ELEMENT_MODES, LANES, lane_rows
 from .guides import END_MAP_ROWS
 
-RECORD_CLASSES = ("Constraint", "Family", "Guide", "Layout", "Motion", "Option", "Output", "Parameter", "Preset",
+RECORD_CLASSES = ("Constraint", "Exclusion", "Family", "Guide", "Layout", "Motion", "Option", "Output", "Parameter", "Preset",
                   "Primitive", "Variant")
 
 
@@ -137,6 +137,8 @@ def _table_source(schema):
         f"PRIMITIVES = {literal(schema.primitives)}",
         "# option values under which the one-pass scheme iterates with the printed eq. (37) matrices",
         f"PRINTED_ITERATION = {schema.printed_iteration!r}",
+        "# option values that have no meaning together: a case choosing all of them is refused with the reason",
+        f"EXCLUSIONS = {literal(schema.exclusions)}",
     ]
     return "\n".join(out) + "\n"
 

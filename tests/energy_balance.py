@@ -27,11 +27,20 @@ revolutions at Omega* = 0.8 (work relative to the total |pin work|): approach C,
 strain has no geometric stiffness, 0.9 % whatever the mesh (a property of the model); A 0.5 %,
 0.4 %, 0.2 % with 2, 4, 8 elements and, with the element-mean membrane strain, 0.4 %, 0.13 %,
 0.05 % (the finite elements cannot rotate a deformed rod exactly: a discretization effect).
+
+The geometrically exact rod (approach "exact") has the same centre line; its section's director is
+the unit vector d = -sin(theta) e_i + cos(theta) e_j, whose inertial angle is theta - phi, so its
+rotary kinetic energy is rho I/2 int (theta' - phid)^2 dx and its part of the frame moment
+rho I int (phidd - theta'') dx; theta, the strain energy and the dissipation are those of
+exact_reference.py (numpy.arcsin of the slope over the element's stretch, by the rule the model
+declares), theta' and theta'' by central differences in time along the nodal motion.
 """
 
 import math
 
 import numpy as np
+
+import exact_reference as xr
 
 N_GAUSS = 6
 _XG, _WG = np.polynomial.legendre.leggauss(N_GAUSS)
@@ -177,8 +186,12 @@ def kinetic_energy(model, kin, q, qd):
     m = model.mechanism
     f = rod_fields(model, q, qd, 0 * q)
     (Vi, Vj), _ = point_kinematics(f["x"], f["u"], f["ud"], 0, f["v"], f["vd"], 0, kin, m.a)
-    (Ci, Cj), _ = section_rates(f["psi"], f["psid"], 0, kin)
-    T = 0.5 * _integrate(f, m.rhoA * (Vi**2 + Vj**2) + m.rhoI * (Ci**2 + Cj**2))
+    if model.options["approach"] == "exact":
+        T = 0.5 * _integrate(f, m.rhoA * (Vi**2 + Vj**2))
+        T = T + np.sum(xr.rotary_kinetic_energy(q, qd, model.mesh.length, m.rhoI, kin.phid[:, None]), -1)
+    else:
+        (Ci, Cj), _ = section_rates(f["psi"], f["psid"], 0, kin)
+        T = 0.5 * _integrate(f, m.rhoA * (Vi**2 + Vj**2) + m.rhoI * (Ci**2 + Cj**2))
     (Vsi, Vsj), _ = point_kinematics(1.0, q[:, -1, 3], qd[:, -1, 3], 0, q[:, -1, 4], qd[:, -1, 4], 0, kin, m.a)
     return T + 0.5 * m.ms * (Vsi**2 + Vsj**2)
 
@@ -191,6 +204,8 @@ def strain_energy(model, q, approach, averaged=False):
     """Eq. (2) for A; without the quartic term for B; linear strain for C.  averaged: the
     membrane strain uses the element mean of v_x^2."""
     m = model.mechanism
+    if approach == "exact":
+        return np.sum(xr.strain_energy(q, model.mesh.length, m.EA, m.EI, averaged), -1)
     f = rod_fields(model, q, 0 * q, 0 * q)
     vx2 = _element_mean(f["psi"] ** 2) if averaged else f["psi"] ** 2
     axial = {"A": (f["ux"] + vx2 / 2) ** 2, "B": f["ux"] ** 2 + f["ux"] * vx2, "C": f["ux"] ** 2}[approach]
@@ -200,6 +215,8 @@ def strain_energy(model, q, approach, averaged=False):
 def kelvin_voigt_power(model, q, qd, approach, averaged=False):
     """2 D = mu int [EA (d/dt e)^2 + EI (d/dt v_xx)^2] dx, e the approach's axial strain."""
     m = model.mechanism
+    if approach == "exact":
+        return 2 * np.sum(xr.dissipation(q, qd, model.mesh.length, m.EA, m.EI, m.mu, averaged), -1)
     f = rod_fields(model, q, qd, 0 * q)
     vvd = f["psi"] * f["psid"]
     ed = f["uxd"] + ((_element_mean(vvd) if averaged else vvd) if approach in "AB" else 0)
@@ -211,11 +228,28 @@ def frame_moment(model, kin, q, qd, qdd):
     m = model.mechanism
     f = rod_fields(model, q, qd, qdd)
     _, (Bi, Bj) = point_kinematics(f["x"], f["u"], f["ud"], f["udd"], f["v"], f["vd"], f["vdd"], kin, m.a)
-    _, (Di, Dj) = section_rates(f["psi"], f["psid"], f["psidd"], kin)
-    J = _integrate(f, m.rhoA * (Bi * f["v"] - Bj * (f["x"] + f["u"])) + m.rhoI * (Di + Dj * f["psi"]))
+    if model.options["approach"] == "exact":
+        J = _integrate(f, m.rhoA * (Bi * f["v"] - Bj * (f["x"] + f["u"])))
+        J = J + np.sum(m.rhoI * _exact_rotary_moment(model, kin, q, qd, qdd), -1)
+    else:
+        _, (Di, Dj) = section_rates(f["psi"], f["psid"], f["psidd"], kin)
+        J = _integrate(f, m.rhoA * (Bi * f["v"] - Bj * (f["x"] + f["u"])) + m.rhoI * (Di + Dj * f["psi"]))
     us, vs = q[:, -1, 3], q[:, -1, 4]
     _, (Bsi, Bsj) = point_kinematics(1.0, us, qd[:, -1, 3], qdd[:, -1, 3], vs, qd[:, -1, 4], qdd[:, -1, 4], kin, m.a)
     return J + m.ms * (Bsi * vs - Bsj * (1.0 + us))
+
+
+def _exact_rotary_moment(model, kin, q, qd, qdd, h=1e-3):
+    """int (phidd - theta'') dx per element (Nt, n): d'' . dd/dphi of the unit director, whose
+    inertial angle is theta - phi; theta'' = d^2/ds^2 theta(q + s qd + s^2/2 qdd) at s = 0 by a
+    5-point central difference, by the model's rule."""
+    l = model.mesh.length
+    z, w = xr.rule()
+
+    def theta(s):
+        return xr.rotation(q + s * qd + s**2 / 2 * qdd, l, z)
+    second = (-theta(2 * h) + 16 * theta(h) - 30 * theta(0.0) + 16 * theta(-h) - theta(-2 * h)) / (12 * h**2)
+    return xr.integrate(kin.phidd[:, None, None] - second, l, w)
 
 
 def damping_forces(model, kin, q, qd):

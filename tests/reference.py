@@ -468,6 +468,7 @@ def assert_close(actual, expected, rtol, trailing, what, atol=0.0):
     Frobenius norm over the `trailing` axes (0: scalar per element, 1: vector, 2: matrix)."""
     actual, expected = np.asarray(actual, float), np.asarray(expected, float)
     assert actual.shape == expected.shape, f"{what}: shape {actual.shape} != {expected.shape}"
+    assert np.all(np.isfinite(actual)) and np.all(np.isfinite(expected)), f"{what}: not finite"
     axes = tuple(range(actual.ndim - trailing, actual.ndim))
     if trailing:
         err = np.sqrt(np.sum((actual - expected) ** 2, axis=axes))

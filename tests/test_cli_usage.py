@@ -40,7 +40,7 @@ BAD = {
                  ["--offset", "0.95"], ["--gravity", "nan,0"], ["--gravity", "1"],
                  ["--elements", "0"], ["--elements", "1.5"], ["--steps-per-rev", "3"],
                  ["--revolutions", "0"], ["--revolutions", "nan"], ["--tol", "0"],
-                 ["--model", "exact"], ["--approach", "D"], ["--formulation", "x"],
+                 ["--model", "rigid"], ["--model", "exact", "--damping", "paper"], ["--approach", "D"], ["--formulation", "x"],
                  ["--damping", "x"], ["--membrane", "x"], ["--rotary-inertia", "maybe"],
                  ["--integrator", "x"]],
     "steady": [["--omega", "0.005"], ["--omega", "0.05", "--steps-per-rev", "19"], ["--tol", "-1"],

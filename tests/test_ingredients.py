@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen import ingredients
+from crankgen import ingredients, schema
 from crankgen.cases import Case
 from crankgen.errors import ParameterError
 from crankgen.model import Model
@@ -176,18 +176,26 @@ def test_field_outputs_average_the_two_elements_at_a_node_and_refuse_bad_input()
 
 
 def test_every_combination_of_options_selects_one_variant_of_each_family():
-    """The declaration is consistent: for every combination of the options, each family has at
-    most one variant (variants exclude each other), inertia, elastic force, dissipation and the
-    slider's inertia are always present, and the slider's dissipation exactly with eq. (24)."""
+    """The declaration is consistent: for every combination of the options that is not excluded
+    (the exact rod has no printed form or damping: refused by name), each family has at most one
+    variant (variants exclude each other), inertia, elastic force, dissipation and the slider's
+    inertia are always present, and the slider's dissipation exactly with eq. (24)."""
     import itertools
     names = ingredients.OPTION_NAMES
+    refused = 0
     for values in itertools.product(*(ingredients.CHOICES[n] for n in names)):
         options = dict(zip(names, values))
+        if any(all(options[k] == v for k, v in x.options.items()) for x in schema.EXCLUSIONS):
+            with pytest.raises(ParameterError, match="approach 'exact' has no printed"):
+                ingredients.check_options(options)
+            refused += 1
+            continue
         sel = ingredients.select(options)                       # raises if two variants match
         present = {f for f, k in zip(ingredients.FAMILIES, sel.families) if k >= 0}
         assert {"inertia", "elastic", "dissipation", "slider_inertia", "gravity",
                 "slider_gravity"} <= present, options
         assert ("slider_dissipation" in present) == (options["damping"] == "paper"), options
+    assert refused == 3 * 2 * 2                  # exact with formulation or damping paper (membrane, rho I)
 
 
 def test_unknown_or_incompatible_options_are_refused_by_name():

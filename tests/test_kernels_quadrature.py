@@ -391,8 +391,9 @@ def test_every_kernel_is_covered():
     expected |= {f"elements.{k}" for k in dispatch.ELEMENT_KERNELS}
     for ap in APPROACHES:
         expected |= {f"energy.strain_energy_{ap}", f"energy.dissipation_{ap}"}
-    for ap in ("A", "B"):
+    for ap in ("A", "B", "exact"):
         expected |= {f"energy.strain_energy_{ap}_averaged", f"energy.dissipation_{ap}_averaged"}
+    expected |= {"energy.strain_energy_exact", "energy.dissipation_exact", "energy.rod_kinetic_energy_exact"}
     assert expected <= names
     assert {n.split(".")[0] for n in names - expected} <= {"fields", "groups"}
 

@@ -45,7 +45,7 @@ def test_a_preset_sets_options_and_explicit_options_override_it():
     assert (mixed.formulation, mixed.damping) == ("paper", "kelvin-voigt") and mixed.model is None
     assert Case() == Case(model="consistent") and Case().model == "consistent"
     with pytest.raises(ParameterError, match="model must be one of"):
-        Case(model="exact")
+        Case(model="rigid")
 
 
 def test_parameters_have_one_canonical_form():

@@ -38,7 +38,8 @@ def check_options(options):
 
 
 def _matches(when, options):
-    return all(options[k] == v for k, v in when.items())
+    """Whether options have the values `when` names (a tuple of values: any of them)."""
+    return all(options[k] in v if isinstance(v, tuple) else options[k] == v for k, v in when.items())
 
 
 @dataclass(frozen=True)

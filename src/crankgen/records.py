@@ -9,6 +9,7 @@ a variant's kernel name) and derive/schema.py prints the records into generated/
 generated code.
 
     Option, Preset        a model option (its choices) and a named set of option values
+    Exclusion             option values that have no meaning together (a case choosing them is refused)
     Parameter             a parameter of a case: kind, default, range, units, flag, owner
     Guide, Motion         the curve the rod's end travels on; the crank's prescribed motion
     Family, Variant       a term family of the equations of motion and its option-selected variants
@@ -95,6 +96,15 @@ class Preset:
     def __post_init__(self):
         if self.settings is None:
             object.__setattr__(self, "settings", {})
+
+
+@dataclass(frozen=True)
+class Exclusion:
+    """Option values that have no meaning together: a case choosing all of them is refused with
+    `reason` (one line)."""
+
+    options: dict
+    reason: str
 
 
 @dataclass(frozen=True)
@@ -239,8 +249,9 @@ class Motion:
 @dataclass(frozen=True)
 class Variant:
     """One variant of a term family, selected by option values (`when`; absent options: any
-    value).  kernel: its element kernel (<family>_<variant>); groups: the switchable term groups it
-    carries; energy: the energy kernel it derives from (None: none)."""
+    value; a tuple of values: any of them).  kernel: its element kernel (<family>_<variant>); groups:
+    the switchable term groups it carries; energy: the energy kernel it derives from (None: none);
+    quadrature: the rule its element integrals use ("gauss-legendre 3" ...; None: closed form)."""
 
     name: str
     when: dict
@@ -248,6 +259,7 @@ class Variant:
     groups: tuple = ()
     energy: str = None
     kernel: str = None
+    quadrature: str = None
 
 
 @dataclass(frozen=True)
@@ -411,5 +423,5 @@ def project(obj, cls, **changes):
     return cls(**values)
 
 
-__all__ = ["Option", "Preset", "Parameter", "Guide", "Motion", "Variant", "Family", "Output", "Primitive",
+__all__ = ["Option", "Preset", "Exclusion", "Parameter", "Guide", "Motion", "Variant", "Family", "Output", "Primitive",
            "Constraint", "Layout", "Spec", "project"]

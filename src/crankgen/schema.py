@@ -47,6 +47,7 @@ SELECTOR = {p.selects: p.name for p in PARAMETERS.values() if p.selects}
 MECHANISM_PARAMETERS = tuple(n for n, p in PARAMETERS.items() if p.owner in ("mechanism", "guide"))
 RUN_PARAMETERS = tuple(n for n, p in PARAMETERS.items() if p.owner in ("run", "motion"))
 CONTINUABLE = tuple(n for n, p in PARAMETERS.items() if p.continuable)
+EXCLUSIONS = _table.EXCLUSIONS            # option values refused together (records.Exclusion)
 # the parameters of a mechanism and its crank motion in SI (crankgen.SIMechanism's fields beside the
 # rod's), by SI name: those entering an equation or choosing the guide or motion, but the units that
 # are parameters (the rod's section gives them)
@@ -69,15 +70,18 @@ def resolve_options(model=None, **options):
         if value is None:
             value = PRESETS[name].options.get(opt.name, opt.default)
         out[opt.name] = opt.canonical(value)
+    for x in EXCLUSIONS:
+        if all(out[k] == v for k, v in x.options.items()):
+            raise ParameterError(x.reason)
     return out
 
 
 def preset_of(options):
-    """Name of the preset whose option values the options have, or None."""
-    for name, preset in PRESETS.items():
-        if all(options.get(k) == v for k, v in preset.options.items()):
-            return name
-    return None
+    """Name of the preset whose option values the options have (the one setting the most of them
+    when several do), or None."""
+    matching = [(len(p.options), name) for name, p in PRESETS.items()
+                if all(options.get(k) == v for k, v in p.options.items())]
+    return max(matching, key=lambda m: m[0])[1] if matching else None
 
 
 def selected(values, kind):

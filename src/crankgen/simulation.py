@@ -118,7 +118,7 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
 
     The case: a Mechanism `mech` and the run's settings (omega, and any Case field: approach,
     n_elements, steps_per_rev, integrator, theta0, the model options, the crank motion's parameters),
-    or case=Case(...).  model: "consistent" (the default) or "paper"; an option given explicitly
+    or case=Case(...).  model: "consistent" (the default), "paper" or "exact"; an option given explicitly
     (formulation, damping, membrane, ...) overrides the model's value.  crank: a crank motion,
     crankgen.Constant(omega=...), crankgen.RunUp(start=..., stop=..., revolutions=...) or
     crankgen.Fluctuation(omega=..., amplitude=..., order=...) (default: constant speed omega).
@@ -380,7 +380,18 @@ def _failure(status, step, residual, dt, result=None):
         partial = _truncated(result, int(step))
     return ConvergenceError(
         f"{_engine.STATUS_TEXT[int(status)]} in step {step} (t* = {step * dt:.6g}): residual norm "
-        f"{residual:.3e}", step=int(step), time=step * dt, residual=float(residual), partial=partial)
+        f"{residual:.3e}{_exact_rod_hint(status, result)}", step=int(step), time=step * dt,
+        residual=float(residual), partial=partial)
+
+
+def _exact_rod_hint(status, result):
+    """For the geometrically exact rod, what a non-finite state may mean: its element represents
+    section rotations below 90 degrees from the rod's chord (|v_x| < lambda, README)."""
+    case = getattr(result, "case", None)
+    if status != _engine.NOT_FINITE or case is None or case.approach != "exact":
+        return ""
+    return ("; the exact rod's element represents sections turned less than 90 degrees from the "
+            "rod's chord (|v_x| < its stretch): a section that turns that far ends the run")
 
 
 def _truncated(result, n_points):
