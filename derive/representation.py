@@ -30,6 +30,7 @@ from . import declaration as model
 from . import energies as en
 from . import guides as gd
 from . import motions as mo
+from . import outputs
 from . import symbols as s
 from .euler_lagrange import gradient, kinetic_residual
 from .groups import ELEMENT_VARS, ROD_AXIAL_ROWS, SLIDER_AXIAL_ROWS, SLIDER_VARS, group_vector
@@ -430,15 +431,15 @@ PARAMETERS_BESIDE_KIN = tuple(sp.Symbol(f"{sym.name}_param") if sym in s.KINEMAT
 OUTPUT_INPUTS = (
     ("q", tuple(s.q)), ("qd", tuple(s.qd)), ("zeta", (s.zeta,)), ("geo", s.GEOMETRY), ("coef", COEFFICIENT_SYMBOLS),
     ("kin", s.KINEMATICS), ("parameters", PARAMETERS_BESIDE_KIN),
-    ("q_end", tuple(model.q_end)), ("qd_end", tuple(model.qd_end)),
-    ("s", (model.s_end,)), ("pin", tuple(model.pin)), ("end", tuple(model.end_force)),
-    ("rod_end", tuple(model.rod_end)), ("fiber", (model.fiber,)),
+    ("q_end", tuple(outputs.q_end)), ("qd_end", tuple(outputs.qd_end)),
+    ("s", (outputs.s_end,)), ("pin", tuple(outputs.pin)), ("end", tuple(outputs.end_force)),
+    ("rod_end", tuple(outputs.rod_end)), ("fiber", (outputs.fiber,)),
 )
 # what a kind of output always reads (a field: its element and the point in it; a reduction: each element)
 KIND_INPUTS = {"field": ("q", "zeta", "geo", "coef"), "reduction": ("q", "geo"), "step": ()}
 # the engine's outputs: one kernel, per_step(prims, q_end, parameters), all of them at once
-PRIMITIVE_SYMBOLS = tuple(p.symbol for p in model.PRIMITIVES.values())
-ENGINE_INPUTS = (("prims", PRIMITIVE_SYMBOLS), ("q_end", tuple(model.q_end)),
+PRIMITIVE_SYMBOLS = tuple(p.symbol for p in outputs.PRIMITIVES.values())
+ENGINE_INPUTS = (("prims", PRIMITIVE_SYMBOLS), ("q_end", tuple(outputs.q_end)),
                  ("parameters", tuple(parameter_symbols().values())))
 
 
@@ -528,7 +529,7 @@ def _output_record(o, forms):
 
 @lru_cache(maxsize=None)
 def _all_output_forms():
-    return tuple((o, _output_forms(o)) for o in model.OUTPUTS)
+    return tuple((o, _output_forms(o)) for o in outputs.OUTPUTS)
 
 
 def _outputs_records():
@@ -546,13 +547,13 @@ class GramForm:
 
 
 def _primitive_records():
-    return tuple(project(p, records.Primitive) for p in model.PRIMITIVES.values())
+    return tuple(project(p, records.Primitive) for p in outputs.PRIMITIVES.values())
 
 
 def _grams():
     """The Gram matrix of each integral primitive: int_element integrand dx = q^T G q."""
     out = []
-    for p in model.PRIMITIVES.values():
+    for p in outputs.PRIMITIVES.values():
         if p.kind != "integral":
             continue
         total = integrate_element(sp.expand(p.integrand))

@@ -1,4 +1,4 @@
-"""Outputs declared in derive/declaration.py against hand computations from the stored nodal states."""
+"""Outputs declared in derive/outputs.py against hand computations from the stored nodal states."""
 
 import numpy as np
 

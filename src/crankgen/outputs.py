@@ -1,4 +1,4 @@
-"""The outputs a result can give, declared in derive/declaration.py (OUTPUTS) and read from the
+"""The outputs a result can give, declared in derive/outputs.py (OUTPUTS) and read from the
 schema: step quantities (one value per stored step: the crank speed, the end's position, the chord
 angle, the driving torque, the joint forces, ...), fields (per step, at any x* in [0, 1]:
 axial_force, bending_moment, surface_strain, chord_deflection, ...) and reductions (per step, a sum
@@ -392,7 +392,7 @@ class DeclaredOutputs:
 
 class SIView:
     """A result's quantities in SI: t in s, theta in rad, and every declared output converted with
-    the units it declares in derive/declaration.py (crankgen.units: "L" -> m, "rad", "omega_b" -> rad/s,
+    the units it declares in derive/outputs.py (crankgen.units: "L" -> m, "rad", "omega_b" -> rad/s,
     "rhoA L^2 omega_b^2" -> N, "rhoA L^3 omega_b^2" -> N m, "EI/L^2" -> N, "EI/L" -> N m, ...).
 
     Fields take the position x along the rod in metres (0 <= x <= L); their other arguments keep

@@ -2,8 +2,8 @@
 
 Inside crankgen: length L (the rod's length), mass rho A L, time 1/omega_b with
 omega_b = (pi/L)^2 sqrt(EI/(rho A)) (the lowest bending frequency of the pinned-pinned rod).  Every
-parameter and output declares its unit in derive/declaration.py as a product of the base symbols below,
-with integer powers and at most one "/": "r", "r^2/L", "L", "rad", "omega_b", "L omega_b",
+parameter and output declares its unit (derive/declaration.py, derive/outputs.py) as a product of
+the base symbols below, with integer powers and at most one "/": "r", "r^2/L", "L", "rad", "omega_b", "L omega_b",
 "rhoA L", "rhoA L^2 omega_b^2", "rhoA L^3 omega_b^2", "EI/L^2", "EI/L", "1/omega_b", "rev", "1".
 `Scales` gives the SI value of each base symbol for one mechanism; `Scales.factor(units)` the SI
 value of one unit of a quantity, so that  value_SI = value * factor(units), and

@@ -1,0 +1,251 @@
+"""The outputs, declared as data: the quantities a result can give (per step, as fields of x*, or
+as reductions over the rod), each with its units and its expression in the inputs it names.
+
+One more part of the declaration (derive/declaration.py holds the options, parameters, energies
+and term families these expressions read); derive/representation.py turns OUTPUTS and the engine's
+PRIMITIVES into records and kernels.  To add an output, declare it in OUTPUTS, then `make derive`.
+"""
+
+from dataclasses import dataclass
+from typing import Callable
+
+import sympy as sp
+
+from crankgen import records
+
+from . import energies as en
+from . import symbols as s
+from .declaration import EXACT, EXACT_KINETIC, EXACT_STRAIN_ENERGY, STRAIN_ENERGY, _exact_space, eps
+from .euler_lagrange import total_time_derivative
+
+# the guides whose end mass is a slider (the joint forces at B are the rod-on-slider and
+# guide-on-slider pairs); a four-bar's circle has the rocker's tip instead
+SLIDER_GUIDES = ("line", "cam", "incline")
+
+
+@dataclass(frozen=True)
+class Output(records.Output):
+    """A quantity a result can give (crankgen.records.Output: name, kind, doc, units, arguments,
+    guides, options, engine) with `build(options)`, its expression in the inputs it names.  kind:
+    "step" (one value per stored step), "field" (per stored step at any x* in [0, 1]) or
+    "reduction" (per stored step, the sum over the rod's elements of the element expression the
+    build gives: an integral over the rod).  Inputs a build may use: q, qd (the nodal vector of the
+    element holding x*, or of each element for a reduction, and its rate), zeta (x / l in it), geo,
+    coef, kin, the parameters' symbols, q_end ((u, v) of the rod's end node in the moving frame),
+    qd_end (their time derivatives), s (the end map's reduced co-ordinate), pin ((F_i, F_j): the
+    force the crank pin applies to the rod, in the moving frame), end ((F_i, F_j): the force the
+    guide applies to the rod's end with the end mass, i.e. to the end mass), rod_end ((F_i, F_j):
+    the force the end mass applies to the rod at B, the rod's own terms at its end node), fiber,
+    and the engine's
+    primitives (at_point, over_rod).  options: the model options the expression depends on (its
+    kernels by their values).  engine: the engine computes it at every step (its build may use
+    q_end, the parameters and the primitives only).  guides None: every guide."""
+
+    build: Callable = None
+
+
+@dataclass(frozen=True)
+class Primitive(records.Primitive):
+    """A quantity of the nodal state the engine accumulates at every step for its outputs
+    (crankgen.records.Primitive: name, kind, field, at) with its symbol in the outputs' builds and,
+    for an integral, its integrand (quadratic in the element's nodal vector q)."""
+
+    symbol: sp.Symbol = None
+    integrand: sp.Expr = None
+
+
+PRIMITIVES = {}
+
+
+def at_point(field, x):
+    """The interpolated field u, v or psi (eqs. 8-10) at x* (in the element holding it)."""
+    name = f"{field}_at_{str(sp.nsimplify(x)).replace('/', '_')}"
+    if name not in PRIMITIVES:
+        PRIMITIVES[name] = Primitive(name, "point", field=field, at=float(x), symbol=sp.Symbol(name, real=True))
+    return PRIMITIVES[name].symbol
+
+
+def over_rod(name, integrand):
+    """int_0^1 integrand dx over the rod, the integrand quadratic in the element's nodal vector q."""
+    if name not in PRIMITIVES:
+        PRIMITIVES[name] = Primitive(name, "integral", kernel=f"gram_{name}", symbol=sp.Symbol(name, real=True),
+                                     integrand=integrand)
+    return PRIMITIVES[name].symbol
+
+
+V_AT_MIDSPAN = at_point("v", sp.Rational(1, 2))
+SLOPE_SQUARED = over_rod("slope_squared", en.fields(s.q, s.q)["v_x"] ** 2)
+
+
+fiber = sp.Symbol("fiber", real=True)
+q_end = sp.Matrix(sp.symbols("qe0:2", real=True))
+qd_end = sp.Matrix(sp.symbols("qde0:2", real=True))
+pin = sp.Matrix(sp.symbols("pin0:2", real=True))
+end_force = sp.Matrix(sp.symbols("end0:2", real=True))
+rod_end = sp.Matrix(sp.symbols("rodend0:2", real=True))
+s_end = sp.Symbol("s", real=True)
+
+
+def _exact_element():
+    """The exact rod's point space (EXACT_RULE) and the element stretch lambda in q."""
+    space = _exact_space()
+    return space, space.in_nodal(space.fields(0)["lam"])
+
+
+def membrane_strain(options, q=s.q):
+    """The membrane strain of the approach in use: u_x + v_x^2/2 for A and B (pointwise or element
+    mean), u_x for C, for exact |r'| - 1 (pointwise) or the element's stretch less 1 (averaged)."""
+    f = en.fields(q, q)
+    if options["approach"] == "C":
+        return f["u_x"]
+    if options["approach"] == EXACT:
+        if options["membrane"] == "averaged":
+            space, _ = _exact_element()
+            return space.in_nodal(space.fields(0)["ebar"])
+        return en.exact_strain(f)
+    if options["membrane"] == "averaged":
+        return f["u_x"] + en.mean_over_element(f["v_x"] ** 2) / 2
+    return f["u_x"] + f["v_x"] ** 2 / 2
+
+
+def _curvature(options, q=s.q):
+    """v_xx (A, B, C); the exact section rotation's d theta / dx (exact)."""
+    f = en.fields(q, q)
+    if options["approach"] != EXACT:
+        return f["v_xx"]
+    return en.exact_curvature(dict(f, lam=_exact_element()[1]))
+
+
+def _strain_energy_of(options):
+    """The Energy of the approach and membrane strain in use."""
+    averaged = options["approach"] != "C" and options["membrane"] == "averaged"
+    return EXACT_STRAIN_ENERGY[averaged] if options["approach"] == EXACT else STRAIN_ENERGY[options["approach"], averaged]
+
+
+def _inertial(vector):
+    """Inertial (X, Y) of a vector given by its moving-frame components (e_i, e_j)."""
+    return sp.Matrix([vector[0] * sp.cos(s.phi) + vector[1] * sp.sin(s.phi),
+                      -vector[0] * sp.sin(s.phi) + vector[1] * sp.cos(s.phi)])
+
+
+def end_position():
+    """Inertial position of the rod's end B = A + (L + u) e_i + v e_j (L = 1)."""
+    return sp.Matrix([s.a * sp.cos(s.theta), s.a * sp.sin(s.theta)]) + _inertial(
+        sp.Matrix([1 + q_end[0], q_end[1]]))
+
+
+def _rate(expr):
+    """d/dt of an expression in the end node's (u, v) and the rigid kinematics (theta, phi)."""
+    return total_time_derivative(expr, tuple(q_end), tuple(qd_end), ())
+
+
+def chord_angle():
+    """Inertial angle of the chord from the pin A to the rod's end B, counter-clockwise from X: the
+    chord's angle in the moving frame, atan2(v, L + u) at the end (e_j is counter-clockwise of
+    e_i), less phi (the moving frame's e_i is at -phi)."""
+    return sp.atan2(q_end[1], 1 + q_end[0]) - s.phi
+
+
+def chord_elongation():
+    """|B - A| - L (L = 1) without the cancellation of sqrt(...) - 1 for a short end displacement."""
+    stretch = 2 * q_end[0] + q_end[0] ** 2 + q_end[1] ** 2
+    return stretch / (sp.sqrt((1 + q_end[0]) ** 2 + q_end[1] ** 2) + 1)
+
+
+def chord_deflection():
+    """Signed distance of the rod's point at x (element zeta) from its chord, the line from the pin to
+    the end node, positive on the counter-clockwise side (towards e_j for a straight rod)."""
+    f = en.fields(s.q, s.q)
+    x = s.x0 + s.l * s.zeta
+    length = sp.sqrt((1 + q_end[0]) ** 2 + q_end[1] ** 2)
+    return ((1 + q_end[0]) * f["v"] - q_end[1] * (x + f["u"])) / length
+
+
+# the options the membrane strain depends on
+MEMBRANE_OPTIONS = ("approach", "membrane")
+# N* = N L^2/EI = EA e / EI = e / eps^2 = e EA/EI;  M* = M L / EI = v_xx (L = 1).  Forces in rho A L^2
+# omega_b^2 and torques in rho A L^3 omega_b^2 are crankgen's units (rho A = L = omega_b = 1).
+FORCE, TORQUE = "rhoA L^2 omega_b^2", "rhoA L^3 omega_b^2"
+OUTPUTS = (
+    Output("v_mid", "step", "v* = v/r at x* = 1/2 (shape-function interpolation)", "r", engine=True,
+           build=lambda o: V_AT_MIDSPAN / eps),
+    Output("u_end", "step", "u*(1) = L u(L) / r^2", "r^2/L", engine=True, build=lambda o: q_end[0] / eps**2),
+    Output("extension", "step", "delta* = u(L)/L + (1/2) int (dv/dx)^2 dx / L, eq. (40)", "1", engine=True,
+           build=lambda o: q_end[0] + SLOPE_SQUARED / 2),
+    Output("crank_speed", "step", "crank speed theta' (units of omega_b)", "omega_b", build=lambda o: s.thetad),
+    Output("slider_position", "step", "X/L of the rod's end (the slider; the rocker's tip)", "L",
+           build=lambda o: end_position()[0]),
+    Output("end_height", "step", "Y/L of the rod's end", "L", build=lambda o: end_position()[1]),
+    Output("rocker_angle", "step", "the rocker's angle (rad, counter-clockwise from the X axis)", "rad",
+           build=lambda o: s.beta + s_end, guides=("circle",)),
+    Output("transmission_angle", "step",
+           "the four-bar's transmission angle: the angle at the rocker's tip between the coupler's "
+           "chord and the rocker, in [0, pi] (pi/2 transmits the crank's force best)", "rad",
+           build=lambda o: sp.acos(sp.cos(sp.atan2(q_end[1], 1 + q_end[0]) - s.phi - s.beta - s_end)),
+           guides=("circle",)),
+    Output("chord_angle", "step",
+           "inertial angle of the rod's chord, the line from the crank pin to the rod's end (rad, "
+           "counter-clockwise from the X axis)", "rad", build=lambda o: chord_angle()),
+    Output("chord_rate", "step", "angular velocity of the rod's chord (d/dt chord_angle, counter-clockwise)",
+           "omega_b", build=lambda o: _rate(chord_angle())),
+    Output("chord_elongation", "step",
+           "change of the chord's length: the distance from the crank pin to the rod's end, less L",
+           "L", build=lambda o: chord_elongation()),
+    Output("slider_velocity", "step", "X velocity of the rod's end (the slider; the rocker's tip)",
+           "L omega_b", build=lambda o: _rate(end_position()[0])),
+    Output("torque", "step",
+           "driving torque the crank needs to hold its prescribed motion (counter-clockwise), "
+           "a (e_r x F_pin), units of rho A L^3 omega_b^2", TORQUE,
+           build=lambda o: s.a * (sp.cos(s.theta) * _inertial(pin)[1] - sp.sin(s.theta) * _inertial(pin)[0])),
+    # the joint forces, named "<body>_on_<body>": who acts on whom (inertial X, Y components)
+    Output("crank_on_rod_x", "step",
+           "X component of the force the crank applies to the rod at the crank pin A (sizes the pin "
+           "and bearing at A)", FORCE, build=lambda o: _inertial(pin)[0]),
+    Output("crank_on_rod_y", "step", "Y component of the force the crank applies to the rod at A", FORCE,
+           build=lambda o: _inertial(pin)[1]),
+    Output("rod_on_slider_x", "step",
+           "X component of the force the rod applies to the slider at B, through the pin at B (sizes "
+           "that pin)", FORCE, build=lambda o: -_inertial(rod_end)[0], guides=SLIDER_GUIDES),
+    Output("rod_on_slider_y", "step", "Y component of the force the rod applies to the slider at B", FORCE,
+           build=lambda o: -_inertial(rod_end)[1], guides=SLIDER_GUIDES),
+    Output("guide_on_slider_x", "step",
+           "X component of the force the guide applies to the slider (normal to the guide, no "
+           "friction: zero on the horizontal line Y = e)", FORCE, build=lambda o: _inertial(end_force)[0],
+           guides=SLIDER_GUIDES),
+    Output("guide_on_slider_y", "step",
+           "Y component of the force the guide applies to the slider: the guide's normal force (sizes "
+           "the guide)", FORCE, build=lambda o: _inertial(end_force)[1], guides=SLIDER_GUIDES),
+    Output("rod_on_tip_x", "step",
+           "X component of the force the coupler (the rod) applies to the rocker's tip at B, through "
+           "the pin at B (sizes that pin)", FORCE, build=lambda o: -_inertial(rod_end)[0], guides=("circle",)),
+    Output("rod_on_tip_y", "step", "Y component of the force the rod applies to the rocker's tip at B", FORCE,
+           build=lambda o: -_inertial(rod_end)[1], guides=("circle",)),
+    Output("rocker_on_tip_x", "step",
+           "X component of the force the rocker applies to its tip mass at B (along the rocker, a "
+           "massless two-force member: the force at its pivot D too)", FORCE,
+           build=lambda o: _inertial(end_force)[0], guides=("circle",)),
+    Output("rocker_on_tip_y", "step", "Y component of the force the rocker applies to its tip mass at B",
+           FORCE, build=lambda o: _inertial(end_force)[1], guides=("circle",)),
+    Output("kinetic_energy", "reduction",
+           "the rod's kinetic energy T = sum of the elements' T_i, eqs. (4)-(5) (the end mass's not "
+           "included; the exact rod's with its unit director), units of rho A L^3 omega_b^2", TORQUE,
+           options=("approach",),
+           build=lambda o: EXACT_KINETIC.build() if o["approach"] == EXACT else en.rod_kinetic_energy()),
+    Output("strain_energy", "reduction",
+           "the rod's strain energy U = sum of the elements' U_i of the approach in use (eq. 2 for A; "
+           "B without the quartic term; C linear; the exact rod's), units of rho A L^3 omega_b^2", TORQUE,
+           options=MEMBRANE_OPTIONS, build=lambda o: _strain_energy_of(o).build()),
+    Output("axial_force", "field", "N* = N L^2 / EI, N = EA times the approach's membrane strain", "EI/L^2",
+           options=MEMBRANE_OPTIONS, build=lambda o: membrane_strain(o) * s.EA / s.EI),
+    Output("bending_moment", "field", "M* = M L / EI = v_xx (M = EI v_xx; exact: EI kappa, kappa the exact "
+           "curvature)", "EI/L", options=MEMBRANE_OPTIONS, build=lambda o: _curvature(o)),
+    Output("surface_strain", "field",
+           "axial strain of the fibre at distance fiber*r from the neutral axis (towards e_j), "
+           "e_m - fiber r v_xx (eq. 1 with y = fiber r; exact: e - fiber r kappa)", "1", arguments=("fiber",),
+           options=MEMBRANE_OPTIONS,
+           build=lambda o: membrane_strain(o) - fiber * sp.sqrt(s.EI / s.EA) * _curvature(o)),
+    Output("chord_deflection", "field",
+           "signed distance of the rod's point at x* from its chord (the line from the crank pin to "
+           "the rod's end), positive counter-clockwise", "L", options=MEMBRANE_OPTIONS,
+           build=lambda o: chord_deflection()),
+)
