@@ -14,6 +14,7 @@ from ..errors import ParameterError
 from ..io import atomic_file, read_regular
 from .codim2 import CODIM2
 from .diagram import _num
+from .diagram_files import jsonable
 
 FORMAT = "crankgen-curve-1"
 LABELS = {"fold": "F", "period-doubling": "PD", "neimark-sacker": "NS"}
@@ -197,7 +198,7 @@ class Curve:
                                  amplitude=float(p.amplitude), multipliers=_complex_list(p.multipliers),
                                  state=_floats(p.state), index=int(p.index), curve_kind=p.curve_kind,
                                  period=int(p.period)) for p in self.codim2],
-                    stop_reasons=list(self.stop_reasons), info=_jsonable(self.info))
+                    stop_reasons=list(self.stop_reasons), info=jsonable(self.info))
 
     @classmethod
     def from_dict(cls, d):
@@ -225,16 +226,6 @@ class Curve:
         if d.get("format") != FORMAT:
             raise ParameterError(f"{path} is not a crankgen curve file (format {d.get('format')!r})")
         return cls.from_dict(d["curve"])
-
-
-def _jsonable(value):
-    if isinstance(value, dict):
-        return {str(k): _jsonable(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_jsonable(v) for v in value]
-    if isinstance(value, (np.floating, np.integer, np.bool_)):
-        return value.item()
-    return value
 
 
 def write_rows(path, rows, columns=None):

@@ -39,11 +39,13 @@ def _complex(rows, shape):
     return np.array([complex(r, i) for r, i in rows], dtype=complex).reshape(shape)
 
 
-def _jsonable(value):
+def jsonable(value):
+    """value with NumPy scalars made Python numbers and keys made text, nested (json.dump's input);
+    the diagram's and a curve's info alike."""
     if isinstance(value, dict):
-        return {str(k): _jsonable(v) for k, v in value.items()}
+        return {str(k): jsonable(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
-        return [_jsonable(v) for v in value]
+        return [jsonable(v) for v in value]
     if isinstance(value, (np.floating, np.integer, np.bool_)):
         return value.item()
     return value
@@ -83,7 +85,7 @@ def as_dict(d):
                    parameter_name=s.parameter_name, range=None if s.range is None else [float(v) for v in s.range])
               for s in d.special_points]
     return dict(parameter_name=d.parameter_name, branches=branches, special_points=points,
-                info=_jsonable(d.info))
+                info=jsonable(d.info))
 
 
 def from_dict(x):

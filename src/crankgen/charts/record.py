@@ -7,7 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..bifurcation.curve import Curve, _jsonable, write_rows
+from ..bifurcation.curve import Curve, write_rows
+from ..bifurcation.diagram_files import jsonable
 from ..bifurcation.diagram import BifurcationDiagram, _num
 from ..errors import ParameterError
 from ..io import atomic_file, read_regular
@@ -154,7 +155,7 @@ class StabilityChart:
                                   room=g.room) for g in self.regions],
                     labels=self.labels.tolist(),
                     deflection=[[None if not np.isfinite(v) else float(v) for v in row] for row in self.deflection],
-                    notes=list(self.notes), info=_jsonable(self.info))
+                    notes=list(self.notes), info=jsonable(self.info))
 
     @classmethod
     def from_dict(cls, d):
