@@ -234,6 +234,13 @@ def _march_motor(kern, cases, mesh, scheme, lo, hi, n_steps, X0, V0, A0, G0, sta
     N = M1 - 1
     kern, cases, mesh = borrowed_kernels(kern), borrowed_cases(cases), borrowed_mesh(mesh)
     for b in range(lo, hi):
+        if status[b] != OK:             # not advanced: its state stays
+            for i in range(M1):
+                X1[b, i] = X0[b, i]
+                V1[b, i] = V0[b, i]
+                A1[b, i] = A0[b, i]
+                G1[b, i] = G0[b, i]
+            continue
         owned = make_work(n, N, mesh.kb)
         w = borrowed_work(owned)
         sel, params = cases.select[b], cases.params[b]
@@ -242,8 +249,9 @@ def _march_motor(kern, cases, mesh, scheme, lo, hi, n_steps, X0, V0, A0, G0, sta
             if not initial_acceleration(kern, cases, b, mesh, x[:N], v[:N], x[N], v[N], acc, w):
                 status[b] = SINGULAR
                 continue
-            for i in range(M1):
-                alg[i] = acc[i]
+            if start:                   # a start: the algorithmic accelerations are the accelerations
+                for i in range(M1):
+                    alg[i] = acc[i]
         xn, vn, an, gn = np.zeros(M1), np.zeros(M1), np.zeros(M1), np.zeros(M1)
         y = np.zeros(N_OUTPUTS)
         crank_kinematics(kern, params, x[N], v[N], acc[N], w)
@@ -303,11 +311,12 @@ class MotorMarch:
         self.__dict__.update(kw)
 
 
-def march_motor(batch, n_steps, X0, V0, A0=None, G0=None, keep_history=False, tol=1e-10, max_iter=30, parallel=None):
+def march_motor(batch, n_steps, X0, V0, A0=None, G0=None, keep_history=False, tol=1e-10, max_iter=30, parallel=None,
+                status=None):
     """Advance the motor-driven cases of the batch n_steps from X0, V0 (B, N + 1: the rod's reduced
     DOFs, then the crank angle / speed).  A0: the accelerations (default solved: R = 0, g = 0);
     G0: generalized-alpha's algorithmic accelerations (default: a start, its first step the
-    starter, time_scheme.STARTER)."""
+    starter, time_scheme.STARTER, and G0 = A0).  status: cases not OK on entry are not advanced."""
     from .march import parallel_slices
     from .records import Scheme
     B, M1 = len(batch), batch.N + 1
@@ -317,7 +326,7 @@ def march_motor(batch, n_steps, X0, V0, A0=None, G0=None, keep_history=False, to
     A0 = np.zeros((B, M1)) if A0 is None else np.ascontiguousarray(A0, dtype=float)
     start = G0 is None
     G0 = A0.copy() if G0 is None else np.ascontiguousarray(G0, dtype=float)
-    status = np.zeros(B, dtype=np.int64)
+    status = np.zeros(B, dtype=np.int64) if status is None else np.array(status, dtype=np.int64)
     out_y = np.full((B, n_steps + 1, N_OUTPUTS), np.nan)
     out_iter = np.zeros((B, max(n_steps, 1)), dtype=np.int64)
     fail_step, fail_res = np.zeros(B, dtype=np.int64), np.zeros(B)
@@ -328,7 +337,7 @@ def march_motor(batch, n_steps, X0, V0, A0=None, G0=None, keep_history=False, to
     parallel = B > 1 if parallel is None else parallel
     parallel_slices(_march_motor, batch, parallel, (batch.records, batch.meshdata, scheme),
                     (n_steps, X0, V0, A0, G0, start, solve_a0, bool(keep_history), out_y, out_iter, status, fail_step,
-                     fail_res, Xh, Vh, Ah, Gh, X1, V1, A1, G1))
+                     fail_res, Xh, Vh, Ah, Gh, X1, V1, A1, G1), active=status == OK)
     hist = dict(X_history=Xh, V_history=Vh, A_history=Ah, G_history=Gh) if keep_history else {}
     return MotorMarch(y=out_y, iterations=out_iter[:, :n_steps], status=status, fail_step=fail_step,
                       fail_residual=fail_res, X=X1, V=V1, A=A1, G=G1, **hist)
