@@ -362,7 +362,11 @@ class _BatchSolver:
 
 def _check_resolved(case, where=""):
     """Refuse a crank motion that is not periodic in the crank angle (a run-up), and a time step
-    longer than the rod's first bending period (see the module docstring)."""
+    longer than the rod's first bending period (see the module docstring).  A motor-driven crank
+    (steady_states takes it by its own path) is refused here: the sweep's batches do not take it yet."""
+    if case.motion_record.driven:
+        raise ParameterError(f"{where}a sweep of a motor-driven crank is not built yet: steady_state and "
+                             "continuation take it")
     if not case.periodic:
         raise ParameterError(
             f"{where}a steady state needs a crank motion periodic in the crank angle; the "

@@ -120,12 +120,13 @@ class MotorMap(Map):
         return np.asarray(y, dtype=float) * self.s
 
     def speeds(self, states, parameters, period=1):
-        """(mean crank speed, revolution time) of each point (its state y and parameter): 2 pi k / T
-        and T / k over its k revolutions (NaN where the map fails)."""
+        """(mean crank speed, revolution time) of each point (its physical section state, as a
+        Branch holds it, and its parameter): 2 pi k / T and T / k over its k revolutions (NaN where
+        the map fails)."""
         speed, time = np.full(len(states), math.nan), np.full(len(states), math.nan)
-        for i, (y, p) in enumerate(zip(states, parameters)):
+        for i, (Y, p) in enumerate(zip(states, parameters)):
             try:
-                _, T, _ = self._apply(np.asarray(y, dtype=float) * self.s, p, period)
+                _, T, _ = self._apply(np.asarray(Y, dtype=float), p, period)
             except MapError:
                 continue
             speed[i], time[i] = 2 * math.pi * period / T[0], T[0] / period
