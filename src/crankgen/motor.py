@@ -59,8 +59,10 @@ def crank_state(case, crank):
 
 
 def crank_start(case):
-    """(theta, thetad) of the crank at t = 0: theta0 and the initial speed."""
-    return float(case.theta0), float(case.initial_speed)
+    """(theta, thetad) of the crank at t = 0 (theta0 and the initial speed): its motion's theta(t) at
+    t = 0, which a driven crank declares as its start."""
+    crank = getattr(_generated, f"motion_{case.motion_record.name}")(0.0, case.kinematic_parameters)
+    return float(crank[0]), float(crank[1])
 
 
 def crank_equation(case, kin, pin):

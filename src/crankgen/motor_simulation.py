@@ -13,6 +13,7 @@ from dataclasses import replace
 import numpy as np
 
 from . import engine as _engine
+from .engine import motor as engine_motor
 from . import kinematics as _kinematics
 from . import motor
 from .errors import ConvergenceError
@@ -42,7 +43,7 @@ def _reference(model, case, d0, v0, dt, n_steps, settings, progress):
 
 
 def _compiled(case, d0, v0, n_steps, tol, progress):
-    batch = _engine.Batch([case], entries=("motor",))
+    batch = _engine.Batch([case], entries=(engine_motor.ENTRY,))
     N = batch.N
     theta0, speed0 = motor.crank_start(case)
     res = _engine.march_motor(batch, n_steps, np.append(d0, theta0)[None], np.append(v0, speed0)[None],
@@ -68,7 +69,7 @@ def _step_to(case, model, settings, engine, tol, x, v, a, g, tau):
         h = motor.integrate(model, x[:N], v[:N], 0.0, tau, 1, settings, crank0=(x[N], v[N]), a0=a, g0=g)
         y = StateHistory(case, h.t[1:], h.d[1:], h.v[1:], h.a[1:], h.crank[1:]).engine_outputs()[0]
         return h.d[1], h.v[1], h.a[1], h.crank[1], y
-    batch = _engine.Batch([case], dt=[tau], entries=("motor",))
+    batch = _engine.Batch([case], dt=[tau], entries=(engine_motor.ENTRY,))
     res = _engine.march_motor(batch, 1, x[None], v[None], A0=a[None], G0=None if g is None else g[None], tol=tol)
     if res.status[0] != _engine.OK:
         raise ConvergenceError(f"the step to a requested time: {_engine.STATUS_TEXT[int(res.status[0])]}",

@@ -23,6 +23,8 @@ import math
 import numpy as np
 
 from . import engine, motor
+from . import kinematics as _kinematics
+from .engine import motor as engine_motor
 from .errors import ParameterError
 from .outputs import engine_columns
 
@@ -38,12 +40,12 @@ class SectionMap:
     def __init__(self, case, tol=MARCH_TOL, max_chunks=40):
         motor.check_driven(case)
         self.case, self.tol, self.max_chunks = case, tol, max_chunks
-        self.batch = engine.Batch([case], entries=("motor",))
+        self.batch = engine.Batch([case], entries=(engine_motor.ENTRY,))
         self.N = N = self.batch.N
         self.dt = float(self.batch.dt[0])
         self.generalized = bool(self.batch.generalized[0])
-        self.theta_s = float(case.theta0)
-        speed = float(case.no_load_speed)
+        self.theta_s, _ = motor.crank_start(case)
+        speed = 2 * math.pi / _kinematics.step_period(case)      # the no-load speed
         scales = self.batch.scales[0]
         part = np.append(scales, speed)
         self.scales = np.concatenate([scales, part] + ([part] if self.generalized else []))
@@ -67,7 +69,7 @@ class SectionMap:
         return np.concatenate(parts, axis=1)
 
     def _batch(self, B, dt=None):
-        return engine.Batch([self.case] * B, dt=dt, entries=("motor",), like=self.batch)
+        return engine.Batch([self.case] * B, dt=dt, entries=(engine_motor.ENTRY,), like=self.batch)
 
     # ---- the map ---------------------------------------------------------------------------------
     def __call__(self, Y, keep=False):

@@ -12,6 +12,7 @@ from pathlib import Path
 
 from .. import schema
 from ..errors import ConvergenceError, ParameterError
+from ..kinematics import step_period
 from ..limits import check_run_size
 from . import si_file
 from .options import CASE_FIELDS, UsageError, _Outputs, _case, _describe, _flag, _say
@@ -282,7 +283,7 @@ def _steady(args, case, out, section=None, si=None):
                          nan if row["axial_strain"] is None else row["axial_strain"]))
     if st.period is not None:
         print(f"the motor-driven crank: revolution time T* = {st.period:.6g}, mean speed {st.mean_speed:.6g} "
-              f"(no-load {case.no_load_speed:g}), speed fluctuation {st.speed_fluctuation:.4g} of the mean; "
+              f"(no-load {2 * math.pi / step_period(case):g}), speed fluctuation {st.speed_fluctuation:.4g} of the mean; "
               "the multipliers are the section map's (the flow's trivial multiplier 1 is not among them)")
     if section is not None and st.states is not None:
         print("\n".join(_loads_and_stress(st, section, si)))

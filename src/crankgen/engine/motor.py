@@ -26,6 +26,7 @@ from .records import N_OUTPUTS, make_work
 from .step import NOT_CONVERGED, NOT_FINITE, OK, SINGULAR, STARTER_BETA, STARTER_GAMMA, TOO_LARGE
 
 COLUMN_STEP = 1e-7               # crankgen.motor.COLUMN_STEP
+ENTRY = "driven"                 # the entry point's name (engine/build.py): the march of driven cranks
 _PIN = next(c for c in schema.CONSTRAINTS if c.map is None and c.node == 0)
 PIN_SLOTS = np.array([schema.NODE.index(c) for c in _PIN.eliminated], dtype=np.int64)
 DIVERGED = newton.DIVERGED
@@ -347,10 +348,11 @@ def compiling_batch():
     from ..cases import Case
     from .kernels import noop_tables
     from .march import Batch
-    return Batch([Case(motion="motor", n_elements=2, steps_per_rev=4)], entries=("motor",), kernels_table=noop_tables())
+    driven = next(name for name, m in schema.MOTIONS.items() if m.driven)
+    return Batch([Case(motion=driven, n_elements=2, steps_per_rev=4)], entries=(ENTRY,), kernels_table=noop_tables())
 
 
-@entry_point("motor")
+@entry_point(ENTRY)
 def _compile_motor():
     batch = compiling_batch()
     M1 = batch.N + 1
