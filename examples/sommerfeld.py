@@ -90,7 +90,8 @@ def main():
         w.writerows(rows)
 
     step = 0.5 if args.quick else 0.25
-    duration = 60.0 if args.quick else 120.0
+    # a stage lasts about 3 times the motor's time constant (J + the linkage's) Omega_nl / T_stall
+    duration = 300.0 if args.quick else 600.0
     up_values = np.arange(LOW, HIGH + 1e-9, step)
     print("marching, Omega_nl raised in stages ...")
     up = staircase(up_values, duration)
@@ -101,10 +102,15 @@ def main():
         w.writerow(["direction", "no_load_speed", "mean_speed"])
         w.writerows([("up", *r) for r in up] + [("down", *r) for r in down])
 
-    inside = 0.5 * (folds[0].parameter + folds[-1].parameter) if len(folds) >= 2 else 0.5 * (LOW + HIGH)
-    inertias = (0.05, 0.5, 5.0) if args.quick else (0.05, 0.2, 0.5, 1.0, 2.0, 5.0)
+    # the hysteresis: where the run-up and the run-down disagree
+    apart = [v for (v, a), (_, b) in zip(up, down[::-1]) if abs(a - b) > 0.02 * max(a, b)]
+    inside = 0.5 * (min(apart) + max(apart)) if apart else 0.5 * (LOW + HIGH)
+    print(f"hysteresis: the marched speeds differ for Omega_nl in [{min(apart) if apart else float('nan'):.3f}, "
+          f"{max(apart) if apart else float('nan'):.3f}]")
+    inertias = (0.005, 0.05, 0.2) if args.quick else (0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2)
     print(f"run-ups from rest at Omega_nl = {inside:.3f} ...")
-    fly = [(J_, run_up(inside, J_, 2 * duration)) for J_ in inertias]
+    # each long enough for the motor's speed to settle: 4 (J + the linkage's ~0.005) Omega_nl / T_stall
+    fly = [(J_, run_up(inside, J_, max(duration, 4 * (J_ + 0.005) * inside / STALL))) for J_ in inertias]
     for J_, w_ in fly:
         print(f"  J = {J_:g}: mean speed {w_:.4f}")
     with open(out / "sommerfeld_flywheel.csv", "w", newline="") as f:
