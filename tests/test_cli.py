@@ -342,3 +342,14 @@ def test_every_model_ingredient_on_the_command_line_reaches_the_run(tmp_path):
                               formulation="lagrange", damping="kelvin-voigt", membrane="averaged")
     assert v_cli == [float(x) for x in ref.v_mid]
     assert max(abs(a - b) for a, b in zip(v_cli, plain.v_mid)) > 1e-3
+
+
+def test_the_command_line_starts_without_the_engine():
+    """`crankgen --version` and the parser of every command import neither numba nor matplotlib
+    (nor SciPy): the engine and the figures load when a command runs, so `--help` answers at once."""
+    code = ("import sys; from crankgen.cli import build_parser, main; build_parser()\n"
+            "try:\n    main(['--version'])\nexcept SystemExit:\n    pass\n"
+            "heavy = [m for m in ('numba', 'matplotlib', 'scipy') if m in sys.modules]\n"
+            "print(heavy); sys.exit(1 if heavy else 0)")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert done.returncode == 0, done.stdout + done.stderr

@@ -141,6 +141,30 @@ def test_exact_parameter_derivative_matches_central_differences(parameter, value
     assert scale > 0 and np.max(np.abs(jp - richardson)) < 1e-6 * scale
 
 
+def test_the_parameter_derivative_at_a_bound_of_the_range_stays_inside_it():
+    """At mu = 0 (the lower bound of the damping) dP/dmu comes from the cases at 0 and 2h, never
+    from a damping of -h (refused): it matches the second-order one-sided difference of the map
+    (-3 P(0) + 4 P(h) - P(2h)) / 2h, Richardson-extrapolated, marched with Newton to 1e-14."""
+    from dataclasses import replace
+
+    from crankgen.bifurcation import MechanismMap
+    from crankgen.bifurcation.mechanism import difference_pair
+
+    assert difference_pair("mu", 0.0, 1e-7) == (0.0, 2e-7)
+    assert difference_pair("mu", 0.3, 1e-7) == (0.3 - 1e-7, 0.3 + 1e-7)
+    case = Case(**{**MODEL, "n_elements": 3, "steps_per_rev": 30}, mu=0.0)
+    fmap = MechanismMap(case, "mu")
+    warm = engine.march(engine.Batch([case]), 60)
+    X = engine.join_state(warm, fmap.generalized)[0]
+    P, jy, jp = fmap.evaluate(X / fmap.s, 0.0, 1)
+    Y = {q: engine.shoot(engine.Batch([replace(case, mu=q)]), X[None], revolutions=1, tol=1e-14,
+                         max_iter=60, jacobian=False).X1[0] / fmap.s for q in (0.0, 5e-5, 1e-4, 2e-4)}
+    fd = [(-3 * Y[0.0] + 4 * Y[h] - Y[2 * h]) / (2 * h) for h in (1e-4, 5e-5)]
+    one_sided = (4 * fd[1] - fd[0]) / 3          # Richardson: the h^2 error of each removed
+    scale = np.max(np.abs(one_sided))
+    assert scale > 0 and np.max(np.abs(jp - one_sided)) < 1e-5 * scale
+
+
 @pytest.mark.parametrize("rho_inf", [1.0, 0.8])
 def test_shooting_marches_the_same_steps_as_march(rho_inf):
     """engine.shoot (with and without its linearization) takes the very steps of engine.march: the

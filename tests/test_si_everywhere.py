@@ -242,3 +242,18 @@ def test_a_guide_declared_later_has_its_si_fields():
     assert cam.mechanism.cam_height == pytest.approx(0.005 / L) and cam.mechanism.cam_wavelength == pytest.approx(0.2 / L)
     with pytest.raises(crankgen.ParameterError, match=r"missing cam_wavelength \(m"):
         crankgen.SIMechanism(**ROD, a=0.1, slider_mass=0.05, crank_speed=100.0, guide="cam", cam_height=0.005)
+
+
+def test_a_step_warning_of_an_analysis_in_si_gives_the_mode_in_rad_per_s():
+    """steady_state (and so continuation's first point) with units="si": the StepWarning names the
+    unresolved mode's frequency in omega_b and in rad/s, the latter omega_b's value in SI times it."""
+    import re
+
+    from crankgen.time_scheme import StepWarning
+    si = crankgen.SIMechanism(**ROD, a=0.1, slider_mass=0.05, crank_speed=0.5 * OMEGA_B)
+    with pytest.warns(StepWarning) as caught:
+        crankgen.steady_state(si, units="si", rho_inf=1.0, n_elements=4, steps_per_rev=60)
+    text = str(caught[0].message)
+    found = re.search(r"omega = ([0-9.e+]+) omega_b = ([0-9.e+]+) rad/s", text)
+    assert found, text
+    assert float(found[2]) == pytest.approx(float(found[1]) * OMEGA_B, rel=1e-2)     # 3 digits each

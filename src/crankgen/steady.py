@@ -362,7 +362,7 @@ def _check_resolved(case, where=""):
 
 
 def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="shooting",
-                  warmup=3, max_shooting=12, parallel=None, _stacklevel=3):
+                  warmup=3, max_shooting=12, parallel=None, _stacklevel=3, _omega_b=None):
     """Steady states of many cases (list in, list out, same order), batched: cases that share
     n_elements and steps_per_rev run together in the compiled engine.  A failing case comes back
     with status "failed" and its message; it does not stop the others.
@@ -374,7 +374,7 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
     cases = [c if isinstance(c, Case) else Case.from_dict(c) for c in cases]
     for i, c in enumerate(cases):
         _check_resolved(c, f"cases[{i}]: " if len(cases) > 1 else "")
-    time_scheme.warn_steps(cases, stacklevel=_stacklevel)
+    time_scheme.warn_steps(cases, stacklevel=_stacklevel, omega_b=_omega_b)   # _omega_b: rad/s too (SI)
     tol = in_range("tol", tol, 0, None, True)
     max_revolutions = integer("max_revolutions", max_revolutions, 1)
     warmup = integer("warmup", warmup, 1)
@@ -413,5 +413,6 @@ def steady_state(mech=None, omega=None, *, model=None, case=None, crank=None, to
     `result.si` gives the orbit in SI (crankgen.outputs.SIView)."""
     mech, crank, scales = si_input(mech, units, fields, omega=omega, crank=crank, case=case, what="steady_state")
     case = run_case(mech, case, model=model, omega=omega, crank=crank, **fields)
-    result = steady_states([case], tol=tol, max_revolutions=max_revolutions, method=method, _stacklevel=4)[0]
+    result = steady_states([case], tol=tol, max_revolutions=max_revolutions, method=method, _stacklevel=4,
+                           _omega_b=None if scales is None else scales.omega_b)[0]
     return result if scales is None else replace(result, scales=scales)

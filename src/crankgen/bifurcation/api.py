@@ -145,7 +145,7 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
     fmap = MechanismMap(c0, parameter, derivative=choice("derivative", derivative, ("exact", "central")))
     from ..steady import steady_states
     with notices.quiet(BeyondTheoryWarning):            # the continuation warns once, for every point
-        first = steady_states([c0])[0]
+        first = steady_states([c0], _omega_b=None if scales is None else scales.omega_b)[0]
     if first.state is None:
         other = ("; a continuation can start from the other end of the range (swap its start and "
                  f"stop: from {stop:g} to {start:g})" if first.status != "failed" else "")
@@ -216,7 +216,7 @@ def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up
         make_case(None, parameter, v, c0)                      # validates every value
     transient = integer("transient", transient, 0)
     samples = integer("samples", samples, 2)
-    time_scheme.warn_steps([c0])
+    time_scheme.warn_steps([c0], omega_b=None if scales is None else scales.omega_b)
     max_period = integer("max_period", max_period, 1)
     t0 = time.perf_counter()
     fmap = MechanismMap(c0, parameter)

@@ -31,6 +31,22 @@ V_MID = schema.ENGINE_OUTPUTS.index("v_mid")     # the observable: v* at x* = 1/
 PARAMETERS = schema.CONTINUABLE
 
 
+def difference_pair(name, p, h):
+    """The parameter values p - h and p + h of a central difference, shifted by h into the
+    parameter's declared range where one of them would leave it (a continuation starting at a
+    bound: mu = 0): (p, p + 2 h) or (p - 2 h, p), whose difference over 2 h is the derivative at
+    p +/- h, first order in h (1e-7 relative with the maps' steps)."""
+    spec = schema.PARAMETERS[name]
+    lo, hi = p - h, p + h
+    below = spec.low is not None and (lo <= spec.low if spec.low_open else lo < spec.low)
+    above = spec.high is not None and (hi >= spec.high if spec.high_open else hi > spec.high)
+    if below and not above:
+        return p, p + 2 * h
+    if above and not below:
+        return p - 2 * h, p
+    return lo, hi
+
+
 def state_metric(N):
     """The weights of generalized-alpha's state (d, v, a) in the continuation's metric
     (maps.state_weights): 1/(2N) on (d, v), as Newmark's map (whose metric is the default 1/dim),
@@ -124,7 +140,8 @@ class MechanismMap(Map):
         parameter = None
         if dp and self.derivative == "exact":
             h = self.dp_step * max(abs(p), 0.01)
-            parameter = (self._batch(("one", p - h), [p - h]), self._batch(("one", p + h), [p + h]), h)
+            lo, hi = difference_pair(self.parameter, p, h)
+            parameter = (self._batch(("one", lo), [lo]), self._batch(("one", hi), [hi]), h)
             here = self._batch(("one", p), [p]).records.select
             if any(not np.array_equal(b.records.select, here) for b in parameter[:2]):
                 parameter = None        # a term family switches at p (its coefficient vanishes): marches
@@ -149,7 +166,7 @@ class MechanismMap(Map):
     def _central_dp(self, X, p, period):
         """dP^k/dp by a central difference of two marches at p -/+ h (derivative="central")."""
         h = self.dp_step * max(1.0, abs(p))
-        b2 = self._batch(("pair", p), [p - h, p + h])
+        b2 = self._batch(("pair", p), list(difference_pair(self.parameter, p, h)))
         XX = np.repeat(X[None], 2, axis=0)
         res = engine.march_state(b2, period * self.spr, XX, parallel=False)
         self._check(res.status, p, "march for dP/dp")

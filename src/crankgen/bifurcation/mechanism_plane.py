@@ -7,7 +7,7 @@ Jacobian from engine.shoot.  dP^k/dp for both parameters: the engine's exact par
 p1, and for a copy of it perturbed along p2, in one batch (the engine shoots a batch's cases on
 every core).  Each column is dP/dlambda of the cases at p + lambda s_k e_k (s_k = max(|p_k|, 0.01),
 lambda = -/+ h, h = dp_step), divided by s_k: the engine's one difference step h then suits
-parameters of any size.  Where a term family switches between p - h s_k and p + h s_k (a
+parameters of any size (at a bound of the parameter's range, lambda = 0 and 2 h: difference_pair).  Where a term family switches between p - h s_k and p + h s_k (a
 coefficient through zero), that column is a central difference of two marches.  Every request of a
 call (the base point and the finite-difference neighbours of defining.py) runs in the same batch.
 Amplitude: max |v*(1/2)| over the k revolutions of the orbit (orbit_peak), from the base point's
@@ -21,7 +21,7 @@ import numpy as np
 from .. import engine
 from ..errors import ParameterError
 from .maps import MapError
-from .mechanism import PARAMETERS, V_MID, orbit_peak, state_metric
+from .mechanism import PARAMETERS, V_MID, difference_pair, orbit_peak, state_metric
 from .plane_maps import PlaneMap
 
 
@@ -64,7 +64,7 @@ class MechanismPlaneMap(PlaneMap):
 
     def _moved(self, p, k, sign):
         q = np.array(p, dtype=float)
-        q[k] += sign * self._step(p, k)
+        q[k] = difference_pair(self.names[k], float(p[k]), self._step(p, k))[0 if sign < 0 else 1]
         return self.case_at(q)
 
     def _where(self, p):

@@ -27,6 +27,7 @@ from ..bifurcation.mechanism import PARAMETERS
 from ..errors import CrankgenError, NoResultError, ParameterError
 from ..validation import in_range, integer
 from . import regions as _regions
+from .axes import R, X_DEFAULT, Y_DEFAULT
 from .record import ChartLine, Region, StabilityChart
 
 MIN_AREA = 0.01        # a piece without a verdict this large (share of the box) gets a line
@@ -65,9 +66,6 @@ def _near(curve, point, xn, yn, box):
     return float(np.min(np.hypot(ax + t * dx - px, ay + t * dy - py)))
 
 
-R = schema.UNIT_PARAMETERS["r"]          # the slenderness r/L: v* = v / r, deflection / L = v* r/L
-X_DEFAULT = (schema.CRANK_SPEED, 0.2, 1.6)
-Y_DEFAULT = (R, 0.005, 0.05)
 
 
 def stability_chart(mech=None, x=X_DEFAULT, y=Y_DEFAULT, *, model=None, lines=6,

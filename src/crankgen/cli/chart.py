@@ -3,7 +3,7 @@
 import sys
 
 from .. import schema
-from ..charts.compute import X_DEFAULT, Y_DEFAULT
+from ..charts.axes import X_DEFAULT, Y_DEFAULT
 from .options import UsageError, _Outputs, _add_mechanism_options, _add_model_options, _add_output_options, _explicit
 
 CHART_NAMES = ("curves.csv", "codim2_points.csv", "regions.csv", "lines.csv", "curve_multipliers.csv",
