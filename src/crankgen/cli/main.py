@@ -179,13 +179,14 @@ def build_parser():
                                    "equations by kind, 3 the printed matrix form against the derivation, "
                                    "with each transcription problem of the printed equations checked, 4 "
                                    "weights of the term groups along steady trajectories, 5 the quartic "
-                                   "term, 6 element convergence and membrane locking. Offline; under a minute on 2 cores "
+                                   "term, 6 element convergence and membrane locking, 7 approach A against the exact "
+                                   "strain (its series, weighed along the same steady revolutions). Offline; a minute or two on 2 cores "
                                    "once the engine is compiled.")
     p.add_argument("--out", default="audit",
                    help="output folder (default ./audit); report.md is regenerated (replaced atomically)")
     p.add_argument("--sections", type=_number_list("section", min(AUDIT_SECTIONS), max(AUDIT_SECTIONS)),
                    default=None, metavar="LIST",
-                   help="comma-separated sections to write (default: all, 1-6)")
+                   help="comma-separated sections to write (default: all, 1-7)")
     p.add_argument("--quiet", action="store_true", help="no progress output")
     p.set_defaults(func=_cmd_audit)
 
