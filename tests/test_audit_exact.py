@@ -95,10 +95,3 @@ def test_the_weights_of_a_real_revolution_are_large_where_the_slopes_are(orbit):
     assert 0.25 < w.slope < 0.4                     # max |v_x| ~ pi |v|/L, |v|/L ~ 0.09
     assert w.membrane > 0.1 and 1e-3 < w.curvature < 0.05 and w.transverse > 0.1
 
-
-def test_the_audit_writes_section_7(tmp_path):
-    from crankgen.audit import write_report
-    text = write_report(tmp_path, sections=[7]).read_text()
-    assert "## 7. Approach A against the exact strain" in text
-    assert "v_{,x}^{2} \\left(4 u_{,x} + v_{,x}^{2}\\right)" in text        # -v_x^2 (4 u_x + v_x^2)/8
-    assert "### 7.3 The weights against the amplitude" in text

@@ -141,8 +141,11 @@ def build_parser():
                                    "formulation, kelvin-voigt damping, averaged membrane): one PNG and one "
                                    "CSV per figure, convergence.png/.csv (element-count check), the "
                                    "continuation of approach A over 0.1 <= Omega* <= 1.6 for both models "
-                                   "(bifurcations.csv, drawn over Figure 6), and findings.md: the paper's "
-                                   "claims beside both models, every number computed from the runs. A "
+                                   "(bifurcations.csv, drawn over Figure 6), the geometrically exact rod "
+                                   "beside both models in Figures 5 and 6 and, with Figure 6, the consistent "
+                                   "model's special points re-read on it (continuation of both, slider-crank "
+                                   "and four-bar: exact_rod.png, exact_rod_points.csv), and findings.md: the "
+                                   "paper's claims beside both models, every number computed from the runs. A "
                                    "rerun keeps what is complete and current (manifest.json).")
     p.add_argument("--out", default="results",
                    help="output folder (created if missing; default ./results); a rerun keeps what is "

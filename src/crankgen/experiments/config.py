@@ -116,8 +116,10 @@ class ReproduceConfig:
     bif_beyond_values: int = 4
     bif_transient: int = 100
     bif_samples: int = 32
-    # the exact rod beside the two models in Figures 5 and 6 (rows of model "exact")
+    # the exact rod beside the two models in Figures 5 and 6 (rows of model "exact"), with
+    # exact_row_elements elements (None: the consistent model's count for A)
     exact_rows: bool = True
+    exact_row_elements: object = None
     # the continuation of the exact rod and of the consistent model (exact_rod.py): the
     # slider-crank and the four-bar (a rocker of radius exact_rocker pivoted at (1, 0)) at eps =
     # exact_eps over Omega* in exact_range, exact_elements elements, exact_steps steps per
@@ -167,7 +169,7 @@ class ReproduceConfig:
             ext_ms=(0.0, 0.5, 2.0), envelope_revolutions=20, envelope_window=5,
             bif_elements=4, bif_steps_per_rev=50, bif_max_period=2, bif_tol=1e-7,
             bif_beyond_values=2, bif_transient=60, bif_samples=16,
-            exact_elements=4, exact_steps=50, exact_tol=1e-7, exact_snap_revolutions=12,
+            exact_row_elements=8, exact_elements=4, exact_steps=50, exact_tol=1e-7, exact_snap_revolutions=12,
             steady_options={"max_revolutions": 50, "tol": 1e-6})
 
     @classmethod

@@ -168,10 +168,15 @@ def compare(consistent, exact, window):
 
 
 def hysteresis(run):
-    """(lo, hi) of the Omega* interval between the period-2 branch's folds (the hysteresis loop:
-    the large orbit coexists with the small ones there), or None."""
-    folds = sorted(s["omega"] for s in run.get("special_points", []) if s["kind"] == "fold" and s["period"] == 2)
-    return (folds[0], folds[-1]) if len(folds) >= 2 else None
+    """(lo, hi) of the hysteresis loop of the period-2 branch: from its lowest fold in Omega* (where
+    the large orbit ends, sweeping down) to its fold of smallest amplitude (where the small period-2
+    orbit born at the period doubling turns, sweeping up: the jump); None without two such folds."""
+    folds = [s for s in run.get("special_points", []) if s["kind"] == "fold" and s["period"] == 2]
+    if len(folds) < 2:
+        return None
+    lo = min(folds, key=lambda s: s["omega"])
+    hi = min(folds, key=lambda s: s["amplitude"])
+    return (lo["omega"], hi["omega"]) if lo is not hi and lo["omega"] < hi["omega"] else None
 
 
 def largest(run, period):

@@ -452,7 +452,7 @@ def _sweep(ctx, counts, points, label):
     _add_ratios(rows)
     _envelopes(ctx, rows, label)
     if cfg.exact_rows:               # the exact rod beside them, in its own call: the rows above unchanged
-        n = counts[(MODELS[1].key, "A")]
+        n = cfg.exact_row_elements or counts[(MODELS[1].key, "A")]
         cases = [make_case(cfg, EXACT.key, EXACT.key, n, om, eps=eps) for om, eps in points]
         exact = [steady_row(EXACT.key, s) for s in ctx.steady(cases, f"{label}, the exact rod")]
         _envelopes(ctx, exact, f"{label}, the exact rod")

@@ -2,11 +2,9 @@
 rod (right), one row per mechanism, on the same axes (data: exact_rod.py).  Branches in the colour
 of their period, stable solid, unstable dashed; special points marked and labelled with their kind
 and Omega* (plot_bifurcations.py); an exact-rod branch that ends before the range's end is marked
-where it ends, with its sections' largest rotation from the chord there."""
+(x) where it ends, its sections' largest rotation from the chord there in the legend."""
 
 import math
-
-import numpy as np
 
 from ..plotting import panels
 from . import plot_bifurcations as PB
@@ -37,10 +35,7 @@ def plot_exact_rod(data, cfg):
                     end = br.get("end")
                     if end and math.isfinite(end.get("section_rotation_deg", math.nan)):
                         ax.plot([end["omega"]], [end["amplitude"]], "x", color="k", ms=8, mew=1.6, zorder=7)
-                        ax.annotate(f"ends: sections at {end['section_rotation_deg']:.0f} deg",
-                                    (end["omega"], end["amplitude"]), textcoords="offset points",
-                                    xytext=(-8, -14), ha="right", fontsize=7)
-                        extra.append(_end_handle())
+                        extra.append(_end_handle(br["period"], end))
             n = run["n_elements"] if run else "?"
             ax.set_title(f"{name}, {TITLES[key]}, eps = {data['settings']['eps']:g}, n = {n}", fontsize=9)
             ax.set_xlabel("Omega*")
@@ -65,6 +60,8 @@ def _handles(run):
     return out
 
 
-def _end_handle():
+def _end_handle(period, end):
     from matplotlib.lines import Line2D
-    return Line2D([], [], ls="none", marker="x", color="k", label="branch ends (element limit)")
+    return Line2D([], [], ls="none", marker="x", color="k",
+                  label=f"period-{period} branch ends at Omega* = {end['omega']:.4g}: sections turned "
+                        f"{end['section_rotation_deg']:.0f} deg from the chord (the element ends at 90)")

@@ -36,13 +36,11 @@ def _sweep_table(data, f, cfg):
         d = xa / ca - 1 if math.isfinite(ca) and math.isfinite(xa) and ca else math.nan
         if math.isfinite(d):
             diffs.append((abs(d), d, r))
-        flag = theory.exact_range_flag(r["eps"], r.get("fibre_strain", math.nan),
-                                       r.get("section_rotation_deg", math.nan))
         status = "" if r["status"] == F.STABLE else f" ({r['status']})"
         out.append([f"{r['eps']:g}", f"{r['omega']:g}", num(_amp(p)) if p else "n/a",
                     num(ca), num(xa) + status, "n/a" if not math.isfinite(d) else f"{100 * d:+.2f} %",
                     num(r.get("fibre_strain"), 3), num(r.get("section_rotation_deg"), 3),
-                    flag.label or "n/a"])
+                    r.get("beyond_theory") or "n/a"])
     return out, diffs
 
 
@@ -53,12 +51,19 @@ def _amplitudes(cfg, data):
         if rows is None:
             continue
         lines += [f"Steady amplitude max |v*| {what}: approach A of the paper's model and of the consistent "
-                  "model, the exact rod (its own rows of the figure, drawn in black in both models' panels), "
+                  "model, the exact rod (its own rows of the figure, drawn in teal in both models' panels), "
                   "the exact rod's amplitude relative to the consistent model's, and the exact rod's own "
                   "range: its largest outer-fibre strain and section rotation (degrees) over the orbit and "
                   "whether it leaves its limits (beyond).", "",
                   table(["eps", "Omega*", "paper A", "consistent A", "exact rod", "exact / consistent",
                          "outer-fibre strain", "section rotation", "beyond its limits"], rows), ""]
+        failed = [r for r in data[f]["rows"] if r["model"] == EXACT.key and r["status"] == "failed"]
+        if failed:
+            lines += [f"The exact rod has no result in Figure {f} at " + "; ".join(
+                f"eps = {e:g}, Omega* = " + ", ".join(f"{r['omega']:g}" for r in failed if r["eps"] == e)
+                for e in sorted({r["eps"] for r in failed})) + ": its runs fail (the CSV's message says how; "
+                "a non-finite state is what the march from rest at Omega* = 1.2 below reaches when a section "
+                "turns to 90 degrees from the chord, the element's limit).", ""]
         if diffs:
             within = [r for a, _, r in diffs if a <= DIFFER]
             big = max(diffs, key=lambda t: t[0])
@@ -96,11 +101,12 @@ def _special_points(exact):
         facts = []
         h_c, h_x = XR.hysteresis(cons), XR.hysteresis(ex)
         if h_c:
-            facts.append(f"the period-2 branch of the consistent model folds at Omega* = {num(h_c[0], 5)} and "
-                         f"{num(h_c[1], 5)} (the hysteresis loop: the large period-2 orbit coexists with the "
-                         "period-1 orbit between its folds); on the exact rod "
-                         + (f"between {num(h_x[0], 5)} and {num(h_x[1], 5)}" if h_x else
-                            "fewer than two folds of period 2 are found (no closed loop)"))
+            facts.append(f"the hysteresis loop of the consistent model spans Omega* = {num(h_c[0], 5)} (the "
+                         f"period-2 branch's lowest fold, where its large orbit ends sweeping down) to "
+                         f"{num(h_c[1], 5)} (its fold of smallest amplitude, where the small period-2 orbit "
+                         "jumps sweeping up); on the exact rod "
+                         + (f"{num(h_x[0], 5)} to {num(h_x[1], 5)}" if h_x else
+                            "no such pair of folds is found (no loop)"))
         for model, run in (("consistent model", cons), ("exact rod", ex)):
             big = XR.largest(run, 2)
             if big:

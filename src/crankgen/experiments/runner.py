@@ -74,9 +74,10 @@ _COMMON = ("a", "eps", "ms", "mu", "steps_per_rev", "steady_options")
 _FIGURE_KEYS = {2: ("fig2_omega", "fig2_elements", "fig2_revolutions"),
                 3: ("fig3_omega", "fig3_elements", "fig3_steps", "fig3_revolutions"),
                 4: ("fig4_omega", "fig4_revolutions", "fig4_ms"),
-                5: ("fig5_omegas", "fig5_eps", "envelope_revolutions", "envelope_window", "exact_rows"),
+                5: ("fig5_omegas", "fig5_eps", "envelope_revolutions", "envelope_window", "exact_rows",
+                    "exact_row_elements"),
                 6: ("fig6_omegas", "fig6_eps", "fig6_inset_ylim", "envelope_revolutions",
-                    "envelope_window", "exact_rows"),
+                    "envelope_window", "exact_rows", "exact_row_elements"),
                 7: ("fig7_omega", "ext_ms", "crossing_rel_tol"),
                 8: ("fig8_omega", "ext_ms", "crossing_rel_tol")}
 _BIFURCATION_KEYS = ("fig6_eps", "bif_range", "bif_elements", "bif_steps_per_rev", "bif_max_period",
