@@ -15,12 +15,15 @@ from crankgen import records
 
 from . import energies as en
 from . import symbols as s
-from .declaration import EXACT, EXACT_KINETIC, EXACT_STRAIN_ENERGY, STRAIN_ENERGY, _exact_space, eps
+from .declaration import EXACT, GUIDES, EXACT_KINETIC, EXACT_STRAIN_ENERGY, STRAIN_ENERGY, _exact_space, eps
 from .euler_lagrange import total_time_derivative
 
-# the guides whose end mass is a slider (the joint forces at B are the rod-on-slider and
-# guide-on-slider pairs); a four-bar's circle has the rocker's tip instead
-SLIDER_GUIDES = ("line", "cam", "incline")
+# the guides whose end mass is a slider on the guide's curve (the joint forces at B are the
+# rod-on-slider and guide-on-slider pairs), and those whose end is the tip of a rocker, a link from
+# a ground pivot (a four-bar's: the rocker angle, the transmission angle, the rod-on-tip and
+# rocker-on-tip pairs)
+SLIDER_GUIDES = tuple(g.name for g in GUIDES if g.pivot is None)
+TIP_GUIDES = tuple(g.name for g in GUIDES if g.pivot is not None)
 
 
 @dataclass(frozen=True)
@@ -177,12 +180,12 @@ OUTPUTS = (
            build=lambda o: end_position()[0]),
     Output("end_height", "step", "Y/L of the rod's end", "L", build=lambda o: end_position()[1]),
     Output("rocker_angle", "step", "the rocker's angle (rad, counter-clockwise from the X axis)", "rad",
-           build=lambda o: s.beta + s_end, guides=("circle",)),
+           build=lambda o: s.beta + s_end, guides=TIP_GUIDES),
     Output("transmission_angle", "step",
            "the four-bar's transmission angle: the angle at the rocker's tip between the coupler's "
            "chord and the rocker, in [0, pi] (pi/2 transmits the crank's force best)", "rad",
            build=lambda o: sp.acos(sp.cos(sp.atan2(q_end[1], 1 + q_end[0]) - s.phi - s.beta - s_end)),
-           guides=("circle",)),
+           guides=TIP_GUIDES),
     Output("chord_angle", "step",
            "inertial angle of the rod's chord, the line from the crank pin to the rod's end (rad, "
            "counter-clockwise from the X axis)", "rad", build=lambda o: chord_angle()),
@@ -217,15 +220,15 @@ OUTPUTS = (
            "the guide)", FORCE, build=lambda o: _inertial(end_force)[1], guides=SLIDER_GUIDES),
     Output("rod_on_tip_x", "step",
            "X component of the force the coupler (the rod) applies to the rocker's tip at B, through "
-           "the pin at B (sizes that pin)", FORCE, build=lambda o: -_inertial(rod_end)[0], guides=("circle",)),
+           "the pin at B (sizes that pin)", FORCE, build=lambda o: -_inertial(rod_end)[0], guides=TIP_GUIDES),
     Output("rod_on_tip_y", "step", "Y component of the force the rod applies to the rocker's tip at B", FORCE,
-           build=lambda o: -_inertial(rod_end)[1], guides=("circle",)),
+           build=lambda o: -_inertial(rod_end)[1], guides=TIP_GUIDES),
     Output("rocker_on_tip_x", "step",
            "X component of the force the rocker applies to its tip mass at B (along the rocker, a "
            "massless two-force member: the force at its pivot D too)", FORCE,
-           build=lambda o: _inertial(end_force)[0], guides=("circle",)),
+           build=lambda o: _inertial(end_force)[0], guides=TIP_GUIDES),
     Output("rocker_on_tip_y", "step", "Y component of the force the rocker applies to its tip mass at B",
-           FORCE, build=lambda o: _inertial(end_force)[1], guides=("circle",)),
+           FORCE, build=lambda o: _inertial(end_force)[1], guides=TIP_GUIDES),
     Output("kinetic_energy", "reduction",
            "the rod's kinetic energy T = sum of the elements' T_i, eqs. (4)-(5) (the end mass's not "
            "included; the exact rod's with its unit director), units of rho A L^3 omega_b^2", TORQUE,

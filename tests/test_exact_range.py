@@ -76,7 +76,7 @@ def test_an_exact_result_beyond_its_own_limits_warns_and_says_which():
     st, caught = _run(crankgen.steady_state, crankgen.Mechanism(eps=0.08), omega=0.1, model="exact", **SMALL)
     flag = st.beyond_theory
     assert [m.name for m in flag.tripped] == ["slenderness"]
-    assert len(caught) == 1 and "eps = 0.08 > 0.05" in caught[0] and "shear" in caught[0]
+    assert len(caught) == 1 and "slenderness r/L = 0.08 > 0.05" in caught[0] and "shear" in caught[0]
 
 
 def test_the_exact_limits_as_data_name_what_they_leave_out():

@@ -106,8 +106,8 @@ class Measure:
         return math.isfinite(self.value)
 
     def __str__(self):
-        label = {"deflection_over_L": "|v|/L", "axial_strain": "axial strain", "slenderness": "eps",
-                 "fibre_strain": "outer-fibre strain",
+        label = {"deflection_over_L": "|v|/L", "axial_strain": "axial strain",
+                 "slenderness": "slenderness r/L", "fibre_strain": "outer-fibre strain",
                  "section_rotation": "section rotation (deg)"}.get(self.name, self.name)
         if not self.known:
             return f"{label} unknown"

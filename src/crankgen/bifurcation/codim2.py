@@ -15,7 +15,7 @@ the step falls below ds_min, or at a codimension-two point where it cannot go on
 curve at a 1:1 or 1:2 resonance, where its multipliers leave the circle as a real pair).
 
 Codimension-two points (MatCont's and BifurcationKit's list for maps), by a test function that
-changes sign between consecutive points and is located by the Illinois false-position method on the
+changes sign between consecutive points and is located by the Illinois false-position method (false_position.py) on the
 arclength, as the one-parameter core locates its points:
 - on a fold curve: cusp "CP" (the fold's quadratic coefficient w^T B(v, v), defining.py, through 0:
   the two folds of a hysteresis loop meet and the loop vanishes), 1:1 resonance "R1" (a second
@@ -35,6 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .defining import Defining
+from .false_position import FalsePosition
 from .maps import MapError, state_weights
 from ..errors import CrankgenError, NoResultError, ParameterError
 
@@ -285,36 +286,27 @@ class CurveContinuer:
     def locate(self, name, a, b):
         """The codimension-two point `name` between accepted points a and b, or None."""
         locate = self._two_valued(name)
-        s_a, s_b = 0.0, self._dot(a.t, b.Z - a.Z)
+        s_b = self._dot(a.t, b.Z - a.Z)
         f_a, f_b = self.test(name, a, locate), self.test(name, b, locate)
         if f_a * f_b >= 0:
             return None
         f0 = max(abs(f_a), abs(f_b))
+        bracket = FalsePosition(0.0, f_a, s_b, f_b)
         best = a if abs(f_a) < abs(f_b) else b
         row = self.W * a.t
-        side = 0
         for _ in range(30):
-            s_c = (s_a * f_b - s_b * f_a) / (f_b - f_a)
+            s_c = bracket.trial()
             try:
-                pt = self.correct(a.Z + s_c * a.t, row, a.ev.DF, self.s.max_jump * abs(s_b))
+                pt = self.correct(a.Z + s_c * a.t, row, a.ev.DF, self.s.max_jump * abs(bracket.s_b))
             except _Failed:
                 break
             pt.t = a.t
             f_c = self.test(name, pt, locate)
             if abs(f_c) < abs(self.test(name, best, locate)):
                 best = pt
-            if abs(f_c) < 1e-9 * max(f0, 1.0) or abs(s_b - s_a) < 1e-12:
+            if abs(f_c) < 1e-9 * max(f0, 1.0) or bracket.width < 1e-12:
                 break
-            if np.sign(f_c) == np.sign(f_b):
-                s_b, f_b = s_c, f_c
-                if side == -1:
-                    f_a *= 0.5
-                side = -1
-            else:
-                s_a, f_a = s_c, f_c
-                if side == 1:
-                    f_b *= 0.5
-                side = 1
+            bracket.update(s_c, f_c)
         if best is a or best is b or not self._accept(name, best, f0):
             self.log(f"{self.d.kind} curve: the {name} test changed sign near {self._where(b)} but "
                      f"no {name} point was found there; not reported")

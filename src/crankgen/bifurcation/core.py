@@ -50,6 +50,7 @@ import numpy as np
 
 from ._blas import single_thread
 from .diagram import BifurcationDiagram, Branch, SpecialPoint
+from .false_position import FalsePosition
 from .maps import MapError, state_weights
 from ..errors import CrankgenError, NoResultError, ParameterError
 
@@ -369,21 +370,21 @@ class Continuer:
         on hyperplanes normal to `along` (a unit vector in the metric; default a.t) at distances s
         from a along it."""
         d = a.t if along is None else along
-        s_a, s_b = 0.0, self._dot(d, b.z - a.z)
+        s_b = self._dot(d, b.z - a.z)
         f_a, f_b = self._oriented(kind, a, locate, along), self._oriented(kind, b, locate, along)
         if f_a * f_b >= 0:
             return None
+        bracket = FalsePosition(0.0, f_a, s_b, f_b)
         best = a if abs(f_a) < abs(f_b) else b
         jump = self.s.max_jump * abs(s_b)
-        side = 0
         stalled = 0
         for _ in range(40):
-            s_c = (s_a * f_b - s_b * f_a) / (f_b - f_a)
+            s_c = bracket.trial()
             try:
                 pt = self.correct(a.z + s_c * d, d, period, max_jump=jump, near=(a.jx, a.jp))
                 pt.t = self._tangent(pt, d)
             except (_Failed, np.linalg.LinAlgError):
-                s_c = 0.5 * (s_a + s_b)
+                s_c = 0.5 * (bracket.s_a + bracket.s_b)
                 try:
                     pt = self.correct(a.z + s_c * d, d, period, max_jump=jump, near=(a.jx, a.jp))
                     pt.t = self._tangent(pt, d)
@@ -395,18 +396,9 @@ class Continuer:
             stalled = stalled + 1 if near and abs(f_c) >= 0.5 * f_best else 0
             if abs(f_c) < f_best:
                 best = pt
-            if abs(f_c) < self.s.locate_tol or abs(s_b - s_a) < 1e-13 or stalled == STALLED:
+            if abs(f_c) < self.s.locate_tol or bracket.width < 1e-13 or stalled == STALLED:
                 break
-            if np.sign(f_c) == np.sign(f_b):
-                s_b, f_b = s_c, f_c
-                if side == -1:
-                    f_a *= 0.5
-                side = -1
-            else:
-                s_a, f_a = s_c, f_c
-                if side == 1:
-                    f_b *= 0.5
-                side = 1
+            bracket.update(s_c, f_c)
         mu_c = self.critical(kind, best)
         ok = {"fold": abs(mu_c - 1.0), "period-doubling": abs(mu_c + 1.0),
               "neimark-sacker": abs(abs(mu_c) - 1.0)}[kind] < 1e-4
