@@ -64,4 +64,4 @@ def _end_handle(period, end):
     from matplotlib.lines import Line2D
     return Line2D([], [], ls="none", marker="x", color="k",
                   label=f"period-{period} branch ends at Omega* = {end['omega']:.4g}: sections turned "
-                        f"{end['section_rotation_deg']:.0f} deg from the chord (the element ends at 90)")
+                        f"{end['section_rotation_deg']:.1f} deg from the chord (the element ends at 90)")
