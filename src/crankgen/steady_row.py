@@ -30,9 +30,10 @@ RESULTS = (
                                    "rigid rod, in units of the radius of gyration r"),
     ("half_peak_to_peak", AMPLITUDE_UNITS, "half the peak-to-peak of v*(1/2) over the orbit, (max - min) / 2"),
     ("deflection_over_L", "1", "the amplitude as a deflection over the rod's length, |v|/L = eps max|v*|: "
-                               "beyond the theory above 0.1"),
+                               "beyond the theory above 0.1 (the paper's range; not a limit of the exact model)"),
     ("axial_strain", "1", "the largest axial strain of the neutral axis over the orbit (the approach's "
-                          "membrane strain, nodes and element midpoints): beyond the theory above 0.01"),
+                          "membrane strain, nodes and element midpoints): beyond the theory above 0.01 "
+                          "(the paper's range; not a limit of the exact model)"),
     ("fibre_strain", "1", "exact model only: the largest |strain| at the outer fibres of a rectangular "
                           "section (fiber = +-sqrt(3) r) over the orbit: beyond its limits above 0.005"),
     ("section_rotation_deg", None, "exact model only: the largest section rotation from the chord over the "
