@@ -176,7 +176,8 @@ PARAMETERS = (
               symbol=guides.inclination, axis="inclination alpha (rad)"),
     Parameter("motion", "choice", "constant", "motion",
               "the crank's prescribed motion: constant speed, a run-up from omega0 to omega over "
-              "`ramp` revolutions, or a cyclic fluctuation omega (1 + k sin(j theta))", owner="run",
+              "`ramp` revolutions, or a cyclic fluctuation omega (1 + k sin(j theta)); or motor: the crank "
+              "driven by a motor of limited torque (its angle a degree of freedom)", owner="run",
               cli="crank", choices=motions.MOTIONS),
     Parameter("omega", "real", 0.8, "omega (crank speed Omega*)",
               "crank speed Omega* = Omega/omega_b (constant speed; a run-up's final speed; a "
@@ -198,6 +199,26 @@ PARAMETERS = (
               "the crank angle at t = 0 (rad, counter-clockwise from the X axis); the rod starts in "
               "the rigid mechanism's position at that angle", owner="run", units="rad",
               symbol=motions.theta0),
+    Parameter("stall_torque", "real", 0.05, "stall_torque (motor's stall torque T_stall*)",
+              "a motor's torque at rest T_stall* (the linear law T_m = T_stall (1 - thetad / Omega_nl)), "
+              "units of rho A L^3 omega_b^2", owner="run", low=0.0, low_open=True, units="rhoA L^3 omega_b^2",
+              continuable=True, symbol=motions.stall_torque, axis="stall torque T_stall*"),
+    Parameter("no_load_speed", "real", 1.0, "no_load_speed (motor's no-load speed Omega_nl*)",
+              "a motor's no-load speed Omega_nl* (where its torque vanishes), units of omega_b", owner="run",
+              low=0.0, low_open=True, units="omega_b", continuable=True, symbol=motions.no_load_speed,
+              axis="no-load speed Omega_nl*"),
+    Parameter("inertia", "real", 0.05, "inertia (crank, rotor and flywheel J*)",
+              "the moment of inertia J* of the crank, the motor's rotor and any flywheel about the crank "
+              "axis (the rod and end mass not included: they are modelled), units of rho A L^3", owner="run",
+              low=0.0, low_open=True, units="rhoA L^3", continuable=True, symbol=motions.inertia,
+              axis="inertia J*"),
+    Parameter("load_torque", "real", 0.0, "load_torque (constant load torque T_load*)",
+              "a constant torque T_load* resisting the motor-driven crank (friction, a useful load), "
+              "units of rho A L^3 omega_b^2", owner="run", units="rhoA L^3 omega_b^2", continuable=True,
+              symbol=motions.load_torque, axis="load torque T_load*"),
+    Parameter("initial_speed", "real", 0.0, "initial_speed (motor-driven crank's speed at t = 0)",
+              "the crank speed at t = 0 of a motor-driven crank (0: a start from rest), units of omega_b",
+              owner="run", low=0.0, units="omega_b", symbol=motions.initial_speed),
     Parameter("n_elements", "count", 16, "n_elements", "number of rod elements", owner="run", low=1,
               cli="elements"),
     Parameter("steps_per_rev", "count", 100, "steps_per_rev", "time steps per crank revolution",

@@ -15,7 +15,8 @@ One calling convention per kernel kind:
 - kinematics kernels (module `kinematics`): motion_<m>(t, params) -> crank = (theta, thetad,
   thetadd); guide_<g>(crank, params) -> kin; end_map_<g>(send, kin, params) -> E (8, 2) with
   send = (s, sd, sdd) (rows: guides.END_MAP_ROWS); rigid_end_<g>(kin, params) -> (X, Y);
-  margins_<g>(params); end_scale_<g>(eps, params); period_<m>(params), step_period_<m>(params).
+  margins_<g>(params); end_scale_<g>(eps, params); period_<m>(params), step_period_<m>(params);
+  drive_<m>(kin, pin, params) -> (g, dg/dthetadd, dg/dthetad, dg/dpin) for a driven crank.
   params is the kinematic parameter vector (representation.kinematic_parameters).
 - shape kernels (module `shape`): shape functions and the slope Gram matrix.
 - audit group kernels (module `groups`): the consistent model's element forces split by kind, in
@@ -87,6 +88,7 @@ PARAMS_BESIDE_KIN = vector("params", tuple(sp.Symbol("a_param") if sym == s.a el
                                            for sym in ir.KINEMATIC_SYMBOLS))
 CRANK = vector("crank", ir.CRANK_SYMBOLS)
 SEND = vector("send", ir.END_COORDINATES)
+PIN = vector("pin", tuple(ir.outputs.pin))
 ELEMENT_INPUTS = (Q, QD, QDD, GEO, COEF, KIN)
 OUTPUT_INPUT = {name: (vector(name, syms) if len(syms) > 1 else scalar(syms[0]))
                 for name, syms in ir.OUTPUT_INPUTS}
@@ -152,6 +154,12 @@ def kinematics_kernels():
                           (Output("T", sp.Matrix([period]), "period"),)))
         out.append(Kernel(f"step_period_{m.name}", "The time steps_per_rev steps divide.", (PARAMS,),
                           (Output("T", sp.Matrix([form.step_period]), "step period"),)))
+        if form.crank_equation is not None:
+            out.append(Kernel(f"drive_{m.name}", "A driven crank's equation g = J thetadd - (T_m(thetad) - "
+                              "T_load) + T_rod (T_rod = a (e_r x F_pin), F_pin = pin in the moving frame) and "
+                              "its derivatives in thetadd, thetad, pin_i and pin_j.", (KIN, PIN, PARAMS_BESIDE_KIN),
+                              (Output("g", form.crank_equation, "(g, dg/dthetadd, dg/dthetad, dg/dpin_i, "
+                                      "dg/dpin_j)"),)))
     for form in rep.guides:
         g = form.record
         solve = None if form.closure is None else Solve(*form.closure)

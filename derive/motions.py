@@ -26,6 +26,16 @@ it (an added 0.0 changes no sum).
   cos c >= 0 keeps psi in the branch of chi), the tangent of the difference of the two angles
   whose tangents are (tan c + k) / m and k / m gives
       D0 = n pi + atan2(m sin c, cos c + k sin c)            (D0 = 0 exactly at theta0 = 0).
+- motor: the crank is not prescribed: its angle is one more degree of freedom, driven by a motor
+  of characteristic T_m(thetad) = T_stall (1 - thetad / Omega_nl) (a DC motor, or an induction
+  motor near synchronous speed), with the inertia J of crank, rotor and flywheel about the crank
+  axis and a constant load torque T_load:
+      J thetadd - T_m(thetad) + T_load + T_rod = 0,
+  T_rod = a (e_r x F_pin) the torque the rod and end mass demand (the output `torque`: the
+  crank's generalized residual of the same energies).  `drive` is the net motor torque
+  T_m - T_load, `inertia` J.  Its theta(t) = theta0 + Omega_i t is only the crank's start (the
+  speed at t = 0, Omega_i, default 0: from rest); its step period is the no-load revolution
+  2 pi / Omega_nl (the fastest the motor turns the crank in steady running).
 """
 
 from dataclasses import dataclass
@@ -38,6 +48,13 @@ from . import symbols as s
 
 # The crank angle at t = 0 (the parameter theta0 of derive/declaration.py).
 theta0 = sp.Symbol("theta0", real=True)
+# the motor's parameters (derive/declaration.py): stall torque, no-load speed, the inertia about the
+# crank axis, the load torque, the crank speed at t = 0
+stall_torque = sp.Symbol("T_stall", real=True)
+no_load_speed = sp.Symbol("Omega_nl", positive=True)
+inertia = sp.Symbol("J_crank", nonnegative=True)
+load_torque = sp.Symbol("T_load", real=True)
+initial_speed = sp.Symbol("Omega_i", nonnegative=True)
 
 
 @dataclass(frozen=True)
@@ -52,6 +69,8 @@ class Motion(records.Motion):
     thetadd: sp.Expr = None
     period: object = None
     step_period: sp.Expr = None
+    drive: sp.Expr = None         # a driven crank's net motor torque T_m(thetad) - T_load (None: prescribed)
+    inertia: sp.Expr = None       # a driven crank's inertia J about the crank axis
 
 
 def _wrap(z):
@@ -105,7 +124,18 @@ def fluctuation():
                   theta=theta, thetad=thetad, thetadd=thetadd, period=period, step_period=period)
 
 
-MOTIONS = (constant(), runup(), fluctuation())
+def motor():
+    law = stall_torque * (1 - s.thetad / no_load_speed)
+    return Motion("motor", "Motor", ("stall_torque", "no_load_speed", "inertia", "load_torque", "initial_speed",
+                                     "theta0"),
+                  "a motor drives the crank (its angle a degree of freedom): J thetadd = T_stall (1 - thetad / "
+                  "Omega_nl) - T_load - (the torque the rod demands)", (("load", ("load_torque",)),),
+                  label="motor-driven crank",
+                  theta=theta0 + initial_speed * s.t, thetad=initial_speed, thetadd=sp.Integer(0), period=None,
+                  step_period=2 * sp.pi / no_load_speed, drive=law - load_torque, inertia=inertia)
+
+
+MOTIONS = (constant(), runup(), fluctuation(), motor())
 
 
 def rates(motion):
@@ -125,7 +155,8 @@ def check(motion, samples=((0.3, 0.2, 1.1, 3.0, 0.4, 2, 0.0), (1.7, 1.2, 0.3, 2.
     AssertionError."""
     theta, thetad, thetadd = rates(motion)
     for t0, om0, om, ramp, k, j, start in samples:
-        values = {s.omega0: om0, s.omega: om, s.ramp: ramp, s.k_fl: k, s.j_fl: j, theta0: start}
+        values = {s.omega0: om0, s.omega: om, s.ramp: ramp, s.k_fl: k, s.j_fl: j, theta0: start,
+                  initial_speed: om0, no_load_speed: om}
         f = [sp.lambdify(s.t, e.subs(values), "mpmath") for e in (theta, thetad, thetadd)]
         h = 1e-6
         for lower, upper in ((0, 1), (1, 2)):

@@ -101,7 +101,7 @@ def _kinematic_symbols():
     for g in model.GUIDES:
         exprs += [g.curve, g.step, g.phi, g.beta, g.guess] + [m for m, _ in g.margin]
     for m in model.MOTIONS:
-        exprs += [m.theta, m.thetad, m.thetadd, m.period, m.step_period]
+        exprs += [m.theta, m.thetad, m.thetadd, m.period, m.step_period, m.drive, m.inertia]
     used = set().union(*(sp.sympify(e).free_symbols for e in exprs if e is not None))
     return tuple(sym for sym in parameter_symbols().values() if sym in used)
 
@@ -182,7 +182,7 @@ def _guide_record(g):
 
 
 def _motion_record(m):
-    return project(m, records.Motion, periodic=m.period is not None)
+    return project(m, records.Motion, periodic=m.period is not None, driven=m.drive is not None)
 
 
 def _energy_name(energy):
@@ -285,6 +285,16 @@ class MotionForm:
     crank: sp.Matrix             # (theta, thetad, thetadd) in t and the kinematic parameters
     period: object               # time of one revolution (None: not periodic)
     step_period: sp.Expr         # the time steps_per_rev steps divide
+    crank_equation: sp.Matrix = None   # a driven crank's (g, dg/dthetadd, dg/dthetad, dg/dpin_i, dg/dpin_j)
+
+
+def crank_equation(m):
+    """A driven crank's equation g = J thetadd - (T_m(thetad) - T_load) + T_rod = 0 (derive/motions.py),
+    T_rod the output `torque` (the torque the rod demands, from the crank pin's force `pin` in the
+    moving frame and the kinematics), with its derivatives in thetadd, thetad and the pin force."""
+    torque = next(o for o in outputs.OUTPUTS if o.name == "torque").build({})
+    g = m.inertia * s.thetadd - m.drive + torque
+    return sp.Matrix([g] + [sp.diff(g, x) for x in (s.thetadd, s.thetad, outputs.pin[0], outputs.pin[1])])
 
 
 @dataclass(frozen=True)
@@ -355,7 +365,8 @@ def _motions():
         mo.check(m)
         crank = sp.Matrix(mo.rates(m))
         assert {names[sym] for sym in crank.free_symbols if sym in names} <= set(m.parameters), m.name
-        out.append(MotionForm(_motion_record(m), crank, m.period, m.step_period))
+        out.append(MotionForm(_motion_record(m), crank, m.period, m.step_period,
+                              None if m.drive is None else crank_equation(m)))
     return tuple(out)
 
 

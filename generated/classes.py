@@ -59,6 +59,11 @@ class CaseFields:
     fluctuation: object = None
     order: object = None
     theta0: object = None
+    stall_torque: object = None
+    no_load_speed: object = None
+    inertia: object = None
+    load_torque: object = None
+    initial_speed: object = None
     n_elements: object = None
     steps_per_rev: object = None
     integrator: object = None
@@ -99,6 +104,11 @@ class SIFields:
     fluctuation: object = None
     order: object = None
     theta0: object = None
+    stall_torque: object = None
+    no_load_speed: object = None
+    inertia: object = None
+    load_torque: object = None
+    initial_speed: object = None
 
 
 class Line(Spec):
@@ -157,5 +167,13 @@ class Fluctuation(Spec):
     defaults = {'omega': 0.8, 'fluctuation': 0.1, 'order': 1, 'theta0': 0.0}
 
 
+class Motor(Spec):
+    """a motor drives the crank (its angle a degree of freedom): J thetadd = T_stall (1 - thetad / Omega_nl) - T_load - (the torque the rod demands).  Parameters: stall_torque, no_load_speed, inertia, load_torque, initial_speed, theta0; keywords load = (load_torque)."""
+
+    kind = 'motion'
+    declaration = MOTIONS[3]    # motor
+    defaults = {'stall_torque': 0.05, 'no_load_speed': 1.0, 'inertia': 0.05, 'load_torque': 0.0, 'initial_speed': 0.0, 'theta0': 0.0}
+
+
 GUIDE_CLASSES = (Line, Circle, Cam, Incline,)
-MOTION_CLASSES = (Constant, RunUp, Fluctuation,)
+MOTION_CLASSES = (Constant, RunUp, Fluctuation, Motor,)

@@ -335,7 +335,9 @@ KIN_RANGES = {"a": (0.05, 0.3), "theta": (0.0, 6.3), "thetad": (0.2, 3.0), "phi"
 # the kinematic parameters, in ranges where every guide closes and every motion is defined
 PARAM_RANGES = {"a": (0.05, 0.3), "offset": (-0.1, 0.1), "c": (0.7, 0.9), "d": (0.9, 1.1),
                 "branch": (1.0, 1.0), "cam_height": (0.0, 0.04), "cam_wavelength": (0.2, 0.4), "inclination": (-1.0, 1.0), "omega": (0.2, 3.0), "omega0": (0.2, 3.0), "ramp": (1.0, 5.0),
-                "fluctuation": (-0.5, 0.5), "order": (2.0, 2.0), "theta0": (-3.0, 3.0)}
+                "fluctuation": (-0.5, 0.5), "order": (2.0, 2.0), "theta0": (-3.0, 3.0),
+                "stall_torque": (0.01, 1.0), "no_load_speed": (0.2, 3.0), "inertia": (0.01, 1.0),
+                "load_torque": (-0.1, 0.1), "initial_speed": (0.0, 3.0)}
 OTHER_VECTORS = {"crank": [(0.0, 6.3), (0.2, 3.0), (-1.0, 1.0)], "send": [(-1e-3, 1e-3), (-0.1, 0.1), (-1.0, 1.0)],
                  "q_end": [(-1e-3, 1e-3)] * 2, "qd_end": [(-1e-2, 1e-2)] * 2, "pin": [(-5.0, 5.0)] * 2,
                  "end": [(-5.0, 5.0)] * 2, "rod_end": [(-5.0, 5.0)] * 2}
@@ -388,6 +390,8 @@ def test_every_kernel_is_covered():
         expected |= {f"kinematics.{k}_{g}" for k in ("guide", "end_map", "rigid_end", check, "end_scale")}
     for m in schema.MOTIONS:
         expected |= {f"kinematics.{k}_{m}" for k in ("motion", "period", "step_period")}
+        if schema.MOTIONS[m].driven:
+            expected.add(f"kinematics.drive_{m}")            # a driven crank's equation
     expected |= {f"elements.{k}" for k in dispatch.ELEMENT_KERNELS}
     for ap in APPROACHES:
         expected |= {f"energy.strain_energy_{ap}", f"energy.dissipation_{ap}"}

@@ -151,13 +151,15 @@ class Model:
         g_s . end = 0 at a solution)."""
         return self.joint_forces(t, d, v, a)[0]
 
-    def joint_forces(self, t, d, v, a):
+    def joint_forces(self, t, d, v, a, kin=None):
         """(reactions, rod's): the force each constraint applies (reactions, above), and the same
         rows of the rod's own families alone: at the guide's node, the force the end mass applies
         to the rod (the rod applies its opposite to the end mass, through the pin at B); at the
-        crank pin, the reaction itself (no end mass there)."""
+        crank pin, the reaction itself (no end mass there).  kin: the kinematics (a CrankState) in
+        place of the prescribed motion's at t (a motor-driven crank's, crankgen.motor)."""
         rod = []
-        _, _, r, _, _, _ = self.unprojected_terms(self.kinematics(t), d, v, a, rod_only=rod)
+        kin = self.kinematics(t) if kin is None else kin
+        _, _, r, _, _, _ = self.unprojected_terms(kin, d, v, a, rod_only=rod)
 
         def at_constraints(x):
             return tuple(sum(x[..., e, list(slots)] for e, slots, _ in self.mesh.holders(c))
@@ -175,10 +177,11 @@ class Model:
         S = terms.M + c_v * terms.C + c_d * terms.K
         return self.assembler.vector(terms.r), self.assembler.banded(S)
 
-    def energy(self, kind, t, d, v):
+    def energy(self, kind, t, d, v, kin=None):
         """Sum of the selected families' energies of one kind ('kinetic': T_c + T_s, 'potential':
-        U_c plus gravity's V, 'dissipation': the Rayleigh function D) at time t for reduced d, v."""
-        kin = self.kinematics(t)
+        U_c plus gravity's V, 'dissipation': the Rayleigh function D) at time t for reduced d, v
+        (kin: the kinematics in place of the prescribed motion's at t)."""
+        kin = self.kinematics(t) if kin is None else kin
         q, qd, _, _ = self.nodal_state(kin, d, v, np.zeros_like(d))
         geo, coef = self.geometry, self.coefficients
         total = 0.0

@@ -123,8 +123,9 @@ class StateHistory:
     """What the declared outputs need of a run: its case and the reduced states at the stored times
     (velocities and accelerations too for the reactions and the rates)."""
 
-    def __init__(self, case, t, states, rates=None, accelerations=None):
+    def __init__(self, case, t, states, rates=None, accelerations=None, crank=None):
         self.case, self.t, self.states = case, np.asarray(t, dtype=float), np.asarray(states)
+        self.crank = None if crank is None else np.asarray(crank, dtype=float)     # a driven crank's (theta, thetad, thetadd)
         self.rates, self.accelerations = rates, accelerations
         self.mesh = Mesh(case.n_elements)
         self._kin = None
@@ -133,7 +134,11 @@ class StateHistory:
 
     def kinematics(self):
         if self._kin is None:
-            self._kin = _kinematics.case_state(self.case, self.t)
+            if self.crank is not None:          # a motor-driven crank: its kinematics from its states
+                from .motor import crank_state
+                self._kin = crank_state(self.case, self.crank)
+            else:
+                self._kin = _kinematics.case_state(self.case, self.t)
         return self._kin
 
     def _mapped(self, reduced, row, rates=None):
@@ -167,7 +172,8 @@ class StateHistory:
                                  "this result does not hold")
         if self._pin_end is None:            # torque and every joint force read them
             from .model import Model
-            self._pin_end = Model(self.case).joint_forces(self.t, self.states, self.rates, self.accelerations)
+            self._pin_end = Model(self.case).joint_forces(self.t, self.states, self.rates, self.accelerations,
+                                                          kin=self.kinematics())
         return self._pin_end
 
     def _inputs(self, spec):
@@ -280,7 +286,7 @@ class DeclaredOutputs:
         history = self.__dict__.get("_state_history")
         if history is None:
             history = StateHistory(self.case, self.t, self.states, getattr(self, "rates", None),
-                                   getattr(self, "accelerations", None))
+                                   getattr(self, "accelerations", None), getattr(self, "crank", None))
             object.__setattr__(self, "_state_history", history)
         return history
 

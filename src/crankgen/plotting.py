@@ -32,7 +32,8 @@ def _title(s):
     if not s.get("rotary_inertia", True):
         other.append("no rotary inertia")
     return (f"approach {s['approach']}, {s['formulation']} formulation, {s['damping']} damping, "
-            f"{s.get('membrane', 'pointwise')} membrane\n" + ", ".join(main + [f"n = {s['n_elements']}"])
+            f"{s.get('membrane', 'pointwise')} membrane\n"
+            + textwrap.fill(listed(main + [f"n = {s['n_elements']}"]), 95, break_on_hyphens=False)
             + ("\n" + ", ".join(other) if other else ""))
 
 
@@ -225,6 +226,9 @@ def orbit_figure(state, strain=None, si=None):
     s = dict(state.case.as_dict())
     mult = (f", largest |multiplier| {state.multiplier:.4f}"
             if state.multiplier is not None and np.isfinite(state.multiplier) else "")
+    if getattr(state, "period", None) is not None:          # a motor-driven crank's steady motion
+        mult += (f"\nrevolution time T* = {state.period:.5g}, mean crank speed {state.mean_speed:.5g}, "
+                 f"fluctuation {state.speed_fluctuation:.3g}")
     if strain is None:
         strain = theory.axial_strain(state, per_step=True)
     eps = in_L(schema.OUTPUTS["v_mid"].units, state.case.parameters()) if si is None else 1e-3 / si.scales.L

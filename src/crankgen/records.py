@@ -234,7 +234,9 @@ class Motion:
     """A prescribed crank motion.  title: the class name of its record (crankgen.Constant, ...);
     parameters: those it reads; periodic: periodic in the crank angle (a period, steady states);
     transient: the parameter that is the number of revolutions over which its speed changes before
-    it settles (a run-up's ramp; None: none)."""
+    it settles (a run-up's ramp; None: none); driven: the crank angle is a degree of freedom driven
+    by a motor law (crankgen.motor), not a prescribed motion: its theta(t) is only the crank's
+    start (theta0 at the initial speed) and its step period the fastest revolution it may make."""
 
     name: str
     title: str
@@ -244,6 +246,7 @@ class Motion:
     periodic: bool = True
     transient: str = None
     label: str = None            # how titles name it        # the parameter giving the revolutions over which its speed changes
+    driven: bool = False
 
 
 @dataclass(frozen=True)

@@ -53,12 +53,26 @@ class SimulationResult(DeclaredOutputs):
     accelerations: Optional[np.ndarray] = field(default=None, repr=False)
     at_times: Optional["SimulationResult"] = field(default=None, repr=False)
     scales: Optional[Scales] = field(default=None, repr=False)      # crankgen's units in SI (units="si")
+    crank: Optional[np.ndarray] = field(default=None, repr=False)   # a motor-driven crank's (theta, thetad, thetadd)
+
+    @property
+    def crank_angle(self):
+        """The crank angle theta (rad, unwrapped) per step."""
+        return self.theta
+
+    @property
+    def crank_acceleration(self):
+        """The crank's angular acceleration per step (units of omega_b^2)."""
+        if self.crank is not None:
+            return self.crank[:, 2]
+        return _kinematics.case_state(self.case, self.t).thetadd
 
 
 def run_length(case, revolutions):
-    """(time step, number of steps) of a run of `revolutions` crank revolutions."""
+    """(time step, number of steps) of a run of `revolutions` crank revolutions (a motor-driven
+    crank's: no-load revolutions, crankgen.motor_simulation)."""
     dt = _kinematics.step_period(case) / case.steps_per_rev
-    if case.periodic:
+    if case.periodic or case.motion_record.driven:
         return dt, max(1, int(round(revolutions * case.steps_per_rev)))
     return dt, max(1, int(round(_kinematics.time_of_revolutions(case, revolutions) / dt)))
 
@@ -152,6 +166,9 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     if revolutions is not None:
         revolutions = in_range("revolutions", revolutions, 0, None, True)
     case = run_case(mech, case, model=model, omega=omega, crank=crank, **fields)
+    if case.motion_record.driven:
+        return _simulate_driven(case, revolutions, times, history, store_nodes, tol, progress, initial, engine,
+                                scales)
     time_scheme.warn_steps([case], omega_b=None if scales is None else scales.omega_b)
     settings = NewmarkSettings.of_case(case, tol=tol)
     reference = Model.from_case(case)          # the case's runtime model (model= names its preset)
@@ -221,6 +238,22 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
         states = {k: tuple(None if x is None else x[0] for x in captured[k]) for k in stops}
         result = replace(result, at_times=_compiled_at_times(reference, case, result, states, landing, t_req, tol,
                                                              store_nodes, info, scales))
+    warn_beyond([result], "run")
+    return result
+
+
+def _simulate_driven(case, revolutions, times, history, store_nodes, tol, progress, initial, engine, scales):
+    """simulate of a motor-driven crank (crankgen.motor_simulation)."""
+    from .motor_simulation import simulate_motor
+    if not isinstance(history, (bool, np.bool_)):
+        raise ParameterError(f"history must be True or False, got {history!r}")
+    t_req = None if times is None else _requested_times(times, 1.0 if scales is None else scales.factor("1/omega_b"))
+    d0, v0, g0 = initial_state(case, initial, scales)
+    if g0 is not None:
+        raise ParameterError("a motor-driven run starts from (d0, v0): give no algorithmic accelerations")
+    info = dict(case.as_dict(), tol=tol, engine=engine)
+    result = simulate_motor(SimulationResult, case, revolutions, t_req, bool(history), store_nodes, tol, progress, d0,
+                            v0, engine, info, scales)
     warn_beyond([result], "run")
     return result
 
@@ -416,6 +449,10 @@ def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=Fals
     (needed for the field outputs, e.g. axial_force)."""
     cases = [c if isinstance(c, Case) else Case.from_dict(c) for c in cases]
     revolutions = in_range("revolutions", revolutions, 0, None, True)
+    for i, c in enumerate(cases):
+        if c.motion_record.driven:
+            raise ParameterError(f"cases[{i}]: simulate_many runs prescribed crank motions; run a motor-driven "
+                                 "crank with simulate")
     time_scheme.warn_steps(cases)
     groups = {}
     for i, c in enumerate(cases):

@@ -88,6 +88,28 @@ class SteadyState(DeclaredOutputs):
     rates: np.ndarray = field(default=None, repr=False)   # reduced velocities over the revolution
     accelerations: np.ndarray = field(default=None, repr=False)
     scales: Optional[Scales] = field(default=None, repr=False)    # crankgen's units in SI (units="si")
+    # a motor-driven crank's steady motion (crankgen.motor_steady): its crank's (theta, thetad,
+    # thetadd) over the revolution, the revolution time, the state on the section theta = theta0
+    # (d, v, thetad[, a, a_theta]) and every multiplier of the section map (by modulus; the trivial
+    # multiplier of the autonomous flow is not among them)
+    crank: Optional[np.ndarray] = field(default=None, repr=False)
+    period: Optional[float] = None
+    section_state: Optional[np.ndarray] = field(default=None, repr=False)
+    multipliers: Optional[np.ndarray] = field(default=None, repr=False)
+
+    @property
+    def mean_speed(self):
+        """A motor-driven crank's mean speed 2 pi / T over the steady revolution (None otherwise)."""
+        return None if self.period is None else 2.0 * math.pi / self.period
+
+    @property
+    def speed_fluctuation(self):
+        """A motor-driven crank's speed fluctuation (max - min thetad) / mean speed over the steady
+        revolution (None otherwise)."""
+        if self.crank is None:
+            return None
+        w = self.crank[:, 1]
+        return float((w.max() - w.min()) / self.mean_speed)
 
     @property
     def ok(self):
@@ -340,7 +362,11 @@ class _BatchSolver:
 
 def _check_resolved(case, where=""):
     """Refuse a crank motion that is not periodic in the crank angle (a run-up), and a time step
-    longer than the rod's first bending period (see the module docstring)."""
+    longer than the rod's first bending period (see the module docstring).  A motor-driven crank
+    (steady_states takes it by its own path) is refused here: the sweep's batches do not take it yet."""
+    if case.motion_record.driven:
+        raise ParameterError(f"{where}a sweep of a motor-driven crank is not built yet: steady_state and "
+                             "continuation take it")
     if not case.periodic:
         raise ParameterError(
             f"{where}a steady state needs a crank motion periodic in the crank angle; the "
@@ -361,6 +387,38 @@ def _check_resolved(case, where=""):
     _kinematics.check_crank_steps(case, dt, T, where)
 
 
+def _driven_states(cases, driven, tol, max_revolutions, progress, warmup, max_shooting, method, stacklevel):
+    """steady_states of a list holding motor-driven cases (crankgen.motor_steady; by shooting on the
+    section theta = theta0): each in turn, the prescribed ones as usual."""
+    from .motor_steady import check_steady, steady_motor
+    where = (lambda i: f"cases[{i}]: ") if len(cases) > 1 else (lambda i: "")
+    for i in driven:
+        check_steady(cases[i], where(i))
+    if method != "shooting":
+        raise ParameterError("a motor-driven crank's steady motion is found by shooting (method='shooting')")
+    tol = in_range("tol", tol, 0, None, True)
+    max_revolutions = integer("max_revolutions", max_revolutions, 1)
+    warmup = integer("warmup", warmup, 1)
+    others = [i for i in range(len(cases)) if i not in driven]
+    results = [None] * len(cases)
+    if others:
+        for i, r in zip(others, steady_states([cases[i] for i in others], tol, max_revolutions, None, method,
+                                              warmup, max_shooting, _stacklevel=stacklevel + 1)):
+            results[i] = r
+    for k, i in enumerate(driven):
+        start = time.perf_counter()
+        results[i] = replace(steady_motor(cases[i], tol, max_revolutions, max(warmup, MOTOR_WARMUP), max_shooting),
+                             wall_time=time.perf_counter() - start)
+        if progress is not None:
+            progress(len(others) + k + 1, len(cases))
+    warn_beyond([results[i] for i in driven], "steady motion", stacklevel=stacklevel)
+    return results
+
+
+# the no-load revolutions a motor-driven crank runs up before shooting
+MOTOR_WARMUP = 30
+
+
 def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="shooting",
                   warmup=3, max_shooting=12, parallel=None, _stacklevel=3, _omega_b=None):
     """Steady states of many cases (list in, list out, same order), batched: cases that share
@@ -372,6 +430,10 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
     A StepWarning (once) says when a case's step leaves the rod's first bending or axial mode
     unresolved and undamped (crankgen.time_scheme.step_warning)."""
     cases = [c if isinstance(c, Case) else Case.from_dict(c) for c in cases]
+    driven = [i for i, c in enumerate(cases) if c.motion_record.driven]
+    if driven:
+        return _driven_states(cases, driven, tol, max_revolutions, progress, warmup, max_shooting, method,
+                              _stacklevel)
     for i, c in enumerate(cases):
         _check_resolved(c, f"cases[{i}]: " if len(cases) > 1 else "")
     time_scheme.warn_steps(cases, stacklevel=_stacklevel, omega_b=_omega_b)   # _omega_b: rad/s too (SI)

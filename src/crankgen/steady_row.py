@@ -53,8 +53,15 @@ RESULTS = (
                         "time shared equally by its cases)"),
     ("message", None, "why a case is not periodic, failed or is marked; empty otherwise"),
 )
+# a motor-driven crank's steady motion (crankgen.motor_steady) adds, before `periods`:
+MOTOR_RESULTS = (
+    ("revolution_time", "1/omega_b", "a motor-driven crank's steady revolution time T (its period)"),
+    ("mean_speed", "omega_b", "a motor-driven crank's mean speed 2 pi / T over the steady revolution"),
+    ("speed_fluctuation", "1", "a motor-driven crank's speed fluctuation over the steady revolution, "
+                               "(max - min crank speed) / mean speed"),
+)
 PEAK = "peak_"
-_RESULT_UNITS = {name: units for name, units, _ in RESULTS}
+_RESULT_UNITS = {name: units for name, units, _ in RESULTS + MOTOR_RESULTS}
 CLOCK = {"wall_time": "s"}             # quantities of the computer, not of the mechanism: SI always
 
 
@@ -109,6 +116,9 @@ def row(state):
     for name in load_outputs(guide):
         results[PEAK + name] = (_number(np.max(np.abs(np.asarray(state.quantity(name), dtype=float))))
                                 if has_orbit else None)
+    if getattr(state, "period", None) is not None:
+        results.update(revolution_time=state.period, mean_speed=state.mean_speed,
+                       speed_fluctuation=state.speed_fluctuation)
     results.update(periods=state.periods, iterations=state.iterations, residual=state.residual,
                    multiplier=state.multiplier, wall_time=state.wall_time, message=state.message)
     out.update(results)
@@ -141,7 +151,7 @@ def meaning(column):
                 + "); empty when the options match none")
     if column == "groups_off":
         return "the audit's switched-off term groups (empty: none)"
-    for name, _, text in RESULTS:
+    for name, _, text in RESULTS + MOTOR_RESULTS:
         if name == column:
             return text
     if column.startswith(PEAK) and column[len(PEAK):] in schema.OUTPUTS:

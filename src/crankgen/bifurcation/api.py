@@ -142,7 +142,12 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
                         corrector=choice("corrector", corrector, CORRECTORS),
                         predictor=choice("predictor", predictor, PREDICTORS)).check()
     t0 = time.perf_counter()
-    fmap = MechanismMap(c0, parameter, derivative=choice("derivative", derivative, ("exact", "central")))
+    driven = c0.motion_record.driven
+    if driven:                       # the autonomous motion's section map (bifurcation/motor_map.py)
+        from .motor_map import MotorMap
+        fmap = MotorMap(c0, parameter)
+    else:
+        fmap = MechanismMap(c0, parameter, derivative=choice("derivative", derivative, ("exact", "central")))
     from ..steady import steady_states
     with notices.quiet(BeyondTheoryWarning):            # the continuation warns once, for every point
         first = steady_states([c0], _omega_b=None if scales is None else scales.omega_b)[0]
@@ -152,7 +157,8 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
         raise NoResultError(f"no periodic response to start from at {parameter} = {start:g}: "
                             f"{first.status}, {first.message}{other}")
     cont = Continuer(fmap, start, stop, settings, log=progress)
-    diagram = cont.diagram(first.state / fmap.s, start, 1.0 if stop > start else -1.0)
+    diagram = cont.diagram((first.section_state if driven else first.state) / fmap.s, start,
+                           1.0 if stop > start else -1.0)
     lock = locking_limit(c0, parameter, start, stop)
     if lock is not None:
         value, why = lock
@@ -162,7 +168,12 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
                                    f"cannot turn a full revolution ({why})")
     for sp in diagram.special_points:
         sp.case = fmap.case_at(sp.parameter)
-    if quantities:
+    if driven:                       # a motor's branches: the mean crank speed and revolution time of each orbit
+        for br in diagram.branches:
+            speed, period = fmap.speeds(br.states, br.parameter, br.period)
+            br.quantities = {"mean_speed": speed, "revolution_time": period}
+            br.quantity_units = {"mean_speed": "omega_b", "revolution_time": "1/omega_b"}
+    elif quantities:
         _add_quantities(diagram, c0, parameter, section, progress)
     info = c0.as_dict()
     info.pop(parameter)
@@ -219,6 +230,9 @@ def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up
     time_scheme.warn_steps([c0], omega_b=None if scales is None else scales.omega_b)
     max_period = integer("max_period", max_period, 1)
     t0 = time.perf_counter()
+    if c0.motion_record.driven:
+        raise ParameterError("poincare of a motor-driven crank is not built yet: continuation follows its steady "
+                             "motions, simulate marches it")
     fmap = MechanismMap(c0, parameter)
     x0 = fmap.rest()
     result = sweep_map(fmap, values, x0, direction, transient, samples, max_period,

@@ -11,7 +11,8 @@ import sys
 from pathlib import Path
 
 from .. import schema
-from ..errors import ConvergenceError
+from ..errors import ConvergenceError, ParameterError
+from ..kinematics import step_period
 from ..limits import check_run_size
 from . import si_file
 from .options import CASE_FIELDS, UsageError, _Outputs, _case, _describe, _flag, _say
@@ -180,7 +181,15 @@ STEADY_NAMES = ["steady.csv", "orbit.csv", "orbit.png"]
 def _resolved(case, where=""):
     """Steady states need a crank motion periodic in the crank angle, a turning crank and
     Omega* * steps_per_rev >= 1 (crankgen.steady_states refuses coarser steps); checked here,
-    before any output or progress line, and said in one line."""
+    before any output or progress line, and said in one line.  A motor-driven crank's motion is
+    autonomous: shot on the section theta = theta0 (crankgen.motor_steady)."""
+    if case.motion_record.driven:
+        from ..motor_steady import check_steady
+        try:
+            check_steady(case, where)
+        except ParameterError as exc:
+            raise UsageError(str(exc)) from None
+        return
     if not case.periodic:
         raise UsageError(
             f"{where}a steady state needs a crank motion periodic in the crank angle; --crank "
@@ -221,6 +230,9 @@ def _cmd_steady(args):
 def _method_text(args, case):
     """How the periodic state is sought: shooting differentiates the converged Newton step map,
     so any other integrator marches."""
+    if case.motion_record.driven:
+        return (f"shooting on the section theta = theta0 (an autonomous motion: the revolution time is "
+                f"unknown), tolerance {args.tol:g}")
     if args.method == "shooting" and case.integrator == "newton":
         return f"shooting (Newton on the revolution map), tolerance {args.tol:g}"
     why = "" if args.method == "march" else \
@@ -273,6 +285,10 @@ def _steady(args, case, out, section=None, si=None):
           + (f"; {row['message']}" if row["message"] else "")
           + _theory_note(nan if row["deflection_over_L"] is None else row["deflection_over_L"],
                          nan if row["axial_strain"] is None else row["axial_strain"], st))
+    if st.period is not None:
+        print(f"the motor-driven crank: revolution time T* = {st.period:.6g}, mean speed {st.mean_speed:.6g} "
+              f"(no-load {2 * math.pi / step_period(case):g}), speed fluctuation {st.speed_fluctuation:.4g} of the mean; "
+              "the multipliers are the section map's (the flow's trivial multiplier 1 is not among them)")
     if section is not None and st.states is not None:
         print("\n".join(_loads_and_stress(st, section, si)))
     elif st.states is not None:                  # the loads a motor and its bearings are sized from

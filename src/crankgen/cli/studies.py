@@ -1,5 +1,6 @@
 """`crankgen reproduce`, `crankgen audit`, `crankgen continue`, `crankgen poincare`: studies."""
 
+import argparse
 import sys
 
 from .. import schema
@@ -49,11 +50,20 @@ def _cmd_audit(args):
 
 # --- crankgen continue / crankgen poincare ----------------------------------------------------
 
+def _continuable(text):
+    """A continued parameter's name, or its flag's name; refused in one line naming the parameters
+    (not every flag alias: the line stays readable)."""
+    if text in schema.CONTINUABLE or text in PARAMETER_FLAGS:
+        return text
+    raise argparse.ArgumentTypeError(f"invalid choice: {text!r} (choose from {', '.join(schema.CONTINUABLE)}, "
+                                     "or a parameter's flag name)")
+
+
 def _add_branch_model_options(p):
     """Model options of continue and poincare (the continued parameter's own option is ignored)."""
     g = _add_model_options(p, integrator=False)
     g.title = "model (the continued parameter takes its values from --from and --to)"
-    g.add_argument("--parameter", choices=schema.CONTINUABLE + tuple(PARAMETER_FLAGS), default=schema.CRANK_SPEED,
+    g.add_argument("--parameter", type=_continuable, default=schema.CRANK_SPEED,
                    metavar="{" + ",".join(schema.CONTINUABLE) + "}",
                    help=f"the parameter varied (default {schema.CRANK_SPEED}); a parameter whose flag has "
                         "another name is also accepted by its flag's name (" + ", ".join(

@@ -11,6 +11,7 @@ Split by concern:
 - step.py: one Newton step of Newmark or generalized-alpha (decisions shared with newmark.py
   through newton.py; the schemes' coefficients: crankgen.time_scheme);
 - march.py: Batch (cases packed as records) and march, lock-step batches on every core;
+- motor.py: the motor-driven crank (its angle a DOF): the bordered step and its march;
 - shooting.py: the revolution map and its exact linearization (in the state and, optionally, a parameter);
 - borrow.py: arrays without a memory owner for the hot loops (no atomic reference counting).
 The NumPy implementation (model.py, newmark.py) stays the reference: tests check that both give
@@ -21,6 +22,7 @@ from .banded import (KB_FIXED, assemble_band, assemble_band_newmark, assemble_fi
                      band_factor, band_lu_solve, band_matmul, band_solve, factor_fixed, solve_fixed)
 from .compiled import CACHE, CODE_HASH, KERNELS_HASH, is_warm  # noqa: F401
 from .elements import FULL, NEWMARK, RESIDUAL, element_terms  # noqa: F401
+from .motor import march_motor  # noqa: F401  (registers the entry point `motor`)
 from .march import Batch, MarchResult, join_state, march, march_state, split_state  # noqa: F401
 from .records import Work, new_work as make_work  # noqa: F401
 from .shooting import Revolution, revolution, shoot  # noqa: F401

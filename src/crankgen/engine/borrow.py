@@ -72,7 +72,8 @@ def borrowed_mesh(m):
 
 @jit(python=False)
 def borrowed_kernels(k):
-    return Kernels(borrowed(k.rod), borrowed(k.end), borrowed(k.end_map), borrowed(k.guide), borrowed(k.motion))
+    return Kernels(borrowed(k.rod), borrowed(k.end), borrowed(k.end_map), borrowed(k.guide), borrowed(k.motion),
+                   borrowed(k.drive))
 
 
 @jit(python=False)

@@ -48,6 +48,7 @@ Kernels = namedtuple("Kernels", [
     "rod", "end",                       # per family slot acting on every element (its lane function) /
                                         # on the end node (its one-element function)
     "end_map", "guide", "motion",       # (one entry each)
+    "drive",                            # a driven crank's equation (drive_<motion>; a no-op for a prescribed one)
 ])
 
 Cases = namedtuple("Cases", ["select", "coef", "params", "dt", "p", "scheme", "printed", "scales", "integ"])

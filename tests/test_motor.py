@@ -1,0 +1,157 @@
+"""The motor-driven crank (crankgen.motor, engine/motor.py): its limits against independent truths
+(the rigid slider-crank's one-degree-of-freedom equation integrated here by scipy; the constant-speed
+crank as the motor stiffens), its energy balance, and the two engines against each other."""
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+import crankgen
+from crankgen.errors import ParameterError
+from crankgen.model import Model
+from crankgen.motor import crank_state
+
+
+def _rigid_speed(a, ms, J, stall, no_load, load, t):
+    """theta, thetad of the rigid slider-crank (rod of unit mass and length, end mass ms on the line
+    Y = 0) driven by T_m = stall (1 - thetad / no_load) - load from rest: T = I(theta) thetad^2 / 2,
+    (J + I) thetadd + I'(theta) thetad^2 / 2 = T_m."""
+    def inertia(th):
+        s, c = np.sin(th), np.cos(th)
+        A1 = np.array([-a * s, a * c])                                  # d(crank pin)/d theta
+        B1 = np.array([-a * s - a * a * s * c / np.sqrt(1 - (a * s) ** 2), 0.0])   # d(slider)/d theta
+        D = B1 - A1
+        return A1 @ A1 + A1 @ D + D @ D / 3 + ms * B1[0] ** 2          # int_0^1 |A' + x D|^2 dx + ms X'^2
+
+    def rhs(_, y):
+        th, w = y
+        h = 1e-6
+        dI = (inertia(th + h) - inertia(th - h)) / (2 * h)
+        return [w, (stall * (1 - w / no_load) - load - 0.5 * dI * w * w) / (J + inertia(th))]
+    return solve_ivp(rhs, (0.0, t[-1]), [0.0, 0.0], t_eval=t, rtol=1e-11, atol=1e-13).y
+
+
+@pytest.mark.slow
+def test_stiff_rod_limit_is_the_rigid_slider_crank():
+    """Slow against the rod's first bending frequency (Omega_nl = 0.1, 0.05: the rod's dynamic
+    deflection ~ Omega^2), with the stall torque scaled by Omega^2 (the same rigid motion in
+    Omega t), a light flywheel (J comparable to the linkage's reflected inertia: the speed swings
+    by about 22 % per revolution); after the first revolution (the start from an undeformed rod at
+    rest rings its modes) the crank speed matches the rigid mechanism's, and closer at the slower speed."""
+    errors = []
+    for no_load in (0.1, 0.05):
+        stall = 0.0004 * (no_load / 0.1) ** 2
+        r = crankgen.simulate(crank=crankgen.Motor(stall_torque=stall, no_load_speed=no_load, inertia=0.01),
+                              n_elements=4, steps_per_rev=200, revolutions=3)
+        th, w = _rigid_speed(0.1, 0.5, 0.01, stall, no_load, 0.0, r.t)
+        assert np.ptp(w[200:]) > 0.2 * no_load                   # a crank speed that really swings
+        late = slice(200, None)
+        errors.append(np.max(np.abs(r.crank_speed[late] - w[late])) / no_load)
+        assert np.max(np.abs(r.theta - th)) < 0.01
+    assert errors[0] < 4e-3 and errors[1] < 1.5e-3, errors
+    assert errors[1] < 0.5 * errors[0], errors
+
+
+def test_stiff_motor_limit_is_the_constant_speed_crank():
+    """T_stall -> infinity at Omega_nl fixed, starting at Omega_nl: the crank speed stays at
+    Omega_nl to O(1 / T_stall) and the rod's response tends to the constant-speed crank's."""
+    omega = 0.6
+    ref = crankgen.simulate(omega=omega, n_elements=4, revolutions=2)
+    gaps, wobbles = [], []
+    for stall in (1.0, 100.0):
+        r = crankgen.simulate(crank=crankgen.Motor(stall_torque=stall, no_load_speed=omega, inertia=0.01,
+                                                   initial_speed=omega), n_elements=4, revolutions=2)
+        assert np.allclose(r.t, ref.t, rtol=0, atol=1e-12)
+        wobbles.append(np.max(np.abs(r.crank_speed - omega)))
+        gaps.append(np.max(np.abs(r.v_mid - ref.v_mid)) / np.max(np.abs(ref.v_mid)))
+    assert wobbles[1] < wobbles[0] / 50 and wobbles[1] < 1e-4 * omega, wobbles
+    assert gaps[1] < gaps[0] / 30 and gaps[1] < 2e-3, gaps
+
+
+def _balance(r, J, stall, no_load, load):
+    """max over the run of |motor work - (change of the energy of crank, rod and end mass) -
+    dissipated energy| (Newmark's trapezoidal rule: the energy identity with the step's mean state)."""
+    model = Model.from_case(r.case)
+
+    def energy(k):
+        kin = crank_state(r.case, r.crank[k])
+        return (model.energy("kinetic", 0.0, r.states[k], r.rates[k], kin=kin)
+                + model.energy("potential", 0.0, r.states[k], r.rates[k], kin=kin) + 0.5 * J * r.crank[k, 1] ** 2)
+    E0 = energy(0)
+    work = dissipated = 0.0
+    worst = 0.0
+    for k in range(len(r.t) - 1):
+        h = r.t[k + 1] - r.t[k]
+        c = 0.5 * (r.crank[k] + r.crank[k + 1])
+        d, v = 0.5 * (r.states[k] + r.states[k + 1]), 0.5 * (r.rates[k] + r.rates[k + 1])
+        work += h * (stall * (1 - c[1] / no_load) - load) * c[1]
+        dissipated += h * 2.0 * model.energy("dissipation", 0.0, d, v, kin=crank_state(r.case, c))
+        worst = max(worst, abs(work - (energy(k + 1) - E0) - dissipated))
+    return worst, work
+
+
+@pytest.mark.filterwarnings("ignore::crankgen.notices.BeyondTheoryWarning")
+def test_energy_balance_of_the_motor_run():
+    """Motor work = change of the kinetic energy of crank, rod and end mass and of the strain energy
+    + dissipated energy.  Measured: the defect is about 0.1 % of the work at 100 and at 400 steps
+    per no-load revolution (it does not shrink with the step: the same holds for a prescribed
+    crank's torque work, a property of the model's energy kernels against its residual left open
+    in the report of issue 31), so this checks the motor's bookkeeping (the work of the motor law
+    and the load, the inertia J, the rod's torque as the crank's residual) to 0.4 %: leaving out J
+    or the load would miss by tens of per cent."""
+    J, stall, no_load, load = 0.05, 0.05, 0.9, 0.005
+    r = crankgen.simulate(crank=crankgen.Motor(stall_torque=stall, no_load_speed=no_load, inertia=J,
+                                               load_torque=load), n_elements=4, steps_per_rev=100,
+                          revolutions=1, rho_inf=1.0, eps=0.05)
+    worst, work = _balance(r, J, stall, no_load, load)
+    assert work > 0.02
+    assert worst < 4e-3 * work, worst / work
+
+
+def test_the_crank_s_own_balance_is_second_order():
+    """J thetad^2 / 2 changes by the work of the motor, the load and the torque the rod demands (the
+    output `torque`, from the stored states): the crank's equation as integrated, to the
+    trapezoidal rule's second order (step halved: the defect falls about fourfold)."""
+    J, stall, no_load, load = 0.05, 0.05, 0.9, 0.005
+    defects = []
+    for spr in (100, 200):
+        r = crankgen.simulate(crank=crankgen.Motor(stall_torque=stall, no_load_speed=no_load, inertia=J,
+                                                   load_torque=load), n_elements=4, steps_per_rev=spr,
+                              revolutions=1, rho_inf=1.0)
+        w = r.crank_speed
+        power = (stall * (1 - w / no_load) - load - r.torque) * w
+        work = np.concatenate([[0.0], np.cumsum(0.5 * (power[1:] + power[:-1]) * np.diff(r.t))])
+        defects.append(np.max(np.abs(work - 0.5 * J * (w ** 2 - w[0] ** 2))) / np.max(0.5 * J * w ** 2))
+    assert defects[0] < 2e-3 and 3.0 < defects[0] / defects[1] < 5.0, defects
+
+
+def test_compiled_and_numpy_engines_agree():
+    kw = dict(crank=crankgen.Motor(stall_torque=0.05, no_load_speed=0.8, inertia=0.05, load_torque=0.002),
+              n_elements=4, revolutions=1, times=[1.0, 2.05])
+    a = crankgen.simulate(engine="numpy", **kw)
+    b = crankgen.simulate(**kw)
+    assert np.array_equal(a.iterations, b.iterations)
+    assert np.max(np.abs(a.states - b.states)) < 1e-11
+    assert np.max(np.abs(a.crank - b.crank)) < 1e-11
+    assert np.max(np.abs(a.at_times.crank_speed - b.at_times.crank_speed)) < 1e-11
+    # a requested time between steps is one step of the remaining length: the speed there lies
+    # between its neighbours' (the crank runs up monotonically over the first revolution)
+    k = int(2.05 // (b.t[1] - b.t[0]))
+    assert min(b.crank_speed[k], b.crank_speed[k + 1]) < b.at_times.crank_speed[1] < max(
+        b.crank_speed[k], b.crank_speed[k + 1])
+    assert np.allclose(b.at_times.crank_angle, b.at_times.theta)
+    # the crank starts from rest with the motor's whole torque on the crank and the linkage
+    assert b.crank_speed[0] == 0.0 and b.crank_acceleration[0] > 0.0
+
+
+def test_a_motor_run_refuses_what_it_cannot_take():
+    with pytest.raises(ParameterError, match="n_elements >= 2"):
+        crankgen.simulate(crank=crankgen.Motor(), n_elements=1, revolutions=0.1)
+    with pytest.raises(ParameterError, match="stall_torque"):
+        crankgen.simulate(crank=crankgen.Motor(stall_torque=-1.0), revolutions=0.1)
+    with pytest.raises(ParameterError, match="simulate_many runs prescribed"):
+        crankgen.simulate_many([crankgen.Case(motion="motor", n_elements=2)], 0.1)
+    with pytest.raises(ParameterError, match="sweep of a motor-driven crank"):
+        crankgen.sweep([crankgen.Case(motion="motor", n_elements=2)])
+    with pytest.raises(ParameterError, match="poincare of a motor-driven crank"):
+        crankgen.poincare(parameter="no_load_speed", values=[1.0], crank=crankgen.Motor(), n_elements=2)
