@@ -348,6 +348,9 @@ def test_write_report_has_every_section_and_is_deterministic(tmp_path):
     assert "Not yet computed" not in text
     assert "$$" in text and "nan" not in text.lower().replace("nanc", "")
     assert "CHECK FAILED" not in text
+    # section 7: A's leading dropped term of the pointwise stretch, -v_x^2 (4 u_x + v_x^2)/8, and the
+    # weights against the amplitude (tests/test_audit_exact.py checks their numbers)
+    assert "v_{,x}^{2} \\left(4 u_{,x} + v_{,x}^{2}\\right)" in text and "### 7.3" in text
     # the symbolic sections are reproduced exactly (the numeric ones are checked in test_term_groups)
     again = report.write_report(tmp_path / "two", sections=[1, 2, 3]).read_text(encoding="utf-8")
     body = text[text.index("## 1."):text.index("## 4.")]

@@ -14,6 +14,7 @@ import sys
 import numpy as np
 import pytest
 
+import crankgen
 from crankgen.cli import main as cli_main
 from crankgen.experiments import ReproduceConfig, output_names, reproduce
 from crankgen.experiments import findings as fd
@@ -203,14 +204,15 @@ def test_tiny_run_writes_every_file(tiny_run):
         assert (out / f"fig{f}.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
         rows = list(csv.DictReader(open(out / f"fig{f}.csv")))
         assert rows and "status" in rows[0] and "model" in rows[0]
-        assert {r["model"] for r in rows} == {"paper", "consistent"}
+        # the exact rod beside the two models in the amplitude sweeps (Figures 5 and 6) only
+        assert {r["model"] for r in rows} == {"paper", "consistent"} | ({"exact"} if f in (5, 6) else set())
 
 
 def test_every_table_parses_into_numbers_words_and_empty_fields(tiny_run):
     from helpers import check_csv
     _, out = tiny_run
     tables = sorted(out.glob("*.csv"))
-    assert len(tables) == 11
+    assert len(tables) == 13
     for path in tables:
         check_csv(path)
 
@@ -413,7 +415,7 @@ def test_sigint_then_rerun_gives_the_uninterrupted_result(tiny_run, tmp_path):
     assert "figure 4: computing (incomplete" in log or "figure 4: computing (missing" in log
     assert "figure 5: computing (missing" in log and "removed 1 temporary file" in log
     assert not list(out.glob(".*.tmp"))
-    assert _tables(out) == _tables(ref) and len(_tables(out)) == 11
+    assert _tables(out) == _tables(ref) and len(_tables(out)) == 13
     for name in output_names():                  # the figures too, byte for byte
         if name != "findings.md":
             assert (out / name).read_bytes() == (ref / name).read_bytes(), name
@@ -448,7 +450,7 @@ def test_second_command_line_run_recomputes_nothing(tiny_run, capsys, monkeypatc
     assert cli_main(["reproduce", "--quick", "--out", str(out)]) == 0
     captured = capsys.readouterr()
     err = captured.err
-    assert "0 step(s) computed, 12 kept" in captured.out and "computing" not in err
+    assert "0 step(s) computed, 13 kept" in captured.out and "computing" not in err
     assert "step(s) computed" not in err                   # the summary once, on stdout
     assert "bifurcations: kept (complete and current)" in err and "starting the compiled engine" not in err
 
@@ -540,8 +542,8 @@ def test_theory_flag_matches_the_deflection_and_the_strain(tiny_run):
     """beyond_theory: |v|/L of the row's response (the orbit when periodic or unstable, the
     settled transient otherwise) above 0.1, or its axial strain above 0.01."""
     _, out = tiny_run
-    rows = list(csv.DictReader(open(out / "fig6.csv")))
-    key = {"periodic": "amplitude", "unstable": "orbit_amplitude"}
+    rows = [r for r in csv.DictReader(open(out / "fig6.csv")) if r["model"] != "exact"]  # its own limits:
+    key = {"periodic": "amplitude", "unstable": "orbit_amplitude"}   # test_the_exact_rods_rows_...
     for r in rows:
         v = r[key.get(r["status"], "envelope")]
         strain = float(r["axial_strain"]) if r["axial_strain"] else math.nan
@@ -650,3 +652,52 @@ def test_a_transient_is_still_growing_when_its_last_revolution_exceeds_the_one_b
     flat = np.repeat([1.0, 2.0, 2.0 * 1.04], 10) * wave    # 4 %: not growing
     assert curve(flat).still_growing is None
     assert curve((envelope * wave)[:20]).still_growing is None     # two revolutions: not enough history
+
+
+def test_the_exact_rods_rows_sit_beside_unchanged_rows_of_the_two_models(tiny_run, tmp_path):
+    """Figure 5 without the exact rod (exact_rows=False) has every row and column of the two models
+    the tiny run has; the exact rod's rows use the consistent model's element count for A and are
+    flagged by the exact rod's own limits (crankgen.theory), from their own measures."""
+    from crankgen import theory
+    _, out = tiny_run
+    alone = tmp_path / "alone"
+    reproduce(alone, config=ReproduceConfig.tiny().with_(exact_rows=False), quiet=True, figures=[5])
+    with_exact = list(csv.DictReader(open(out / "fig5.csv")))
+    without = list(csv.DictReader(open(alone / "fig5.csv")))
+    two = [r for r in with_exact if r["model"] != "exact"]
+    assert len(two) == len(without) and len(with_exact) == len(two) + len({(r["omega"], r["eps"]) for r in two})
+    for a, b in zip(two, without):
+        assert {k: a[k] for k in b} == b
+    counts = {r["approach"]: r["n_elements"] for r in with_exact if r["model"] == "consistent"}
+    for r in (r for f in (5, 6) for r in csv.DictReader(open(out / f"fig{f}.csv")) if r["model"] == "exact"):
+        assert r["approach"] == "exact" and r["n_elements"] == counts["A"]    # tiny: exact_row_elements None
+        if r["status"] in ("periodic", "unstable"):
+            flag = theory.exact_range_flag(float(r["eps"]), float(r["fibre_strain"]),
+                                           float(r["section_rotation_deg"]))
+            assert r["beyond_theory"] == flag.label and 0 < float(r["section_rotation_deg"]) < 90
+
+
+def test_the_exact_rods_special_points_are_its_own_stability_changes(tiny_run):
+    """exact_rod_points.csv: each consistent special point has its fate; the exact rod's period
+    doubling found by the continuation is where steady_state's own shooting (another path) finds
+    the exact rod's crank-periodic orbit losing stability, with a multiplier through -1."""
+    _, out = tiny_run
+    rows = list(csv.DictReader(open(out / "exact_rod_points.csv")))
+    assert {r["model"] for r in rows} == {"consistent", "exact"}
+    cons = [r for r in rows if r["model"] == "consistent"]
+    assert cons and all(r["fate"] in ("survives", "moves", "vanishes") for r in cons)
+    moved = [r for r in cons if r["fate"] != "vanishes"]
+    assert all(float(r["shift"]) == pytest.approx(float(r["exact_omega"]) - float(r["omega"]), abs=1e-12)
+               for r in moved)
+    pd = next(r for r in rows if r["model"] == "exact" and r["kind"] == "period-doubling" and r["period"] == "1")
+    omega = float(pd["omega"])
+    mech = crankgen.Mechanism(eps=float(pd["eps"]))
+    kw = dict(model="exact", n_elements=int(pd["n_elements"]), steps_per_rev=int(pd["steps_per_rev"]))
+    below = crankgen.steady_state(mech, omega=omega - 0.01, **kw)
+    above = crankgen.steady_state(mech, omega=omega + 0.01, **kw)
+    assert below.multiplier < 1 < above.multiplier
+    text = (out / "findings.md").read_text()
+    assert "## The geometrically exact rod beside the two models" in text
+    assert f"period doubling {float(next(r for r in cons if r['kind'] == 'period-doubling')['omega']):.5g} -> " \
+           f"{omega:.5g}" in text
+    assert (out / "exact_rod.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

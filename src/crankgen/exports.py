@@ -8,7 +8,8 @@ dimensionless quantity is its name alone (extension), the crank angle is in degr
 units (theta_deg).  The outputs are those the result gives per step (`output_names`: the engine's,
 and with stored states every step and reduction output of the case's guide), fields at the
 positions asked (default the mid-span), then the measures of the range of the theory per step
-(deflection_over_L, axial_strain, beyond_theory: crankgen.theory).
+(deflection_over_L, axial_strain, beyond_theory: crankgen.theory; for the exact model also
+fibre_strain and section_rotation_deg, beyond_theory by its own limits, and range_note).
 """
 
 import numpy as np
@@ -97,9 +98,19 @@ def per_step(result, si=None, x=(0.5,), fiber=None, theory=True):
         strain = _theory.axial_strain(result, per_step=True)
         if strain.size != deflection.size:               # no states: the strain is unknown
             strain = np.full(deflection.shape, np.nan)
-        columns += ["deflection_over_L", "axial_strain", "beyond_theory"]
-        values += [deflection, strain, np.array([_theory.beyond(d, s) for d, s in zip(deflection, strain)],
-                                                dtype=object)]
+        if _theory.is_exact(result.case):          # the exact rod: its own limits (crankgen.theory)
+            fibre, rotation = _theory.exact_measures(result, per_step=True)
+            if fibre.size != deflection.size:
+                fibre = rotation = np.full(deflection.shape, np.nan)
+            flags = [_theory.exact_range_flag(result.case.eps, f, r) for f, r in zip(fibre, rotation)]
+            columns += ["deflection_over_L", "axial_strain", "fibre_strain", "section_rotation_deg",
+                        "beyond_theory", "range_note"]
+            values += [deflection, strain, fibre, rotation, np.array([f.label for f in flags], dtype=object),
+                       np.array([f.note for f in flags], dtype=object)]
+        else:
+            columns += ["deflection_over_L", "axial_strain", "beyond_theory"]
+            values += [deflection, strain, np.array([_theory.beyond(d, s) for d, s in zip(deflection, strain)],
+                                                    dtype=object)]
     return columns, values
 
 

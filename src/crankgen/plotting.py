@@ -61,10 +61,15 @@ def beyond_patch(color):
     return Patch(color=color, label=f"|v|/L > {DEFLECTION_LIMIT:g}: beyond the theory")
 
 
-def _beyond_theory(ax, eps, v, strain):
+def _beyond_theory(ax, eps, v, strain, result=None):
     """Shade |v*| beyond the theory's deflection limit where the data reach it; returns the note
-    for the title ('' when the response stays in the range of the theory)."""
+    for the title ('' when the response stays in the range of the theory).  An exact-model result
+    is judged by the exact rod's own limits (crankgen.theory: no band, the note names them)."""
     from . import theory
+    case = getattr(result, "case", None)
+    if case is not None and theory.is_exact(case):
+        flag = result.beyond_theory
+        return f"\nBEYOND THE EXACT ROD'S LIMITS: {flag.reason}" if flag else ""
 
     v = np.asarray(v, dtype=float)
     v = v[np.isfinite(v)]
@@ -118,7 +123,7 @@ def plot_deflection(result, path, failure=None, si=None, against="t", strain=Non
     eps = in_L(schema.OUTPUTS["v_mid"].units, result.settings) if si is None else 1e-3 / si.scales.L
     if strain is None:
         strain = theory.axial_strain(result, per_step=True)
-    note = _beyond_theory(ax, eps, v, strain)
+    note = _beyond_theory(ax, eps, v, strain, result)
     ax.set_title(_title(result.settings) + note, fontsize=9)
     ax.grid(alpha=0.3)
     return save_figure(fig, path)
@@ -178,8 +183,8 @@ def runup_figure(result, ramp_end, failure=None, si=None, strain=None):
     eps = in_L(schema.OUTPUTS["v_mid"].units, result.settings) if si is None else 1e-3 / si.scales.L
     if strain is None:
         strain = theory.axial_strain(result, per_step=True)
-    _beyond_theory(a1, eps, v[ramp], None if strain is None else np.asarray(strain)[ramp])
-    note = _beyond_theory(a2, eps, v, strain)
+    _beyond_theory(a1, eps, v[ramp], None if strain is None else np.asarray(strain)[ramp], result)
+    note = _beyond_theory(a2, eps, v, strain, result)
     where = ("" if complete else
              f"\nthe run ends at crank speed {speed[-1]:.4g}, before the ramp completes "
              f"(revolution {revs[-1]:.4g} of {result.settings.get(result.case.motion_record.transient, float('nan')):g})")
@@ -227,7 +232,7 @@ def orbit_figure(state, strain=None, si=None):
     if strain is None:
         strain = theory.axial_strain(state, per_step=True)
     eps = in_L(schema.OUTPUTS["v_mid"].units, state.case.parameters()) if si is None else 1e-3 / si.scales.L
-    note = _beyond_theory(a1, eps, v, strain)
+    note = _beyond_theory(a1, eps, v, strain, state)
     a1.set_title(f"steady state: {state.status}{mult}\n" + (_title(s) if si is None else _si_title(state, si))
                  + note, fontsize=9)
     return fig

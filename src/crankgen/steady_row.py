@@ -5,7 +5,7 @@ Columns, in order: the case's parameters (schema order; empty where the case's g
 motion does not read them: a slider's row has no c, d, branch, a constant speed's no omega0, ramp,
 fluctuation, order), the model (the preset its options match, empty for none), the model options
 and the audit's switched-off groups, then the results (RESULTS: status, amplitude, half
-peak-to-peak, the range of the theory, ...) with, after beyond_theory, the peak over the orbit of
+peak-to-peak, the range of the theory, ...) with, after range_note, the peak over the orbit of
 every load the case's guide declares (`peak_<output>`: the largest |value| of each declared step
 output whose unit is a force or a moment: the driving torque, the joint forces' components).
 A number that does not exist is None (an empty CSV field).  The units of a column are crankgen's
@@ -22,7 +22,7 @@ from .units import Scales
 
 AMPLITUDE_UNITS = schema.OUTPUTS["v_mid"].units        # the amplitude is of v*(1/2), in its units
 
-# the result columns of a row: (name, units or None for words, meaning); "peak_*" follow beyond_theory
+# the result columns of a row: (name, units or None for words, meaning); "peak_*" follow range_note
 RESULTS = (
     ("status", None, "periodic (a stable periodic orbit), unstable (an orbit with a Floquet multiplier "
                      "outside the unit circle), not-periodic or failed; the message says why"),
@@ -30,11 +30,21 @@ RESULTS = (
                                    "rigid rod, in units of the radius of gyration r"),
     ("half_peak_to_peak", AMPLITUDE_UNITS, "half the peak-to-peak of v*(1/2) over the orbit, (max - min) / 2"),
     ("deflection_over_L", "1", "the amplitude as a deflection over the rod's length, |v|/L = eps max|v*|: "
-                               "beyond the theory above 0.1"),
+                               "beyond the theory above 0.1 (the paper's range; not a limit of the exact model)"),
     ("axial_strain", "1", "the largest axial strain of the neutral axis over the orbit (the approach's "
-                          "membrane strain, nodes and element midpoints): beyond the theory above 0.01"),
+                          "membrane strain, nodes and element midpoints): beyond the theory above 0.01 "
+                          "(the paper's range; not a limit of the exact model)"),
+    ("fibre_strain", "1", "exact model only: the largest |strain| at the outer fibres of a rectangular "
+                          "section (fiber = +-sqrt(3) r) over the orbit: beyond its limits above 0.005"),
+    ("section_rotation_deg", None, "exact model only: the largest section rotation from the chord over the "
+                                   "orbit in degrees, asin(|v_x| / lambda) at the element ends: beyond its "
+                                   "limits above 60"),
     ("beyond_theory", None, "yes when deflection_over_L or axial_strain exceeds its limit (the numbers are "
-                            "then the equations' output, not a prediction of the rod), no when neither does"),
+                            "then the equations' output, not a prediction of the rod), no when neither does; "
+                            "for the exact model by its own limits: eps > 0.05, fibre_strain, "
+                            "section_rotation_deg"),
+    ("range_note", None, "when beyond: the limits exceeded and what to use (model=\"exact\" beyond the "
+                         "paper's range; for the exact model what its limits leave out); empty otherwise"),
     ("periods", "rev", "crank revolutions marched: the warm-up from rest and any marching fallback"),
     ("iterations", "1", "Newton iterations of shooting"),
     ("residual", "1", "the scaled change |P(x) - x| of the returned state over one revolution"),
@@ -89,9 +99,20 @@ def row(state):
     deflection = (None if state.amplitude is None
                   else _number(theory.deflection_over_L(in_L(AMPLITUDE_UNITS, values), state.amplitude)))
     strain = _number(theory.axial_strain(state)) if has_orbit else None
-    flag = theory.beyond(math.nan if deflection is None else deflection, math.nan if strain is None else strain)
+    if theory.is_exact(case):
+        fibre, rotation = theory.exact_measures(state) if has_orbit else (math.nan, math.nan)
+        fibre, rotation = _number(fibre), _number(rotation)
+        exact = theory.exact_range_flag(case.eps, math.nan if fibre is None else fibre,
+                                        math.nan if rotation is None else rotation)
+        flag, note = (exact.label if has_orbit else ""), exact.note
+    else:
+        fibre = rotation = None
+        flag = theory.beyond(math.nan if deflection is None else deflection, math.nan if strain is None else strain)
+        note = theory.range_flag(math.nan if deflection is None else deflection,
+                                 math.nan if strain is None else strain).note
     results = dict(status=state.status, amplitude=state.amplitude, half_peak_to_peak=state.half_peak_to_peak,
-                   deflection_over_L=deflection, axial_strain=strain, beyond_theory=flag or None)
+                   deflection_over_L=deflection, axial_strain=strain, fibre_strain=fibre,
+                   section_rotation_deg=rotation, beyond_theory=flag or None, range_note=note or None)
     for name in load_outputs(guide):
         results[PEAK + name] = (_number(np.max(np.abs(np.asarray(state.quantity(name), dtype=float))))
                                 if has_orbit else None)

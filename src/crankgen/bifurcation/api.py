@@ -187,7 +187,8 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
     if flag:
         notices.warn(BeyondTheoryWarning, f"branches of the continuation reach beyond the theory "
                      f"({flag.reason}): their numbers there are the equations' output, not a prediction of the "
-                     f"rod; branch.beyond_theory marks the points", stacklevel=2)
+                     f"rod; branch.beyond_theory marks the points" + (f"; {flag.remedy}" if flag.remedy else ""),
+                     stacklevel=2)
     return diagram
 
 

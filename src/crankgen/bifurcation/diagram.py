@@ -106,21 +106,45 @@ class BifurcationDiagram:
         from .si_view import DiagramSI
         return DiagramSI(self, si_mechanism)
 
+    @property
+    def exact(self):
+        """Whether the diagram is of the exact rod (its own limits, crankgen.theory)."""
+        return (self.info or {}).get("approach") == "exact"
+
     def flag_range(self):
-        """Set every branch's deflection_over_L and beyond_theory (a mechanism's diagram: eps known)."""
-        from ..theory import DEFLECTION_LIMIT
+        """Set every branch's deflection_over_L and beyond_theory (a mechanism's diagram: eps known);
+        for the exact rod beyond_theory by its own limits: eps, and the orbits' outer-fibre strain
+        (the peak_strain quantity, when computed; the section rotation is not computed along
+        branches)."""
+        from ..theory import DEFLECTION_LIMIT, FIBRE_STRAIN_LIMIT, SLENDERNESS_LIMIT
         for br in self.branches:
             if len(br) and self.eps_at(br.parameter[0]) is not None:
                 eps = np.array([self.eps_at(p) for p in br.parameter])
                 br.deflection_over_L = np.abs(eps * br.amplitude)
-                br.beyond_theory = br.deflection_over_L > DEFLECTION_LIMIT
+                if self.exact:
+                    strain = np.asarray((br.quantities or {}).get("peak_strain", np.full(len(br), np.nan)), float)
+                    with np.errstate(invalid="ignore"):
+                        br.beyond_theory = (eps > SLENDERNESS_LIMIT) | (strain > FIBRE_STRAIN_LIMIT)
+                else:
+                    br.beyond_theory = br.deflection_over_L > DEFLECTION_LIMIT
 
     @property
     def beyond_theory(self):
         """The RangeFlag (crankgen.theory) of the whole diagram: its largest |v|/L over every branch
-        point (the axial strain is not computed along branches); each branch's beyond_theory gives
+        point (the axial strain is not computed along branches); for the exact rod its largest eps
+        and outer-fibre strain (peak_strain) by its own limits; each branch's beyond_theory gives
         the points."""
-        from ..theory import range_flag
+        from ..theory import exact_range_flag, range_flag
+
+        def largest(arrays):
+            values = [float(np.nanmax(a)) for a in arrays if a is not None and len(a) and np.isfinite(a).any()]
+            return max(values) if values else math.nan
+        if self.exact:
+            eps = largest([np.array([self.eps_at(p) for p in br.parameter]) for br in self.branches
+                           if len(br) and self.eps_at(br.parameter[0]) is not None])
+            strain = largest([np.asarray(br.quantities["peak_strain"], float) for br in self.branches
+                              if "peak_strain" in (br.quantities or {})])
+            return exact_range_flag(eps, strain)
         values = [np.max(br.deflection_over_L) for br in self.branches
                   if br.deflection_over_L is not None and len(br)]
         return range_flag(max(values) if values else math.nan)
@@ -178,8 +202,10 @@ class BifurcationDiagram:
         flags = self.eps_at(self.branches[0].parameter[0]) is not None if self.branches else False
         quantities = list(dict.fromkeys(q for br in self.branches for q in br.quantities))
 
-        def theory(p, amplitude):
+        def theory(p, amplitude, flag=None):
             x = abs(self.eps_at(p) * float(amplitude))
+            if self.exact:                  # the exact rod's own limits (flag_range)
+                return [_num(x), "" if flag is None else ("yes" if flag else "no")]
             return [_num(x), beyond(deflection=x)]
         with atomic_file(paths[0]) as fh:
             w = csv.writer(fh)
@@ -191,7 +217,9 @@ class BifurcationDiagram:
                     w.writerow([b, br.period, i, _num(br.parameter[i]), _num(br.amplitude[i]),
                                 int(br.stable[i]), _num(np.abs(br.multipliers[i]).max()), br.origin,
                                 br.stop_reason]
-                               + (theory(br.parameter[i], br.amplitude[i]) if flags else [])
+                               + (theory(br.parameter[i], br.amplitude[i],
+                                         None if br.beyond_theory is None else br.beyond_theory[i])
+                                  if flags else [])
                                + [_num(br.quantities[q][i]) if q in br.quantities else "" for q in quantities])
         with atomic_file(paths[1]) as fh:
             w = csv.writer(fh)

@@ -141,8 +141,11 @@ def build_parser():
                                    "formulation, kelvin-voigt damping, averaged membrane): one PNG and one "
                                    "CSV per figure, convergence.png/.csv (element-count check), the "
                                    "continuation of approach A over 0.1 <= Omega* <= 1.6 for both models "
-                                   "(bifurcations.csv, drawn over Figure 6), and findings.md: the paper's "
-                                   "claims beside both models, every number computed from the runs. A "
+                                   "(bifurcations.csv, drawn over Figure 6), the geometrically exact rod "
+                                   "beside both models in Figures 5 and 6 and, with Figure 6, the consistent "
+                                   "model's special points re-read on it (continuation of both, slider-crank "
+                                   "and four-bar: exact_rod.png, exact_rod_points.csv), and findings.md: the "
+                                   "paper's claims beside both models, every number computed from the runs. A "
                                    "rerun keeps what is complete and current (manifest.json).")
     p.add_argument("--out", default="results",
                    help="output folder (created if missing; default ./results); a rerun keeps what is "
@@ -179,13 +182,14 @@ def build_parser():
                                    "equations by kind, 3 the printed matrix form against the derivation, "
                                    "with each transcription problem of the printed equations checked, 4 "
                                    "weights of the term groups along steady trajectories, 5 the quartic "
-                                   "term, 6 element convergence and membrane locking. Offline; under a minute on 2 cores "
+                                   "term, 6 element convergence and membrane locking, 7 approach A against the exact "
+                                   "strain (its series, weighed along the same steady revolutions). Offline; a minute or two on 2 cores "
                                    "once the engine is compiled.")
     p.add_argument("--out", default="audit",
                    help="output folder (default ./audit); report.md is regenerated (replaced atomically)")
     p.add_argument("--sections", type=_number_list("section", min(AUDIT_SECTIONS), max(AUDIT_SECTIONS)),
                    default=None, metavar="LIST",
-                   help="comma-separated sections to write (default: all, 1-6)")
+                   help="comma-separated sections to write (default: all, 1-7)")
     p.add_argument("--quiet", action="store_true", help="no progress output")
     p.set_defaults(func=_cmd_audit)
 

@@ -30,12 +30,16 @@ def _failure_text(failure, approach):
     return text
 
 
-def _theory_note(deflection, strain):
-    """'; beyond the theory (...)' when a response leaves the range of the theory."""
-    from ..theory import CRITERION, reasons
+def _theory_note(deflection, strain, result=None):
+    """'; beyond the theory (...)' when a response leaves the range of the theory (the paper's, and
+    what to use beyond it; an exact-model result's by the exact rod's own limits)."""
+    from ..theory import CRITERION, REMEDY, is_exact, reasons
 
+    if getattr(result, "case", None) is not None and is_exact(result.case):
+        flag = result.beyond_theory
+        return f"; {flag}" if flag else ""
     why = reasons(deflection, strain)
-    return f"; BEYOND THE THEORY ({why}; criterion {CRITERION})" if why else ""
+    return f"; BEYOND THE THEORY ({why}; criterion {CRITERION}); {REMEDY}" if why else ""
 
 
 def _cmd_simulate(args):
@@ -152,7 +156,7 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
     else:
         out.wrote(plot_deflection(res, out.path("v_mid.png"), failure=failure, si=view, strain=strain))
     note = _theory_note(float(np.max(defl)) if len(defl) else math.nan,
-                        float(np.max(strain)) if len(strain) else math.nan)
+                        float(np.max(strain)) if len(strain) else math.nan, res)
     if failure is not None:
         print(f"crankgen simulate: run failed: {_failure_text(failure, case.approach)}; wrote the "
               f"history up to the failure ({len(res.t)} points, marked in the status column) to "
@@ -281,7 +285,7 @@ def _steady(args, case, out, section=None, si=None):
           f"revolutions marched, residual {num(st.residual, '{:.2e}')}"
           + (f"; {row['message']}" if row["message"] else "")
           + _theory_note(nan if row["deflection_over_L"] is None else row["deflection_over_L"],
-                         nan if row["axial_strain"] is None else row["axial_strain"]))
+                         nan if row["axial_strain"] is None else row["axial_strain"], st))
     if st.period is not None:
         print(f"the motor-driven crank: revolution time T* = {st.period:.6g}, mean speed {st.mean_speed:.6g} "
               f"(no-load {2 * math.pi / step_period(case):g}), speed fluctuation {st.speed_fluctuation:.4g} of the mean; "

@@ -36,6 +36,11 @@ PAPER = ModelSpec("paper", "paper model (printed form, eq. 24 damping)")
 # with Kelvin-Voigt damping it needs ~128 elements for 1 % at Omega* = 0.8, the averaged one 4).
 CONSISTENT = ModelSpec("consistent", "consistent model (Lagrange, Kelvin-Voigt, averaged membrane)")
 MODELS = (PAPER, CONSISTENT)
+# The geometrically exact rod (issue 26), set beside the two models where it changes the reading:
+# the amplitude sweeps of Figures 5 and 6 (its own rows, with the consistent model's element
+# count for A) and the exact-rod continuation (exact_rod.py).  Not one of MODELS: the figures'
+# panels, approaches and claims stay those of the paper's two models.
+EXACT = ModelSpec("exact", "exact rod (exact stretch, curvature and section rotation)")
 APPROACHES = ("A", "B", "C")
 FIGURES = (2, 3, 4, 5, 6, 7, 8)
 
@@ -111,6 +116,28 @@ class ReproduceConfig:
     bif_beyond_values: int = 4
     bif_transient: int = 100
     bif_samples: int = 32
+    # the exact rod beside the two models in Figures 5 and 6 (rows of model "exact"), with
+    # exact_row_elements elements (None: the consistent model's count for A)
+    exact_rows: bool = True
+    exact_row_elements: object = None
+    # the continuation of the exact rod and of the consistent model (exact_rod.py): the
+    # slider-crank and the four-bar (a rocker of radius exact_rocker pivoted at (1, 0)) at eps =
+    # exact_eps over Omega* in exact_range, exact_elements elements, exact_steps steps per
+    # revolution, period doublings followed up to exact_max_period (exact_mechanisms: which)
+    exact_mechanisms: tuple = ("slider-crank", "four-bar")
+    exact_eps: float = 0.01
+    exact_range: tuple = (0.2, 1.6)
+    exact_elements: int = 16
+    exact_steps: int = 100
+    exact_max_period: int = 2
+    exact_rocker: float = 0.5
+    exact_tol: float = 1e-9
+    # a consistent special point and an exact one of the same kind and period within exact_match
+    # in Omega* are the same point, moved; then both models marched from rest at exact_snap_omega
+    # for exact_snap_revolutions revolutions (the snap-through orbit; 0: skip)
+    exact_match: float = 0.1
+    exact_snap_omega: float = 1.2
+    exact_snap_revolutions: int = 30
     # thresholds of the findings
     differ_threshold: float = 0.10       # "B or C differs from A by more than 10 %"
     crossing_rel_tol: float = 0.05       # extension spread at a common crossing / largest spread
@@ -142,6 +169,7 @@ class ReproduceConfig:
             ext_ms=(0.0, 0.5, 2.0), envelope_revolutions=20, envelope_window=5,
             bif_elements=4, bif_steps_per_rev=50, bif_max_period=2, bif_tol=1e-7,
             bif_beyond_values=2, bif_transient=60, bif_samples=16,
+            exact_row_elements=8, exact_elements=4, exact_steps=50, exact_tol=1e-7, exact_snap_revolutions=12,
             steady_options={"max_revolutions": 50, "tol": 1e-6})
 
     @classmethod
@@ -156,7 +184,8 @@ class ReproduceConfig:
             ext_ms=(0.0, 1.0), envelope_revolutions=4, envelope_window=1,
             bif_range=(0.9, 1.3), bif_elements=4, bif_steps_per_rev=50, bif_max_period=2,
             bif_beyond_values=2, bif_transient=20, bif_samples=8,
-            steady_options={"max_revolutions": 20})
+            exact_mechanisms=("slider-crank",), exact_range=(0.9, 1.2), exact_elements=4, exact_steps=50,
+            exact_tol=1e-7, exact_snap_revolutions=2, steady_options={"max_revolutions": 20})
 
     @classmethod
     def preset_named(cls, name):

@@ -14,7 +14,7 @@ import numpy as np
 from .. import theory
 from ..cases import Case
 from . import findings as fd
-from .config import APPROACHES, MODELS
+from .config import APPROACHES, EXACT, MODELS
 
 STABLE = "periodic"
 # A run of an approach whose strain energy is unbounded below (crankgen.theory: approach B) that
@@ -121,7 +121,7 @@ class TransientCurve:
 
 
 def model_spec(key):
-    return next(m for m in MODELS if m.key == key)
+    return next(m for m in MODELS + (EXACT,) if m.key == key)
 
 
 def make_case(cfg, model_key, approach, n, omega, eps=None, ms=None, steps=None):
@@ -153,6 +153,9 @@ def steady_row(model_key, s, **extra):
                envelope=math.nan, envelope_note="",
                axial_strain=theory.axial_strain(s) if orbit else math.nan,
                strain_energy_bound=theory.strain_energy(c.approach))
+    if c.approach == EXACT.key:       # the exact rod's own limits (crankgen.theory)
+        row["fibre_strain"], row["section_rotation_deg"] = (theory.exact_measures(s) if orbit
+                                                            else (math.nan, math.nan))
     row.update(extra)
     flag_theory(row)
     return row
@@ -169,9 +172,14 @@ def response_of(row):
 
 def flag_theory(row):
     """deflection_over_L (|v|/L of the row's response, response_of) and beyond_theory ("yes" when
-    it or the row's axial strain exceeds the limits of crankgen.theory)."""
+    it or the row's axial strain exceeds the limits of crankgen.theory; an exact-rod row by the
+    exact rod's own limits: its eps, outer-fibre strain and section rotation)."""
     row["deflection_over_L"], row["beyond_theory"] = beyond_theory(
         row["eps"], response_of(row), row.get("axial_strain", math.nan))
+    if row.get("approach") == EXACT.key:
+        flag = theory.exact_range_flag(row["eps"], row.get("fibre_strain", math.nan),
+                                       row.get("section_rotation_deg", math.nan))
+        row["beyond_theory"] = flag.label if math.isfinite(response_of(row)) else ""
 
 
 # ----------------------------------------------------------------------------- convergence
@@ -419,7 +427,8 @@ def _envelopes(ctx, rows, label):
                 if r["status"] == "not-periodic":
                     r["axial_strain"] = strain
                 else:        # an unstable orbit: the row is about the orbit, the note about this
-                    why = theory.reasons(theory.deflection_over_L(r["eps"], last), strain)
+                    why = ("" if r["approach"] == EXACT.key else    # its own limits: the row's flag
+                           theory.reasons(theory.deflection_over_L(r["eps"], last), strain))
                     note += ("; it settles away from the unstable orbit" if last > 1.05 * r["orbit_amplitude"]
                              else "") + (f"; beyond the theory ({why})" if why else "")
                 r["envelope_note"] = note
@@ -442,6 +451,12 @@ def _sweep(ctx, counts, points, label):
     rows = [steady_row(k, s) for k, s in zip(keys, ctx.steady(cases, label))]
     _add_ratios(rows)
     _envelopes(ctx, rows, label)
+    if cfg.exact_rows:               # the exact rod beside them, in its own call: the rows above unchanged
+        n = cfg.exact_row_elements or counts[(MODELS[1].key, "A")]
+        cases = [make_case(cfg, EXACT.key, EXACT.key, n, om, eps=eps) for om, eps in points]
+        exact = [steady_row(EXACT.key, s) for s in ctx.steady(cases, f"{label}, the exact rod")]
+        _envelopes(ctx, exact, f"{label}, the exact rod")
+        rows += exact
     return rows
 
 
@@ -503,7 +518,7 @@ STEADY_COLUMNS = ["model", "formulation", "damping", "approach", "strain_energy_
                   "steps_per_rev", "omega", "eps", "ms", "status", "amplitude", "ratio_to_A",
                   "orbit_amplitude", "half_peak_to_peak", "envelope", "envelope_note",
                   "deflection_over_L", "axial_strain", "beyond_theory", "iterations", "periods",
-                  "residual", "multiplier", "message"]
+                  "residual", "multiplier", "message", "fibre_strain", "section_rotation_deg"]
 TRANSIENT_COLUMNS = ["model", "formulation", "damping", "approach", "strain_energy_bound", "n_elements",
                      "steps_per_rev", "omega", "eps", "ms", "status", "message", "t", "theta_deg",
                      "v_mid", "deflection_over_L", "axial_strain", "beyond_theory"]

@@ -1,6 +1,19 @@
 """Figures 5 and 6 (steady amplitude against eps and against Omega*): one series per approach,
 with every case that has no stable periodic state marked (plots.py states the conventions), the
-shaded range beyond the theory, and on Figure 6 the continuation of approach A."""
+shaded range beyond the theory, the geometrically exact rod (black) beside both models' panels,
+and on Figure 6 the continuation of approach A."""
+
+EXACT_COLOR = "#17becf"      # teal: apart from the approaches and the periods of the continuation
+
+
+def _exact_series(ax, rows, xkey, mark_missing=True, label_speed=None, ls="-"):
+    """The exact rod's rows (model "exact") of a panel, in black over the panel's approaches."""
+    if not rows:
+        return
+    n = rows[0]["n_elements"]
+    label = f"exact rod (n = {n})" + (f", Omega* = {label_speed:g}" if label_speed is not None else "")
+    _sweep_series(ax, rows, xkey, EXACT_COLOR, ls, ".", label, mark_missing=mark_missing, ms=3,
+                  slot=len(APPROACHES))
 
 import math
 
@@ -8,7 +21,7 @@ import numpy as np
 
 from ..plotting import APPROACH_COLORS, panels
 from . import plot_bifurcations as PB
-from .config import APPROACHES, MODELS
+from .config import APPROACHES, EXACT, MODELS
 from . import figures as F
 from .figures import DIVERGED, STRAIN_LIMIT, THEORY_LIMIT
 from .plot_style import (APPROACH_STYLES, SPEED_STYLES, Line2D, coincide_note, legend_below, legend_room,
@@ -108,7 +121,10 @@ def _limit_to_steady(ax, rows, xkey, margin=1.25, extra=()):
 
 
 def _strained(r):
-    """Whether a row's response exists and its axial strain is beyond the theory."""
+    """Whether a row's response exists and its axial strain is beyond the theory (the paper's: the
+    exact rod has limits of its own, findings.md)."""
+    if r.get("model") == EXACT.key:
+        return False
     e = r.get("axial_strain", math.nan)
     return math.isfinite(F.response_of(r)) and e is not None and math.isfinite(e) and e > STRAIN_LIMIT
 
@@ -182,7 +198,7 @@ def _theory_curve(ax, xkey, eps_fixed, rows):
 
 def plot_figure5(data, cfg, counts):
     oms = list(cfg.fig5_omegas)
-    fig, axes = panels(len(oms) + 1, 2, width=6.2, height=2.9, space_below=legend_room(8, 2), top_margin=0.8)
+    fig, axes = panels(len(oms) + 1, 2, width=6.2, height=2.9, space_below=legend_room(10, 2), top_margin=0.8)
     for j, m in enumerate(MODELS):
         rows = [r for r in data["rows"] if r["model"] == m.key]
         for i in range(len(oms) + 1):
@@ -190,6 +206,7 @@ def plot_figure5(data, cfg, counts):
             log = i == len(oms)
             shown = oms if log else [oms[i]]
             sel_rows = [r for r in rows if r["omega"] in shown]
+            exact_rows = [r for r in data["rows"] if r["model"] == EXACT.key and r["omega"] in shown]
             for k, om in enumerate(shown):
                 speed_ls = SPEED_STYLES[k % len(SPEED_STYLES)][0]
                 for ap in APPROACHES:
@@ -198,6 +215,9 @@ def plot_figure5(data, cfg, counts):
                     n = sel[0]["n_elements"] if sel else "?"
                     _sweep_series(ax, sel, "eps", APPROACH_COLORS[ap], speed_ls if log else ls, mk,
                                   f"{ap} (n = {n})" + (f", Omega* = {om:g}" if log else ""), ms=size, slot=APPROACHES.index(ap))
+                _exact_series(ax, [r for r in exact_rows if r["omega"] == om], "eps",
+                              label_speed=om if log else None, ls=speed_ls if log else "-")
+            sel_rows = sel_rows + exact_rows
             ax.set_xlabel("eps")
             if log:
                 ax.set_xscale("log")
@@ -229,7 +249,7 @@ def plot_figure6(data, cfg, counts, bifurcations=None):
         if r["model"] == MODELS[1].key:
             runs[r["eps"]] = r
     n_bif = max((len(PB.legend_handles(r)) for r in runs.values()), default=0)
-    fig, axes = panels(n_rows, 2, width=6.4, height=2.9, space_below=legend_room(7 + n_bif, 2),
+    fig, axes = panels(n_rows, 2, width=6.4, height=2.9, space_below=legend_room(8 + n_bif, 2),
                        top_margin=1.0 if runs else 0.8)
     oms = sorted(set(cfg.fig6_omegas))
     step = float(np.min(np.diff(oms))) if len(oms) > 1 else 0.05
@@ -245,6 +265,7 @@ def plot_figure6(data, cfg, counts, bifurcations=None):
         for i, eps in enumerate(cfg.fig6_eps):
             zoom_xlim = zooms[eps]
             rows = [r for r in data["rows"] if r["model"] == m.key and r["eps"] == eps]
+            exact_rows = [r for r in data["rows"] if r["model"] == EXACT.key and r["eps"] == eps]
             run = runs.get(eps) if m is MODELS[1] else None
             for zoom in (False, True):
                 ax = axes[2 * i + zoom, j]
@@ -254,6 +275,7 @@ def plot_figure6(data, cfg, counts, bifurcations=None):
                     n = sel[0]["n_elements"] if sel else "?"
                     _sweep_series(ax, sel, "omega", APPROACH_COLORS[ap], ls, mk, f"{ap} (n = {n})",
                                   mark_missing=not zoom, ms=size, slot=APPROACHES.index(ap))
+                _exact_series(ax, exact_rows, "omega", mark_missing=not zoom)
                 ax.set_xlabel("Omega*")
                 ax.set_ylabel("steady amplitude max |v*|")
                 if zoom:
@@ -265,14 +287,14 @@ def plot_figure6(data, cfg, counts, bifurcations=None):
                                            and F.response_of(r) <= cfg.fig6_inset_ylim])
                 else:
                     ax.set_xlim(*xlim)
-                    _limit_to_steady(ax, rows, "omega",
+                    _limit_to_steady(ax, rows + exact_rows, "omega",
                                      extra=[PB.top(run, xlim) * 1.05 / 1.25] if run else ())
                     ax.set_xlim(*xlim)
-                    if _has_missing(rows):
+                    if _has_missing(rows + exact_rows):
                         room_below(ax)
                     panel_title(ax, m, f", eps = {eps:g}" + ("\nswept points and the continuation of approach A"
                                                         if run else ""))
-                    extra = _status_handles(rows, off_scale=_has_off_scale(ax, rows))
+                    extra = _status_handles(rows + exact_rows, off_scale=_has_off_scale(ax, rows + exact_rows))
                 if run is not None:
                     extra = PB.draw(ax, run) + extra
                 extra = _theory_curve(ax, "omega", eps, rows) + extra

@@ -15,7 +15,8 @@ from . import figures as F
 from . import claims
 from . import findings as fd
 from . import report_bifurcations as RB
-from .config import APPROACHES, MODELS
+from . import report_exact_rod as RX
+from .config import APPROACHES, EXACT, MODELS
 from .markdown import num, pct, table
 from .markdown import rows_where as _rows, series as _series, short as _short
 from .report_figures import (_convergence, _disagreement, _extensions, _ratios, _slopes,
@@ -78,12 +79,10 @@ def _failures(cfg, conv, data):
 
     for r in conv["rows"]:
         add("convergence", dict(r), "n_elements")
-    if 5 in data:
-        for r in data[5]["rows"]:
-            add("5", r, "eps")
-    if 6 in data:
-        for r in data[6]["rows"]:
-            add("6", r, "omega")
+    for f, xkey in ((5, "eps"), (6, "omega")):        # the exact rod's rows: its own section
+        for r in data.get(f, {}).get("rows", []):
+            if r["model"] != EXACT.key:
+                add(str(f), r, xkey)
     for f in (7, 8):
         if f in data:
             for r in data[f]["curves"]:
@@ -367,7 +366,7 @@ def _theory(cfg, data):
         groups = OrderedDict()
         for r in data.get(f, {}).get("rows", []):
             fixed = r["eps"] if f == 6 else r["omega"]
-            if r["status"] == F.DIVERGED:
+            if r["status"] == F.DIVERGED or r["model"] == EXACT.key:   # the exact rod: its own limits
                 continue
             if r.get("beyond_theory") == "yes":
                 groups.setdefault((r["model"], r["approach"], fixed, kinds.get(r["status"], r["status"])), []).append(
@@ -421,10 +420,12 @@ def _figures_text(figs):
 
 
 def findings_markdown(cfg, conv, refine, data, timings, total, files=(), missing=None,
-                      bifurcations=None, bifurcations_missing=None, engine=None):
+                      bifurcations=None, bifurcations_missing=None, engine=None, exact=None,
+                      exact_missing=None):
     """The whole findings.md.  Deterministic for the same runs except the last section (Run:
     date and wall times).  bifurcations: the data of the bifurcations step (None: absent, for the
-    reason bifurcations_missing)."""
+    reason bifurcations_missing); exact: the data of the exact rod step (None: absent, for the
+    reason exact_missing)."""
     now = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     figs = sorted(data)
     title = "Figures 2-8 recomputed" if not missing else (
@@ -437,7 +438,8 @@ def findings_markdown(cfg, conv, refine, data, timings, total, files=(), missing
              "data/*.json); the statements and verdicts are generated from those numbers.", ""]
     lines += _missing_note(missing)
     lines += _claims(cfg, conv, data, missing)
-    lines += _summary(cfg, conv, data)[:-1] + [RB.summary_line(bifurcations, bifurcations_missing), ""]
+    lines += _summary(cfg, conv, data)[:-1] + [RB.summary_line(bifurcations, bifurcations_missing),
+                                               RX.summary_line(exact, exact_missing), ""]
     lines += _ill_posed(cfg, conv, data)
     lines += _theory(cfg, data)
     lines += _settings(cfg, total, files)
@@ -445,6 +447,7 @@ def findings_markdown(cfg, conv, refine, data, timings, total, files=(), missing
     lines += _ratios(cfg, data)
     lines += _threshold(cfg, data)
     lines += RB.section(cfg, bifurcations, bifurcations_missing)
+    lines += RX.section(cfg, data, exact, exact_missing)
     lines += _slopes(cfg, data)
     lines += _extensions(cfg, data)
     lines += _transients(cfg, data)

@@ -18,6 +18,7 @@ from ..cases import Case
 from ..progress import Progress
 from ..simulation import simulate_many
 from . import bifurcations as BF
+from . import exact_rod as XR
 from . import figures as F
 from . import plots, report
 from .config import FIGURES, ReproduceConfig
@@ -31,6 +32,7 @@ DATA = "data"          # subfolder of the computed data that findings.md is buil
 
 
 BIFURCATION_FILES = ["bifurcations.csv", "bifurcation_branches.csv", "bifurcation_beyond.csv"]
+EXACT_FILES = ["exact_rod.png", "exact_rod_points.csv", "exact_rod_branches.csv"]
 
 
 def output_names(figures=FIGURES):
@@ -40,7 +42,7 @@ def output_names(figures=FIGURES):
     for f in figures:
         names += [f"fig{f}.png", f"fig{f}.csv"]
     if 6 in figures:
-        names += BIFURCATION_FILES
+        names += BIFURCATION_FILES + EXACT_FILES
     return names + ["convergence.png", "convergence.csv", "findings.md"]
 
 
@@ -51,13 +53,14 @@ def step_files(step):
         return [f"{DATA}/fig{f}.json", f"fig{f}.csv", f"fig{f}.png"]
     return {"convergence check": [f"{DATA}/convergence.json"],
             "bifurcations": [f"{DATA}/bifurcations.json", *BIFURCATION_FILES],
+            "exact rod": [f"{DATA}/exact_rod.json", *EXACT_FILES],
             "refinement check": [f"{DATA}/refinement.json"],
             "convergence files": ["convergence.csv", "convergence.png"],
             "findings": ["findings.md"]}[step]
 
 
-STEPS = ("convergence check", "bifurcations", *[f"figure {f}" for f in FIGURES], "refinement check",
-         "convergence files", "findings")
+STEPS = ("convergence check", "bifurcations", "exact rod", *[f"figure {f}" for f in FIGURES],
+         "refinement check", "convergence files", "findings")
 
 
 def all_files():
@@ -71,13 +74,17 @@ _COMMON = ("a", "eps", "ms", "mu", "steps_per_rev", "steady_options")
 _FIGURE_KEYS = {2: ("fig2_omega", "fig2_elements", "fig2_revolutions"),
                 3: ("fig3_omega", "fig3_elements", "fig3_steps", "fig3_revolutions"),
                 4: ("fig4_omega", "fig4_revolutions", "fig4_ms"),
-                5: ("fig5_omegas", "fig5_eps", "envelope_revolutions", "envelope_window"),
+                5: ("fig5_omegas", "fig5_eps", "envelope_revolutions", "envelope_window", "exact_rows",
+                    "exact_row_elements"),
                 6: ("fig6_omegas", "fig6_eps", "fig6_inset_ylim", "envelope_revolutions",
-                    "envelope_window"),
+                    "envelope_window", "exact_rows", "exact_row_elements"),
                 7: ("fig7_omega", "ext_ms", "crossing_rel_tol"),
                 8: ("fig8_omega", "ext_ms", "crossing_rel_tol")}
 _BIFURCATION_KEYS = ("fig6_eps", "bif_range", "bif_elements", "bif_steps_per_rev", "bif_max_period",
                      "bif_dp_max", "bif_tol", "bif_beyond_values", "bif_transient", "bif_samples")
+_EXACT_KEYS = ("exact_mechanisms", "exact_eps", "exact_range", "exact_elements", "exact_steps",
+               "exact_max_period", "exact_rocker", "exact_tol", "exact_match", "exact_snap_omega",
+               "exact_snap_revolutions", "dpi")
 
 
 def _settings(cfg, keys, **extra):
@@ -270,7 +277,7 @@ def _reproduce(out, config, force, quiet, figures, stream):
                 f"{config.preset} run ({len(deleted)} of its files removed)")
     manifest.preset = config.preset
     # files this run may write that no recorded step made: refuse before computing anything
-    selected = ["convergence check", *(["bifurcations"] if 6 in figures else []),
+    selected = ["convergence check", *(["bifurcations", "exact rod"] if 6 in figures else []),
                 *[f"figure {f}" for f in figures], "refinement check", "convergence files", "findings"]
     foreign = [n for s in selected for n in step_files(s)
                if (out / n).exists() and not manifest.owned(n)]
@@ -339,6 +346,31 @@ def _reproduce(out, config, force, quiet, figures, stream):
             ctx.log(f"{bif_step}: not selected and {bif_missing}; findings.md says so")
     bif_print = manifest.fingerprint(bif_step) if bif is not None else None
 
+    # the consistent model's special points re-read on the exact rod (exact_rod.py): with Figure 6,
+    # else the recorded result when current
+    exact_step = "exact rod"
+    exact_settings = _settings(config, _EXACT_KEYS)
+    exact, exact_missing = None, None
+
+    def write_exact(x):
+        from .plot_exact_rod import plot_exact_rod
+        write_json(out / DATA / "exact_rod.json", x)
+        for name, (cols, rows) in XR.tables(x).items():
+            write_csv(out / name, cols, rows)
+        save_figure(plot_exact_rod(x, config), out / "exact_rod.png", dpi=config.dpi)
+    if 6 in figures:
+        exact = run_step(exact_step, exact_settings, lambda: XR.exact_rod(ctx), write_exact)
+        exact = exact if exact is not None else load("exact_rod.json")
+    else:
+        state, reason = manifest.state(exact_step, exact_settings, version)
+        if state == "current":
+            ctx.log(f"{exact_step}: not selected; its recorded result is used (complete and current)")
+            exact = load("exact_rod.json")
+        else:
+            exact_missing = ({"missing": "not computed in this folder"}.get(state)
+                             or f"its recorded result is {state} ({reason})")
+            ctx.log(f"{exact_step}: not selected and {exact_missing}; findings.md says so")
+
     funcs = {2: F.figure2, 3: F.figure3, 4: F.figure4, 5: F.figure5, 6: F.figure6,
              7: F.figure7, 8: F.figure8}
     data, missing, current = {}, {}, {}
@@ -401,12 +433,16 @@ def _reproduce(out, config, force, quiet, figures, stream):
             inputs[f"figure {f}"] = manifest.fingerprint(f"figure {f}")
     if bif is not None:
         inputs[bif_step] = bif_print
+    if exact is not None:
+        inputs[exact_step] = manifest.fingerprint(exact_step)
     steps = ["convergence check", bif_step if bif is not None else None,
+             exact_step if exact is not None else None,
              *[f"figure {f}" for f in FIGURES if current.get(f)],
              "refinement check" if refine is not None else None]
     timings = {s: manifest.wall_time(s) for s in steps if s}
     present = [n for n in output_names(FIGURES) if n != "findings.md"
                and (n.startswith("convergence") or (n in BIFURCATION_FILES and bif is not None)
+                    or (n in EXACT_FILES and exact is not None)
                     or (n.startswith("fig") and int(n[3]) in current))]
 
     def make_findings():
@@ -415,11 +451,12 @@ def _reproduce(out, config, force, quiet, figures, stream):
         total = sum(v for v in timings.values() if v)
         return report.findings_markdown(config, conv, refine, data, timings, total, files=present,
                                         missing=missing, bifurcations=bif,
-                                        bifurcations_missing=bif_missing, engine=ctx.engine)
+                                        bifurcations_missing=bif_missing, engine=ctx.engine,
+                                        exact=exact, exact_missing=exact_missing)
     run_step("findings", dict(config=config.as_dict(), inputs=inputs, missing=missing,
-                              bifurcations_missing=bif_missing),
+                              bifurcations_missing=bif_missing, exact_missing=exact_missing),
              make_findings, lambda text: atomic_write_text(out / "findings.md", text))
     total = time.perf_counter() - started
     return dict(out=out, files=written, wall_time=total, data=data, convergence=conv,
-                refinement=refine, bifurcations=bif, timings=timings, computed=computed, kept=kept,
+                refinement=refine, bifurcations=bif, exact=exact, timings=timings, computed=computed, kept=kept,
                 missing=missing)
