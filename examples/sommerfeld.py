@@ -8,8 +8,9 @@ no_load_speed), is an S: two folds bound a range of Omega_nl with two stable mot
 below the resonance and one beyond it.  Marching (crankgen.simulate) with Omega_nl raised slowly in
 stages (each stage starting from the last one's state) follows the lower branch up to its fold and
 jumps; lowered slowly it follows the upper branch down to the other fold and drops: the hysteresis.
-Finally, run-ups from rest at an Omega_nl inside the hysteresis with flywheels of growing inertia
-show which ends captured.
+Finally, at an Omega_nl inside the hysteresis, the continuation in the crank's inertia J shows
+where a flywheel removes the captured motion (its branch folds), and run-ups from rest with
+flywheels of growing inertia show which end captured.
 
     .venv/bin/python examples/sommerfeld.py [--out DIR] [--quick]
 
@@ -26,6 +27,7 @@ from pathlib import Path
 import numpy as np
 
 import crankgen
+from crankgen.notices import BeyondTheoryWarning
 
 STALL, J, ELEMENTS = 0.0022, 0.05, 4
 LOW, HIGH = 3.0, 12.0
@@ -47,29 +49,40 @@ def branches():
     return d, rows
 
 
-def staircase(values, duration):
+def staircase(values, duration, repeats=6):
     """March with Omega_nl stepped through `values`, each stage `duration` time units from the last
-    stage's state: rows (no_load_speed, mean speed over the stage's last third)."""
+    stage's state, prolonged by `duration` at a time (up to `repeats` times) until its mean speed
+    over the last third changes by less than 0.2 %: rows (no_load_speed, that mean speed)."""
     rows = []
     state, theta, speed = None, 0.0, 0.0
     for value in values:
         revolutions = duration * value / (2 * math.pi)           # the run is counted in no-load revolutions
-        r = crankgen.simulate(crank=motor(value, theta0=theta % (2 * math.pi), initial_speed=speed),
-                              n_elements=ELEMENTS, revolutions=revolutions, initial=state)
-        k = len(r.t) * 2 // 3
-        rows.append((float(value), float((r.theta[-1] - r.theta[k]) / (r.t[-1] - r.t[k]))))
-        state, theta, speed = (r.states[-1], r.rates[-1]), float(r.theta[-1]), float(r.crank_speed[-1])
-        print(f"  Omega_nl = {value:.3f}: mean speed {rows[-1][1]:.4f}")
+        previous = math.inf
+        for _ in range(repeats):
+            r = crankgen.simulate(crank=motor(value, theta0=theta % (2 * math.pi), initial_speed=speed),
+                                  n_elements=ELEMENTS, revolutions=revolutions, initial=state)
+            k = len(r.t) * 2 // 3
+            mean = float((r.theta[-1] - r.theta[k]) / (r.t[-1] - r.t[k]))
+            state, theta, speed = (r.states[-1], r.rates[-1]), float(r.theta[-1]), float(r.crank_speed[-1])
+            if abs(mean - previous) < 2e-3 * mean:
+                break
+            previous = mean
+        rows.append((float(value), mean))
+        print(f"  Omega_nl = {value:.3f}: mean speed {mean:.4f}")
     return rows
 
 
-def run_up(value, inertia, duration):
-    """From rest at Omega_nl = value with a crank inertia `inertia`: the mean speed over the last
-    third of `duration`."""
+def run_up(value, inertia, duration, windows=6):
+    """From rest at Omega_nl = value with a crank inertia `inertia`: (the mean speed over the last
+    half of `duration`, the least and the largest mean speed of its `windows` parts: apart when the
+    motion has not settled on a steady one)."""
     r = crankgen.simulate(crank=motor(value, inertia), n_elements=ELEMENTS,
-                          revolutions=duration * value / (2 * math.pi))
-    k = len(r.t) * 2 // 3
-    return float((r.theta[-1] - r.theta[k]) / (r.t[-1] - r.t[k]))
+                          revolutions=duration * value / (2 * math.pi), history=False)
+    n = len(r.t)
+    cuts = np.linspace(n // 2, n - 1, windows + 1).astype(int)
+    parts = [(r.theta[b] - r.theta[a]) / (r.t[b] - r.t[a]) for a, b in zip(cuts[:-1], cuts[1:])]
+    whole = (r.theta[-1] - r.theta[n // 2]) / (r.t[-1] - r.t[n // 2])
+    return float(whole), float(min(parts)), float(max(parts))
 
 
 def main():
@@ -79,7 +92,7 @@ def main():
     args = ap.parse_args()
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    warnings.simplefilter("ignore", crankgen.notices.BeyondTheoryWarning)
+    warnings.simplefilter("ignore", BeyondTheoryWarning)
 
     print("continuation in no_load_speed ...")
     diagram, rows = branches()
@@ -107,21 +120,27 @@ def main():
     inside = 0.5 * (min(apart) + max(apart)) if apart else 0.5 * (LOW + HIGH)
     print(f"hysteresis: the marched speeds differ for Omega_nl in [{min(apart) if apart else float('nan'):.3f}, "
           f"{max(apart) if apart else float('nan'):.3f}]")
-    inertias = (0.005, 0.05, 0.2) if args.quick else (0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2)
+    inertias = (0.005, 0.05, 0.2) if args.quick else (0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5)
+    print(f"continuation in the crank's inertia at Omega_nl = {inside:.3f} ...")
+    dj = crankgen.continuation(parameter="inertia", start=J, stop=0.5, max_period=1, crank=motor(inside),
+                               n_elements=ELEMENTS)
+    j_folds = [sp.parameter for sp in dj.special_points if sp.kind == "fold"]
+    print("  the captured branch " + (f"ends in a fold at J = {min(j_folds):.4f}" if j_folds else
+                                      "has no fold up to J = 0.5"))
     print(f"run-ups from rest at Omega_nl = {inside:.3f} ...")
     # each long enough for the motor's speed to settle: 4 (J + the linkage's ~0.005) Omega_nl / T_stall
-    fly = [(J_, run_up(inside, J_, max(duration, 4 * (J_ + 0.005) * inside / STALL))) for J_ in inertias]
-    for J_, w_ in fly:
-        print(f"  J = {J_:g}: mean speed {w_:.4f}")
+    fly = [(J_, *run_up(inside, J_, max(duration, 8 * (J_ + 0.005) * inside / STALL))) for J_ in inertias]
+    for J_, w_, lo, hi in fly:
+        print(f"  J = {J_:g}: mean speed {w_:.4f} (its parts from {lo:.4f} to {hi:.4f})")
     with open(out / "sommerfeld_flywheel.csv", "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["no_load_speed", "inertia", "mean_speed"])
-        w.writerows([(inside, J_, w_) for J_, w_ in fly])
+        w.writerow(["no_load_speed", "inertia", "mean_speed", "least_part", "largest_part"])
+        w.writerows([(inside, *row) for row in fly])
 
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(7.5, 5.0))
+    fig, (ax, fx) = plt.subplots(1, 2, figsize=(10.5, 5.0), gridspec_kw={"width_ratios": [3, 1.2]})
     for k, br in enumerate(diagram.branches):
         p, w_ = br.parameter, br.quantities["mean_speed"]
         for stable, style in ((True, "-"), (False, "--")):
@@ -139,13 +158,26 @@ def main():
     ax.plot([], [], "o", color="k", mfc="none", label="fold (o), period doubling (s)")
     ax.set_xlabel("motor's no-load speed Omega_nl* (omega_b)")
     ax.set_ylabel("mean crank speed (omega_b)")
-    ax.set_title(f"Sommerfeld effect: slider-crank, eps = 0.01, T_stall* = {STALL}, J* = {J}")
+    ax.set_title(f"Sommerfeld effect: slider-crank, eps = 0.01, T_stall* = {STALL}, J* = {J}", fontsize=10)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, loc="upper left")
+    js = np.array([row[0] for row in fly])
+    mid, lo, hi = (np.array([row[k] for row in fly]) for k in (1, 2, 3))
+    fx.errorbar(js, mid, yerr=[mid - lo, hi - mid], fmt="o", color="C4", capsize=3)
+    fx.set_xscale("log")
+    for jf in j_folds[:1]:
+        fx.axvline(jf, color="0.4", ls=":", lw=1)
+        fx.text(jf, 0.9, f" captured branch\n ends: J* = {jf:.3g}", fontsize=7,
+                va="bottom", transform=fx.get_xaxis_transform())
+    fx.set_xlabel("crank inertia J* (rho A L^3)")
+    fx.set_ylabel("mean crank speed after the run-up")
+    fx.set_title(f"run-up from rest, Omega_nl* = {inside:.3g}", fontsize=10)
+    fx.set_ylim(ax.get_ylim())
+    fx.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(out / "sommerfeld.png", dpi=130)
-    print(f"folds at Omega_nl = {', '.join(f'{sp.parameter:.4f}' for sp in folds)}; wrote {out}/sommerfeld.png "
-          "and the CSV files")
+    print(f"folds at Omega_nl = {', '.join(f'{sp.parameter:.4f}' for sp in folds)}; in J at Omega_nl = "
+          f"{inside:.3f}: {', '.join(f'{j:.4f}' for j in j_folds) or 'none'}; wrote {out}/sommerfeld.png and the CSV files")
 
 
 if __name__ == "__main__":

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import crankgen
+from crankgen.notices import BeyondTheoryWarning
 
 MOTOR = dict(stall_torque=0.05, inertia=0.05)
 
@@ -14,7 +15,7 @@ MOTOR = dict(stall_torque=0.05, inertia=0.05)
 @pytest.mark.slow
 def test_a_branch_in_the_no_load_speed_is_the_steady_motions():
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", crankgen.notices.BeyondTheoryWarning)
+        warnings.simplefilter("ignore", BeyondTheoryWarning)
         d = crankgen.continuation(parameter="no_load_speed", start=0.7, stop=0.9, dp_max=0.05, max_period=1,
                                   crank=crankgen.Motor(no_load_speed=0.7, **MOTOR), n_elements=2)
     br = d.branches[0]

@@ -70,3 +70,12 @@ def test_the_flow_has_the_trivial_multiplier_and_the_map_the_others(steady):
 def test_a_stalled_motor_is_a_failure_not_a_hang():
     s = crankgen.steady_state(crank=crankgen.Motor(stall_torque=0.01, load_torque=0.02), n_elements=2)
     assert s.status == "failed" and "held back" in s.message
+
+
+def test_a_weak_motor_on_a_heavy_crank_runs_up_until_it_settles():
+    """The run-up before shooting lasts until the crank's mean speed settles (a weak motor takes
+    (J + the linkage's inertia) Omega_nl / T_stall, here hundreds of time units, far more than 30
+    no-load revolutions), not a fixed count that would call the crank held back."""
+    s = crankgen.steady_state(crank=crankgen.Motor(stall_torque=0.0022, no_load_speed=6.0, inertia=0.3), n_elements=2)
+    assert s.status in ("periodic", "unstable"), s.message
+    assert s.periods > 30 and 0.5 < s.mean_speed < 6.0

@@ -195,25 +195,41 @@ def monodromy(section_map, Y, T):
     return ((out[:n] - out[n:]) / (2.0 * h)[:, None]).T
 
 
-def _warm_start(m, warmup):
-    """The section state after `warmup` no-load revolutions from the case's start."""
+def _warm_start(m, warmup, limit):
+    """(the section state after the run-up from the case's start, why not, the no-load revolutions
+    it took): marched in chunks of
+    `warmup` no-load revolutions until the crank's mean speed over a chunk changes by less than 1 %
+    from the last chunk's (a weak motor on a heavy crank takes long to settle), at most `limit`
+    no-load revolutions; shooting starts from there.  A crank that does not turn forward is held
+    back (its stall torque below the load)."""
     N = m.N
     theta0, speed0 = motor.crank_start(m.case)
-    X0 = np.append(np.zeros(N), theta0)[None]
-    V0 = np.append(np.zeros(N), speed0)[None]
-    res = engine.march_motor(m.batch, warmup * m.batch.steps_per_rev, X0, V0, tol=m.tol)
-    if res.status[0] != engine.OK:
-        return None, f"the run-up from the start failed: {engine.STATUS_TEXT[int(res.status[0])]} " \
-                     f"in step {int(res.fail_step[0])}"
-    theta = res.X[0, N]
-    if not theta > theta0 + TWO_PI:
-        return None, (f"the crank turned {(theta - theta0) / TWO_PI:.3g} revolutions in the {warmup} no-load "
-                      "revolutions of the run-up: it is held back (stall torque below the load)")
+    X = np.append(np.zeros(N), theta0)[None]
+    V = np.append(np.zeros(N), speed0)[None]
+    A = G = None
+    steps = warmup * m.batch.steps_per_rev
+    previous, total = None, 0
+    while True:
+        res = engine.march_motor(m.batch, steps, X, V, A0=A, G0=G, tol=m.tol)
+        if res.status[0] != engine.OK:
+            return None, (f"the run-up from the start failed: {engine.STATUS_TEXT[int(res.status[0])]} in step "
+                          f"{total * m.batch.steps_per_rev + int(res.fail_step[0])}"), total
+        total += warmup
+        mean = (res.X[0, N] - X[0, N]) / (steps * m.dt)
+        X, V, A, G = res.X, res.V, res.A, res.G
+        if previous is not None and abs(mean - previous) < 0.01 * abs(mean) or total >= limit:
+            break
+        previous = mean
+    theta = X[0, N]
+    if not (mean > 0 and theta > theta0 + TWO_PI):
+        return None, (f"the crank turned {(theta - theta0) / TWO_PI:.3g} revolutions in the {total} no-load "
+                      f"revolutions of the run-up (mean speed {mean:.3g} over the last {warmup}): it is held back "
+                      "(stall torque below the load)"), total
     turns = math.floor((theta - m.theta_s) / TWO_PI) + 1
-    Y, _, st, _ = m.to_angle(res.X, res.V, res.A, res.G, m.theta_s + TWO_PI * turns)
+    Y, _, st, _ = m.to_angle(X, V, A, G, m.theta_s + TWO_PI * turns)
     if st[0] != engine.OK:
-        return None, "the march to the section after the run-up failed"
-    return Y[0], ""
+        return None, "the march to the section after the run-up failed", total
+    return Y[0], "", total
 
 
 def steady_motor(case, tol=1e-8, max_revolutions=400, warmup=30, max_shooting=12):
@@ -224,8 +240,7 @@ def steady_motor(case, tol=1e-8, max_revolutions=400, warmup=30, max_shooting=12
     `multipliers` (all, by modulus)."""
     from .steady import SteadyState
     m = SectionMap(case)
-    Y, why = _warm_start(m, warmup)
-    periods = warmup
+    Y, why, periods = _warm_start(m, warmup, max_revolutions)
     if Y is None:
         return SteadyState(case, "failed", None, None, periods, 0, None, why)
     message, status, iterations, residual, J = "", None, 0, None, None
@@ -252,7 +267,7 @@ def steady_motor(case, tol=1e-8, max_revolutions=400, warmup=30, max_shooting=12
     else:
         message = f"shooting did not converge in {max_shooting} iterations; marched instead"
     if status is None:                               # iterate the map: the motion, revolution by revolution
-        Y = _warm_start(m, warmup)[0]
+        Y = _warm_start(m, warmup, max_revolutions)[0]
         for k in range(max_revolutions):
             Y1, T, st, _ = m(Y[None])
             periods += 1

@@ -60,7 +60,7 @@ def build_parser():
                                    "the exit code is 1.")
     _add_mechanism_options(p)
     g = _add_model_options(p)
-    g.add_argument("--revolutions", type=float, default=10, help="number of crank revolutions to simulate, > 0 (default 10)")
+    g.add_argument("--revolutions", type=float, default=10, help="number of crank revolutions to simulate, > 0 (default 10; a motor-driven crank: no-load revolutions, 2 pi / Omega_nl each)")
     g.add_argument("--tol", type=float, default=1e-10, help="Newton tolerance on the scaled displacement increment (default 1e-10)")
     p.add_argument("--nodes", action="store_true", help="also write the nodal history nodes.csv")
     si_file.add_option(p, "simulation.csv is written in SI, every column named with its SI unit (t_s, "

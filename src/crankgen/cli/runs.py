@@ -99,7 +99,8 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
     from ..progress import Progress
     from ..simulation import simulate
 
-    _say(args, f"simulate: {_describe(case)}, {revolutions:g} revolutions ({steps} steps)")
+    kind = "no-load revolutions" if case.motion_record.driven else "revolutions"     # a motor's run: crankgen.motor_simulation
+    _say(args, f"simulate: {_describe(case)}, {revolutions:g} {kind} ({steps} steps)")
     transient = case.motion_record.transient
     if transient and revolutions < getattr(case, transient):
         ramp, speed = getattr(case, transient), schema.PARAMETERS[schema.CRANK_SPEED]
