@@ -147,6 +147,8 @@ def test_compiled_and_numpy_engines_agree():
 def test_a_motor_run_refuses_what_it_cannot_take():
     with pytest.raises(ParameterError, match="n_elements >= 2"):
         crankgen.simulate(crank=crankgen.Motor(), n_elements=1, revolutions=0.1)
+    with pytest.raises(ParameterError, match="one-pass scheme has no bordered form"):
+        crankgen.simulate(crank=crankgen.Motor(), integrator="one-pass", n_elements=2, revolutions=0.1)
     with pytest.raises(ParameterError, match="stall_torque"):
         crankgen.simulate(crank=crankgen.Motor(stall_torque=-1.0), revolutions=0.1)
     with pytest.raises(ParameterError, match="simulate_many runs prescribed"):

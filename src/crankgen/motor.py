@@ -49,6 +49,9 @@ def check_driven(case):
     if case.n_elements < 2:
         raise ParameterError("a motor-driven crank needs n_elements >= 2 (the crank pin's element must not "
                              "hold the guide's node)")
+    if case.integrator == "one-pass":
+        raise ParameterError("a motor-driven crank needs integrator 'newton' or 'full-newton' (the one-pass "
+                             "scheme has no bordered form)")
 
 
 def crank_state(case, crank):
