@@ -79,3 +79,19 @@ def test_a_weak_motor_on_a_heavy_crank_runs_up_until_it_settles():
     s = crankgen.steady_state(crank=crankgen.Motor(stall_torque=0.0022, no_load_speed=6.0, inertia=0.3), n_elements=2)
     assert s.status in ("periodic", "unstable"), s.message
     assert s.periods > 30 and 0.5 < s.mean_speed < 6.0
+
+
+def test_the_orbit_figure_draws_the_crank_speed_of_a_driven_crank(steady):
+    """A motor's steady motion: the orbit figure's torque panel carries the crank speed on a
+    right-hand axis, the state's own samples against the crank angle in degrees."""
+    import matplotlib.pyplot as plt
+
+    from crankgen.plotting import orbit_figure
+    fig = orbit_figure(steady)
+    speed_axes = [ax for ax in fig.axes if ax.get_ylabel() == "crank speed Omega*"]
+    assert len(speed_axes) == 1
+    x, y = speed_axes[0].lines[0].get_data()
+    np.testing.assert_array_equal(y, steady.crank_speed)
+    np.testing.assert_allclose(x, np.degrees(steady.theta))
+    assert np.ptp(y) > 0                                      # the speed fluctuates
+    plt.close(fig)

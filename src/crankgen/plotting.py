@@ -107,6 +107,8 @@ def plot_deflection(result, path, failure=None, si=None, against="t", strain=Non
                 else "instantaneous crank speed (rad/s)")
         xf = None if failure is None or not len(x) else x[-1]
     ax.plot(x, v, lw=1, color="C0", label="v* (x* = 1/2)" if si is None else "v (x = L/2), mm")
+    if against == "t" and result.case.motion_record.driven and len(x):
+        _crank_speed_axis(ax, x, view.crank_speed, si)
     if failure is not None:
         approach = result.settings.get("approach")
         word = (f"run diverged (approach {approach} is ill-posed: strain energy unbounded below)"
@@ -219,6 +221,8 @@ def orbit_figure(state, strain=None, si=None):
     a3.axhline(0.0, color="0.5", lw=0.6)
     a3.set_ylabel("driving torque (N m)" if si is not None else
                   f"driving torque\n({schema.OUTPUTS['torque'].units})")
+    if state.case.motion_record.driven:
+        _crank_speed_axis(a3, deg, (state if si is None else si).crank_speed, si)
     a3.set_xlabel("crank angle theta (degrees)")
     a3.set_xticks(np.arange(0, 361, 60))
     for ax in (a1, a2, a3):
@@ -236,6 +240,16 @@ def orbit_figure(state, strain=None, si=None):
     a1.set_title(f"steady state: {state.status}{mult}\n" + (_title(s) if si is None else _si_title(state, si))
                  + note, fontsize=9)
     return fig
+
+
+def _crank_speed_axis(ax, x, speed, si):
+    """The crank speed of a motor-driven crank (its angle a degree of freedom) on a right-hand axis
+    of ax, against the same abscissa x."""
+    right = ax.twinx()
+    right.plot(x, speed, lw=1.0, color="C1")
+    right.set_ylabel("crank speed (rad/s)" if si is not None else "crank speed Omega*", color="C1")
+    right.tick_params(axis="y", colors="C1")
+    return right
 
 
 def _si_title(result, si):
