@@ -95,3 +95,19 @@ def test_the_orbit_figure_draws_the_crank_speed_of_a_driven_crank(steady):
     np.testing.assert_allclose(x, np.degrees(steady.theta))
     assert np.ptp(y) > 0                                      # the speed fluctuates
     plt.close(fig)
+
+
+def test_a_sweep_takes_motor_driven_cases_beside_prescribed_ones(steady):
+    """crankgen.sweep of a motor-driven case gives its steady_state's motion (the same revolution
+    time, amplitude and multiplier) with the motor's columns; a prescribed case in the same sweep
+    has its own steady state and leaves the motor's columns empty."""
+    prescribed = crankgen.Case(omega=0.6, n_elements=4)
+    table = crankgen.sweep([steady.case, prescribed])
+    motor_row, other_row = table.rows
+    assert motor_row["status"] == "periodic"
+    assert motor_row["revolution_time"] == pytest.approx(steady.period, rel=1e-9)
+    assert motor_row["amplitude"] == pytest.approx(steady.amplitude, rel=1e-9)
+    assert motor_row["multiplier"] == pytest.approx(steady.multiplier, rel=1e-6)
+    alone = crankgen.steady_state(case=prescribed)
+    assert other_row["amplitude"] == pytest.approx(alone.amplitude, rel=1e-12)
+    assert other_row.get("revolution_time") is None and other_row.get("mean_speed") is None

@@ -363,10 +363,10 @@ class _BatchSolver:
 def _check_resolved(case, where=""):
     """Refuse a crank motion that is not periodic in the crank angle (a run-up), and a time step
     longer than the rod's first bending period (see the module docstring).  A motor-driven crank
-    (steady_states takes it by its own path) is refused here: the sweep's batches do not take it yet."""
+    (steady_states takes it by its own path, shooting on a section) is checked by that path's rules."""
     if case.motion_record.driven:
-        raise ParameterError(f"{where}a sweep of a motor-driven crank is not built yet: steady_state and "
-                             "continuation take it")
+        from .motor_steady import check_steady
+        return check_steady(case, where)
     if not case.periodic:
         raise ParameterError(
             f"{where}a steady state needs a crank motion periodic in the crank angle; the "
