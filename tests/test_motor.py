@@ -163,7 +163,8 @@ def test_a_motor_run_refuses_what_it_cannot_take():
         crankgen.simulate(crank=crankgen.Motor(stall_torque=-1.0), revolutions=0.1)
     with pytest.raises(ParameterError, match="simulate_many runs prescribed"):
         crankgen.simulate_many([crankgen.Case(motion="motor", n_elements=2)], 0.1)
-    with pytest.raises(ParameterError, match="sweep of a motor-driven crank"):
-        crankgen.sweep([crankgen.Case(motion="motor", n_elements=2)])
-    with pytest.raises(ParameterError, match="poincare of a motor-driven crank"):
-        crankgen.poincare(parameter="no_load_speed", values=[1.0], crank=crankgen.Motor(), n_elements=2)
+    with pytest.raises(ParameterError, match="one-pass"):                # a sweep checks the shooting's rules
+        crankgen.sweep([crankgen.Case(motion="motor", integrator="one-pass", n_elements=2)])
+    with pytest.raises(crankgen.NoResultError, match="held back"):          # a poincare sweep needs a turning crank
+        crankgen.poincare(parameter="no_load_speed", values=[1.0], n_elements=2,
+                          crank=crankgen.Motor(stall_torque=0.01, load_torque=0.02))

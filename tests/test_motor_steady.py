@@ -111,3 +111,14 @@ def test_a_sweep_takes_motor_driven_cases_beside_prescribed_ones(steady):
     alone = crankgen.steady_state(case=prescribed)
     assert other_row["amplitude"] == pytest.approx(alone.amplitude, rel=1e-12)
     assert other_row.get("revolution_time") is None and other_row.get("mean_speed") is None
+
+
+def test_a_poincare_sweep_of_a_motor_finds_the_steady_motion(steady):
+    """crankgen.poincare of a motor-driven crank (its section map, from the run-up from rest): at
+    the steady state's no-load speed the sweep settles on a period-1 motion of the same amplitude
+    (measured 2e-5 apart: the sweep's transient revolutions against shooting to 1e-8)."""
+    d = crankgen.poincare(crank=crankgen.Motor(**MOTOR), parameter="no_load_speed",
+                          values=[0.7, MOTOR["no_load_speed"]], n_elements=4, direction="up")
+    assert [p.classification for p in d.points] == ["period-1", "period-1"]
+    assert d.points[-1].amplitude == pytest.approx(steady.amplitude, rel=1e-4)
+    assert d.points[0].amplitude < 0.8 * d.points[-1].amplitude         # a slower motor, a smaller response

@@ -197,6 +197,19 @@ continuation.__doc__ = continuation.__doc__.replace("{continuable}", ", ".join(
     for n, p in schema.PARAMETERS.items() if p.continuable))
 
 
+def _motor_start(case, parameter):
+    """(the section map of a motor-driven case, its scaled section state after the run-up from the
+    case's start: MOTOR_WARMUP no-load revolutions, longer while the mean speed still changes by 1 %)."""
+    from ..motor_steady import SectionMap, _warm_start
+    from ..steady import MOTOR_WARMUP
+    from .motor_map import MotorMap
+    fmap = MotorMap(case, parameter)
+    Y0, why, _ = _warm_start(SectionMap(case), MOTOR_WARMUP, 20 * MOTOR_WARMUP)
+    if Y0 is None:
+        raise NoResultError(f"poincare of a motor-driven crank at {parameter} = {getattr(case, parameter):g}: {why}")
+    return fmap, Y0 / fmap.s
+
+
 def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up", *, model=None, transient=100,
              samples=64, max_period=8, tol=1e-8, lyapunov_tol=0.01, case=None, progress=None, units="crankgen",
              **fields):
@@ -230,11 +243,11 @@ def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up
     time_scheme.warn_steps([c0], omega_b=None if scales is None else scales.omega_b)
     max_period = integer("max_period", max_period, 1)
     t0 = time.perf_counter()
-    if c0.motion_record.driven:
-        raise ParameterError("poincare of a motor-driven crank is not built yet: continuation follows its steady "
-                             "motions, simulate marches it")
-    fmap = MechanismMap(c0, parameter)
-    x0 = fmap.rest()
+    if c0.motion_record.driven:      # the autonomous motion's section map, from the run-up from rest
+        fmap, x0 = _motor_start(c0, parameter)
+    else:
+        fmap = MechanismMap(c0, parameter)
+        x0 = fmap.rest()
     result = sweep_map(fmap, values, x0, direction, transient, samples, max_period,
                        in_range("tol", tol, 0, None, True),
                        in_range("lyapunov_tol", lyapunov_tol, 0, None, True), progress)

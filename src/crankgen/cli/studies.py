@@ -198,9 +198,6 @@ def _cmd_continue(args):
         section = parse(args.section)
         check_section(section, args.si_mechanism)
     case = _checked_branch_model(args, continuation=True)
-    if args.sweep and case.motion_record.driven:
-        raise UsageError("--sweep marches a Poincare sweep, which is not built for a motor-driven crank yet: "
-                         "continue without --sweep (crankgen simulate marches it)")
     folder = _Outputs(args.out, CONTINUE_NAMES + ("continuation.json",)
                       + (POINCARE_NAMES[:2] if args.sweep else ()), args.force)
     try:
