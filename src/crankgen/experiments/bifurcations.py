@@ -45,6 +45,15 @@ def bifurcations(ctx, counts):
                 runs=runs)
 
 
+def branch_record(br, **extra):
+    """A continuation branch as the step's data: period, origin, stop reason, and per point omega,
+    amplitude, stability and the largest |multiplier| (then `extra`)."""
+    return dict(period=int(br.period), origin=br.origin, stop_reason=br.stop_reason,
+                omega=np.asarray(br.parameter, dtype=float), amplitude=np.asarray(br.amplitude, dtype=float),
+                stable=np.asarray(br.stable, dtype=bool),
+                max_abs_multiplier=np.abs(np.asarray(br.multipliers)).max(axis=1), **extra)
+
+
 def _model_options(m):
     return dict(approach="A", model=m.key)
 
@@ -75,11 +84,7 @@ def _run(ctx, m, eps, n, spr):
         ctx.log(f"{label}: continuation FAILED: {exc}")
         return rec
     for br in d.branches:
-        rec["branches"].append(dict(
-            period=int(br.period), origin=br.origin, stop_reason=br.stop_reason,
-            omega=np.asarray(br.parameter, dtype=float), amplitude=np.asarray(br.amplitude, dtype=float),
-            stable=np.asarray(br.stable, dtype=bool),
-            max_abs_multiplier=np.abs(np.asarray(br.multipliers)).max(axis=1)))
+        rec["branches"].append(branch_record(br))
     for s in d.special_points:
         mu = complex(s.multiplier)
         rec["special_points"].append(dict(kind=s.kind, omega=float(s.parameter),

@@ -19,6 +19,7 @@ import math
 import numpy as np
 
 from ..errors import CrankgenError
+from .bifurcations import branch_record
 from .config import CONSISTENT, EXACT
 
 MODELS = (CONSISTENT, EXACT)
@@ -74,12 +75,7 @@ def _run(ctx, name, m):
         ctx.log(f"{label}: continuation FAILED: {exc}")
         return rec
     for br in d.branches:
-        rec["branches"].append(dict(
-            period=int(br.period), origin=br.origin, stop_reason=br.stop_reason,
-            omega=np.asarray(br.parameter, dtype=float), amplitude=np.asarray(br.amplitude, dtype=float),
-            stable=np.asarray(br.stable, dtype=bool),
-            max_abs_multiplier=np.abs(np.asarray(br.multipliers)).max(axis=1),
-            end=(_end_measures(mech, m, cfg, br, hi) if m is EXACT else None)))
+        rec["branches"].append(branch_record(br, end=(_end_measures(mech, m, cfg, br, hi) if m is EXACT else None)))
     for s in d.special_points:
         rec["special_points"].append(dict(kind=s.kind, omega=float(s.parameter), amplitude=float(s.amplitude),
                                           period=int(s.period), branch=int(s.branch),
