@@ -257,3 +257,14 @@ def test_a_step_warning_of_an_analysis_in_si_gives_the_mode_in_rad_per_s():
     found = re.search(r"omega = ([0-9.e+]+) omega_b = ([0-9.e+]+) rad/s", text)
     assert found, text
     assert float(found[2]) == pytest.approx(float(found[1]) * OMEGA_B, rel=1e-2)     # 3 digits each
+
+
+def test_si_unit_names_follow_the_dimensions():
+    """The SI name of a declared unit, from its dimensions worked out by hand here: a moment of
+    inertia rho A L^3 (kg/m m^3) is kg m^2, a torque rho A L^3 omega_b^2 N m, a force N, a speed
+    L omega_b m/s."""
+    from crankgen.units import Scales
+    assert Scales.si_name("rhoA L^3") == "kg m^2"
+    assert Scales.si_name("rhoA L^3 omega_b^2") == "N m"
+    assert Scales.si_name("rhoA L^2 omega_b^2") == "N"
+    assert Scales.si_name("L omega_b") == "m/s"
