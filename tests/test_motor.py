@@ -161,10 +161,24 @@ def test_a_motor_run_refuses_what_it_cannot_take():
         crankgen.simulate(crank=crankgen.Motor(), integrator="one-pass", n_elements=2, revolutions=0.1)
     with pytest.raises(ParameterError, match="stall_torque"):
         crankgen.simulate(crank=crankgen.Motor(stall_torque=-1.0), revolutions=0.1)
-    with pytest.raises(ParameterError, match="simulate_many runs prescribed"):
-        crankgen.simulate_many([crankgen.Case(motion="motor", n_elements=2)], 0.1)
     with pytest.raises(ParameterError, match="one-pass"):                # a sweep checks the shooting's rules
         crankgen.sweep([crankgen.Case(motion="motor", integrator="one-pass", n_elements=2)])
     with pytest.raises(crankgen.NoResultError, match="held back"):          # a poincare sweep needs a turning crank
         crankgen.poincare(parameter="no_load_speed", values=[1.0], n_elements=2,
                           crank=crankgen.Motor(stall_torque=0.01, load_torque=0.02))
+
+
+def test_simulate_many_runs_motor_driven_cases_beside_prescribed_ones():
+    """simulate_many of a motor-driven case gives simulate's run of it, bit for bit, and a
+    prescribed case in the same list keeps its batched run; the progress counts the cases."""
+    motor = crankgen.Case(motion="motor", stall_torque=0.05, no_load_speed=0.8, inertia=0.05, n_elements=2)
+    prescribed = crankgen.Case(omega=0.8, n_elements=2)
+    seen = []
+    runs = crankgen.simulate_many([motor, prescribed], 1, progress=lambda done, total: seen.append((done, total)))
+    alone = crankgen.simulate(case=motor, revolutions=1)
+    np.testing.assert_array_equal(runs[0].crank_speed, alone.crank_speed)
+    np.testing.assert_array_equal(runs[0].v_mid, alone.v_mid)
+    assert runs[0].crank_speed[-1] > 0.5                      # it ran up
+    batched = crankgen.simulate_many([prescribed], 1)[0]
+    np.testing.assert_array_equal(runs[1].v_mid, batched.v_mid)
+    assert seen[-1] == (2, 2)

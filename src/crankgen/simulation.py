@@ -8,7 +8,7 @@ from typing import Optional
 import numpy as np
 
 from . import engine as _engine
-from . import time_scheme
+from . import notices, time_scheme
 from . import kinematics as _kinematics
 from .kinematics import check_crank_steps
 from .cases import Case, run_case
@@ -439,20 +439,46 @@ def _truncated(result, n_points):
                             scales=result.scales, **cut)
 
 
+def _many_with_driven(cases, driven, revolutions, progress, chunks, keep_states):
+    """simulate_many of a list holding motor-driven cases: the prescribed ones in their batches, each
+    driven one by simulate (its bordered step runs one case at a time), in input order; a driven
+    case whose integration fails gives its ConvergenceError like the others."""
+    others = [i for i in range(len(cases)) if i not in driven]
+    out = [None] * len(cases)
+    total = len(cases)
+    if others:
+        for i, r in zip(others, simulate_many([cases[i] for i in others], revolutions, chunks=chunks,
+                                              keep_states=keep_states)):
+            out[i] = r
+        if progress is not None:
+            progress(len(others), total)
+    time_scheme.warn_steps([cases[i] for i in driven])
+    for k, i in enumerate(driven):
+        try:
+            with notices.quiet():                      # warned once, for every driven case
+                out[i] = simulate(case=cases[i], revolutions=revolutions, history=True)
+        except ConvergenceError as exc:
+            out[i] = exc
+        if progress is not None:
+            progress(len(others) + k + 1, total)
+    warn_beyond([out[i] for i in driven if isinstance(out[i], SimulationResult)], "run")
+    return out
+
+
 def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=False):
     """Transient runs of many cases from zero initial conditions, in lock-step compiled batches
     (cases sharing n_elements and steps_per_rev run together).
 
     Returns, in input order, a SimulationResult per case, or the ConvergenceError of a case whose
     integration failed (its `partial` holds the run up to the failure; the others are not
-    affected).  progress(done, total) counts case-steps.  keep_states: store the reduced states
+    affected).  progress(done, total) counts case-steps (cases, when motor-driven cases are among
+    them: each of those runs alone, by simulate).  keep_states: store the reduced states
     (needed for the field outputs, e.g. axial_force)."""
     cases = [c if isinstance(c, Case) else Case.from_dict(c) for c in cases]
     revolutions = in_range("revolutions", revolutions, 0, None, True)
-    for i, c in enumerate(cases):
-        if c.motion_record.driven:
-            raise ParameterError(f"cases[{i}]: simulate_many runs prescribed crank motions; run a motor-driven "
-                                 "crank with simulate")
+    driven = [i for i, c in enumerate(cases) if c.motion_record.driven]
+    if driven:
+        return _many_with_driven(cases, driven, revolutions, progress, chunks, keep_states)
     time_scheme.warn_steps(cases)
     groups = {}
     for i, c in enumerate(cases):
