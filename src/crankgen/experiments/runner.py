@@ -326,31 +326,35 @@ def _reproduce(out, config, force, quiet, figures, stream):
     # result when current
     bif_step = "bifurcations"
     bif_settings = _settings(config, _BIFURCATION_KEYS, runs=BF.settings_of(config, counts))
-    bif, bif_missing = None, None
+
+    def with_figure6(step, settings, compute, write, data):
+        """(result, why missing) of a step computed with Figure 6: when Figure 6 is not selected,
+        its recorded result (the JSON `data`) if complete and current, else None and the reason
+        findings.md gives."""
+        if 6 in figures:
+            result = run_step(step, settings, compute, write)
+            return (result if result is not None else load(data)), None
+        state, reason = manifest.state(step, settings, version)
+        if state == "current":
+            ctx.log(f"{step}: not selected; its recorded result is used (complete and current)")
+            return load(data), None
+        missing = ({"missing": "not computed in this folder"}.get(state)
+                   or f"its recorded result is {state} ({reason})")
+        ctx.log(f"{step}: not selected and {missing}; findings.md says so")
+        return None, missing
 
     def write_bifurcations(b):
         write_json(out / DATA / "bifurcations.json", b)
         for name, (cols, rows) in BF.tables(b).items():
             write_csv(out / name, cols, rows)
-    if 6 in figures:
-        bif = run_step(bif_step, bif_settings, lambda: BF.bifurcations(ctx, counts), write_bifurcations)
-        bif = bif if bif is not None else load("bifurcations.json")
-    else:
-        state, reason = manifest.state(bif_step, bif_settings, version)
-        if state == "current":
-            ctx.log(f"{bif_step}: not selected; its recorded result is used (complete and current)")
-            bif = load("bifurcations.json")
-        else:
-            bif_missing = ({"missing": "not computed in this folder"}.get(state)
-                           or f"its recorded result is {state} ({reason})")
-            ctx.log(f"{bif_step}: not selected and {bif_missing}; findings.md says so")
+    bif, bif_missing = with_figure6(bif_step, bif_settings, lambda: BF.bifurcations(ctx, counts),
+                                    write_bifurcations, "bifurcations.json")
     bif_print = manifest.fingerprint(bif_step) if bif is not None else None
 
     # the consistent model's special points re-read on the exact rod (exact_rod.py): with Figure 6,
     # else the recorded result when current
     exact_step = "exact rod"
     exact_settings = _settings(config, _EXACT_KEYS)
-    exact, exact_missing = None, None
 
     def write_exact(x):
         from .plot_exact_rod import plot_exact_rod
@@ -358,18 +362,8 @@ def _reproduce(out, config, force, quiet, figures, stream):
         for name, (cols, rows) in XR.tables(x).items():
             write_csv(out / name, cols, rows)
         save_figure(plot_exact_rod(x, config), out / "exact_rod.png", dpi=config.dpi)
-    if 6 in figures:
-        exact = run_step(exact_step, exact_settings, lambda: XR.exact_rod(ctx), write_exact)
-        exact = exact if exact is not None else load("exact_rod.json")
-    else:
-        state, reason = manifest.state(exact_step, exact_settings, version)
-        if state == "current":
-            ctx.log(f"{exact_step}: not selected; its recorded result is used (complete and current)")
-            exact = load("exact_rod.json")
-        else:
-            exact_missing = ({"missing": "not computed in this folder"}.get(state)
-                             or f"its recorded result is {state} ({reason})")
-            ctx.log(f"{exact_step}: not selected and {exact_missing}; findings.md says so")
+    exact, exact_missing = with_figure6(exact_step, exact_settings, lambda: XR.exact_rod(ctx), write_exact,
+                                        "exact_rod.json")
 
     funcs = {2: F.figure2, 3: F.figure3, 4: F.figure4, 5: F.figure5, 6: F.figure6,
              7: F.figure7, 8: F.figure8}
