@@ -141,14 +141,18 @@ class PointSpace:
                 arguments = tuple(sorted(explicit.free_symbols & set(self.column), key=str))
                 function = sp.Function(name, real=True)
                 self.quantities[function] = sp.Lambda(arguments, explicit)
-                definition = function(*arguments)
-                for k, sym in enumerate(symbols):
-                    self.derived[sym] = definition
-                    if k + 1 < len(symbols):
-                        self.rate[sym] = symbols[k + 1]
-                        definition = self.d_dt(definition)
+                self._define_levels(symbols, function(*arguments))
             out.update({level_name(name, k): sym for k, sym in enumerate(symbols)})
         return out
+
+    def _define_levels(self, symbols, definition):
+        """symbols[k] defined as the k-th time derivative of `definition`, each the rate of the one
+        before it."""
+        for k, sym in enumerate(symbols):
+            self.derived[sym] = definition
+            if k + 1 < len(symbols):
+                self.rate[sym] = symbols[k + 1]
+                definition = self.d_dt(definition)
 
     def _point_fields(self, point_fields, values, g):
         """Fields of a point defined by build(fields of the point): a symbol for the field at point
@@ -157,12 +161,7 @@ class PointSpace:
         out = {}
         for name, build in point_fields.items():
             symbols = [sp.Symbol(f"{level_name(name, k)}_{g}", real=True) for k in range(len(LEVELS))]
-            definition = build(values)
-            for k, sym in enumerate(symbols):
-                self.derived[sym] = definition
-                if k + 1 < len(symbols):
-                    self.rate[sym] = symbols[k + 1]
-                    definition = self.d_dt(definition)
+            self._define_levels(symbols, build(values))
             out.update({level_name(name, k): sym for k, sym in enumerate(symbols)})
         return out
 
