@@ -41,7 +41,7 @@ class SectionMap:
         motor.check_driven(case)
         self.case, self.tol, self.max_chunks = case, tol, max_chunks
         self.batch = engine.Batch([case], entries=(engine_motor.ENTRY,))
-        self.N = N = self.batch.N
+        self.N = self.batch.N
         self.dt = float(self.batch.dt[0])
         self.generalized = bool(self.batch.generalized[0])
         self.theta_s, _ = motor.crank_start(case)
@@ -195,7 +195,7 @@ def monodromy(section_map, Y, T):
     return ((out[:n] - out[n:]) / (2.0 * h)[:, None]).T
 
 
-def _warm_start(m, warmup, limit):
+def warm_start(m, warmup, limit):
     """(the section state after the run-up from the case's start, why not, the no-load revolutions
     it took): marched in chunks of
     `warmup` no-load revolutions until the crank's mean speed over a chunk changes by less than 1 %
@@ -240,7 +240,7 @@ def steady_motor(case, tol=1e-8, max_revolutions=400, warmup=30, max_shooting=12
     `multipliers` (all, by modulus)."""
     from .steady import SteadyState
     m = SectionMap(case)
-    Y, why, periods = _warm_start(m, warmup, max_revolutions)
+    Y, why, periods = warm_start(m, warmup, max_revolutions)
     if Y is None:
         return SteadyState(case, "failed", None, None, periods, 0, None, why)
     message, status, iterations, residual, J = "", None, 0, None, None
@@ -267,7 +267,7 @@ def steady_motor(case, tol=1e-8, max_revolutions=400, warmup=30, max_shooting=12
     else:
         message = f"shooting did not converge in {max_shooting} iterations; marched instead"
     if status is None:                               # iterate the map: the motion, revolution by revolution
-        Y = _warm_start(m, warmup, max_revolutions)[0]
+        Y = warm_start(m, warmup, max_revolutions)[0]
         for k in range(max_revolutions):
             Y1, T, st, _ = m(Y[None])
             periods += 1

@@ -200,11 +200,11 @@ continuation.__doc__ = continuation.__doc__.replace("{continuable}", ", ".join(
 def _motor_start(case, parameter):
     """(the section map of a motor-driven case, its scaled section state after the run-up from the
     case's start: MOTOR_WARMUP no-load revolutions, longer while the mean speed still changes by 1 %)."""
-    from ..motor_steady import SectionMap, _warm_start
+    from ..motor_steady import SectionMap, warm_start
     from ..steady import MOTOR_WARMUP
     from .motor_map import MotorMap
     fmap = MotorMap(case, parameter)
-    Y0, why, _ = _warm_start(SectionMap(case), MOTOR_WARMUP, 20 * MOTOR_WARMUP)
+    Y0, why, _ = warm_start(SectionMap(case), MOTOR_WARMUP, 20 * MOTOR_WARMUP)
     if Y0 is None:
         raise NoResultError(f"poincare of a motor-driven crank at {parameter} = {getattr(case, parameter):g}: {why}")
     return fmap, Y0 / fmap.s
