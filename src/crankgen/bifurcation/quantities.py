@@ -73,7 +73,7 @@ def motor_units(section=None, si=None):
     MOTOR_QUANTITIES, then units()'s."""
     speed = schema.OUTPUTS["crank_speed"].units
     out = {"mean_speed": speed, "revolution_time": f"1/{speed}", "min_crank_speed": speed,
-           "max_crank_speed": speed, "peak_motor_torque": schema.PARAMETERS["stall_torque"].units}
+           "max_crank_speed": speed, "peak_motor_torque": schema.OUTPUTS["torque"].units}
     return dict(out, **units(section, si))
 
 
