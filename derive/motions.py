@@ -35,7 +35,10 @@ it (an added 0.0 changes no sum).
   crank's generalized residual of the same energies).  `drive` is the net motor torque
   T_m - T_load, `inertia` J.  Its theta(t) = theta0 + Omega_i t is only the crank's start (the
   speed at t = 0, Omega_i, default 0: from rest); its step period is the no-load revolution
-  2 pi / Omega_nl (the fastest the motor turns the crank in steady running).
+  2 pi / Omega_nl (the fastest the motor turns the crank in steady running).  The drive holds the
+  linear law; a case's per-unit torque_curve f (crankgen.torque_curve: a table, cubic Hermite
+  between its points) replaces it at run time by T_stall f(thetad / Omega_nl), added to the
+  generated equation as its departure from the linear law.
 """
 
 from dataclasses import dataclass
@@ -127,9 +130,10 @@ def fluctuation():
 def motor():
     law = stall_torque * (1 - s.thetad / no_load_speed)
     return Motion("motor", "Motor", ("stall_torque", "no_load_speed", "inertia", "load_torque", "initial_speed",
-                                     "theta0"),
-                  "a motor drives the crank (its angle a degree of freedom): J thetadd = T_stall (1 - thetad / "
-                  "Omega_nl) - T_load - (the torque the rod demands)", (("load", ("load_torque",)),),
+                                     "theta0", "torque_curve"),
+                  "a motor drives the crank (its angle a degree of freedom): J thetadd = T_stall f(thetad / "
+                  "Omega_nl) - T_load - (the torque the rod demands), f the per-unit torque_curve (default "
+                  "f(s) = 1 - s, the linear law)", (("load", ("load_torque",)),),
                   label="motor-driven crank",
                   theta=theta0 + initial_speed * s.t, thetad=initial_speed, thetadd=sp.Integer(0), period=None,
                   step_period=2 * sp.pi / no_load_speed, drive=law - load_torque, inertia=inertia)

@@ -188,7 +188,7 @@ def emit_classes(derive_command):
     # in SI: every parameter entering an equation or choosing the guide or motion, by its SI name,
     # but those that are units (r = eps L: the rod's section gives it)
     si = [p.si or p.name for p in schema.parameters
-          if (p.slots or p.selects) and p.name not in schema.unit_parameters.values()]
+          if (p.slots or p.selects or p.owner in ("guide", "motion")) and p.name not in schema.unit_parameters.values()]
     out = [
         '"""The runtime\'s classes of the schema (schema.py): the fields of Mechanism, Case and SIMechanism, and a record',
         "class per guide and crank motion (crankgen.Line, crankgen.Circle, crankgen.Constant, ...).",

@@ -63,6 +63,7 @@ class CaseFields:
     no_load_speed: object = None
     inertia: object = None
     load_torque: object = None
+    torque_curve: object = None
     initial_speed: object = None
     n_elements: object = None
     steps_per_rev: object = None
@@ -108,6 +109,7 @@ class SIFields:
     no_load_speed: object = None
     inertia: object = None
     load_torque: object = None
+    torque_curve: object = None
     initial_speed: object = None
 
 
@@ -168,11 +170,11 @@ class Fluctuation(Spec):
 
 
 class Motor(Spec):
-    """a motor drives the crank (its angle a degree of freedom): J thetadd = T_stall (1 - thetad / Omega_nl) - T_load - (the torque the rod demands).  Parameters: stall_torque, no_load_speed, inertia, load_torque, initial_speed, theta0; keywords load = (load_torque)."""
+    """a motor drives the crank (its angle a degree of freedom): J thetadd = T_stall f(thetad / Omega_nl) - T_load - (the torque the rod demands), f the per-unit torque_curve (default f(s) = 1 - s, the linear law).  Parameters: stall_torque, no_load_speed, inertia, load_torque, initial_speed, theta0, torque_curve; keywords load = (load_torque)."""
 
     kind = 'motion'
     declaration = MOTIONS[3]    # motor
-    defaults = {'stall_torque': 0.05, 'no_load_speed': 1.0, 'inertia': 0.05, 'load_torque': 0.0, 'initial_speed': 0.0, 'theta0': 0.0}
+    defaults = {'stall_torque': 0.05, 'no_load_speed': 1.0, 'inertia': 0.05, 'load_torque': 0.0, 'initial_speed': 0.0, 'theta0': 0.0, 'torque_curve': ((0.0, 1.0), (1.0, 0.0))}
 
 
 GUIDE_CLASSES = (Line, Circle, Cam, Incline,)

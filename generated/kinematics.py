@@ -281,7 +281,7 @@ def step_period_fluctuation_into(params, T):
 
 
 def motion_motor(t, params):
-    """Crank angle, speed and acceleration at time t: a motor drives the crank (its angle a degree of freedom): J thetadd = T_stall (1 - thetad / Omega_nl) - T_load - (the torque the rod demands).
+    """Crank angle, speed and acceleration at time t: a motor drives the crank (its angle a degree of freedom): J thetadd = T_stall f(thetad / Omega_nl) - T_load - (the torque the rod demands), f the per-unit torque_curve (default f(s) = 1 - s, the linear law).
 
     Inputs (broadcast against each other; vector inputs on the trailing axis):
         t

@@ -7,6 +7,7 @@ runs."""
 
 import re
 import shlex
+import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -45,7 +46,7 @@ def test_every_python_block_runs_as_written(k, tmp_path, monkeypatch):
     monkeypatch.setattr(crankgen, "follow", _small(crankgen.follow, max_points=8))
     from crankgen import animation
     monkeypatch.setattr(animation, "MAX_FRAMES", 6)          # a few frames of every animation
-    code = PYTHON_BLOCKS[k]
+    code = textwrap.dedent(PYTHON_BLOCKS[k])            # a block inside a list item is indented
     exec(compile(code, f"README.md python block {k + 1}", "exec"), {"__name__": "readme"})
     for name in re.findall(r"""(?:to_csv|plot)\("([^"]+)""", code):      # what it says it writes
         assert (tmp_path / name).exists(), name

@@ -30,12 +30,11 @@ _RECORDS = tuple(cls.__name__ for cls in _classes.GUIDE_CLASSES + _classes.MOTIO
 _CHOICE_NAMES = {"FORMULATIONS": "formulation", "APPROACHES": "approach", "DAMPING_MODELS": "damping",
                  "MEMBRANE_OPTIONS": "membrane"}
 
+# public modules, loaded on first use too: crankgen.sections.rectangle(b, h), crankgen.torque_curve.per_unit, ...
+_MODULES = ("sections", "torque_curve")
+
 __all__ = (["ConvergenceError", "CrankgenError", "NoResultError", "ParameterError"] + list(_LAZY) + list(_RECORDS)
-           + list(_CHOICE_NAMES) + ["sections"])
-
-
-# public modules, loaded on first use too: crankgen.sections.rectangle(b, h), ...
-_MODULES = ("sections",)
+           + list(_CHOICE_NAMES) + list(_MODULES))
 
 
 def __getattr__(name):

@@ -24,6 +24,11 @@ OPTION_FIELDS = tuple(schema.OPTIONS)
 _NOT_KEYED = ("model",)
 
 
+def _plain(value):
+    """Tuples as lists, nested ones too (JSON reads them back so)."""
+    return [_plain(v) for v in value] if isinstance(value, tuple) else value
+
+
 class CaseRules:
     """The checks and views of a Case (its fields: generated/classes.py CaseFields)."""
 
@@ -105,9 +110,8 @@ class CaseRules:
         return ingredients.coefficients(self.parameter_vector, self.options, off)
 
     def as_dict(self):
-        """The fields as plain JSON-able values (pairs as lists)."""
-        return {k: list(v) if isinstance(v, tuple) else v for k, v in asdict(self).items()
-                if k not in _NOT_KEYED}
+        """The fields as plain JSON-able values (pairs as lists, a torque curve as a list of them)."""
+        return {k: _plain(v) for k, v in asdict(self).items() if k not in _NOT_KEYED}
 
     @classmethod
     def from_dict(cls, data):

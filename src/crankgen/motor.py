@@ -24,12 +24,13 @@ This module is the NumPy reference (the compiled engine: engine/motor.py) and th
 use: `crank_state` (the kinematics of given crank angles, speeds and accelerations), `pin_force`.
 """
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from . import kinematics as _kinematics
-from . import newton, schema, time_scheme
+from . import newton, schema, time_scheme, torque_curve
 from ._generated import kinematics as _generated
 from .errors import ConvergenceError, ParameterError
 
@@ -54,6 +55,17 @@ def check_driven(case):
                              "scheme has no bordered form)")
 
 
+def step_hint(case, dt):
+    """A sentence for a step that failed: when the motor's time constant J Omega_nl / (T_stall
+    max |f'|) (the crank alone; the linkage adds inertia) is shorter than the step, the step cannot
+    follow the motor; else ""."""
+    tau = case.inertia * case.no_load_speed / (case.stall_torque * torque_curve.steepest(case.torque_curve))
+    if tau >= dt:
+        return ""
+    return (f"; the motor's time constant J Omega_nl / (T_stall max|f'|) = {tau:.3g} is shorter than the step "
+            f"{dt:.3g}: raise steps_per_rev above {math.ceil(case.steps_per_rev * dt / tau)}")
+
+
 def crank_state(case, crank):
     """CrankState of the case's guide for crank (..., 3) = (theta, thetad, thetadd)."""
     crank = np.asarray(crank, dtype=float)
@@ -69,8 +81,17 @@ def crank_start(case):
 
 
 def crank_equation(case, kin, pin):
-    """(g, dg/dthetadd, dg/dthetad, dg/dpin_i, dg/dpin_j) (..., 5) of the generated drive kernel."""
-    return getattr(_generated, f"drive_{case.motion_record.name}")(kin.vector, pin, case.kinematic_parameters)
+    """(g, dg/dthetadd, dg/dthetad, dg/dpin_i, dg/dpin_j) (..., 5): the generated drive kernel, with
+    a torque curve's departure from the linear law added (crankgen.torque_curve)."""
+    geq = getattr(_generated, f"drive_{case.motion_record.name}")(kin.vector, pin, case.kinematic_parameters)
+    curve = getattr(case, "torque_curve", torque_curve.LINEAR)
+    if tuple(curve) != torque_curve.LINEAR:
+        geq = np.array(geq, dtype=float)
+        stall, no_load = case.stall_torque, case.no_load_speed
+        extra, slope = torque_curve.departure(curve, np.asarray(kin.thetad, dtype=float) / no_load)
+        geq[..., 0] -= stall * extra
+        geq[..., 2] -= stall / no_load * slope
+    return geq
 
 
 @dataclass(frozen=True)
@@ -233,7 +254,8 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings, progress=None, crank0=No
             previous = increment
         else:
             raise ConvergenceError(
-                f"Newton did not converge in step {m + 1} (t* = {t[m + 1]:.6g}) of the motor-driven crank",
+                f"Newton did not converge in step {m + 1} (t* = {t[m + 1]:.6g}) of the motor-driven crank"
+                + step_hint(model.case, dt),
                 step=m + 1, time=t[m + 1], residual=float(np.linalg.norm(R)))
         X[m + 1], V[m + 1], A[m + 1] = x_pred + c_d * a_new, v_pred + c_v * a_new, a_new
         if generalized:

@@ -56,7 +56,8 @@ def _compiled(case, d0, v0, n_steps, tol, progress):
     if res.status[0] != _engine.OK:
         k = int(res.fail_step[0])
         raise ConvergenceError(f"step {k} (t* = {t[k]:.6g}) of the motor-driven crank: "
-                               f"{_engine.STATUS_TEXT[int(res.status[0])]} (residual norm {res.fail_residual[0]:.3e})",
+                               f"{_engine.STATUS_TEXT[int(res.status[0])]} (residual norm {res.fail_residual[0]:.3e})"
+                               + motor.step_hint(case, float(batch.dt[0])),
                                step=k, time=float(t[k]), residual=float(res.fail_residual[0]))
     return t, X[:, :N], V[:, :N], A[:, :N], crank, res.y[0], res.iterations[0], res.G_history[0]
 

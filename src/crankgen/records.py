@@ -111,7 +111,8 @@ class Exclusion:
 class Parameter:
     """A parameter of a case.  kind: "real" (a finite number in low..high, open ends where
     low_open / high_open), "pair" (two finite numbers), "sign" (+1 or -1), "count" (an integer >=
-    low), "choice" (one of `choices`).  owner: "mechanism" (a Mechanism field) or "run" (a setting
+    low), "choice" (one of `choices`), "curve" (a motor's per-unit torque-speed pairs:
+    crankgen.torque_curve; it enters no equation vector, the runtime reads it).  owner: "mechanism" (a Mechanism field) or "run" (a setting
     of the run) as declared; the representation makes it "guide" or "motion" when guides or
     motions read it (`readers`: those that do; it must stay at its default for the others).
     units: the unit of the value (crankgen's units: L, rho A L, 1/omega_b, ...; crankgen.units),
@@ -153,6 +154,9 @@ class Parameter:
             return "+1 or -1"
         if self.kind == "choice":
             return " or ".join(repr(c) for c in self.choices)
+        if self.kind == "curve":
+            from .torque_curve import RANGE_TEXT
+            return RANGE_TEXT
         return "two finite numbers"
 
     def canonical(self, value):
@@ -174,6 +178,9 @@ class Parameter:
                 raise ParameterError(f"{label} must be a sequence of two numbers ({self.metavar or 'X,Y'}), "
                                      f"got {value!r}")
             return tuple(_real(f"{label}[{k}]", value[k]) for k in range(2))
+        if self.kind == "curve":
+            from . import torque_curve
+            return torque_curve.canonical(label, value)
         if self.kind in ("count", "sign"):
             if not _is_number(value):
                 raise ParameterError(f"{label} must be {self.range_text}, got {value!r}")
@@ -195,6 +202,9 @@ class Parameter:
             return "(" + ", ".join(f"{x:g}" for x in value) + ")"
         if self.kind == "sign":
             return f"{value:+d}"
+        if self.kind == "curve":
+            from .torque_curve import summary
+            return summary(value)
         return f"{value:g}" if self.kind in ("real", "count") else str(value)
 
     def read_by(self, guide, motion):

@@ -49,10 +49,10 @@ RUN_PARAMETERS = tuple(n for n, p in PARAMETERS.items() if p.owner in ("run", "m
 CONTINUABLE = tuple(n for n, p in PARAMETERS.items() if p.continuable)
 EXCLUSIONS = _table.EXCLUSIONS            # option values refused together (records.Exclusion)
 # the parameters of a mechanism and its crank motion in SI (crankgen.SIMechanism's fields beside the
-# rod's), by SI name: those entering an equation or choosing the guide or motion, but the units that
-# are parameters (the rod's section gives them)
+# rod's), by SI name: those entering an equation, choosing the guide or motion or read by them (a
+# motor's torque curve), but the units that are parameters (the rod's section gives them)
 SI_FIELDS = {p.si or p.name: p for p in PARAMETERS.values()
-             if (p.slots or p.selects) and p.name not in UNIT_PARAMETERS.values()}
+             if (p.slots or p.selects or p.owner in ("guide", "motion")) and p.name not in UNIT_PARAMETERS.values()}
 
 
 def resolve_options(model=None, **options):

@@ -9,7 +9,7 @@ import sys
 from pathlib import Path
 
 from .. import schema
-from ..errors import CrankgenError
+from ..errors import CrankgenError, ParameterError
 
 # The named models (presets of the schema): --model sets their options; an explicit --formulation,
 # --damping or --membrane overrides the model's value for that option.
@@ -46,6 +46,8 @@ def _default_text(p):
     default = p.default
     if p.kind == "pair":
         return ",".join(f"{x:g}" for x in default)
+    if p.kind == "curve":
+        return p.text(default)
     return f"{default:g}" if isinstance(default, float) else str(default)
 
 
@@ -65,6 +67,8 @@ def _parameter_type(p, grid):
         return _float_grid if grid else _number
     if p.kind == "pair":
         return _pair
+    if p.kind == "curve":
+        return _curve(p)
     if p.kind == "count":
         return _int_list(p.cli, p.low) if grid else int
     if p.kind == "sign":
@@ -124,6 +128,16 @@ def _pair(text):
     if len(parts) != 2:
         raise argparse.ArgumentTypeError(f"expected two numbers GX,GY, got {text!r}")
     return tuple(_number(p) for p in parts)
+
+
+def _curve(p):
+    """argparse type: a torque curve's per-unit pairs 'S:F,S:F,...' (crankgen.torque_curve)."""
+    def parse(text):
+        try:
+            return p.canonical(text)
+        except ParameterError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
+    return parse
 
 
 def _number(text):

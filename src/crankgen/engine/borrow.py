@@ -61,7 +61,8 @@ def borrowed_work(w):
 @jit(python=False)
 def borrowed_cases(c):
     return Cases(borrowed(c.select), borrowed(c.coef), borrowed(c.params), borrowed(c.dt), borrowed(c.p),
-                 borrowed(c.scheme), borrowed(c.printed), borrowed(c.scales), borrowed(c.integ))
+                 borrowed(c.scheme), borrowed(c.printed), borrowed(c.scales), borrowed(c.integ), borrowed(c.curve),
+                 borrowed(c.curve_n))
 
 
 @jit(python=False)

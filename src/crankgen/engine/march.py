@@ -13,7 +13,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from .. import kinematics as _kinematics
-from .. import newton, schema, time_scheme
+from .. import newton, schema, time_scheme, torque_curve
 from ..outputs import primitive_data
 from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
 from .build import entry_point, prepare
@@ -72,7 +72,8 @@ class Batch:
             printed.astype(np.bool_),
             np.array([self.mesh.dof_scales(schema.natural_sizes(c.parameters()), _kinematics.end_scale(c))
                       for c in cases]),
-            np.array([time_scheme.coefficients(c.rho_inf).as_array() for c in cases], dtype=float))
+            np.array([time_scheme.coefficients(c.rho_inf).as_array() for c in cases], dtype=float),
+            *torque_curve.batch_tables(cases))
         self.generalized = np.array([time_scheme.coefficients(c.rho_inf).generalized for c in cases])
 
     def _new_mesh(self, n):

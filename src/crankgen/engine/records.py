@@ -11,7 +11,8 @@
   outputs), the Newton scheme code (newton.SCHEMES), whether the one-pass scheme iterates with the
   printed eq. (37) matrices, the natural size of every reduced DOF (`scales`), and the time
   scheme's (beta, gamma, alpha_m, alpha_f) (`integ`: crankgen.time_scheme; alpha_m = alpha_f = 0
-  is Newmark).
+  is Newmark), and a motor's torque curve (`curve`: rows (s, f, f') of its first `curve_n` knots;
+  count 0, the linear law the drive kernel holds: crankgen.torque_curve).
 - MeshData: the mesh as the engine reads it: the element DOF map, bandwidth, element length, and
   what the engine's outputs accumulate (schema.PRIMITIVES): for each point primitive its place in
   prims, its element and its shape functions there; for each integral its place and Gram matrix.
@@ -51,7 +52,8 @@ Kernels = namedtuple("Kernels", [
     "drive",                            # a driven crank's equation (drive_<motion>; a no-op for a prescribed one)
 ])
 
-Cases = namedtuple("Cases", ["select", "coef", "params", "dt", "p", "scheme", "printed", "scales", "integ"])
+Cases = namedtuple("Cases", ["select", "coef", "params", "dt", "p", "scheme", "printed", "scales", "integ", "curve",
+                             "curve_n"])
 
 MeshData = namedtuple("MeshData", ["dofs", "kb", "l", "point_slots", "point_elements", "point_weights",
                                    "gram_slots", "grams"])
