@@ -119,6 +119,27 @@ def test_two_revolutions_of_a_period_one_orbit_have_its_quantities(branch):
         assert br.quantities[name][i] == value, name          # the branch's own, from the same march
 
 
+def test_a_torque_curve_s_peak_is_the_motor_torque_along_the_orbit(branch):
+    # a curve with its peak torque inside (crankgen.torque_curve): one revolution from a branch
+    # point's state (not periodic for this motor: the crank's equation holds along any motion)
+    from scipy.interpolate import PchipInterpolator
+    _, br = branch
+    i = len(br) // 2
+    p = float(br.parameter[i])
+    curve = ((0.0, 1.0), (0.9, 1.5), (1.0, 0.0), (1.1, -1.2))
+    fmap = MotorMap(crankgen.Case(motion="motor", no_load_speed=p, torque_curve=curve, **MOTOR, **RUN),
+                    "no_load_speed")
+    orbit, T = motor_orbit(fmap, br.states[i], p, 1)
+    got = motor_orbit_quantities(orbit, T, 1)["peak_motor_torque"]
+    balance = MOTOR["inertia"] * orbit.crank[:, 2] + MOTOR["load_torque"] + np.asarray(orbit.torque)
+    assert got == pytest.approx(balance[np.argmax(np.abs(balance))], rel=1e-9)
+    s = orbit.crank[:, 1] / p                       # inside the table: scipy's PCHIP is the curve
+    assert 0.9 < s.min() and s.max() < 1.1
+    law = MOTOR["stall_torque"] * PchipInterpolator(*zip(*curve))(s)
+    assert got == pytest.approx(law[np.argmax(np.abs(law))], rel=1e-12)
+    assert got != pytest.approx(br.quantities["peak_motor_torque"][i], rel=0.05)   # not the linear law's
+
+
 def test_the_files_read_back_and_quantities_false_keeps_the_speeds(branch, tmp_path):
     d, br = branch
     back = BifurcationDiagram.read_csv(d.to_csv(tmp_path / "csv")[0].parent, info=d.info)

@@ -30,8 +30,8 @@ carries, in motor_units():
 - mean_speed = 2 pi k / T and revolution_time = T / k over the k revolutions of time T;
 - min_crank_speed, max_crank_speed: the extremes of thetad over the orbit's steps;
 - peak_motor_torque: the motor's torque T_m(thetad) of largest magnitude over the steps, signed
-  (the law of the case's motor, read from its generated drive kernel; T_m = J thetadd + T_load +
-  T_rod along the orbit).
+  (on the case's torque curve, read from its crank equation, motor.crank_equation; T_m = J thetadd
+  + T_load + T_rod along the orbit).
 """
 
 import math
@@ -157,8 +157,8 @@ def branch_quantities(case, parameter, branch, section=None, si=None):
 
 def motor_torque(case, crank):
     """T_m(thetad) (...,) of a motor-driven case at crank states (..., 3) = (theta, thetad,
-    thetadd): its generated drive kernel g = J thetadd - (T_m - T_load) + T_rod at thetadd = 0 and
-    no pin force, T_m = T_load - g."""
+    thetadd), on its torque curve: its crank equation (motor.crank_equation) g = J thetadd - (T_m -
+    T_load) + T_rod at thetadd = 0 and no pin force, T_m = T_load - g."""
     crank = np.array(crank, dtype=float)
     crank[..., 2] = 0.0
     g = motor.crank_equation(case, motor.crank_state(case, crank), np.zeros(crank.shape[:-1] + (2,)))
