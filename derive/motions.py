@@ -136,7 +136,8 @@ def motor():
                   "f(s) = 1 - s, the linear law)", (("load", ("load_torque",)),),
                   label="motor-driven crank",
                   theta=theta0 + initial_speed * s.t, thetad=initial_speed, thetadd=sp.Integer(0), period=None,
-                  step_period=2 * sp.pi / no_load_speed, drive=law - load_torque, inertia=inertia)
+                  step_period=2 * sp.pi / no_load_speed, drive=law - load_torque, inertia=inertia,
+                  characteristic=("torque_curve", "stall_torque", "no_load_speed", "inertia"))
 
 
 MOTIONS = (constant(), runup(), fluctuation(), motor())

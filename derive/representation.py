@@ -172,6 +172,8 @@ def _parameters(vector):
         assert set(g.parameters) <= set(names), g.name
     for m in model.MOTIONS:
         assert set(m.parameters) <= set(names), m.name
+        assert set(m.characteristic) <= set(m.parameters), m.name
+        assert not m.characteristic or next(p for p in out if p.name == m.characteristic[0]).kind == "curve", m.name
     return tuple(out)
 
 

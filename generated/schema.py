@@ -845,7 +845,8 @@ MOTIONS = (
         periodic=True,
         transient=None,
         label='constant crank speed',
-        driven=False),
+        driven=False,
+        characteristic=()),
     Motion(
         name='runup',
         title='RunUp',
@@ -855,7 +856,8 @@ MOTIONS = (
         periodic=False,
         transient='ramp',
         label='run-up',
-        driven=False),
+        driven=False,
+        characteristic=()),
     Motion(
         name='fluctuation',
         title='Fluctuation',
@@ -865,7 +867,8 @@ MOTIONS = (
         periodic=True,
         transient=None,
         label='fluctuating crank speed',
-        driven=False),
+        driven=False,
+        characteristic=()),
     Motion(
         name='motor',
         title='Motor',
@@ -875,7 +878,8 @@ MOTIONS = (
         periodic=False,
         transient=None,
         label='motor-driven crank',
-        driven=True),
+        driven=True,
+        characteristic=('torque_curve', 'stall_torque', 'no_load_speed', 'inertia')),
 )
 GUIDES = (
     Guide(

@@ -10,7 +10,7 @@ from scipy.interpolate import PchipInterpolator
 
 import crankgen
 from crankgen import torque_curve
-from crankgen.engine.motor import curve_departure
+from crankgen.engine.motor import hermite
 from crankgen.errors import ParameterError
 
 # an induction motor's shape: locked-rotor torque 1, breakdown torque 2.2 near synchronous speed 1,
@@ -33,17 +33,23 @@ def _scipy_curve(curve):
 
 
 def test_the_engine_s_hermite_pieces_are_scipy_s_pchip():
-    tab = torque_curve.table(INDUCTION)
+    """The engine's table of a case is the curve's departure from the linear law in crankgen's
+    units: T_stall [f(thetad / Omega_nl) - (1 - thetad / Omega_nl)], f scipy's PCHIP here."""
+    stall, no_load = 0.05, 0.8
+    case = crankgen.Case(motion="motor", stall_torque=stall, no_load_speed=no_load, torque_curve=INDUCTION)
+    tab = torque_curve.departure_table(case)
     f = _scipy_curve(INDUCTION)
-    xs = np.concatenate([np.linspace(-0.3, 1.5, 997), [s for s, _ in INDUCTION]])
-    got = np.array([curve_departure(tab, len(tab), x) for x in xs])
-    assert np.max(np.abs(got[:, 0] - (f(xs) - (1 - xs)))) < 1e-13
+    w = no_load * np.concatenate([np.linspace(-0.3, 1.5, 997), [s for s, _ in INDUCTION]])
+    got = np.array([hermite(tab, len(tab), x) for x in w])
+    want = stall * (f(w / no_load) - (1 - w / no_load))
+    assert np.max(np.abs(got[:, 0] - want)) < 1e-13 * stall * 10
     h = 1e-6                                     # the slope against differences of the scipy curve
-    fd = (f(xs + h) - f(xs - h)) / (2 * h) + 1
-    inner = np.all(np.abs(xs[:, None] - np.array([s for s, _ in INDUCTION])) > 2 * h, axis=1)
-    assert np.max(np.abs(got[inner, 1] - fd[inner])) < 1e-6
+    fd = stall * ((f((w + h) / no_load) - f((w - h) / no_load)) / (2 * h) + 1 / no_load)
+    inner = np.all(np.abs(w[:, None] / no_load - np.array([s for s, _ in INDUCTION])) > 2 * h, axis=1)
+    assert np.max(np.abs(got[inner, 1] - fd[inner])) < 1e-6 * stall
     # the shape is kept: no overshoot above the breakdown torque between its neighbours
-    assert np.max(got[:, 0] + 1 - xs) <= 2.2 + 1e-15
+    assert np.max(got[:, 0] / stall + 1 - w / no_load) <= 2.2 + 1e-12
+    assert len(torque_curve.departure_table(crankgen.Case(motion="motor"))) == 0      # the linear law: none
 
 
 def test_a_curve_is_checked_and_reads_back_from_its_text():

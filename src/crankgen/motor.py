@@ -59,7 +59,8 @@ def step_hint(case, dt):
     """A sentence for a step that failed: when the motor's time constant J Omega_nl / (T_stall
     max |f'|) (the crank alone; the linkage adds inertia) is shorter than the step, the step cannot
     follow the motor; else ""."""
-    tau = case.inertia * case.no_load_speed / (case.stall_torque * torque_curve.steepest(case.torque_curve))
+    curve, stall, no_load, inertia = torque_curve.of(case)
+    tau = inertia * no_load / (stall * torque_curve.steepest(curve))
     if tau >= dt:
         return ""
     return (f"; the motor's time constant J Omega_nl / (T_stall max|f'|) = {tau:.3g} is shorter than the step "
@@ -84,10 +85,9 @@ def crank_equation(case, kin, pin):
     """(g, dg/dthetadd, dg/dthetad, dg/dpin_i, dg/dpin_j) (..., 5): the generated drive kernel, with
     a torque curve's departure from the linear law added (crankgen.torque_curve)."""
     geq = getattr(_generated, f"drive_{case.motion_record.name}")(kin.vector, pin, case.kinematic_parameters)
-    curve = getattr(case, "torque_curve", torque_curve.LINEAR)
+    curve, stall, no_load, _ = torque_curve.of(case)
     if tuple(curve) != torque_curve.LINEAR:
         geq = np.array(geq, dtype=float)
-        stall, no_load = case.stall_torque, case.no_load_speed
         extra, slope = torque_curve.departure(curve, np.asarray(kin.thetad, dtype=float) / no_load)
         geq[..., 0] -= stall * extra
         geq[..., 2] -= stall / no_load * slope

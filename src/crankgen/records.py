@@ -246,7 +246,10 @@ class Motion:
     transient: the parameter that is the number of revolutions over which its speed changes before
     it settles (a run-up's ramp; None: none); driven: the crank angle is a degree of freedom driven
     by a motor law (crankgen.motor), not a prescribed motion: its theta(t) is only the crank's
-    start (theta0 at the initial speed) and its step period the fastest revolution it may make."""
+    start (theta0 at the initial speed) and its step period the fastest revolution it may make.
+    characteristic: a driven crank's motor law as data, the names of its parameters (the per-unit
+    torque-speed curve, its torque scale, its speed scale, the crank's inertia): the curve replaces
+    the drive's linear law at run time (crankgen.torque_curve); () for a prescribed motion."""
 
     name: str
     title: str
@@ -257,6 +260,7 @@ class Motion:
     transient: str = None
     label: str = None            # how titles name it        # the parameter giving the revolutions over which its speed changes
     driven: bool = False
+    characteristic: tuple = ()
 
 
 @dataclass(frozen=True)

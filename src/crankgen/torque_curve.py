@@ -120,18 +120,31 @@ def knot_slopes(curve):
     return s, f, PchipInterpolator(s, f).derivative()(s)
 
 
-def table(curve):
-    """(n, 3) rows (s, f, f') of the curve for the engine; (0, 3) for the linear default (the
-    generated law alone, no departure)."""
-    if tuple(curve) == LINEAR:
+def of(case):
+    """(curve, T_stall, Omega_nl, J) of a case whose crank a motor drives, by the names of the
+    parameters its motion declares (records.Motion.characteristic); None for a prescribed crank."""
+    names = case.motion_record.characteristic
+    return tuple(getattr(case, n) for n in names) if names else None
+
+
+def departure_table(case):
+    """(n, 3) rows (thetad_k, D_k, D'_k) of the case's departure from the linear law in crankgen's
+    units, D(thetad) = T_stall [f(s) - (1 - s)] at s = thetad / Omega_nl and D' = dD/dthetad at the
+    knots: the engine's (engine/motor.py `hermite`: the cubic Hermite pieces of these rows are the
+    curve's departure exactly, 1 - s being linear; linear beyond the ends).  (0, 3) for a
+    prescribed crank or the linear law (the generated drive alone)."""
+    law = of(case)
+    if law is None or tuple(law[0]) == LINEAR:
         return np.zeros((0, 3))
-    return np.column_stack(knot_slopes(curve))
+    curve, stall, no_load, _ = law
+    s, f, m = knot_slopes(curve)
+    return np.column_stack([no_load * s, stall * (f - (1 - s)), stall / no_load * (m + 1)])
 
 
 def batch_tables(cases):
     """(tables (cases, K, 3), counts (cases,)) of a batch's cases for the engine (engine/records.py
-    Cases.curve, curve_n): each case's `table` padded with zeros; count 0 is the linear law."""
-    rows = [table(getattr(c, "torque_curve", None) or LINEAR) for c in cases]
+    Cases.curve, curve_n): each case's `departure_table` padded with zeros; count 0: none."""
+    rows = [departure_table(c) for c in cases]
     out = np.zeros((len(rows), max([1] + [len(r) for r in rows]), 3))
     for k, r in enumerate(rows):
         out[k, :len(r)] = r

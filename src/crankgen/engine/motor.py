@@ -30,33 +30,31 @@ ENTRY = "driven"                 # the entry point's name (engine/build.py): the
 _PIN = next(c for c in schema.CONSTRAINTS if c.map is None and c.node == 0)
 PIN_SLOTS = np.array([schema.NODE.index(c) for c in _PIN.eliminated], dtype=np.int64)
 DIVERGED = newton.DIVERGED
-STALL = schema.KINEMATIC_PARAMETERS.index("stall_torque")       # a torque curve's scales in params
-NO_LOAD = schema.KINEMATIC_PARAMETERS.index("no_load_speed")
 
 
 @jit                                # with a Python wrapper: tests call it against scipy
-def curve_departure(tab, n, s):
-    """(f(s) - (1 - s), f'(s) + 1) of a torque curve (crankgen.torque_curve) from its knots' rows
-    tab[:n] = (s_k, f_k, f'_k): the cubic Hermite piece holding s, the end slopes beyond."""
-    if s <= tab[0, 0]:
-        f, df = tab[0, 1] + tab[0, 2] * (s - tab[0, 0]), tab[0, 2]
-    elif s >= tab[n - 1, 0]:
-        f, df = tab[n - 1, 1] + tab[n - 1, 2] * (s - tab[n - 1, 0]), tab[n - 1, 2]
-    else:
-        lo, hi = 0, n - 1
-        while hi - lo > 1:
-            mid = (lo + hi) // 2
-            if tab[mid, 0] <= s:
-                lo = mid
-            else:
-                hi = mid
-        h = tab[hi, 0] - tab[lo, 0]
-        t = (s - tab[lo, 0]) / h
-        f = ((2 * t - 3) * t * t + 1) * tab[lo, 1] + ((t - 2) * t + 1) * t * h * tab[lo, 2] \
-            + (3 - 2 * t) * t * t * tab[hi, 1] + (t - 1) * t * t * h * tab[hi, 2]
-        df = 6 * t * (t - 1) / h * (tab[lo, 1] - tab[hi, 1]) + ((3 * t - 4) * t + 1) * tab[lo, 2] \
-            + (3 * t - 2) * t * tab[hi, 2]
-    return f - (1.0 - s), df + 1.0
+def hermite(tab, n, x):
+    """(y(x), y'(x)) of the cubic Hermite pieces through the rows tab[:n] = (x_k, y_k, y'_k), x_k
+    increasing, continued linearly with the end slopes beyond them: a torque curve's departure from
+    the drive's linear law (crankgen.torque_curve.departure_table)."""
+    if x <= tab[0, 0]:
+        return tab[0, 1] + tab[0, 2] * (x - tab[0, 0]), tab[0, 2]
+    if x >= tab[n - 1, 0]:
+        return tab[n - 1, 1] + tab[n - 1, 2] * (x - tab[n - 1, 0]), tab[n - 1, 2]
+    lo, hi = 0, n - 1
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if tab[mid, 0] <= x:
+            lo = mid
+        else:
+            hi = mid
+    h = tab[hi, 0] - tab[lo, 0]
+    t = (x - tab[lo, 0]) / h
+    y = ((2 * t - 3) * t * t + 1) * tab[lo, 1] + ((t - 2) * t + 1) * t * h * tab[lo, 2] \
+        + (3 - 2 * t) * t * t * tab[hi, 1] + (t - 1) * t * t * h * tab[hi, 2]
+    dy = 6 * t * (t - 1) / h * (tab[lo, 1] - tab[hi, 1]) + ((3 * t - 4) * t + 1) * tab[lo, 2] \
+        + (3 * t - 2) * t * tab[hi, 2]
+    return y, dy
 
 
 @jit(python=False)
@@ -81,10 +79,9 @@ def evaluate(mode, kern, cases, b, mesh, d, v, a, theta, thetad, thetadd, cv, cd
     call(kern.drive, 0, (w.kin, pin, params, geq))
     n = cases.curve_n[b]
     if n > 0:                       # a torque curve: its departure from the drive kernel's linear law
-        stall, no_load = params[STALL], params[NO_LOAD]
-        extra, slope = curve_departure(cases.curve[b], n, thetad / no_load)
-        geq[0] -= stall * extra
-        geq[2] -= stall / no_load * slope
+        extra, slope = hermite(cases.curve[b], n, thetad)
+        geq[0] -= extra
+        geq[2] -= slope
 
 
 @jit(python=False)

@@ -11,8 +11,8 @@
   outputs), the Newton scheme code (newton.SCHEMES), whether the one-pass scheme iterates with the
   printed eq. (37) matrices, the natural size of every reduced DOF (`scales`), and the time
   scheme's (beta, gamma, alpha_m, alpha_f) (`integ`: crankgen.time_scheme; alpha_m = alpha_f = 0
-  is Newmark), and a motor's torque curve (`curve`: rows (s, f, f') of its first `curve_n` knots;
-  count 0, the linear law the drive kernel holds: crankgen.torque_curve).
+  is Newmark), and a motor's torque curve (`curve`: its departure from the drive kernel's linear
+  law at its first `curve_n` knots, rows (thetad, D, D'); count 0: none; crankgen.torque_curve).
 - MeshData: the mesh as the engine reads it: the element DOF map, bandwidth, element length, and
   what the engine's outputs accumulate (schema.PRIMITIVES): for each point primitive its place in
   prims, its element and its shape functions there; for each integral its place and Gram matrix.
