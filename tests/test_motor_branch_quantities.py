@@ -132,7 +132,7 @@ def test_a_torque_curve_s_peak_is_the_motor_torque_along_the_orbit(branch):
     orbit, T = motor_orbit(fmap, br.states[i], p, 1)
     got = motor_orbit_quantities(orbit, T, 1)["peak_motor_torque"]
     balance = MOTOR["inertia"] * orbit.crank[:, 2] + MOTOR["load_torque"] + np.asarray(orbit.torque)
-    assert got == pytest.approx(balance[np.argmax(np.abs(balance))], rel=1e-9)
+    assert got == pytest.approx(balance[np.argmax(np.abs(balance))], rel=1e-10)
     s = orbit.crank[:, 1] / p                       # inside the table: scipy's PCHIP is the curve
     assert 0.9 < s.min() and s.max() < 1.1
     law = MOTOR["stall_torque"] * PchipInterpolator(*zip(*curve))(s)

@@ -30,8 +30,8 @@ carries, in motor_units():
 - mean_speed = 2 pi k / T and revolution_time = T / k over the k revolutions of time T;
 - min_crank_speed, max_crank_speed: the extremes of thetad over the orbit's steps;
 - peak_motor_torque: the motor's torque T_m(thetad) of largest magnitude over the steps, signed
-  (on the case's torque curve, read from its crank equation, motor.crank_equation; T_m = J thetadd
-  + T_load + T_rod along the orbit).
+  (on the case's torque-speed curve, crankgen.torque_curve; T_m = J thetadd + T_load + T_rod along
+  the orbit).
 """
 
 import math
@@ -39,7 +39,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .. import engine, motor, schema
+from .. import engine, schema, torque_curve
 from .. import kinematics as _kinematics
 from ..outputs import DeclaredOutputs
 from .maps import MapError
@@ -155,14 +155,11 @@ def branch_quantities(case, parameter, branch, section=None, si=None):
     return values, notes
 
 
-def motor_torque(case, crank):
-    """T_m(thetad) (...,) of a motor-driven case at crank states (..., 3) = (theta, thetad,
-    thetadd), on its torque curve: its crank equation (motor.crank_equation) g = J thetadd - (T_m -
-    T_load) + T_rod at thetadd = 0 and no pin force, T_m = T_load - g."""
-    crank = np.array(crank, dtype=float)
-    crank[..., 2] = 0.0
-    g = motor.crank_equation(case, motor.crank_state(case, crank), np.zeros(crank.shape[:-1] + (2,)))
-    return case.load_torque - g[..., 0]
+def motor_torque(case, thetad):
+    """T_m(thetad) of a motor-driven case at crank speeds thetad: its motor law as data
+    (crankgen.torque_curve.of: the per-unit curve f, T_stall, Omega_nl), T_stall f(thetad / Omega_nl)."""
+    curve, stall, no_load, _ = torque_curve.of(case)
+    return stall * torque_curve.evaluate(curve, np.asarray(thetad, dtype=float) / no_load)[0]
 
 
 def motor_orbit(fmap, state, p, period):
@@ -196,7 +193,7 @@ def motor_orbit_quantities(orbit, T, period, section=None, si=None):
     speed = orbit.crank[:, 1]
     out = {"mean_speed": 2.0 * math.pi * period / T, "revolution_time": T / period,
            "min_crank_speed": float(np.min(speed)), "max_crank_speed": float(np.max(speed)),
-           "peak_motor_torque": _peak_signed(motor_torque(orbit.case, orbit.crank))}
+           "peak_motor_torque": _peak_signed(motor_torque(orbit.case, speed))}
     return dict(out, **orbit_quantities(orbit, section, si))
 
 
