@@ -80,14 +80,19 @@ def si_parameter(mech, parameter, units, fields, case, values):
     return mech, dict(fields, crank=crank), scales, [to_crankgen(parameter, v, scales) for v in values]
 
 
-def _add_quantities(diagram, case, parameter, section, progress):
-    """Every branch point's physical quantities (quantities.py)."""
-    from .quantities import branch_quantities, units
+def _add_quantities(diagram, case, parameter, section, progress, fmap=None):
+    """Every branch point's physical quantities (quantities.py); fmap: a motor-driven crank's
+    MotorMap, whose section map marches its points' orbits."""
+    from .quantities import branch_quantities, motor_branch_quantities, motor_units, units
     for k, br in enumerate(diagram.branches):
         if progress is not None:
             progress(f"branch {k}: the physical quantities of its {len(br)} orbits")
-        br.quantities, br.quantity_notes = branch_quantities(case, parameter, br, section)
-        br.quantity_units = units(section)
+        if fmap is None:
+            br.quantities, br.quantity_notes = branch_quantities(case, parameter, br, section)
+            br.quantity_units = units(section)
+        else:
+            br.quantities, br.quantity_notes = motor_branch_quantities(fmap, br, section)
+            br.quantity_units = motor_units(section)
 
 
 def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *, model=None, max_period=4, ds=0.05,
@@ -114,7 +119,9 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
     "central" together are the former method, kept as a baseline.  quantities: every branch
     point also stores the physical quantities of its orbit (Branch.quantities: peak torque, pin and
     end forces, axial force, |v*|, outer-fibre strain, and with a crankgen.sections.Section
-    `section` the peak stress in units of E; bifurcation/quantities.py).  units="si": mech is a
+    `section` the peak stress in units of E; bifurcation/quantities.py); a motor-driven crank's
+    points also its mean speed and revolution time (kept with quantities=False), its crank-speed
+    range and peak motor torque.  units="si": mech is a
     crankgen.SIMechanism with its crank motion, start and stop are in the parameter's SI unit
     (crank speed in rad/s, a four-bar's c and d in m, ...), and `diagram.si` gives the diagram in
     SI (the parameter in its SI unit, the amplitude in m, the quantities in N, N m, Pa)."""
@@ -168,7 +175,9 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
                                    f"cannot turn a full revolution ({why})")
     for sp in diagram.special_points:
         sp.case = fmap.case_at(sp.parameter)
-    if driven:                       # a motor's branches: the mean crank speed and revolution time of each orbit
+    if driven and quantities:        # a motor's branches: its orbits' quantities, the crank's speeds among them
+        _add_quantities(diagram, c0, parameter, section, progress, fmap)
+    elif driven:                     # a motor's branches: the mean crank speed and revolution time of each orbit
         for br in diagram.branches:
             speed, period = fmap.speeds(br.states, br.parameter, br.period)
             br.quantities = {"mean_speed": speed, "revolution_time": period}

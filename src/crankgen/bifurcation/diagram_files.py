@@ -173,7 +173,8 @@ def read_csv(folder, info=None):
         mults.setdefault((int(r["branch"]), int(r["point"])), []).append(complex(_value(r["re"]), _value(r["im"])))
     for r in _rows(folder / "states.csv"):
         states[(int(r["branch"]), int(r["point"]))] = r
-    quantities = [k for k in rows[0] if k.startswith("peak_")]
+    from .quantities import MOTOR_QUANTITIES
+    quantities = [k for k in rows[0] if k.startswith("peak_") or k in MOTOR_QUANTITIES]
     groups = {}
     for r in rows:
         groups.setdefault(int(r["branch"]), []).append(r)

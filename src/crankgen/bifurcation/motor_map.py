@@ -69,6 +69,13 @@ class MotorMap(Map):
             orbits.append(orbit)
         return Y, T, orbits
 
+    def revolutions(self, Y, p, period=1):
+        """(the physical section state `period` revolutions after the physical section state Y (as a
+        Branch holds it), their time, each revolution's orbit: the section map's bordered states X,
+        V, A, engine outputs y and times t from 0 to its revolution time).  MapError if one fails."""
+        Y1, T, orbits = self._apply(np.asarray(Y, dtype=float)[None], p, period, keep=True)
+        return Y1[0], float(T[0]), orbits
+
     def evaluate(self, y, p, period=1, dp=True):
         Y = np.asarray(y, dtype=float) * self.s
         h = 1e-6 * self.s

@@ -17,8 +17,21 @@ over the orbit:
   fibres, sigma = N/A - M y/I (crankgen.stress), in units of E (or Pa with si, the
   crankgen.SIMechanism of the diagram).
 Fields are read at the nodes and the element midpoints.  Units: those the outputs declare
-(crankgen's units), listed in UNITS; a point whose orbit cannot be marched has NaN and its reason in
-the branch's quantity_notes.
+(crankgen's units), listed by units(); a point whose orbit cannot be marched has NaN and its reason
+in the branch's quantity_notes.
+
+A motor-driven crank's point (motor_branch_quantities) is its section state on theta = theta0
+(mod 2 pi); its orbit is the autonomous motion from there over its `period` revolutions, marched
+by the continuation's own section map (bifurcation/motor_map.py, motor_steady.SectionMap: each
+revolution's last step lands on the section), the crank's angle, speed and acceleration per step
+from that run (the declared outputs read the kinematics of them, as a motor simulation's do).
+Beside the quantities above (peak_torque: the torque T_rod the rod demands of the crank), it
+carries, in motor_units():
+- mean_speed = 2 pi k / T and revolution_time = T / k over the k revolutions of time T;
+- min_crank_speed, max_crank_speed: the extremes of thetad over the orbit's steps;
+- peak_motor_torque: the motor's torque T_m(thetad) of largest magnitude over the steps, signed
+  (on the case's torque-speed curve, crankgen.torque_curve; T_m = J thetadd + T_load + T_rod along
+  the orbit).
 """
 
 import math
@@ -26,9 +39,10 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .. import engine, schema
+from .. import engine, schema, torque_curve
 from .. import kinematics as _kinematics
 from ..outputs import DeclaredOutputs
+from .maps import MapError
 from .mechanism import V_MID
 
 QUANTITIES = ("peak_v", "peak_torque", "peak_pin_force_A", "peak_pin_force_B", "peak_support_force",
@@ -38,6 +52,8 @@ JOINTS = {"peak_pin_force_A": ("crank_on_rod",), "peak_pin_force_B": ("rod_on_sl
           "peak_support_force": ("guide_on_slider", "rocker_on_tip")}
 RECTANGLE_FIBRE = math.sqrt(3.0)        # outer fibre of a rectangle, in radii of gyration
 CHUNK = 64                              # orbits marched in one batch
+# a motor-driven crank's own quantities (module docstring), before the others in motor_units()
+MOTOR_QUANTITIES = ("mean_speed", "revolution_time", "min_crank_speed", "max_crank_speed", "peak_motor_torque")
 
 
 def units(section=None, si=None):
@@ -52,6 +68,15 @@ def units(section=None, si=None):
     return out
 
 
+def motor_units(section=None, si=None):
+    """{quantity: units text} of a motor-driven crank's branch point (crankgen's units, or SI with si):
+    MOTOR_QUANTITIES, then units()'s."""
+    speed = schema.OUTPUTS["crank_speed"].units
+    out = {"mean_speed": speed, "revolution_time": f"1/{speed}", "min_crank_speed": speed,
+           "max_crank_speed": speed, "peak_motor_torque": schema.OUTPUTS["torque"].units}
+    return dict(out, **units(section, si))
+
+
 @dataclass(frozen=True)
 class Orbit(DeclaredOutputs):
     """One orbit of a branch point, every declared output by name (outputs.DeclaredOutputs)."""
@@ -63,6 +88,7 @@ class Orbit(DeclaredOutputs):
     states: np.ndarray = field(repr=False)
     rates: np.ndarray = field(repr=False)
     accelerations: np.ndarray = field(repr=False)
+    crank: np.ndarray = field(default=None, repr=False)    # a motor-driven crank's (theta, thetad, thetadd) per step
 
 
 def _peak_signed(values):
@@ -126,4 +152,63 @@ def branch_quantities(case, parameter, branch, section=None, si=None):
                           res.V_history[j], res.A_history[j])
             for k, v in orbit_quantities(orbit, section, si).items():
                 values[k][i] = v
+    return values, notes
+
+
+def motor_torque(case, thetad):
+    """T_m(thetad) of a motor-driven case at crank speeds thetad: its motor law as data
+    (crankgen.torque_curve.of: the per-unit curve f, T_stall, Omega_nl), T_stall f(thetad / Omega_nl)."""
+    curve, stall, no_load, _ = torque_curve.of(case)
+    return stall * torque_curve.evaluate(curve, np.asarray(thetad, dtype=float) / no_load)[0]
+
+
+def motor_orbit(fmap, state, p, period):
+    """(Orbit, T): the orbit of a motor-driven crank's branch point (module docstring): its section
+    state (physical, as a Branch holds it) marched `period` revolutions by the MotorMap fmap at
+    parameter p, T their time; the crank angle runs on over the revolutions.  MapError if a
+    revolution fails."""
+    _, T, revolutions = fmap.revolutions(state, p, period)
+    N = fmap.N
+    X, V, A, y, t = [], [], [], [], []
+    start = 0.0
+    for k, rev in enumerate(revolutions):
+        skip = 0 if k == 0 else 1                 # a revolution starts where the last one landed
+        x = rev["X"][skip:].copy()
+        x[:, N] += 2.0 * math.pi * k
+        X.append(x)
+        V.append(rev["V"][skip:])
+        A.append(rev["A"][skip:])
+        y.append(rev["y"][skip:])
+        t.append(rev["t"][skip:] + start)
+        start += rev["t"][-1]
+    X, V, A, y, t = (np.concatenate(a) for a in (X, V, A, y, t))
+    crank = np.stack([X[:, N], V[:, N], A[:, N]], axis=-1)
+    orbit = Orbit(fmap.case_at(p), t, crank[:, 0], y[:, V_MID], X[:, :N], V[:, :N], A[:, :N], crank=crank)
+    return orbit, T
+
+
+def motor_orbit_quantities(orbit, T, period, section=None, si=None):
+    """{quantity: value} of one motor-driven Orbit of `period` revolutions in the time T (module
+    docstring)."""
+    speed = orbit.crank[:, 1]
+    out = {"mean_speed": 2.0 * math.pi * period / T, "revolution_time": T / period,
+           "min_crank_speed": float(np.min(speed)), "max_crank_speed": float(np.max(speed)),
+           "peak_motor_torque": _peak_signed(motor_torque(orbit.case, speed))}
+    return dict(out, **orbit_quantities(orbit, section, si))
+
+
+def motor_branch_quantities(fmap, branch, section=None, si=None):
+    """({quantity: (points,) array}, notes): the quantities of every point of a motor-driven
+    crank's Branch (its states the section states of the MotorMap fmap), one orbit at a time."""
+    values = {k: np.full(len(branch), math.nan) for k in motor_units(section, si)}
+    notes = []
+    period = int(branch.period)
+    for i, (state, p) in enumerate(zip(branch.states, branch.parameter)):
+        try:
+            orbit, T = motor_orbit(fmap, state, float(p), period)
+        except MapError as exc:
+            notes.append(f"point {i}: the orbit's march failed ({exc})")
+            continue
+        for k, v in motor_orbit_quantities(orbit, T, period, section, si).items():
+            values[k][i] = v
     return values, notes

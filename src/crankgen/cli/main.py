@@ -199,7 +199,9 @@ def build_parser():
                                    "period doublings and Neimark-Sacker points, and the period-2 (4, ...) "
                                    "branches born at period doublings; every point with the physical "
                                    "quantities of its orbit (peak torque, pin and end forces, axial "
-                                   "force, |v*|, outer-fibre strain; stress with --section). Writes "
+                                   "force, |v*|, outer-fibre strain; stress with --section; with --crank "
+                                   "motor also the mean speed, revolution time, crank-speed range and "
+                                   "peak motor torque). Writes "
                                    "branches.csv, special_points.csv, multipliers.csv, states.csv, "
                                    "continuation.json (read back by "
                                    "crankgen.BifurcationDiagram.from_json) and continuation.png.")
