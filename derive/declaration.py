@@ -219,7 +219,7 @@ PARAMETERS = (
     Parameter("torque_curve", "curve", ((0.0, 1.0), (1.0, 0.0)), "torque_curve (motor's per-unit torque-speed curve)",
               "a motor's torque-speed curve in per-unit, T_m / T_stall against thetad / Omega_nl, as pairs S:F "
               "through 0:1 and 1:0 (cubic Hermite, shape-preserving, between them; linear beyond); the default "
-              "0:1,1:0 is the linear law", owner="run", metavar="S:F,S:F,..."),
+              "0:1,1:0 is the linear law", owner="run", metavar="S:F,S:F,...", axis="torque curve s:f"),
     Parameter("initial_speed", "real", 0.0, "initial_speed (motor-driven crank's speed at t = 0)",
               "the crank speed at t = 0 of a motor-driven crank (0: a start from rest), units of omega_b",
               owner="run", low=0.0, units="omega_b", symbol=motions.initial_speed),

@@ -658,7 +658,7 @@ PARAMETERS = (
         continuable=False,
         slots=(),
         selects=None,
-        axis='torque_curve',
+        axis='torque curve s:f',
         si=None,
         si_default=None),
     Parameter(

@@ -2,6 +2,7 @@
 
 import csv
 import math
+import textwrap
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -17,17 +18,23 @@ LABELS = {"fold": "F", "period-doubling": "PD", "neimark-sacker": "NS"}
 # branch colours by period (the reproduce figures use the same): black, purple, green, olive,
 # none near the approaches' blue, orange and red (crankgen.plotting.APPROACH_COLORS)
 PERIOD_COLORS = {1: "black", 2: "#7b2d8e", 4: "#2ca02c", 8: "#6b6b00"}
+
+
 def axis(parameter):
     """The axis text of a parameter: its record's axis (the name itself otherwise)."""
     p = schema.PARAMETERS.get(parameter)
     return parameter if p is None else p.axis
 
 
-def describe(info, what, parameter):
+TITLE_WIDTH = 120                # characters of a figure title's line of parameters
+
+
+def describe(info, what, parameter, width=None):
     """A two-line title from a diagram's info (the model and settings it was computed for): what
     and the parameter varied, the model; then every fixed parameter that sets the response (the
     crank speed, eps, ms*, mu*, a*) and the linkage (a four-bar's rocker and ground pivot, a
-    guide offset, gravity, a fluctuating crank), the varied parameter left out."""
+    guide offset, gravity, a fluctuating crank), the varied parameter left out.  width: the
+    second line wrapped at that many characters, between items (a figure's title)."""
     if not info:
         return f"{what} in {parameter}"
     parts = [f"approach {info['approach']}" if "approach" in info else None,
@@ -35,7 +42,11 @@ def describe(info, what, parameter):
              f"n = {info['n_elements']}" if "n_elements" in info else None]
     main, other = schema.describe({k: v for k, v in info.items() if k in schema.PARAMETERS}, skip=(parameter,))
     head = f"{what} in {axis(parameter)}: " + ", ".join(p for p in parts if p)
-    return head + "\n" + ", ".join(main + other)
+    if width is None:
+        return head + "\n" + ", ".join(main + other)
+    from ..plotting import listed
+    lines = textwrap.fill(listed(main + other), width, break_on_hyphens=False)
+    return head + "\n" + lines.replace("\u00a0", " ")         # broken between items only
 
 
 def _num(x):
@@ -306,7 +317,7 @@ class BifurcationDiagram:
         leg = ax.legend(handles=handles, fontsize=8, loc="upper center", ncol=3, frameon=False,
                         bbox_to_anchor=(0.5, -0.16))
         leg._crankgen_outside = True
-        ax.set_title(title or describe(self.info, "continuation", self.parameter_name), fontsize=9)
+        ax.set_title(title or describe(self.info, "continuation", self.parameter_name, TITLE_WIDTH), fontsize=9)
         if own:
             save_figure(fit_panels(fig), path, dpi=130)
         return path

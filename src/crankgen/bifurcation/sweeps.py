@@ -106,7 +106,7 @@ class PoincareDiagram:
 
         from ..plotting import beyond_patch, fit_panels, panels, place_labels, shade_beyond
         from ..theory import DEFLECTION_LIMIT
-        from .diagram import LABELS, PERIOD_COLORS, axis, describe
+        from .diagram import LABELS, PERIOD_COLORS, TITLE_WIDTH, axis, describe
 
         fig, axes = panels(1, 1, width=7.5, height=4.2)
         ax = axes[0, 0]
@@ -177,7 +177,7 @@ class PoincareDiagram:
             leg = ax.legend(handles=handles, fontsize=8, loc="upper center", ncol=3, frameon=False,
                             bbox_to_anchor=(0.5, -0.16))
             leg._crankgen_outside = True
-        ax.set_title(title or describe(self.info, "Poincare sweep", self.parameter_name), fontsize=9)
+        ax.set_title(title or describe(self.info, "Poincare sweep", self.parameter_name, TITLE_WIDTH), fontsize=9)
         save_figure(fit_panels(fig), path, dpi=130)
         return path
 
