@@ -121,7 +121,7 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
     end forces, axial force, |v*|, outer-fibre strain, and with a crankgen.sections.Section
     `section` the peak stress in units of E; bifurcation/quantities.py); a motor-driven crank's
     points also its mean speed and revolution time (kept with quantities=False), its crank-speed
-    range and peak motor torque.  units="si": mech is a
+    range, peak and RMS motor torque and mean motor power.  units="si": mech is a
     crankgen.SIMechanism with its crank motion, start and stop are in the parameter's SI unit
     (crank speed in rad/s, a four-bar's c and d in m, ...), and `diagram.si` gives the diagram in
     SI (the parameter in its SI unit, the amplitude in m, the quantities in N, N m, Pa)."""

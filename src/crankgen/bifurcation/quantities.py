@@ -31,7 +31,11 @@ carries, in motor_units():
 - min_crank_speed, max_crank_speed: the extremes of thetad over the orbit's steps;
 - peak_motor_torque: the motor's torque T_m(thetad) of largest magnitude over the steps, signed
   (on the case's torque-speed curve, crankgen.torque_curve; T_m = J thetadd + T_load + T_rod along
-  the orbit).
+  the orbit);
+- rms_motor_torque = sqrt(<T_m^2>) (the torque a motor's thermal rating is sized by) and
+  mean_motor_power = <T_m thetad>, <.> the time mean over the orbit by the trapezoidal rule on its
+  steps (the last one shorter: it lands on the section).  Over a periodic orbit the motor's work
+  T <T_m thetad> is the load's, 2 pi k T_load, and the damping's.
 """
 
 import math
@@ -53,7 +57,8 @@ JOINTS = {"peak_pin_force_A": ("crank_on_rod",), "peak_pin_force_B": ("rod_on_sl
 RECTANGLE_FIBRE = math.sqrt(3.0)        # outer fibre of a rectangle, in radii of gyration
 CHUNK = 64                              # orbits marched in one batch
 # a motor-driven crank's own quantities (module docstring), before the others in motor_units()
-MOTOR_QUANTITIES = ("mean_speed", "revolution_time", "min_crank_speed", "max_crank_speed", "peak_motor_torque")
+MOTOR_QUANTITIES = ("mean_speed", "revolution_time", "min_crank_speed", "max_crank_speed", "peak_motor_torque",
+                    "rms_motor_torque", "mean_motor_power")
 
 
 def units(section=None, si=None):
@@ -72,8 +77,10 @@ def motor_units(section=None, si=None):
     """{quantity: units text} of a motor-driven crank's branch point (crankgen's units, or SI with si):
     MOTOR_QUANTITIES, then units()'s."""
     speed = schema.OUTPUTS["crank_speed"].units
+    torque = schema.OUTPUTS["torque"].units
     out = {"mean_speed": speed, "revolution_time": f"1/{speed}", "min_crank_speed": speed,
-           "max_crank_speed": speed, "peak_motor_torque": schema.OUTPUTS["torque"].units}
+           "max_crank_speed": speed, "peak_motor_torque": torque, "rms_motor_torque": torque,
+           "mean_motor_power": "rhoA L^3 omega_b^3"}          # a torque times a speed
     return dict(out, **units(section, si))
 
 
@@ -187,13 +194,21 @@ def motor_orbit(fmap, state, p, period):
     return orbit, T
 
 
+def _time_mean(t, values):
+    """The time mean of values at the times t by the trapezoidal rule."""
+    return float(np.sum(0.5 * (values[1:] + values[:-1]) * np.diff(t)) / (t[-1] - t[0]))
+
+
 def motor_orbit_quantities(orbit, T, period, section=None, si=None):
     """{quantity: value} of one motor-driven Orbit of `period` revolutions in the time T (module
     docstring)."""
     speed = orbit.crank[:, 1]
+    torque = motor_torque(orbit.case, speed)
     out = {"mean_speed": 2.0 * math.pi * period / T, "revolution_time": T / period,
            "min_crank_speed": float(np.min(speed)), "max_crank_speed": float(np.max(speed)),
-           "peak_motor_torque": _peak_signed(motor_torque(orbit.case, speed))}
+           "peak_motor_torque": _peak_signed(torque),
+           "rms_motor_torque": math.sqrt(_time_mean(orbit.t, torque ** 2)),
+           "mean_motor_power": _time_mean(orbit.t, torque * speed)}
     return dict(out, **orbit_quantities(orbit, section, si))
 
 

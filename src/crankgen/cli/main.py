@@ -200,8 +200,8 @@ def build_parser():
                                    "branches born at period doublings; every point with the physical "
                                    "quantities of its orbit (peak torque, pin and end forces, axial "
                                    "force, |v*|, outer-fibre strain; stress with --section; with --crank "
-                                   "motor also the mean speed, revolution time, crank-speed range and "
-                                   "peak motor torque). Writes "
+                                   "motor also the mean speed, revolution time, crank-speed range, "
+                                   "peak and RMS motor torque and mean motor power). Writes "
                                    "branches.csv, special_points.csv, multipliers.csv, states.csv, "
                                    "continuation.json (read back by "
                                    "crankgen.BifurcationDiagram.from_json) and continuation.png.")
