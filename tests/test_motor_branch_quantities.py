@@ -199,3 +199,22 @@ def test_the_si_files_have_them_in_si(tmp_path):
         assert float(row["peak_pin_force_A_N"]) > 0 and float(row["peak_torque_N_m"]) != 0
         # W = N m rad/s: the mean power against the SI rms torque and mean speed's bound
         assert 0 < float(row["mean_motor_power_W"]) < float(row["rms_motor_torque_N_m"]) * high
+
+
+def test_a_point_of_a_motor_branch_animates_its_orbit(branch):
+    """crankgen.animation.orbit of a motor-driven point: the run from its section state (its crank
+    speed the point's) over its revolution time, to the nearest step: one crank revolution, the
+    crank-speed range the point's."""
+    from crankgen.animation import orbit
+    d, br = branch
+    i = len(br) // 2
+    r = orbit(d, 0, i)
+    T = float(br.quantities["revolution_time"][i])
+    dt = r.t[1] - r.t[0]
+    assert abs(r.t[-1] - T) <= dt / 2 + 1e-12
+    speed = r.crank_speed
+    N = (len(br.states[i]) - 1) // 2                 # Newmark's section state (d, v, thetad)
+    assert speed[0] == br.states[i][2 * N]
+    assert abs(r.theta[-1] - r.theta[0] - 2 * math.pi) <= np.max(speed) * dt / 2 + 1e-9
+    assert np.min(speed) == pytest.approx(br.quantities["min_crank_speed"][i], rel=1e-9)
+    assert np.max(speed) == pytest.approx(br.quantities["max_crank_speed"][i], rel=1e-3)

@@ -216,10 +216,14 @@ def animate(result, path, magnification=None, frames=None, fps=20, title=None, s
 def orbit(diagram, branch, point):
     """The orbit of point `point` of branch `branch` of a mechanism's BifurcationDiagram
     (crankgen.continuation), marched for its period from its stored state: a SimulationResult
-    whose `animate` shows it."""
+    whose `animate` shows it.  A motor-driven crank's point starts on its section with its crank
+    speed and runs for its period's revolution times (to the nearest step)."""
     from dataclasses import replace
 
     from .cases import Case
+    from .kinematics import step_period
+    from .motor import driven
+    from .motor_steady import SectionMap
     from .simulation import simulate
     branch = integer("branch", branch, 0)
     if branch >= len(diagram.branches):
@@ -231,5 +235,11 @@ def orbit(diagram, branch, point):
     info = {k: v for k, v in diagram.info.items() if k in Case.__dataclass_fields__}
     case = replace(Case.from_dict(info), **{diagram.parameter_name: float(br.parameter[point])})
     state = np.asarray(br.states[point], dtype=float)     # (d, v), or (d, v, a) for generalized-alpha,
+    if driven(case):                                      # (d, v, thetad[, g]) on the section of a motor
+        X, V, _ = SectionMap(case).full(state)
+        N = X.shape[1] - 1
+        case = replace(case, initial_speed=float(V[0, N]), theta0=float(X[0, N]))
+        period = br.period * float(br.quantities["revolution_time"][point])
+        return simulate(case=case, initial=(X[0, :N], V[0, :N]), revolutions=period / step_period(case))
     parts = np.split(state, len(state) // (3 * case.n_elements))   # at theta0, crankgen's units
     return simulate(case=case, initial=parts, revolutions=br.period)
