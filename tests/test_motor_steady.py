@@ -122,3 +122,28 @@ def test_a_poincare_sweep_of_a_motor_finds_the_steady_motion(steady):
     assert [p.classification for p in d.points] == ["period-1", "period-1"]
     assert d.points[-1].amplitude == pytest.approx(steady.amplitude, rel=1e-4)
     assert d.points[0].amplitude < 0.8 * d.points[-1].amplitude         # a slower motor, a smaller response
+
+
+def test_a_steady_motor_motion_gives_what_sizes_the_motor():
+    """The peak and RMS motor torque and the mean power of a steady revolution (SteadyState.motor_duty,
+    the steady.csv columns): the motor's torque along the orbit is the crank's equation's,
+    J thetadd + T_load + T_rod (the output torque), and the time means are the trapezoidal rule's
+    of the law written here; the motor's mean power exceeds the load's by what the rod dissipates."""
+    stall, no_load, J, load = 0.05, 0.8, 0.05, 0.002
+    st = crankgen.steady_state(crank=crankgen.Motor(stall_torque=stall, no_load_speed=no_load, inertia=J,
+                                                    load_torque=load), n_elements=4)
+    assert st.ok
+    w, wdot, t = st.crank[:, 1], st.crank[:, 2], st.t
+    law = stall * (1 - w / no_load)
+    balance = J * wdot + load + np.asarray(st.quantity("torque"))
+    assert np.max(np.abs(law - balance)) < 1e-7 * np.max(np.abs(law))
+    duty = st.motor_duty
+
+    def mean(f):
+        return float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(t)) / (t[-1] - t[0]))
+    assert duty["peak_motor_torque"] == pytest.approx(law[np.argmax(np.abs(law))], rel=1e-12)
+    assert duty["rms_motor_torque"] == pytest.approx(np.sqrt(mean(law ** 2)), rel=1e-12)
+    assert duty["mean_motor_power"] == pytest.approx(mean(law * w), rel=1e-12)
+    assert load * st.mean_speed < duty["mean_motor_power"] < 1.5 * load * st.mean_speed
+    row = st.row()
+    assert all(row[k] == v for k, v in duty.items())

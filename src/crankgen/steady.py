@@ -112,6 +112,15 @@ class SteadyState(DeclaredOutputs):
         return float((w.max() - w.min()) / self.mean_speed)
 
     @property
+    def motor_duty(self):
+        """A motor-driven crank's {peak_motor_torque, rms_motor_torque, mean_motor_power} over the
+        steady revolution (crankgen.torque_curve.duty; None otherwise)."""
+        if self.crank is None or self.t is None:
+            return None
+        from .torque_curve import duty
+        return duty(self.case, self.t, self.crank[:, 1])
+
+    @property
     def ok(self):
         return self.status == "periodic"
 

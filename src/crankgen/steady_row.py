@@ -59,6 +59,11 @@ MOTOR_RESULTS = (
     ("mean_speed", "omega_b", "a motor-driven crank's mean speed 2 pi / T over the steady revolution"),
     ("speed_fluctuation", "1", "a motor-driven crank's speed fluctuation over the steady revolution, "
                                "(max - min crank speed) / mean speed"),
+    ("peak_motor_torque", "rhoA L^3 omega_b^2", "the motor's torque T_m(thetad) of largest magnitude over the "
+                                                "steady revolution, signed (on its torque-speed curve)"),
+    ("rms_motor_torque", "rhoA L^3 omega_b^2", "the RMS of the motor's torque over the steady revolution (what a "
+                                               "motor's thermal rating is sized by)"),
+    ("mean_motor_power", "rhoA L^3 omega_b^3", "the motor's mean power T_m thetad over the steady revolution"),
 )
 PEAK = "peak_"
 _RESULT_UNITS = {name: units for name, units, _ in RESULTS + MOTOR_RESULTS}
@@ -118,7 +123,7 @@ def row(state):
                                 if has_orbit else None)
     if getattr(state, "period", None) is not None:
         results.update(revolution_time=state.period, mean_speed=state.mean_speed,
-                       speed_fluctuation=state.speed_fluctuation)
+                       speed_fluctuation=state.speed_fluctuation, **(state.motor_duty or {}))
     results.update(periods=state.periods, iterations=state.iterations, residual=state.residual,
                    multiplier=state.multiplier, wall_time=state.wall_time, message=state.message)
     out.update(results)

@@ -162,13 +162,6 @@ def branch_quantities(case, parameter, branch, section=None, si=None):
     return values, notes
 
 
-def motor_torque(case, thetad):
-    """T_m(thetad) of a motor-driven case at crank speeds thetad: its motor law as data
-    (crankgen.torque_curve.of: the per-unit curve f, T_stall, Omega_nl), T_stall f(thetad / Omega_nl)."""
-    curve, stall, no_load, _ = torque_curve.of(case)
-    return stall * torque_curve.evaluate(curve, np.asarray(thetad, dtype=float) / no_load)[0]
-
-
 def motor_orbit(fmap, state, p, period):
     """(Orbit, T): the orbit of a motor-driven crank's branch point (module docstring): its section
     state (physical, as a Branch holds it) marched `period` revolutions by the MotorMap fmap at
@@ -194,21 +187,13 @@ def motor_orbit(fmap, state, p, period):
     return orbit, T
 
 
-def _time_mean(t, values):
-    """The time mean of values at the times t by the trapezoidal rule."""
-    return float(np.sum(0.5 * (values[1:] + values[:-1]) * np.diff(t)) / (t[-1] - t[0]))
-
-
 def motor_orbit_quantities(orbit, T, period, section=None, si=None):
     """{quantity: value} of one motor-driven Orbit of `period` revolutions in the time T (module
     docstring)."""
     speed = orbit.crank[:, 1]
-    torque = motor_torque(orbit.case, speed)
     out = {"mean_speed": 2.0 * math.pi * period / T, "revolution_time": T / period,
            "min_crank_speed": float(np.min(speed)), "max_crank_speed": float(np.max(speed)),
-           "peak_motor_torque": _peak_signed(torque),
-           "rms_motor_torque": math.sqrt(_time_mean(orbit.t, torque ** 2)),
-           "mean_motor_power": _time_mean(orbit.t, torque * speed)}
+           **torque_curve.duty(orbit.case, orbit.t, speed)}
     return dict(out, **orbit_quantities(orbit, section, si))
 
 

@@ -287,9 +287,21 @@ def _steady(args, case, out, section=None, si=None):
           + _theory_note(nan if row["deflection_over_L"] is None else row["deflection_over_L"],
                          nan if row["axial_strain"] is None else row["axial_strain"], st))
     if st.period is not None:
-        print(f"the motor-driven crank: revolution time T* = {st.period:.6g}, mean speed {st.mean_speed:.6g} "
-              f"(no-load {2 * math.pi / step_period(case):g}), speed fluctuation {st.speed_fluctuation:.4g} of the mean; "
+        no_load = 2 * math.pi / step_period(case)
+        speeds = (f"revolution time T* = {st.period:.6g}, mean speed {st.mean_speed:.6g} (no-load {no_load:g})"
+                  if si is None else
+                  f"revolution time {row['revolution_time_s']:.6g} s, mean speed {row['mean_speed_rad_per_s']:.6g} "
+                  f"rad/s (no-load {si.no_load_speed:g} rad/s)")
+        print(f"the motor-driven crank: {speeds}, speed fluctuation {st.speed_fluctuation:.4g} of the mean; "
               "the multipliers are the section map's (the flow's trivial multiplier 1 is not among them)")
+        if st.motor_duty is not None:                # what sizes the motor
+            names, units = (("peak_motor_torque", "rms_motor_torque", "mean_motor_power"),
+                            ("rhoA L^3 omega_b^2", "rhoA L^3 omega_b^3"))
+            if si is not None:
+                names, units = ("peak_motor_torque_N_m", "rms_motor_torque_N_m", "mean_motor_power_W"), ("N m", "W")
+            peak, rms, power = (row[n] for n in names)
+            print(f"the motor: peak torque {peak:.4g}, RMS torque {rms:.4g} {units[0]}, mean power {power:.4g} "
+                  f"{units[1]} over the revolution")
     if section is not None and st.states is not None:
         print("\n".join(_loads_and_stress(st, section, si)))
     elif st.states is not None:                  # the loads a motor and its bearings are sized from
