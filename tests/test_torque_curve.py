@@ -135,3 +135,19 @@ def test_engines_agree_and_a_straight_curve_is_the_linear_law():
     linear = crankgen.simulate(crank=crankgen.Motor(**motor), **kw)
     assert np.max(np.abs(straight.crank - linear.crank)) < 1e-12
     assert np.max(np.abs(b.crank[:, 1] - linear.crank[:, 1])) > 1e-3      # and a curved one is not
+
+
+def test_a_run_s_motor_torque_is_the_crank_equation_s(tmp_path):
+    """result.motor_torque (the curve, evaluated by the reference's scipy PCHIP) equals what the
+    compiled engine's step solved for, J thetadd + T_load + T_rod (the output torque), through the
+    breakdown peak; the per-step CSV carries it."""
+    J, load = 0.05, 0.002
+    r = crankgen.simulate(crank=crankgen.Motor(stall_torque=0.05, no_load_speed=0.8, inertia=J, load_torque=load,
+                                               torque_curve=INDUCTION), n_elements=4, revolutions=1)
+    balance = J * r.crank_acceleration + load + np.asarray(r.torque)
+    assert np.max(r.crank_speed) / 0.8 > 0.85                  # past the breakdown torque
+    assert np.max(np.abs(r.motor_torque - balance)) < 1e-8 * np.max(np.abs(r.motor_torque))
+    from crankgen.exports import per_step
+    columns, values = per_step(r)
+    assert np.array_equal(values[columns.index("motor_torque_rhoA_L3_omega_b2")], r.motor_torque)
+    assert crankgen.simulate(omega=0.8, n_elements=2, revolutions=0.1).motor_torque is None

@@ -82,6 +82,11 @@ def per_step(result, si=None, x=(0.5,), fiber=None, theory=True):
     for name in output_names(result):
         columns.append(column(name, schema.OUTPUTS[name].units, si is not None))
         values.append(np.asarray(view.quantity(name), dtype=float))
+    motor = getattr(result, "motor_torque", None)
+    if motor is not None:                      # a motor-driven crank: the motor's torque on its curve
+        units = schema.OUTPUTS["torque"].units
+        columns.append(column("motor_torque", units, si is not None))
+        values.append(np.asarray(motor, dtype=float) * (1.0 if si is None else si.scales.factor(units)))
     for name in field_names(result, fiber):
         spec = schema.OUTPUTS[name]
         arguments = {"fiber": fiber} if "fiber" in spec.arguments else {}

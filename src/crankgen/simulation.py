@@ -61,6 +61,15 @@ class SimulationResult(DeclaredOutputs):
         return self.theta
 
     @property
+    def motor_torque(self):
+        """A motor-driven crank's motor torque T_m(thetad) per step, on its torque-speed curve (units
+        of the output torque; crankgen.torque_curve); None for a prescribed crank."""
+        if self.crank is None:
+            return None
+        from .torque_curve import motor_torque
+        return motor_torque(self.case, self.crank[:, 1])
+
+    @property
     def crank_acceleration(self):
         """The crank's angular acceleration per step (units of omega_b^2)."""
         if self.crank is not None:
