@@ -18,6 +18,7 @@ import math
 import numpy as np
 
 from . import schema
+from .torque_curve import duty_units
 from .units import Scales
 
 AMPLITUDE_UNITS = schema.OUTPUTS["v_mid"].units        # the amplitude is of v*(1/2), in its units
@@ -54,16 +55,17 @@ RESULTS = (
     ("message", None, "why a case is not periodic, failed or is marked; empty otherwise"),
 )
 # a motor-driven crank's steady motion (crankgen.motor_steady) adds, before `periods`:
+_DUTY = duty_units()                   # what sizes its motor (crankgen.torque_curve.duty)
 MOTOR_RESULTS = (
     ("revolution_time", "1/omega_b", "a motor-driven crank's steady revolution time T (its period)"),
     ("mean_speed", "omega_b", "a motor-driven crank's mean speed 2 pi / T over the steady revolution"),
     ("speed_fluctuation", "1", "a motor-driven crank's speed fluctuation over the steady revolution, "
                                "(max - min crank speed) / mean speed"),
-    ("peak_motor_torque", "rhoA L^3 omega_b^2", "the motor's torque T_m(thetad) of largest magnitude over the "
-                                                "steady revolution, signed (on its torque-speed curve)"),
-    ("rms_motor_torque", "rhoA L^3 omega_b^2", "the RMS of the motor's torque over the steady revolution (what a "
-                                               "motor's thermal rating is sized by)"),
-    ("mean_motor_power", "rhoA L^3 omega_b^3", "the motor's mean power T_m thetad over the steady revolution"),
+    ("peak_motor_torque", _DUTY["peak_motor_torque"], "the motor's torque T_m(thetad) of largest magnitude over "
+                                                      "the steady revolution, signed (on its torque-speed curve)"),
+    ("rms_motor_torque", _DUTY["rms_motor_torque"], "the RMS of the motor's torque over the steady revolution "
+                                                    "(what a motor's thermal rating is sized by)"),
+    ("mean_motor_power", _DUTY["mean_motor_power"], "the motor's mean power T_m thetad over the steady revolution"),
 )
 PEAK = "peak_"
 _RESULT_UNITS = {name: units for name, units, _ in RESULTS + MOTOR_RESULTS}

@@ -27,6 +27,7 @@ peak torque twice the stall torque).  The case holds that table, so that it is w
 CSV row and its reproduction carry.
 """
 
+import functools
 import math
 
 import numpy as np
@@ -112,12 +113,26 @@ def canonical(label, value):
     return tuple(pairs)
 
 
-def knot_slopes(curve):
-    """(s, f, f') at the pairs: PCHIP's Fritsch-Carlson slopes (scipy)."""
+@functools.lru_cache(maxsize=64)
+def _interpolant(curve):
+    """(s, f, f' at the pairs, the PCHIP, its derivative) of a curve given as a tuple of pairs, built
+    once per curve (the reference evaluates it at every residual)."""
     from scipy.interpolate import PchipInterpolator
 
     s, f = np.array(curve, dtype=float).T
-    return s, f, PchipInterpolator(s, f).derivative()(s)
+    pchip = PchipInterpolator(s, f)
+    slope = pchip.derivative()
+    return s, f, slope(s), pchip, slope
+
+
+def _pairs(curve):
+    """The curve as a tuple of pairs (a key of _interpolant): a diagram's info holds lists."""
+    return curve if isinstance(curve, tuple) else tuple(tuple(p) for p in curve)
+
+
+def knot_slopes(curve):
+    """(s, f, f') at the pairs: PCHIP's Fritsch-Carlson slopes (scipy)."""
+    return _interpolant(_pairs(curve))[:3]
 
 
 def of(case):
@@ -137,6 +152,13 @@ def motor_torque(case, thetad):
 def _time_mean(t, values):
     """The time mean of values at the times t by the trapezoidal rule."""
     return float(np.sum(0.5 * (values[1:] + values[:-1]) * np.diff(t)) / (t[-1] - t[0]))
+
+
+def duty_units():
+    """{quantity of `duty`: its units}: the output torque's, and a torque times a crank speed."""
+    from . import schema
+    torque = schema.OUTPUTS["torque"].units
+    return {"peak_motor_torque": torque, "rms_motor_torque": torque, "mean_motor_power": "rhoA L^3 omega_b^3"}
 
 
 def duty(case, t, thetad):
@@ -179,13 +201,10 @@ def batch_tables(cases):
 def evaluate(curve, s):
     """(f(s), f'(s)) of the curve (module docstring), NumPy arrays like s: the reference's
     arithmetic (scipy's PCHIP inside, the end slopes outside)."""
-    from scipy.interpolate import PchipInterpolator
-
-    knots, values, slopes = knot_slopes(curve)
+    knots, values, slopes, pchip, slope = _interpolant(_pairs(curve))
     s = np.asarray(s, dtype=float)
-    pchip = PchipInterpolator(knots, values)
     inside = np.clip(s, knots[0], knots[-1])
-    f, df = pchip(inside), pchip.derivative()(inside)
+    f, df = pchip(inside), slope(inside)
     below, above = s < knots[0], s > knots[-1]
     f = np.where(below, values[0] + slopes[0] * (s - knots[0]), f)
     f = np.where(above, values[-1] + slopes[-1] * (s - knots[-1]), f)

@@ -77,10 +77,8 @@ def motor_units(section=None, si=None):
     """{quantity: units text} of a motor-driven crank's branch point (crankgen's units, or SI with si):
     MOTOR_QUANTITIES, then units()'s."""
     speed = schema.OUTPUTS["crank_speed"].units
-    torque = schema.OUTPUTS["torque"].units
     out = {"mean_speed": speed, "revolution_time": f"1/{speed}", "min_crank_speed": speed,
-           "max_crank_speed": speed, "peak_motor_torque": torque, "rms_motor_torque": torque,
-           "mean_motor_power": "rhoA L^3 omega_b^3"}          # a torque times a speed
+           "max_crank_speed": speed, **torque_curve.duty_units()}
     return dict(out, **units(section, si))
 
 
