@@ -6,7 +6,6 @@ line) starts at once; the compiled engine and numba are imported only by what ne
 
 from importlib import import_module
 
-from ._generated import classes as _classes
 from .errors import ConvergenceError, CrankgenError, NoResultError, ParameterError
 from .provenance import VERSION as __version__  # noqa: F401
 
@@ -24,8 +23,6 @@ _LAZY = {
     "Modes": "vibration", "modes": "vibration", "campbell": "campbell_diagram", "CampbellDiagram": "campbell_diagram",
     "animate": "animation", "Section": "sections", "stress": "stresses", "peak_loads": "stresses", "StressHistory": "stresses",
 }
-# the record class of each guide and crank motion (crankgen.Line, ...: generated/classes.py)
-_RECORDS = tuple(cls.__name__ for cls in _classes.GUIDE_CLASSES + _classes.MOTION_CLASSES)
 # the choices of the model options (declared in derive/declaration.py), read from the generated table
 _CHOICE_NAMES = {"FORMULATIONS": "formulation", "APPROACHES": "approach", "DAMPING_MODELS": "damping",
                  "MEMBRANE_OPTIONS": "membrane"}
@@ -33,17 +30,33 @@ _CHOICE_NAMES = {"FORMULATIONS": "formulation", "APPROACHES": "approach", "DAMPI
 # public modules, loaded on first use too: crankgen.sections.rectangle(b, h), crankgen.torque_curve.per_unit, ...
 _MODULES = ("sections", "torque_curve")
 
-__all__ = (["ConvergenceError", "CrankgenError", "NoResultError", "ParameterError"] + list(_LAZY) + list(_RECORDS)
-           + list(_CHOICE_NAMES) + list(_MODULES))
+
+def _classes():
+    """generated/classes.py: the record class of each guide and crank motion (crankgen.Line, ...),
+    loaded on first use, so that importing crankgen (or crankgen.records, as derive/ does) never
+    loads the generated code."""
+    return import_module("._generated.classes", __name__)
+
+
+def _records():
+    classes = _classes()
+    return tuple(cls.__name__ for cls in classes.GUIDE_CLASSES + classes.MOTION_CLASSES)
+
+
+def _public():
+    return (["ConvergenceError", "CrankgenError", "NoResultError", "ParameterError"] + list(_LAZY) + list(_records())
+            + list(_CHOICE_NAMES) + list(_MODULES))
 
 
 def __getattr__(name):
-    if name in _MODULES:
+    if name == "__all__":
+        value = _public()
+    elif name in _MODULES:
         value = import_module(f".{name}", __name__)
     elif name in _LAZY:
         value = getattr(import_module(f".{_LAZY[name]}", __name__), name)
-    elif name in _RECORDS:
-        value = getattr(_classes, name)
+    elif name[:1].isupper() and name in _records():     # a record class (CamelCase): never a submodule
+        value = getattr(_classes(), name)
     elif name in _CHOICE_NAMES:
         value = import_module(".ingredients", __name__).CHOICES[_CHOICE_NAMES[name]]
     else:
@@ -53,4 +66,4 @@ def __getattr__(name):
 
 
 def __dir__():
-    return sorted(set(globals()) | set(__all__))
+    return sorted(set(globals()) | set(_public()))

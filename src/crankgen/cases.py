@@ -18,6 +18,7 @@ from . import ingredients, schema
 from ._generated import classes as _classes
 from .errors import ParameterError
 from .parameters import Mechanism, check_full_turn, kinematic_parameters, settle
+from . import values as _values
 
 PARAMETER_FIELDS = tuple(schema.PARAMETERS)
 OPTION_FIELDS = tuple(schema.OPTIONS)
@@ -45,7 +46,7 @@ class CaseRules:
                                                else schema.DEFAULT_PRESET)
         for name, value in schema.PRESETS[preset].settings.items():
             if name not in given:
-                object.__setattr__(self, name, schema.PARAMETERS[name].canonical(value))
+                object.__setattr__(self, name, _values.canonical(schema.PARAMETERS[name], value))
         object.__setattr__(self, "model", schema.preset_of(options))
         if not isinstance(self.groups_off, str):
             raise ParameterError(f"groups_off must be a string, got {self.groups_off!r}")

@@ -22,6 +22,7 @@ from . import schema, specs
 from ._generated import classes as _classes
 from ._generated import kinematics as _kinematics
 from .errors import ParameterError
+from . import values as _values
 
 
 def _expand_record(obj, kind):
@@ -52,7 +53,7 @@ def settle(obj, names):
     for name in names:
         p = schema.PARAMETERS[name]
         value = getattr(obj, name)
-        object.__setattr__(obj, name, p.default if value is None else p.canonical(value))
+        object.__setattr__(obj, name, p.default if value is None else _values.canonical(p, value))
     values = {n: getattr(obj, n) for n in names}
     guide, motion = schema.selected(values, "guide"), schema.selected(values, "motion")
     for name in names:

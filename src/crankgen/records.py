@@ -27,42 +27,6 @@ from dataclasses import dataclass, fields
 from .errors import ParameterError
 
 
-def _bracket(low, high, low_open, high_open):
-    left = "-inf" if low is None else f"{low:g}"
-    right = "inf" if high is None else f"{high:g}"
-    return ("(" if low_open or low is None else "[") + f"{left}, {right}" + (")" if high_open or high is None else "]")
-
-
-def _is_number(value):
-    """A real number (a NumPy boolean, complex number or string is none)."""
-    import numpy as np
-    return (not isinstance(value, (bool, np.bool_, str, bytes, bytearray, np.complexfloating, np.str_, np.bytes_))
-            and isinstance(value, (numbers.Real, np.generic)))
-
-
-def _real(label, value):
-    if not _is_number(value):
-        raise ParameterError(f"{label} must be a number, got {value!r}")
-    x = float(value)
-    if not math.isfinite(x):
-        raise ParameterError(f"{label} must be finite, got {value!r}")
-    return x + 0.0                     # -0.0 -> 0.0: one canonical zero
-
-
-def reduced_angle(x):
-    """An angle beyond one turn either way, reduced to (-pi, pi]: the angle of the same crank
-    position.  The reduction is exact (the sine and cosine reduce their argument by 2 pi to full
-    precision), so a start angle of 1e17 rad gives the crank position of 1e17 rad, and the run's
-    theta0 + Omega* t keeps every digit of its time.  Angles within one turn are kept as given."""
-    return math.atan2(math.sin(x), math.cos(x)) + 0.0
-
-
-def _plain(value):
-    """A NumPy scalar as the Python value it holds."""
-    import numpy as np
-    return value.item() if isinstance(value, np.generic) else value
-
-
 @dataclass(frozen=True)
 class Option:
     """A model option: one of `choices`.  default None in the declaration: the default preset's
@@ -73,13 +37,6 @@ class Option:
     default: object = None
     doc: str = ""
     cli: str = None
-
-    def canonical(self, value):
-        value = _plain(value)
-        if value not in self.choices or type(value) is not type(self.choices[0]):
-            allowed = ", ".join(repr(c) for c in self.choices)
-            raise ParameterError(f"{self.name} must be one of {allowed}, got {value!r}")
-        return value
 
 
 @dataclass(frozen=True)
@@ -143,69 +100,6 @@ class Parameter:
     axis: str = None             # the text of an axis along it (plots of a continuation); default: its name
     si: str = None               # its name in SI (a crankgen.SIMechanism field; default: its name)
     si_default: object = None    # its SI value when left out, where not the default's (None: the default's)
-
-    @property
-    def range_text(self):
-        if self.kind == "real":
-            return _bracket(self.low, self.high, self.low_open, self.high_open)
-        if self.kind == "count":
-            return f"an integer >= {self.low}"
-        if self.kind == "sign":
-            return "+1 or -1"
-        if self.kind == "choice":
-            return " or ".join(repr(c) for c in self.choices)
-        if self.kind == "curve":
-            from .torque_curve import RANGE_TEXT
-            return RANGE_TEXT
-        return "two finite numbers"
-
-    def canonical(self, value):
-        """value checked and in canonical form (a Python float, int, str or a tuple of floats; -0.0
-        is 0.0), or ParameterError naming the parameter and its allowed values."""
-        label = self.label
-        if self.kind == "real":
-            x = _real(label, value)
-            bad_low = self.low is not None and (x <= self.low if self.low_open else x < self.low)
-            bad_high = self.high is not None and (x >= self.high if self.high_open else x > self.high)
-            if bad_low or bad_high:
-                raise ParameterError(f"{label} must be in {self.range_text}, got {x:g}")
-            if self.units == "rad" and abs(x) > 2 * math.pi:
-                x = reduced_angle(x)
-            return x
-        if self.kind == "pair":
-            if isinstance(value, (str, bytes, dict, set, frozenset)) or not hasattr(value, "__len__") \
-                    or not hasattr(value, "__getitem__") or len(value) != 2:
-                raise ParameterError(f"{label} must be a sequence of two numbers ({self.metavar or 'X,Y'}), "
-                                     f"got {value!r}")
-            return tuple(_real(f"{label}[{k}]", value[k]) for k in range(2))
-        if self.kind == "curve":
-            from . import torque_curve
-            return torque_curve.canonical(label, value)
-        if self.kind in ("count", "sign"):
-            if not _is_number(value):
-                raise ParameterError(f"{label} must be {self.range_text}, got {value!r}")
-            x = float(value)
-            if not (math.isfinite(x) and x.is_integer()):
-                raise ParameterError(f"{label} must be {self.range_text}, got {value!r}")
-            n = int(x)
-            if (self.kind == "sign" and n not in (1, -1)) or (self.kind == "count" and n < self.low):
-                raise ParameterError(f"{label} must be {self.range_text}, got {n}")
-            return n
-        value = _plain(value)
-        if not isinstance(value, str) or value not in self.choices:
-            raise ParameterError(f"{label} must be {self.range_text}, got {value!r}")
-        return value
-
-    def text(self, value):
-        """A value of the parameter as titles and messages show it."""
-        if self.kind == "pair":
-            return "(" + ", ".join(f"{x:g}" for x in value) + ")"
-        if self.kind == "sign":
-            return f"{value:+d}"
-        if self.kind == "curve":
-            from .torque_curve import summary
-            return summary(value)
-        return f"{value:g}" if self.kind in ("real", "count") else str(value)
 
     def read_by(self, guide, motion):
         """True when a case with this guide and motion reads the parameter."""

@@ -11,6 +11,7 @@ continuation's parameters are built from here; nothing in the runtime restates a
 
 from ._generated import schema as _table
 from .errors import ParameterError
+from . import values as _values
 
 PARAMETERS = {p.name: p for p in _table.PARAMETERS}
 OPTIONS = {o.name: o for o in _table.OPTIONS}
@@ -69,7 +70,7 @@ def resolve_options(model=None, **options):
         value = options.get(opt.name)
         if value is None:
             value = PRESETS[name].options.get(opt.name, opt.default)
-        out[opt.name] = opt.canonical(value)
+        out[opt.name] = _values.option_value(opt, value)
     for x in EXCLUSIONS:
         if all(out[k] == v for k, v in x.options.items()):
             raise ParameterError(x.reason)
@@ -121,8 +122,8 @@ def describe(values, skip=()):
     for p in PARAMETERS.values():
         if p.name in skip or p.selects or not p.read_by(chosen["guide"], chosen["motion"]):
             continue
-        value = p.canonical(values.get(p.name, p.default))        # a pair from JSON: a list
-        item = f"{p.axis} = {p.text(value)}"
+        value = _values.canonical(p, values.get(p.name, p.default))        # a pair from JSON: a list
+        item = f"{p.axis} = {_values.text(p, value)}"
         if (p.owner == "mechanism" and p.kind == "real") or (p.owner == "motion" and p.continuable):
             main.append(item)
         elif p.owner in groups and chosen[p.owner] != PARAMETERS[SELECTOR[p.owner]].default:

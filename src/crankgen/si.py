@@ -29,6 +29,7 @@ from ._generated import classes as _classes
 from .errors import ParameterError
 from .units import ROD, Scales, rod_powers, same_in_si
 from .validation import finite_number, in_range
+from . import values as _values
 
 UNITS = ("crankgen", "si")
 FIELDS = schema.SI_FIELDS           # the declared parameters an SIMechanism holds, by SI name
@@ -125,10 +126,10 @@ class SIRules:
             value = getattr(self, si)
             if value is not None and dimensioned(p):
                 try:
-                    p.canonical(to_crankgen(p.name, value, scales))
+                    _values.canonical(p, to_crankgen(p.name, value, scales))
                 except ParameterError as exc:
-                    raise ParameterError(f"SIMechanism: {si} = {p.text(value)} {si_unit(p.name)} is "
-                                         f"{p.text(to_crankgen(p.name, value, scales))} in crankgen's units: {exc}") from None
+                    raise ParameterError(f"SIMechanism: {si} = {_values.text(p, value)} {si_unit(p.name)} is "
+                                         f"{_values.text(p, to_crankgen(p.name, value, scales))} in crankgen's units: {exc}") from None
         try:
             self.mechanism
         except ParameterError as exc:
@@ -162,7 +163,7 @@ class SIRules:
         if p.kind == "real" and dimensioned(p):
             return finite_number(label, value) + 0.0
         try:
-            return p.canonical(value)
+            return _values.canonical(p, value)
         except ParameterError as exc:
             raise ParameterError(f"SIMechanism: {label}: {exc}") from None
 
@@ -388,5 +389,5 @@ def describe_si(values, scales, skip=()):
         value = values.get(p.name, p.default)
         value = to_si(p.name, tuple(value) if isinstance(value, list) else value, scales)
         unit = si_unit(p.name)
-        out.append(f"{si.replace('_', ' ')} = {p.text(value)}" + (f" {unit}" if unit != "1" and p.kind in ("real", "pair") else ""))
+        out.append(f"{si.replace('_', ' ')} = {_values.text(p, value)}" + (f" {unit}" if unit != "1" and p.kind in ("real", "pair") else ""))
     return out

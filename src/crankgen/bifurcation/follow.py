@@ -17,6 +17,7 @@ from .codim2 import CurveContinuer, CurveSettings
 from .curve import make_curve
 from .defining import KINDS, Defining
 from .mechanism import PARAMETERS
+from .. import values as _values
 
 
 def follow_map(fmap, kind, x, p, lo, hi, period=1, theta=None, settings=None, log=None, info=None,
@@ -74,7 +75,7 @@ def follow(point, parameter, start, stop, *, bounds=None, ds=0.02, ds_min=1e-5, 
     if start == stop:
         raise ParameterError(f"start and stop must differ, got {start:g}")
     for v in (start, stop):
-        record.canonical(v)
+        _values.canonical(record, v)
     here = float(getattr(case, parameter))
     lo2, hi2 = min(start, stop), max(start, stop)
     if not lo2 <= here <= hi2:

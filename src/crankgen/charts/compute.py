@@ -29,6 +29,7 @@ from ..validation import in_range, integer
 from . import regions as _regions
 from .axes import R, X_DEFAULT, Y_DEFAULT
 from .record import ChartLine, Region, StabilityChart
+from .. import values as _values
 
 MIN_AREA = 0.01        # a piece without a verdict this large (share of the box) gets a line
 ON_CURVE = 0.01        # a special point this close to a curve (in units of the box) lies on it
@@ -45,7 +46,7 @@ def _axis(which, spec):
     if not lo < hi:
         raise ParameterError(f"{which} must have low < high, got {lo:g}, {hi:g}")
     record = schema.PARAMETERS[name]
-    record.canonical(lo), record.canonical(hi)
+    _values.canonical(record, lo), _values.canonical(record, hi)
     return (name, lo, hi)
 
 

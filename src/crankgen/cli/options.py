@@ -10,6 +10,7 @@ from pathlib import Path
 
 from .. import schema
 from ..errors import CrankgenError, ParameterError
+from .. import values as _values
 
 # The named models (presets of the schema): --model sets their options; an explicit --formulation,
 # --damping or --membrane overrides the model's value for that option.
@@ -47,7 +48,7 @@ def _default_text(p):
     if p.kind == "pair":
         return ",".join(f"{x:g}" for x in default)
     if p.kind == "curve":
-        return p.text(default)
+        return _values.text(p, default)
     return f"{default:g}" if isinstance(default, float) else str(default)
 
 
@@ -56,7 +57,7 @@ def _help(p, many):
     every = schema.GUIDES if p.owner == "guide" else schema.MOTIONS
     if p.owner in ("guide", "motion") and set(p.readers) != set(every):
         where = f" [{' and '.join(p.readers)} {p.owner}]"
-    rng = f", {p.range_text}" if (p.kind == "real" and (p.low, p.high) != (None, None)) or p.kind == "count" else ""
+    rng = f", {_values.range_text(p)}" if (p.kind == "real" and (p.low, p.high) != (None, None)) or p.kind == "count" else ""
     by_model = "".join(f"; with --model {name}: {preset.settings[p.name]:g}"
                        for name, preset in schema.PRESETS.items() if p.name in preset.settings)
     return f"{p.doc}{rng}{where} (default {_default_text(p)}{by_model})" + many
@@ -134,7 +135,7 @@ def _curve(p):
     """argparse type: a torque curve's per-unit pairs 'S:F,S:F,...' (crankgen.torque_curve)."""
     def parse(text):
         try:
-            return p.canonical(text)
+            return _values.canonical(p, text)
         except ParameterError as exc:
             raise argparse.ArgumentTypeError(str(exc)) from None
     return parse
