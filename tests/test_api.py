@@ -153,7 +153,7 @@ def test_public_names_are_the_functions_whatever_was_imported_first():
     """The public names load on first use; a submodule imported earlier must not shadow one."""
     import subprocess
     import sys
-    code = ("import crankgen.sweeps, crankgen.simulation, crankgen.steady, crankgen.bifurcation, types; "
+    code = ("import crankgen.analyses.sweeps, crankgen.analyses.simulation, crankgen.analyses.steady, crankgen.analyses.bifurcation, types; "
             "from crankgen import sweep, simulate, steady_state, continuation, Case; "
             "assert not any(isinstance(f, types.ModuleType) for f in (sweep, simulate, steady_state, "
             "continuation, Case)); import crankgen; assert callable(crankgen.sweep)")

@@ -8,9 +8,9 @@ import re
 import sys
 from pathlib import Path
 
-from .. import schema
+from ..declaration import schema
 from ..errors import CrankgenError, ParameterError
-from .. import values as _values
+from ..declaration import values as _values
 
 # The named models (presets of the schema): --model sets their options; an explicit --formulation,
 # --damping or --membrane overrides the model's value for that option.
@@ -238,7 +238,7 @@ CASE_FIELDS = tuple(schema.PARAMETERS) + tuple(schema.OPTIONS)
 
 def _flag(name):
     """The command-line flag (without --) of a case field."""
-    from .. import schema
+    from ..declaration import schema
     spec = schema.PARAMETERS.get(name) or schema.OPTIONS.get(name)
     return spec.cli
 
@@ -255,14 +255,14 @@ def _model_options(args):
 
 
 def _case(args):
-    from ..cases import make_case
+    from ..declaration.cases import make_case
     return make_case(model=args.model, **_explicit(args))
 
 
 def _describe(case):
     main, other = schema.describe(case.parameters())
     extra = "" if case.rotary_inertia else ", no rotary inertia"
-    from ..time_scheme import label
+    from ..discrete.time_scheme import label
     return (f"approach {case.approach}, {case.formulation} formulation, {case.damping} damping, "
             f"{case.membrane} membrane, {label(case.rho_inf)}, "
             + ", ".join(main + [f"n = {case.n_elements}"] + other) + extra)
@@ -278,8 +278,8 @@ class _Outputs:
     stops before writing anything, the folders it created are removed again."""
 
     def __init__(self, folder, names, force, subfolders=()):
-        from ..compile_cache import announce
-        from ..io import prepare_folder
+        from ..engine.cache import announce
+        from ..results.io import prepare_folder
         self.folder = Path(folder)
         self.created = prepare_folder(folder, names, force, subfolders)
         self.written = []
@@ -293,7 +293,7 @@ class _Outputs:
         return path
 
     def abandon(self):
-        from ..io import remove_if_empty
+        from ..results.io import remove_if_empty
         if not self.written:
             remove_if_empty(self.created)
 
