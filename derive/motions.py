@@ -26,19 +26,25 @@ it (an added 0.0 changes no sum).
   cos c >= 0 keeps psi in the branch of chi), the tangent of the difference of the two angles
   whose tangents are (tan c + k) / m and k / m gives
       D0 = n pi + atan2(m sin c, cos c + k sin c)            (D0 = 0 exactly at theta0 = 0).
-- motor: the crank is not prescribed: its angle is one more degree of freedom, driven by a motor
-  of characteristic T_m(thetad) = T_stall (1 - thetad / Omega_nl) (a DC motor, or an induction
-  motor near synchronous speed), with the inertia J of crank, rotor and flywheel about the crank
-  axis and a constant load torque T_load:
+- motor: the crank is not prescribed: its angle is one more degree of freedom, a declared
+  co-ordinate of the state (`Coordinate`, crank=True) with its own equation, driven by a motor of
+  characteristic T_m(thetad) = T_stall (1 - thetad / Omega_nl) (a DC motor, or an induction motor
+  near synchronous speed), with the inertia J of crank, rotor and flywheel about the crank axis and
+  a constant load torque T_load:
       J thetadd - T_m(thetad) + T_load + T_rod = 0,
   T_rod = a (e_r x F_pin) the torque the rod and end mass demand (the output `torque`: the
-  crank's generalized residual of the same energies).  `drive` is the net motor torque
-  T_m - T_load, `inertia` J.  Its theta(t) = theta0 + Omega_i t is only the crank's start (the
-  speed at t = 0, Omega_i, default 0: from rest); its step period is the no-load revolution
-  2 pi / Omega_nl (the fastest the motor turns the crank in steady running).  The drive holds the
-  linear law; a case's per-unit torque_curve f (crankgen.torque_curve: a table, cubic Hermite
+  crank's generalized residual of the same energies; `ROD_TORQUE` here, substituted by the
+  representation).  Its theta(t) = theta0 + Omega_i t is only the crank's start (the speed at
+  t = 0, Omega_i, default 0: from rest); its step period is the no-load revolution 2 pi / Omega_nl
+  (the fastest the motor turns the crank in steady running).  The equation holds the linear law;
+  a case's per-unit torque_curve f (crankgen.declaration.torque_curve: a table, cubic Hermite
   between its points) replaces it at run time by T_stall f(thetad / Omega_nl), added to the
-  generated equation as its departure from the linear law.
+  equation of the co-ordinate the motor drives (motor=True) as its departure from the linear law.
+
+A driven motion's co-ordinates (`coordinates`) each carry their symbols (the crank's are the
+kinematics' theta, thetad, thetadd), their equation's residual and their start (value and rate at
+t = 0); the generated kernel `coordinates_<motion>` gives every equation and its derivatives, the
+runtime steps them with the rods' nodal co-ordinates by one bordered Newton iteration.
 """
 
 from dataclasses import dataclass
@@ -58,6 +64,30 @@ no_load_speed = sp.Symbol("Omega_nl", positive=True)
 inertia = sp.Symbol("J_crank", nonnegative=True)
 load_torque = sp.Symbol("T_load", real=True)
 initial_speed = sp.Symbol("Omega_i", nonnegative=True)
+# the torque the rod and end mass demand of the crank (the output `torque`, in the crank pin's force
+# and the kinematics): the representation substitutes it into a driven crank's equation
+ROD_TORQUE = sp.Symbol("T_rod", real=True)
+
+
+@dataclass(frozen=True)
+class Coordinate(records.Coordinate):
+    """A co-ordinate of the state (crankgen.declaration.records.Coordinate: name, doc, units,
+    crank, motor) with its symbols (value, rate, acceleration: the kinematics' theta, thetad,
+    thetadd for the crank's), its equation's residual (in them, the other co-ordinates', ROD_TORQUE
+    and the parameters) and its start (its value and rate at t = 0, in the parameters)."""
+
+    value: sp.Symbol = None
+    rate: sp.Symbol = None
+    acceleration: sp.Symbol = None
+    equation: sp.Expr = None
+    start: tuple = None
+
+
+def crank_coordinate(equation, doc, motor=False):
+    """The crank angle as a co-ordinate of the state: the kinematics' symbols, the start theta0 at
+    the initial speed."""
+    return Coordinate("theta", doc, "rad", crank=True, motor=motor, value=s.theta, rate=s.thetad,
+                      acceleration=s.thetadd, equation=equation, start=(theta0, initial_speed))
 
 
 @dataclass(frozen=True)
@@ -72,8 +102,6 @@ class Motion(records.Motion):
     thetadd: sp.Expr = None
     period: object = None
     step_period: sp.Expr = None
-    drive: sp.Expr = None         # a driven crank's net motor torque T_m(thetad) - T_load (None: prescribed)
-    inertia: sp.Expr = None       # a driven crank's inertia J about the crank axis
 
 
 def _wrap(z):
@@ -129,6 +157,9 @@ def fluctuation():
 
 def motor():
     law = stall_torque * (1 - s.thetad / no_load_speed)
+    crank = crank_coordinate(inertia * s.thetadd - law + load_torque + ROD_TORQUE,
+                             "the crank angle, driven by the motor: J thetadd - T_m(thetad) + T_load + T_rod = 0",
+                             motor=True)
     return Motion("motor", "Motor", ("stall_torque", "no_load_speed", "inertia", "load_torque", "initial_speed",
                                      "theta0", "torque_curve"),
                   "a motor drives the crank (its angle a degree of freedom): J thetadd = T_stall f(thetad / "
@@ -136,7 +167,7 @@ def motor():
                   "f(s) = 1 - s, the linear law)", (("load", ("load_torque",)),),
                   label="motor-driven crank",
                   theta=theta0 + initial_speed * s.t, thetad=initial_speed, thetadd=sp.Integer(0), period=None,
-                  step_period=2 * sp.pi / no_load_speed, drive=law - load_torque, inertia=inertia,
+                  step_period=2 * sp.pi / no_load_speed, coordinates=(crank,), driven=True,
                   characteristic=("torque_curve", "stall_torque", "no_load_speed", "inertia"))
 
 

@@ -22,7 +22,7 @@ from . import symbols as _symbols
 from .emit import ELEMENT_MODES, LANES, lane_rows
 from .guides import END_MAP_ROWS
 
-RECORD_CLASSES = ("Constraint", "Exclusion", "Family", "Guide", "Layout", "Motion", "Option", "Output", "Parameter", "Preset",
+RECORD_CLASSES = ("Constraint", "Coordinate", "Exclusion", "Family", "Guide", "Layout", "Motion", "Option", "Output", "Parameter", "Preset",
                   "Primitive", "Variant")
 
 

@@ -99,7 +99,7 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
     from ..progress import Progress
     from ..analyses.simulation import simulate
 
-    kind = "no-load revolutions" if case.motion_record.driven else "revolutions"     # a motor's run: crankgen.analyses.motor_simulation
+    kind = "no-load revolutions" if case.motion_record.driven else "revolutions"     # a driven crank's run
     _say(args, f"simulate: {_describe(case)}, {revolutions:g} {kind} ({steps} steps)")
     transient = case.motion_record.transient
     if transient and revolutions < getattr(case, transient):
@@ -182,12 +182,12 @@ STEADY_NAMES = ["steady.csv", "orbit.csv", "orbit.png"]
 def _resolved(case, where=""):
     """Steady states need a crank motion periodic in the crank angle, a turning crank and
     Omega* * steps_per_rev >= 1 (crankgen.steady_states refuses coarser steps); checked here,
-    before any output or progress line, and said in one line.  A motor-driven crank's motion is
-    autonomous: shot on the section theta = theta0 (crankgen.analyses.motor_steady)."""
+    before any output or progress line, and said in one line.  A driven crank's motion is
+    autonomous: shot on the section of its crank angle (crankgen.analyses.section)."""
     if case.motion_record.driven:
-        from ..analyses.motor_steady import check_steady
+        from ..discrete.system import check_coordinates
         try:
-            check_steady(case, where)
+            check_coordinates(case)
         except ParameterError as exc:
             raise UsageError(str(exc)) from None
         return

@@ -12,7 +12,7 @@ table's shape (a monotone stretch stays monotone, no overshoot past a peak torqu
 first and last pairs f continues linearly with the end slopes.  The default, the two pairs (0, 1)
 and (1, 0), is the linear law f = 1 - s of a DC motor that the generated crank equation holds
 (derive/motions.py); any other curve enters the crank equation g at run time as its departure
-from that law (motor.py, engine/motor.py):
+from that law (crankgen.discrete.system.coordinate_equations, crankgen.engine.coordinates):
 
     g  +=  T_stall [(1 - s) - f(s)],     dg/dthetad  +=  -(T_stall / Omega_nl) [1 + f'(s)].
 
@@ -177,7 +177,7 @@ def duty(case, t, thetad):
 def departure_table(case):
     """(n, 3) rows (thetad_k, D_k, D'_k) of the case's departure from the linear law in crankgen's
     units, D(thetad) = T_stall [f(s) - (1 - s)] at s = thetad / Omega_nl and D' = dD/dthetad at the
-    knots: the engine's (engine/motor.py `hermite`: the cubic Hermite pieces of these rows are the
+    knots: the engine's (engine/coordinates.py `hermite`: the cubic Hermite pieces of these rows are the
     curve's departure exactly, 1 - s being linear; linear beyond the ends).  (0, 3) for a
     prescribed crank or the linear law (the generated drive alone)."""
     law = of(case)
@@ -186,6 +186,21 @@ def departure_table(case):
     curve, stall, no_load, _ = law
     s, f, m = knot_slopes(curve)
     return np.column_stack([no_load * s, stall * (f - (1 - s)), stall / no_load * (m + 1)])
+
+
+def step_hint(case, dt):
+    """A sentence for a step of a motor-driven run that failed: when the motor's time constant
+    J Omega_nl / (T_stall max |f'|) (the inertia it accelerates alone; the linkage adds more) is
+    shorter than the step dt, the step cannot follow the motor; else ""."""
+    law = of(case)
+    if law is None:
+        return ""
+    curve, stall, no_load, inertia = law
+    tau = inertia * no_load / (stall * steepest(curve))
+    if tau >= dt:
+        return ""
+    return (f"; the motor's time constant J Omega_nl / (T_stall max|f'|) = {tau:.3g} is shorter than the step "
+            f"{dt:.3g}: raise steps_per_rev above {math.ceil(case.steps_per_rev * dt / tau)}")
 
 
 def batch_tables(cases):

@@ -47,6 +47,7 @@ from ... import engine
 from ...declaration import schema, torque_curve
 from ...discrete import kinematics as _kinematics
 from ...results.outputs import DeclaredOutputs
+from ..marching import coordinate_histories, crank_of
 from .maps import MapError
 from .mechanism import V_MID
 
@@ -94,7 +95,8 @@ class Orbit(DeclaredOutputs):
     states: np.ndarray = field(repr=False)
     rates: np.ndarray = field(repr=False)
     accelerations: np.ndarray = field(repr=False)
-    crank: np.ndarray = field(default=None, repr=False)    # a motor-driven crank's (theta, thetad, thetadd) per step
+    crank: np.ndarray = field(default=None, repr=False)    # a driven crank's (theta, thetad, thetadd) per step
+    coordinates: dict = field(default=None, repr=False)    # a driven motion's co-ordinates: name -> (steps, 3)
 
 
 def _peak_signed(values):
@@ -162,43 +164,48 @@ def branch_quantities(case, parameter, branch, section=None, si=None):
 
 
 def motor_orbit(fmap, state, p, period):
-    """(Orbit, T): the orbit of a motor-driven crank's branch point (module docstring): its section
-    state (physical, as a Branch holds it) marched `period` revolutions by the MotorMap fmap at
-    parameter p, T their time; the crank angle runs on over the revolutions.  MapError if a
-    revolution fails."""
+    """(Orbit, T): the orbit of a driven crank's branch point (module docstring): its section state
+    (physical, as a Branch holds it) marched `period` revolutions by the AutonomousMap fmap at
+    parameter p, T their time; the crank angle (and every angle that turns with it) runs on over
+    the revolutions.  MapError if a revolution fails."""
     _, T, revolutions = fmap.revolutions(state, p, period)
-    N = fmap.N
-    X, V, A, y, t = [], [], [], [], []
+    case = fmap.case_at(p)
+    n_rod = fmap.n_rod
+    turning = [j for j, c in enumerate(case.motion_record.coordinates) if c.units == "rad"]
+    X, V, A, y, Z, t = [], [], [], [], [], []
     start = 0.0
     for k, rev in enumerate(revolutions):
         skip = 0 if k == 0 else 1                 # a revolution starts where the last one landed
-        x = rev["X"][skip:].copy()
-        x[:, N] += 2.0 * math.pi * k
-        X.append(x)
-        V.append(rev["V"][skip:])
-        A.append(rev["A"][skip:])
+        z = rev["Z"][skip:].copy()
+        z[:, turning] += 2.0 * math.pi * k
+        X.append(rev["X"][skip:, :n_rod])
+        V.append(rev["V"][skip:, :n_rod])
+        A.append(rev["A"][skip:, :n_rod])
         y.append(rev["y"][skip:])
+        Z.append(z)
         t.append(rev["t"][skip:] + start)
         start += rev["t"][-1]
-    X, V, A, y, t = (np.concatenate(a) for a in (X, V, A, y, t))
-    crank = np.stack([X[:, N], V[:, N], A[:, N]], axis=-1)
-    orbit = Orbit(fmap.case_at(p), t, crank[:, 0], y[:, V_MID], X[:, :N], V[:, :N], A[:, :N], crank=crank)
+    X, V, A, y, Z, t = (np.concatenate(a) for a in (X, V, A, y, Z, t))
+    coordinates = coordinate_histories(case, Z)
+    crank = crank_of(case, coordinates)
+    orbit = Orbit(case, t, crank[:, 0], y[:, V_MID], X, V, A, crank=crank, coordinates=coordinates)
     return orbit, T
 
 
 def motor_orbit_quantities(orbit, T, period, section=None, si=None):
-    """{quantity: value} of one motor-driven Orbit of `period` revolutions in the time T (module
-    docstring)."""
+    """{quantity: value} of one driven Orbit of `period` revolutions in the time T (module
+    docstring); the motor's duty at the speed of the co-ordinate it drives."""
     speed = orbit.crank[:, 1]
+    motor = next(c.name for c in orbit.case.motion_record.coordinates if c.motor)
     out = {"mean_speed": 2.0 * math.pi * period / T, "revolution_time": T / period,
            "min_crank_speed": float(np.min(speed)), "max_crank_speed": float(np.max(speed)),
-           **torque_curve.duty(orbit.case, orbit.t, speed)}
+           **torque_curve.duty(orbit.case, orbit.t, orbit.coordinates[motor][:, 1])}
     return dict(out, **orbit_quantities(orbit, section, si))
 
 
 def motor_branch_quantities(fmap, branch, section=None, si=None):
     """({quantity: (points,) array}, notes): the quantities of every point of a motor-driven
-    crank's Branch (its states the section states of the MotorMap fmap), one orbit at a time."""
+    crank's Branch (its states the section states of the AutonomousMap fmap), one orbit at a time."""
     values = {k: np.full(len(branch), math.nan) for k in motor_units(section, si)}
     notes = []
     period = int(branch.period)
