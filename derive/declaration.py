@@ -220,6 +220,19 @@ PARAMETERS = (
               "a motor's torque-speed curve in per-unit, T_m / T_stall against thetad / Omega_nl, as pairs S:F "
               "through 0:1 and 1:0 (cubic Hermite, shape-preserving, between them; linear beyond); the default "
               "0:1,1:0 is the linear law", owner="run", metavar="S:F,S:F,...", axis="torque curve s:f"),
+    Parameter("rotor_inertia", "real", 0.02, "rotor_inertia (motor rotor's J_rotor*)",
+              "the moment of inertia J_rotor* of a motor's rotor behind a flexible shaft (motion shaft; the "
+              "crank side's is `inertia`), units of rho A L^3", owner="run", low=0.0, low_open=True,
+              units="rhoA L^3", continuable=True, symbol=motions.rotor_inertia, axis="rotor inertia J_rotor*"),
+    Parameter("shaft_stiffness", "real", 1.0, "shaft_stiffness (shaft's torsional stiffness k*)",
+              "the torsional stiffness k* of the shaft between a motor's rotor and the crank (motion shaft), "
+              "units of rho A L^3 omega_b^2 per rad", owner="run", low=0.0, low_open=True,
+              units="rhoA L^3 omega_b^2", continuable=True, symbol=motions.shaft_stiffness,
+              axis="shaft stiffness k*"),
+    Parameter("shaft_damping", "real", 0.0, "shaft_damping (shaft's torsional damping c*)",
+              "the torsional damping c* of the shaft between a motor's rotor and the crank (motion shaft), "
+              "units of rho A L^3 omega_b per rad", owner="run", low=0.0, units="rhoA L^3 omega_b",
+              continuable=True, symbol=motions.shaft_damping, axis="shaft damping c*"),
     Parameter("initial_speed", "real", 0.0, "initial_speed (motor-driven crank's speed at t = 0)",
               "the crank speed at t = 0 of a motor-driven crank (0: a start from rest), units of omega_b",
               owner="run", low=0.0, units="omega_b", symbol=motions.initial_speed),

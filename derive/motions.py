@@ -41,6 +41,13 @@ it (an added 0.0 changes no sum).
   between its points) replaces it at run time by T_stall f(thetad / Omega_nl), added to the
   equation of the co-ordinate the motor drives (motor=True) as its departure from the linear law.
 
+- shaft: the motor drives the crank through a torsionally flexible shaft: the motor rotor's angle
+  phi_m is a second co-ordinate (its equation J_rotor phidd_m - T_m(phid_m) + T_shaft = 0), the
+  crank's carries the shaft's torque T_shaft = k (phi_m - theta) + c (phid_m - thetad):
+      J thetadd + T_load + T_rod - T_shaft = 0;
+  J is then the crank's and any flywheel's on the crank side, the torque curve drives the rotor.
+  The rotor starts with the crank (phi_m = theta0, the same speed: an untwisted shaft).
+
 A driven motion's co-ordinates (`coordinates`) each carry their symbols (the crank's are the
 kinematics' theta, thetad, thetadd), their equation's residual and their start (value and rate at
 t = 0); the generated kernel `coordinates_<motion>` gives every equation and its derivatives, the
@@ -64,6 +71,12 @@ no_load_speed = sp.Symbol("Omega_nl", positive=True)
 inertia = sp.Symbol("J_crank", nonnegative=True)
 load_torque = sp.Symbol("T_load", real=True)
 initial_speed = sp.Symbol("Omega_i", nonnegative=True)
+# a flexible shaft between the motor and the crank: the rotor's inertia, the shaft's torsional
+# stiffness and damping, and the rotor's angle, speed and acceleration (a co-ordinate)
+rotor_inertia = sp.Symbol("J_rotor", positive=True)
+shaft_stiffness = sp.Symbol("k_shaft", positive=True)
+shaft_damping = sp.Symbol("c_shaft", nonnegative=True)
+rotor, rotor_rate, rotor_acceleration = sp.symbols("phi_m phid_m phidd_m", real=True)
 # the torque the rod and end mass demand of the crank (the output `torque`, in the crank pin's force
 # and the kinematics): the representation substitutes it into a driven crank's equation
 ROD_TORQUE = sp.Symbol("T_rod", real=True)
@@ -171,7 +184,26 @@ def motor():
                   characteristic=("torque_curve", "stall_torque", "no_load_speed", "inertia"))
 
 
-MOTIONS = (constant(), runup(), fluctuation(), motor())
+def shaft():
+    law = stall_torque * (1 - rotor_rate / no_load_speed)
+    torque = shaft_stiffness * (rotor - s.theta) + shaft_damping * (rotor_rate - s.thetad)      # T_shaft
+    crank = crank_coordinate(inertia * s.thetadd + load_torque + ROD_TORQUE - torque,
+                             "the crank angle, driven through the shaft: J thetadd + T_load + T_rod - T_shaft = 0")
+    rotor_angle = Coordinate("rotor", "the motor rotor's angle: J_rotor phidd_m - T_m(phid_m) + T_shaft = 0", "rad",
+                             motor=True, value=rotor, rate=rotor_rate, acceleration=rotor_acceleration,
+                             equation=rotor_inertia * rotor_acceleration - law + torque, start=(theta0, initial_speed))
+    return Motion("shaft", "ShaftMotor", ("stall_torque", "no_load_speed", "inertia", "rotor_inertia", "shaft_stiffness",
+                                          "shaft_damping", "load_torque", "initial_speed", "theta0", "torque_curve"),
+                  "a motor drives the crank through a torsionally flexible shaft (the rotor's angle and the crank's "
+                  "degrees of freedom): J_rotor phidd_m = T_m(phid_m) - T_shaft, J thetadd = T_shaft - T_load - (the "
+                  "torque the rod demands), T_shaft = k (phi_m - theta) + c (phid_m - thetad)",
+                  (("load", ("load_torque",)),), label="motor through a flexible shaft",
+                  theta=theta0 + initial_speed * s.t, thetad=initial_speed, thetadd=sp.Integer(0), period=None,
+                  step_period=2 * sp.pi / no_load_speed, coordinates=(crank, rotor_angle), driven=True,
+                  characteristic=("torque_curve", "stall_torque", "no_load_speed", "rotor_inertia"))
+
+
+MOTIONS = (constant(), runup(), fluctuation(), motor(), shaft())
 
 
 def rates(motion):
