@@ -2,7 +2,7 @@
 # `make test` finds the test dependencies without activating it; `make PYTHON=...` overrides.
 PYTHON ?= $(if $(wildcard .venv/bin/python),.venv/bin/python,python3)
 
-.PHONY: derive check-generated test bench audit validate
+.PHONY: derive check-generated test bench audit validate docs
 
 derive:            ## regenerate generated/ from the SymPy derivation in derive/
 	$(PYTHON) -m derive
@@ -21,3 +21,6 @@ audit:             ## symbolic audit report: audit/report.md
 
 validate:          ## optional: compare with Exudyn's ANCF cable model (installs exudyn)
 	$(PYTHON) -m pip install exudyn && $(PYTHON) validate/compare.py
+
+docs:              ## the documentation site: docs/_build/html (warnings are errors; runs the gallery)
+	$(PYTHON) -m sphinx -W --keep-going -b html -j 1 docs docs/_build/html
