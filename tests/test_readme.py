@@ -62,7 +62,7 @@ def test_every_python_block_runs_as_written(k, tmp_path, monkeypatch):
                                                      transient=3, samples=4))
     monkeypatch.setattr(crankgen, "campbell", _small(crankgen.campbell, n_elements=4, angles=8))
     monkeypatch.setattr(crankgen, "follow", _small(crankgen.follow, max_points=8))
-    from crankgen import animation
+    from crankgen.plots import animation
     monkeypatch.setattr(animation, "MAX_FRAMES", 6)          # a few frames of every animation
     where, code = PYTHON_BLOCKS[k]
     code = textwrap.dedent(code)                        # a block inside a list item is indented
