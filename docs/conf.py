@@ -16,7 +16,7 @@ matplotlib.use("Agg")
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE / "_ext"))
 
-from crankgen.provenance import VERSION  # noqa: E402
+from crankgen import __version__ as VERSION  # noqa: E402
 
 project = "crankgen"
 author = "the crankgen authors"

@@ -130,9 +130,9 @@ def test_the_reference_lists_every_command_option_and_column(site):
     """The generated pages hold what the program has: every command and option of the parser,
     every declared output and every column of a steady state's row."""
     out, _ = site
-    from crankgen import schema
+    from crankgen.declaration import schema
     from crankgen.cli import build_parser
-    from crankgen.steady_row import RESULTS, MOTOR_RESULTS
+    from crankgen.results.steady_row import RESULTS, MOTOR_RESULTS
 
     cli = (out / "reference" / "cli.html").read_text(encoding="utf-8")
     sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))

@@ -167,11 +167,11 @@ def columns_markdown():
     """Every CSV column crankgen writes, with its unit (crankgen's and SI) and meaning, from the
     declaration: the per-step tables (simulation.csv, orbit.csv), the rows of steady.csv and
     sweep.csv, and the quantities of a continuation's branches.csv."""
-    from crankgen import schema
-    from crankgen.bifurcation import quantities as q
-    from crankgen.exports import column
-    from crankgen.steady_row import RESULTS, MOTOR_RESULTS, describe
-    from crankgen.units import Scales
+    from crankgen.declaration import schema
+    from crankgen.analyses.bifurcation import quantities as q
+    from crankgen.results.exports import column
+    from crankgen.results.steady_row import RESULTS, MOTOR_RESULTS, describe
+    from crankgen.declaration.units import Scales
 
     def si(units):
         try:
@@ -235,7 +235,7 @@ def columns_markdown():
 
 
 def _branch_meanings(doc):
-    """{quantity: meaning} from the bullet list of crankgen.bifurcation.quantities' docstring."""
+    """{quantity: meaning} from the bullet list of crankgen.analyses.bifurcation.quantities' docstring."""
     out = {}
     items = re.split(r"\n- ", doc)
     for item in items[1:]:

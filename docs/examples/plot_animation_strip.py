@@ -5,7 +5,7 @@ The animation, as a strip of frames
 ``result.animate("run.gif")`` writes the deforming mechanism in the inertial frame, its elastic
 deflection magnified (:doc:`/howto/animation`). Here six frames of one steady revolution at
 Omega* = 1.0, drawn side by side from the same frames the animation is made of
-(``crankgen.animation.Frames``).
+(``crankgen.plots.animation.Frames``).
 
 The animation itself::
 
@@ -16,7 +16,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import crankgen
-from crankgen.animation import Frames
+from crankgen.plots.animation import Frames
 
 st = crankgen.steady_state(crankgen.Mechanism(), omega=1.0, n_elements=4)
 frames = Frames(st, frames=7)
