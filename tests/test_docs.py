@@ -146,12 +146,12 @@ def test_the_reference_lists_every_command_option_and_column(site):
         assert f"<code class=\"docutils literal notranslate\"><span class=\"pre\">{name}" in columns, name
 
 
-FAULTY_INDEX = """\
-# A site with faults
+INDEX = """\
+# A small site
 
-[a page that does not exist](nowhere.md)
+{fault}
 
-```{toctree}
+```{{toctree}}
 gallery/index
 ```
 """
@@ -164,26 +164,34 @@ An example that fails
 raise RuntimeError("this example fails on purpose")
 '''
 
+FAULTS = {  # fault: (what the index says, the gallery's example or None, what the build must say)
+    "a broken link": ("[a page that does not exist](nowhere.md)", None, "nowhere.md"),
+    "a failing example": ("", FAILING_EXAMPLE, "this example fails on purpose"),
+    "a missing API entry": ("", None, "does not document crankgen.simulate"),
+}
 
-def test_a_broken_link_a_failing_example_and_a_missing_api_entry_fail_the_build(tmp_path):
-    """The site's own configuration with one page holding a broken link, a gallery example that
-    raises, and no API reference: the build fails and names each fault."""
+
+@pytest.mark.parametrize("fault", list(FAULTS))
+def test_a_fault_fails_the_build(fault, tmp_path):
+    """The site's own configuration on a small site with one fault: a page with a broken link, a
+    gallery example that raises, or no API reference (every site but the full one lacks it): the
+    build fails and names the fault."""
     _require("sphinx")
+    text, example, message = FAULTS[fault]
     source = tmp_path / "docs"
     source.mkdir()
     for name in ("conf.py", "_ext", "_static"):
         src = DOCS / name
         (shutil.copytree if src.is_dir() else shutil.copy)(src, source / name)
-    (source / "index.md").write_text(FAULTY_INDEX)
+    (source / "index.md").write_text(INDEX.format(fault=text))
     (source / "examples").mkdir()
     (source / "examples" / "GALLERY_HEADER.rst").write_text("Gallery\n=======\n")
-    (source / "examples" / "plot_fails.py").write_text(FAILING_EXAMPLE)
+    if example:
+        (source / "examples" / "plot_example.py").write_text(example)
     done = _build(source, tmp_path / "html", tmp_path)
     log = done.stdout + done.stderr
-    assert done.returncode != 0
-    assert "nowhere.md" in log, log[-3000:]
-    assert "this example fails on purpose" in log, log[-3000:]
-    assert "does not document crankgen.simulate" in log, log[-3000:]
+    assert done.returncode != 0, log[-3000:]
+    assert message in log, log[-3000:]
 
 
 # ---- the pages in a browser ----------------------------------------------------------------------

@@ -14,10 +14,13 @@ The full-size chart (six lines, 8 elements; about half a minute once compiled)::
     crankgen chart --x omega,0.2,1.6 --y eps,0.005,0.05 --elements 8
 """
 
+import warnings
+
 import matplotlib.pyplot as plt
 
 import crankgen
 
+warnings.simplefilter("ignore", crankgen.notices.BeyondTheoryWarning)   # the chart hatches those orbits
 chart = crankgen.stability_chart(crankgen.Mechanism(), x=("omega", 0.8, 1.4), y=("eps", 0.01, 0.04),
                                  lines=2, n_elements=4, steps_per_rev=50, follow_settings={"dq_max": 0.1})
 print("\n".join(chart.summary()[:6]))
