@@ -19,8 +19,9 @@ import warnings
 import matplotlib.pyplot as plt
 
 import crankgen
+from crankgen.notices import BeyondTheoryWarning
 
-warnings.simplefilter("ignore", crankgen.notices.BeyondTheoryWarning)   # the chart hatches those orbits
+warnings.simplefilter("ignore", BeyondTheoryWarning)      # the chart hatches those orbits
 chart = crankgen.stability_chart(crankgen.Mechanism(), x=("omega", 0.8, 1.4), y=("eps", 0.01, 0.04),
                                  lines=2, n_elements=4, steps_per_rev=50, follow_settings={"dq_max": 0.1})
 print("\n".join(chart.summary()[:6]))
