@@ -14,7 +14,9 @@ The full-size chart (six lines, 8 elements; about half a minute once compiled)::
     crankgen chart --x omega,0.2,1.6 --y eps,0.005,0.05 --elements 8
 """
 
+import tempfile
 import warnings
+from pathlib import Path
 
 import matplotlib.pyplot as plt
 
@@ -26,7 +28,8 @@ chart = crankgen.stability_chart(crankgen.Mechanism(), x=("omega", 0.8, 1.4), y=
                                  lines=2, n_elements=4, steps_per_rev=50, follow_settings={"dq_max": 0.1})
 print("\n".join(chart.summary()[:6]))
 print("at Omega* = 1.0, eps = 0.02:", chart.region_at(1.0, 0.02).words)
-chart.plot("chart.png")
+path = Path(tempfile.mkdtemp()) / "chart.png"      # the chart's own figure, shown below
+chart.plot(path)
 fig = plt.figure(figsize=(8, 6), layout="constrained")
-plt.imshow(plt.imread("chart.png"))
+plt.imshow(plt.imread(path))
 plt.axis("off")
