@@ -29,7 +29,7 @@ chart = crankgen.stability_chart(crankgen.Mechanism(), x=("omega", 0.8, 1.4), y=
 print("\n".join(chart.summary()[:6]))
 print("at Omega* = 1.0, eps = 0.02:", chart.region_at(1.0, 0.02).words)
 path = Path(tempfile.mkdtemp()) / "chart.png"      # the chart's own figure, shown below
-chart.plot(path)
+chart.plot(str(path))
 fig = plt.figure(figsize=(8, 6), layout="constrained")
 plt.imshow(plt.imread(path))
 plt.axis("off")
