@@ -354,11 +354,21 @@ def _weighted(residual, variables, axial_rows, groups):
 # equations, the natural size of each component
 # ----------------------------------------------------------------------------------------------
 
+BODIES = (
+    records.Body("crank", "rigid", "the crank, from its axis O to the crank pin A (length a*): turned by the "
+                 "prescribed motion or a driven motion's crank co-ordinate", "crank angle"),
+    records.Body("rod", "flexible", "the connecting rod (a four-bar's coupler): an Euler-Bernoulli beam of "
+                 "n_elements elements, its nodes' (u, v, psi) in the moving frame of the rigid linkage's chord "
+                 "A-B", "chord", node=s.NODE, elements="n_elements"),
+    records.Body("end", "rigid", "the end mass ms* at B on the guide: a slider on a line, a four-bar's rocker "
+                 "tip on its circle", "guide"),
+)
 CONSTRAINTS = (
-    records.Constraint("pin", 0, ("u", "v"), "the crank pin holds the rod's first node: u = v = 0"),
+    records.Constraint("pin", 0, ("u", "v"), "the crank pin holds the rod's first node: u = v = 0",
+                       body="rod", joint="crank"),
     records.Constraint("end", -1, ("u", "v"), "the guide holds the rod's last node: (u, v) = g(s, t), the "
                        "end map of the case's guide (derive/guides.py), one reduced co-ordinate s",
-                       reduced=("s",), map="end_map"),
+                       reduced=("s",), map="end_map", body="rod", joint="end"),
 )
 END = CONSTRAINTS[1]
 # natural size of each component of a node (units of L) for Newton's scaled increments: the paper's

@@ -72,6 +72,8 @@ class Schema:
     node: Layout                 # the components of a node, in the element's order (eq. 14)
     constraints: tuple           # the DOF map: the constraints condensed out (crankgen.declaration.records.Constraint)
     exclusions: tuple            # option values refused together (crankgen.declaration.records.Exclusion)
+    bodies: tuple = ()           # the mechanism's bodies (records.Body): the flexible ones' meshes, the joints' ends
+    reductions: tuple = ()       # reductions over time of the outputs (records.Reduction)
 
 
 def _symbols(p):
@@ -231,6 +233,13 @@ def _constraints():
         if not set(c.eliminated) <= set(s.NODE) or len(c.reduced) > len(c.eliminated):
             raise ValueError(f"constraint {c.name}: eliminated {c.eliminated} must be components of a node "
                              f"{s.NODE}, at least as many as its reduced co-ordinates {c.reduced}")
+    bodies = {b.name: b for b in model.BODIES}
+    for c in model.CONSTRAINTS:
+        if c.body not in bodies or bodies[c.body].kind != "flexible" or c.joint not in bodies:
+            raise ValueError(f"constraint {c.name}: it must hold a node of a flexible body and join it to a "
+                             f"declared body, got body {c.body!r}, joint {c.joint!r}")
+        if not set(c.eliminated) <= set(bodies[c.body].node):
+            raise ValueError(f"constraint {c.name}: {c.eliminated} are not components of {c.body}'s nodes")
     for f in model.FAMILIES:
         if f.part != "rod" and f.part != mapped[0].name:
             raise ValueError(f"family {f.name}: part {f.part!r} is neither 'rod' nor the mapped constraint")
@@ -272,7 +281,8 @@ def schema():
         unit_parameters=_unit_parameters(),
         element_dofs=ELEMENT_DOFS, node=Layout("node", s.NODE, "the components of a node (eq. 14): axial "
                                                 "and transverse displacement, slope"),
-        constraints=_constraints(), exclusions=_exclusions())
+        constraints=_constraints(), exclusions=_exclusions(), bodies=tuple(model.BODIES),
+        reductions=_reductions())
 
 
 # ---- the SymPy forms ----------------------------------------------------------------------------------
@@ -584,6 +594,29 @@ def _outputs_records():
 
 def _outputs():
     return tuple(OutputForm(_output_record(o, forms), forms[1]) for o, forms in _all_output_forms())
+
+
+REDUCTION_KINDS = ("peak", "max", "min", "range", "mean", "rms")
+
+
+def _reductions():
+    """The declared reductions over time (derive/outputs.py REDUCTIONS), checked, with their
+    output's units and guides: a field at an x* in [0, 1] with its arguments, any other kind of
+    output without."""
+    records_by_name = {r.name: r for r in _outputs_records()}
+    out = []
+    for r in outputs.REDUCTIONS:
+        o = records_by_name.get(r.output)
+        if o is None or r.kind not in REDUCTION_KINDS:
+            raise ValueError(f"reduction {r.name}: output {r.output!r} must be declared and kind {r.kind!r} one of "
+                             f"{REDUCTION_KINDS}")
+        if (o.kind == "field") != (r.at is not None) or (o.kind == "field" and not 0 <= r.at <= 1) \
+                or set(dict(r.arguments)) != set(o.arguments if o.kind == "field" else ()):
+            raise ValueError(f"reduction {r.name}: a field's needs its x* in [0, 1] and its arguments {o.arguments}")
+        if r.name in records_by_name:
+            raise ValueError(f"reduction {r.name}: the name of an output")
+        out.append(project(r, records.Reduction, units=o.units, guides=o.guides))
+    return tuple(out)
 
 
 @dataclass(frozen=True)

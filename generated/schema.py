@@ -8,7 +8,7 @@ runtime's classes of this schema are in classes.py.
 
 import math
 
-from crankgen.declaration.records import Constraint, Coordinate, Exclusion, Family, Guide, Layout, Motion, Option, Output, Parameter, Preset, Primitive, Variant
+from crankgen.declaration.records import Body, Constraint, Coordinate, Exclusion, Family, Guide, Layout, Motion, Option, Output, Parameter, Preset, Primitive, Reduction, Variant
 
 KERNELS_HASH = '2b9167d0fdc5625a'
 ELEMENT_KERNELS = ('dissipation_kelvin_voigt_A', 'dissipation_kelvin_voigt_A_averaged', 'dissipation_kelvin_voigt_B', 'dissipation_kelvin_voigt_B_averaged', 'dissipation_kelvin_voigt_C', 'dissipation_kelvin_voigt_exact', 'dissipation_kelvin_voigt_exact_averaged', 'dissipation_paper_A', 'dissipation_paper_B', 'dissipation_paper_C', 'elastic_lagrange_A', 'elastic_lagrange_A_averaged', 'elastic_lagrange_B', 'elastic_lagrange_B_averaged', 'elastic_lagrange_C', 'elastic_lagrange_exact', 'elastic_lagrange_exact_averaged', 'elastic_paper_A', 'elastic_paper_B', 'elastic_paper_C', 'gravity_uniform', 'inertia_lagrange', 'inertia_lagrange_exact', 'inertia_paper', 'rocker_spring_torsional', 'slider_dissipation_paper', 'slider_gravity_uniform', 'slider_inertia_lagrange', 'slider_inertia_paper')
@@ -883,14 +883,42 @@ CONSTRAINTS = (
         eliminated=('u', 'v'),
         doc="the crank pin holds the rod's first node: u = v = 0",
         reduced=(),
-        map=None),
+        map=None,
+        body='rod',
+        joint='crank'),
     Constraint(
         name='end',
         node=-1,
         eliminated=('u', 'v'),
         doc="the guide holds the rod's last node: (u, v) = g(s, t), the end map of the case's guide (derive/guides.py), one reduced co-ordinate s",
         reduced=('s',),
-        map='end_map'),
+        map='end_map',
+        body='rod',
+        joint='end'),
+)
+# the mechanism's bodies: the flexible ones' node layouts and element counts, the joints' ends
+BODIES = (
+    Body(
+        name='crank',
+        kind='rigid',
+        doc="the crank, from its axis O to the crank pin A (length a*): turned by the prescribed motion or a driven motion's crank co-ordinate",
+        frame='crank angle',
+        node=(),
+        elements=None),
+    Body(
+        name='rod',
+        kind='flexible',
+        doc="the connecting rod (a four-bar's coupler): an Euler-Bernoulli beam of n_elements elements, its nodes' (u, v, psi) in the moving frame of the rigid linkage's chord A-B",
+        frame='chord',
+        node=('u', 'v', 'psi'),
+        elements='n_elements'),
+    Body(
+        name='end',
+        kind='rigid',
+        doc="the end mass ms* at B on the guide: a slider on a line, a four-bar's rocker tip on its circle",
+        frame='guide',
+        node=(),
+        elements=None),
 )
 # what an element kernel's one-element function adds, by its mode argument (derive/emit.py)
 ELEMENT_MODES = ('full', 'printed', 'residual', 'newmark')
@@ -1647,6 +1675,18 @@ OUTPUTS = (
         engine=False,
         inputs=('q', 'zeta', 'geo', 'coef', 'q_end'),
         kernels=(({'approach': 'A', 'membrane': 'pointwise'}, 'field_chord_deflection'), ({'approach': 'A', 'membrane': 'averaged'}, 'field_chord_deflection'), ({'approach': 'B', 'membrane': 'pointwise'}, 'field_chord_deflection'), ({'approach': 'B', 'membrane': 'averaged'}, 'field_chord_deflection'), ({'approach': 'C', 'membrane': 'pointwise'}, 'field_chord_deflection'), ({'approach': 'C', 'membrane': 'averaged'}, 'field_chord_deflection'), ({'approach': 'exact', 'membrane': 'pointwise'}, 'field_chord_deflection'), ({'approach': 'exact', 'membrane': 'averaged'}, 'field_chord_deflection'))),
+)
+# reductions over time of the outputs (a revolution's peak, RMS, mean, range), declared once
+REDUCTIONS = (
+    Reduction(
+        name='rms_bending_moment_mid',
+        output='bending_moment',
+        kind='rms',
+        doc="the RMS over the revolution of the bending moment at mid-span (what a fatigue check of the rod's bending starts from, beside its peak)",
+        at=0.5,
+        arguments=(),
+        units='EI/L',
+        guides=('line', 'circle', 'cam', 'incline')),
 )
 # what the engine accumulates at every step for its outputs (per_step's prims, in this order)
 PRIMITIVES = (

@@ -200,13 +200,12 @@ def test_the_si_files_have_them_in_si(tmp_path):
 
 
 def test_a_point_of_a_motor_branch_animates_its_orbit(branch):
-    """crankgen.plots.animation.orbit of a motor-driven point: the run from its section state (its crank
+    """BifurcationDiagram.orbit of a motor-driven point: the run from its section state (its crank
     speed the point's) over its revolution time, to the nearest step: one crank revolution, the
     crank-speed range the point's."""
-    from crankgen.plots.animation import orbit
     d, br = branch
     i = len(br) // 2
-    r = orbit(d, 0, i)
+    r = d.orbit(0, i)
     T = float(br.quantities["revolution_time"][i])
     dt = r.t[1] - r.t[0]
     assert abs(r.t[-1] - T) <= dt / 2 + 1e-12

@@ -70,9 +70,16 @@ class SimulationResult(DeclaredOutputs):
         prescribed crank."""
         if not self.coordinates:
             return None
-        from ..declaration.torque_curve import motor_torque
+        from ..results.motor_duty import motor_torque
         motor = next(c.name for c in self.case.motion_record.coordinates if c.motor)
         return motor_torque(self.case, self.coordinates[motor][:, 1])
+
+    def last_revolution(self):
+        """{name: value} of every declared reduction over time (schema.REDUCTIONS: a peak, RMS,
+        mean or range of an output) over the run's last crank revolution (crankgen.results.reductions;
+        None without states)."""
+        from ..results import reductions
+        return reductions.values(self, reductions.last_revolution(self))
 
     @property
     def crank_acceleration(self):

@@ -121,13 +121,21 @@ class SteadyState(DeclaredOutputs):
     @property
     def motor_duty(self):
         """A motor's {peak_motor_torque, rms_motor_torque, mean_motor_power} over the steady
-        revolution, at the speed of the co-ordinate it drives (crankgen.declaration.torque_curve.duty;
+        revolution, at the speed of the co-ordinate it drives (crankgen.results.motor_duty.duty;
         None otherwise)."""
         if not self.coordinates or self.t is None:
             return None
-        from ..declaration.torque_curve import duty
+        from ..results.motor_duty import duty
         motor = next(c.name for c in self.case.motion_record.coordinates if c.motor)
         return duty(self.case, self.t, self.coordinates[motor][:, 1])
+
+    @property
+    def reductions(self):
+        """{name: value} of every declared reduction over time (schema.REDUCTIONS: a peak, RMS, mean
+        or range of an output) over the steady revolution (crankgen.results.reductions; None
+        without an orbit)."""
+        from ..results import reductions
+        return reductions.values(self)
 
     @property
     def ok(self):

@@ -80,7 +80,7 @@ def _loads_and_stress(result, section, si, stress=True):
     """The summary lines of the peak loads and (stress=True) the outer-fibre stresses of a result."""
     from ..analyses.stresses import peak_loads
     from ..analyses.stresses import stress as stress_of
-    from ..declaration.units import scales_of
+    from ..declaration.si import scales_of
     scales = None if si is None else scales_of(si)
     loads = "; ".join(f"{p.name} {p.value:.4g} {p.units} (t{'' if scales else '*'} = {p.t:.4g}"
                       f"{' s' if scales else ''}, crank angle {math.degrees(p.theta) % 360:.1f} deg)"
@@ -261,7 +261,7 @@ def _steady(args, case, out, section=None, si=None):
     if st.status == "failed":
         row["message"] = _failure_text(st.message, case.approach)
     if si is not None:
-        from ..declaration.si import row_in_si
+        from ..results.si_row import row_in_si
         row.update(row_in_si(row, si))
     out.wrote(write_csv(out.path("steady.csv"), *flat_table(list(row), [row])))
     if st.v_mid is not None:

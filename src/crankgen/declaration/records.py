@@ -15,8 +15,10 @@ generated code.
     Coordinate            a co-ordinate of the state with its own equation (a driven crank's angle, a rotor's)
     Family, Variant       a term family of the equations of motion and its option-selected variants
     Output                a quantity a result can give, with its kernels by option values
+    Reduction             a peak, RMS, mean or range over time of a declared output (a revolution's)
     Primitive             what the engine accumulates for its outputs (a field at a point, an integral)
-    Constraint            a constraint of a node condensed out of the equations (the DOF map)
+    Body                  a body of the mechanism: flexible (its elements and node layout) or rigid
+    Constraint            a constraint of a node condensed out of the equations: a joint between bodies
     Layout                the entries of a vector a kernel reads (parameters, coefficients, ...)
     Spec                  a guide or motion with values of its parameters (crankgen.Line(...), ...)
 """
@@ -232,6 +234,25 @@ class Output:
 
 
 @dataclass(frozen=True)
+class Reduction:
+    """A reduction over time of a declared output, along a steady revolution, a branch point's orbit
+    or a run's last revolution: kind "peak" (the value of largest magnitude, signed), "max", "min",
+    "range" (max - min), "mean" or "rms" (time means by the trapezoidal rule on the stored steps).
+    output: the declared output; at: its x* for a field, with its other `arguments` ((name, value),
+    ...); units: the output's (the representation fills them in); guides: those it exists for
+    (the output's)."""
+
+    name: str
+    output: str
+    kind: str
+    doc: str
+    at: float = None
+    arguments: tuple = ()
+    units: str = None
+    guides: tuple = None
+
+
+@dataclass(frozen=True)
 class Primitive:
     """A quantity of the nodal state the engine accumulates at every step for the outputs it
     computes: kind "point", the interpolated `field` (u, v or psi) at x* = `at` (the shape
@@ -244,6 +265,23 @@ class Primitive:
     field: str = None
     at: float = None
     kernel: str = None
+
+
+@dataclass(frozen=True)
+class Body:
+    """A body of the mechanism: kind "flexible" (a beam of finite elements, its nodes' components
+    `node` in its own moving frame, its element count the parameter `elements`) or "rigid" (its
+    motion the rigid closure's, or a declared co-ordinate's); `frame`: what its moving frame follows
+    (the crank angle, the chord of the rigid linkage, the guide).  The DOF map numbers the flexible
+    bodies' nodal unknowns in the declared order, then the motion's co-ordinates; the joints between
+    bodies are the constraints (Constraint.body, .joint)."""
+
+    name: str
+    kind: str
+    doc: str
+    frame: str
+    node: tuple = ()
+    elements: str = None
 
 
 @dataclass(frozen=True)
@@ -264,6 +302,8 @@ class Constraint:
     doc: str = ""
     reduced: tuple = ()
     map: str = None
+    body: str = None             # the flexible body whose node it holds
+    joint: str = None            # the body it joins that node to (a pin)
 
 
 @dataclass(frozen=True)
@@ -355,5 +395,5 @@ def project(obj, cls, **changes):
     return cls(**values)
 
 
-__all__ = ["Option", "Preset", "Exclusion", "Parameter", "Guide", "Coordinate", "Motion", "Variant", "Family", "Output", "Primitive",
+__all__ = ["Option", "Preset", "Exclusion", "Parameter", "Guide", "Coordinate", "Motion", "Body", "Variant", "Family", "Output", "Reduction", "Primitive",
            "Constraint", "Layout", "Spec", "project"]

@@ -246,7 +246,7 @@ def reduced_state(case, initial, scales=None):
             if idx is not None:
                 d0[idx] = values[disp][k]
                 v0[idx] = values[rate][k]
-    d0[mesh.slider_dof], v0[mesh.slider_dof] = s, sd
+    d0[mesh.reduced_coordinates()[0]], v0[mesh.reduced_coordinates()[0]] = s, sd
     return d0, v0
 
 

@@ -22,10 +22,17 @@ from ..declaration import schema
 from ..declaration.validation import integer
 
 NDOF = schema.ELEMENT_DOFS
-COMPONENTS = schema.NODE                      # (u, v, psi)
+# the flexible body (schema.BODIES: the rod; one runs today) and its node's components (u, v, psi)
+BODY = next(b for b in schema.BODIES.values() if b.kind == "flexible")
+COMPONENTS = BODY.node
 NODE_DOFS = len(COMPONENTS)                   # per node; an element holds two nodes' (NDOF)
 U, V, PSI = range(NODE_DOFS)
-MAPPED = next(c for c in schema.CONSTRAINTS if c.map is not None)   # the constraint with reduced co-ordinates
+MAPPED = next(c for c in schema.CONSTRAINTS if c.body == BODY.name and c.map is not None)   # reduced co-ordinates
+
+
+def joints(body=BODY):
+    """The constraints of the body's nodes: the joints that hold them (schema.CONSTRAINTS)."""
+    return tuple(c for c in schema.CONSTRAINTS if c.body == body.name)
 
 
 def element_slots(node_in_element, components):
@@ -63,7 +70,7 @@ class Mesh:
         """{(node, component): reduced index or None} and {(constraint, j): reduced index} of the
         DOF map: nodes in order, components in order; an eliminated component gives its place to
         the constraint's j-th reduced co-ordinate (j its rank among the eliminated), or none."""
-        held = {self.node_of(c): c for c in schema.CONSTRAINTS}
+        held = {self.node_of(c): c for c in joints()}
         index, k = {}, 0
         for node in range(self.n_elements + 1):
             c = held.get(node)
@@ -123,11 +130,6 @@ class Mesh:
         """The reduced indices of a constraint's reduced co-ordinates."""
         return tuple(self._index[(constraint.name, j)] for j in range(len(constraint.reduced)))
 
-    @property
-    def slider_dof(self):
-        """The reduced index of the end map's reduced co-ordinate s (the end's deviation along its guide)."""
-        return self.reduced_coordinates()[0]
-
     def holders(self, constraint=MAPPED):
         """[(element, slots of the eliminated components there, slots of the reduced co-ordinates)]
         of the elements holding a constraint's node (one at the first or last node, two inside)."""
@@ -147,7 +149,7 @@ class Mesh:
     def _element_dofs(self):
         """(n, NDOF) reduced index of each element DOF; an eliminated slot holding a reduced
         co-ordinate holds its index (the end element's u_n slot holds s)."""
-        held = {self.node_of(c): c for c in schema.CONSTRAINTS}
+        held = {self.node_of(c): c for c in joints()}
         dofs = np.empty((self.n_elements, NDOF), dtype=np.intp)
         for e in range(self.n_elements):
             for k in range(NDOF):

@@ -155,7 +155,7 @@ class Model:
         constraint's map (the guide's end map) in every element holding it, and the map's values
         E (..., rows, k)."""
         p, pd, pdd = self.mesh.gather(d), self.mesh.gather(v), self.mesh.gather(a)
-        S = self.mesh.slider_dof
+        S = self.mesh.reduced_coordinates()[0]
         E = _kinematics.end_map(self.case, kin.vector, np.asarray(d)[..., S], np.asarray(v)[..., S],
                                 np.asarray(a)[..., S])
         for e, slots, _ in self.mesh.holders():
@@ -262,7 +262,7 @@ class Model:
                 idx = mesh.reduced_index(node, comp)
                 if idx is not None:
                     out[..., NODE_DOFS * node + comp] = d[..., idx]
-        E = _kinematics.end_map(self.case, kin.vector, d[..., mesh.slider_dof])
+        E = _kinematics.end_map(self.case, kin.vector, d[..., mesh.reduced_coordinates()[0]])
         node = mesh.node_of(MAPPED)
         for a, name in enumerate(MAPPED.eliminated):
             out[..., NODE_DOFS * node + COMPONENTS.index(name)] = E[..., ROWS["q"], a]

@@ -220,32 +220,3 @@ def animate(result, path, magnification=None, frames=None, fps=20, title=None, s
     finally:
         tmp.unlink(missing_ok=True)
     return path
-
-
-def orbit(diagram, branch, point):
-    """The orbit of point `point` of branch `branch` of a mechanism's BifurcationDiagram
-    (crankgen.continuation), marched for its period from its stored state: a SimulationResult
-    whose `animate` shows it.  A driven crank's point starts on the section of its crank angle
-    (the DOF map's state there) and runs for its period's revolution times (to the nearest step)."""
-    from dataclasses import replace
-
-    from ..declaration.cases import Case
-    from ..discrete.kinematics import step_period
-    from ..analyses.section import CrankSection
-    from ..analyses.simulation import simulate
-    branch = integer("branch", branch, 0)
-    if branch >= len(diagram.branches):
-        raise ParameterError(f"branch must be below {len(diagram.branches)}, got {branch}")
-    br = diagram.branches[branch]
-    point = integer("point", point, 0)
-    if point >= len(br):
-        raise ParameterError(f"point must be below {len(br)} (the branch's points), got {point}")
-    info = {k: v for k, v in diagram.info.items() if k in Case.__dataclass_fields__}
-    case = replace(Case.from_dict(info), **{diagram.parameter_name: float(br.parameter[point])})
-    state = np.asarray(br.states[point], dtype=float)     # (d, v), or (d, v, a) for generalized-alpha,
-    if case.motion_record.coordinates:                    # a driven crank: its state on the section
-        X, V, _ = CrankSection(case).full(state)
-        period = br.period * float(br.quantities["revolution_time"][point])
-        return simulate(case=case, initial=(X[0], V[0]), revolutions=period / step_period(case))
-    parts = np.split(state, len(state) // (3 * case.n_elements))   # at theta0, crankgen's units
-    return simulate(case=case, initial=parts, revolutions=br.period)

@@ -152,7 +152,7 @@ class StateHistory:
         row ("q": positions; "qd": rates, from the states and `rates`)."""
         self._need_states()
         q = self.mesh.gather(reduced)
-        S = self.mesh.slider_dof
+        S = self.mesh.reduced_coordinates()[0]
         E = _kinematics.end_map(self.case, self.kinematics().vector, self.states[:, S],
                                 0.0 if rates is None else rates[:, S])
         for e, slots, _ in self.mesh.holders():
@@ -202,7 +202,7 @@ class StateHistory:
                 values = self.element_vectors() if name == "q_end" else self.element_rates()
                 out[name] = values[:, e, list(slots)]
             elif name == "s":
-                out[name] = self._need_states()[:, self.mesh.slider_dof]
+                out[name] = self._need_states()[:, self.mesh.reduced_coordinates()[0]]
             elif name in self._constraints:          # the force a constraint applies (pin, end)
                 out.update(zip(self._constraints, self._reactions()[0]))
             elif name == "rod_end":                  # the force the end mass applies to the rod at B
@@ -367,7 +367,7 @@ class DeclaredOutputs:
 
     def si_view(self, si_mechanism):
         """The result in SI for the SIMechanism whose dimensionless form it was computed for."""
-        from ..declaration.units import scales_of
+        from ..declaration.si import scales_of
         return SIView(self, scales_of(si_mechanism))
 
     def __dir__(self):

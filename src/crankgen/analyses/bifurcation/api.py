@@ -91,10 +91,10 @@ def _add_quantities(diagram, case, parameter, section, progress, fmap=None):
             progress(f"branch {k}: the physical quantities of its {len(br)} orbits")
         if fmap is None:
             br.quantities, br.quantity_notes = branch_quantities(case, parameter, br, section)
-            br.quantity_units = units(section)
+            br.quantity_units = units(section, case=case)
         else:
             br.quantities, br.quantity_notes = motor_branch_quantities(fmap, br, section)
-            br.quantity_units = motor_units(section)
+            br.quantity_units = motor_units(section, case=case)
 
 
 def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *, model=None, max_period=4, ds=0.05,

@@ -44,8 +44,9 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ... import engine
-from ...declaration import schema, torque_curve
+from ...declaration import schema
 from ...discrete import kinematics as _kinematics
+from ...results import motor_duty, reductions
 from ...results.outputs import DeclaredOutputs
 from ..marching import coordinate_histories, crank_of
 from .maps import MapError
@@ -63,8 +64,9 @@ MOTOR_QUANTITIES = ("mean_speed", "revolution_time", "min_crank_speed", "max_cra
                     "rms_motor_torque", "mean_motor_power")
 
 
-def units(section=None, si=None):
-    """{quantity: units text} (crankgen's units, or SI with si)."""
+def units(section=None, si=None, case=None):
+    """{quantity: units text} (crankgen's units, or SI with si); with the case, its declared
+    reductions over the orbit too (crankgen.results.reductions)."""
     out = {"peak_v": "r (v* = v/r)", "peak_torque": schema.OUTPUTS["torque"].units,
            "peak_pin_force_A": schema.OUTPUTS["crank_on_rod_x"].units,
            "peak_pin_force_B": schema.OUTPUTS["rod_on_slider_x"].units,
@@ -72,16 +74,18 @@ def units(section=None, si=None):
            "peak_axial_force": schema.OUTPUTS["axial_force"].units, "peak_strain": "1"}
     if section is not None:
         out["peak_stress"] = "Pa" if si is not None else "E"
+    for r in ([] if case is None else reductions.declared(case)):
+        out[r.name] = r.units
     return out
 
 
-def motor_units(section=None, si=None):
+def motor_units(section=None, si=None, case=None):
     """{quantity: units text} of a motor-driven crank's branch point (crankgen's units, or SI with si):
     MOTOR_QUANTITIES, then units()'s."""
     speed = schema.OUTPUTS["crank_speed"].units
     out = {"mean_speed": speed, "revolution_time": f"1/{speed}", "min_crank_speed": speed,
-           "max_crank_speed": speed, **torque_curve.duty_units()}
-    return dict(out, **units(section, si))
+           "max_crank_speed": speed, **motor_duty.duty_units()}
+    return dict(out, **units(section, si, case))
 
 
 @dataclass(frozen=True)
@@ -131,13 +135,16 @@ def orbit_quantities(orbit, section=None, si=None):
         from ..stresses import stress
         hist = stress(orbit, section, si=si)
         out["peak_stress"] = hist.largest.value
+    for r in reductions.declared(orbit.case):       # the declared reductions over the orbit
+        x = reductions.value(orbit, r)
+        out[r.name] = math.nan if x is None else x
     return out
 
 
 def branch_quantities(case, parameter, branch, section=None, si=None):
     """({quantity: (points,) array}, notes): the quantities of every point of a Branch whose states
     are the revolution map's at theta0 ((d, v), or (d, v, a) for generalized-alpha), `parameter` the diagram's, case the diagram's case."""
-    names = list(units(section, si))
+    names = list(units(section, si, case))
     values = {k: np.full(len(branch), math.nan) for k in names}
     notes = []
     period = int(branch.period)
@@ -199,14 +206,14 @@ def motor_orbit_quantities(orbit, T, period, section=None, si=None):
     motor = next(c.name for c in orbit.case.motion_record.coordinates if c.motor)
     out = {"mean_speed": 2.0 * math.pi * period / T, "revolution_time": T / period,
            "min_crank_speed": float(np.min(speed)), "max_crank_speed": float(np.max(speed)),
-           **torque_curve.duty(orbit.case, orbit.t, orbit.coordinates[motor][:, 1])}
+           **motor_duty.duty(orbit.case, orbit.t, orbit.coordinates[motor][:, 1])}
     return dict(out, **orbit_quantities(orbit, section, si))
 
 
 def motor_branch_quantities(fmap, branch, section=None, si=None):
     """({quantity: (points,) array}, notes): the quantities of every point of a motor-driven
     crank's Branch (its states the section states of the AutonomousMap fmap), one orbit at a time."""
-    values = {k: np.full(len(branch), math.nan) for k in motor_units(section, si)}
+    values = {k: np.full(len(branch), math.nan) for k in motor_units(section, si, fmap.case)}
     notes = []
     period = int(branch.period)
     for i, (state, p) in enumerate(zip(branch.states, branch.parameter)):
