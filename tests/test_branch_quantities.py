@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import crankgen
+from crankgen.declaration import schema
 from crankgen.analyses.bifurcation import BifurcationDiagram
 
 SMALL = dict(n_elements=4, steps_per_rev=50)
@@ -35,8 +36,9 @@ def _quantities_of(result, n):
 
 def test_every_branch_point_has_its_orbits_quantities(diagram):
     one = next(b for b in diagram.branches if b.period == 1)
+    declared = {r.name for r in schema.REDUCTIONS}                 # derive/outputs.py's reductions
     assert set(one.quantities) == {"peak_v", "peak_torque", "peak_pin_force_A", "peak_pin_force_B",
-                                   "peak_support_force", "peak_axial_force", "peak_strain", "peak_stress"}
+                                   "peak_support_force", "peak_axial_force", "peak_strain", "peak_stress"} | declared
     assert one.quantity_units["peak_torque"] == "rhoA L^3 omega_b^2" and one.quantity_units["peak_stress"] == "E"
     i = int(np.argmin(np.abs(one.parameter - 0.9)))
     st = crankgen.steady_state(crankgen.Mechanism(eps=0.02), omega=float(one.parameter[i]), **SMALL)
