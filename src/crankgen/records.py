@@ -34,8 +34,11 @@ def _bracket(low, high, low_open, high_open):
 
 
 def _is_number(value):
-    """A real number (a NumPy boolean, complex number or string is none)."""
+    """A real number: a Python or NumPy real scalar, or a 0-d array of one (a boolean, complex
+    number or string is none)."""
     import numpy as np
+    if isinstance(value, np.ndarray) and value.shape == ():
+        value = value[()]
     return (not isinstance(value, (bool, np.bool_, str, bytes, bytearray, np.complexfloating, np.str_, np.bytes_))
             and isinstance(value, (numbers.Real, np.generic)))
 
@@ -49,12 +52,44 @@ def _real(label, value):
     return x + 0.0                     # -0.0 -> 0.0: one canonical zero
 
 
+# Angles (a crank angle, a guide's inclination, ...: every float crankgen uses modulo 2 pi).  An
+# angle up to ANGLE_LIMIT rad from zero is reduced modulo 2 pi exactly; beyond it the float has lost
+# the digits of the position it names (floats near 1e7 are 1.9e-9 rad apart, near 1e17 16 rad
+# apart: more than a turn) and it is refused.  docs/howto/input-checks.md states the rule.
+ANGLE_LIMIT = 1e7
+
+
 def reduced_angle(x):
     """An angle beyond one turn either way, reduced to (-pi, pi]: the angle of the same crank
     position.  The reduction is exact (the sine and cosine reduce their argument by 2 pi to full
-    precision), so a start angle of 1e17 rad gives the crank position of 1e17 rad, and the run's
-    theta0 + Omega* t keeps every digit of its time.  Angles within one turn are kept as given."""
+    precision), so the run's theta0 + Omega* t keeps every digit of its time.  Angles within one
+    turn are kept as given."""
     return math.atan2(math.sin(x), math.cos(x)) + 0.0
+
+
+def angle(label, x):
+    """A finite float x taken as an angle (rad): refused beyond ANGLE_LIMIT (its crank position is
+    lost to rounding), reduced modulo 2 pi exactly beyond one turn, kept as given within one."""
+    if abs(x) > ANGLE_LIMIT:
+        raise ParameterError(f"{label} = {x:g} rad is too far from 0 to name an angle: floats that large are "
+                             f"{math.ulp(x):.2g} rad apart, so the position it means is lost to rounding; "
+                             f"angles are taken within {ANGLE_LIMIT:g} rad of 0 (reduced modulo 2 pi "
+                             "exactly): give it modulo 2 pi")
+    return reduced_angle(x) if abs(x) > 2 * math.pi else x
+
+
+def _ordered(value):
+    """The items of an ordered collection (a list, tuple, range, array of one or more dimensions, a
+    generator or iterator: consumed once) as a list, or None for what is not one: text, a mapping,
+    a set (unordered), a scalar, a 0-d array."""
+    import numpy as np
+    if isinstance(value, (str, bytes, bytearray, dict, set, frozenset, np.generic)) or not hasattr(value, "__iter__") \
+            or (isinstance(value, np.ndarray) and value.ndim == 0):
+        return None
+    try:
+        return list(value)
+    except TypeError:
+        return None
 
 
 def _plain(value):
@@ -169,15 +204,13 @@ class Parameter:
             bad_high = self.high is not None and (x >= self.high if self.high_open else x > self.high)
             if bad_low or bad_high:
                 raise ParameterError(f"{label} must be in {self.range_text}, got {x:g}")
-            if self.units == "rad" and abs(x) > 2 * math.pi:
-                x = reduced_angle(x)
-            return x
+            return angle(label, x) if self.units == "rad" else x
         if self.kind == "pair":
-            if isinstance(value, (str, bytes, dict, set, frozenset)) or not hasattr(value, "__len__") \
-                    or not hasattr(value, "__getitem__") or len(value) != 2:
+            items = _ordered(value)
+            if items is None or len(items) != 2:
                 raise ParameterError(f"{label} must be a sequence of two numbers ({self.metavar or 'X,Y'}), "
                                      f"got {value!r}")
-            return tuple(_real(f"{label}[{k}]", value[k]) for k in range(2))
+            return tuple(_real(f"{label}[{k}]", items[k]) for k in range(2))
         if self.kind == "curve":
             from . import torque_curve
             return torque_curve.canonical(label, value)

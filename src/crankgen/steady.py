@@ -45,12 +45,12 @@ from . import engine, schema, time_scheme
 from . import kinematics as _kinematics
 from .cases import Case, run_case
 from .errors import ParameterError
-from .limits import check_run_size
+from .limits import check_run_size, count
 from .outputs import DeclaredOutputs, engine_columns, takes_engine_outputs
 from .si import si_input
 from .theory import warn_beyond
 from .units import Scales
-from .validation import choice, in_range, integer
+from .validation import choice, in_range
 
 STATUSES = ("periodic", "not-periodic", "unstable", "failed")
 # a state repeating every second revolution is a sub-harmonic response when its change per
@@ -406,8 +406,8 @@ def _driven_states(cases, driven, tol, max_revolutions, progress, warmup, max_sh
     if method != "shooting":
         raise ParameterError("a motor-driven crank's steady motion is found by shooting (method='shooting')")
     tol = in_range("tol", tol, 0, None, True)
-    max_revolutions = integer("max_revolutions", max_revolutions, 1)
-    warmup = integer("warmup", warmup, 1)
+    max_revolutions = count("max_revolutions", max_revolutions)
+    warmup = count("warmup", warmup)
     others = [i for i in range(len(cases)) if i not in driven]
     results = [None] * len(cases)
     if others:
@@ -447,8 +447,8 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
         _check_resolved(c, f"cases[{i}]: " if len(cases) > 1 else "")
     time_scheme.warn_steps(cases, stacklevel=_stacklevel, omega_b=_omega_b)   # _omega_b: rad/s too (SI)
     tol = in_range("tol", tol, 0, None, True)
-    max_revolutions = integer("max_revolutions", max_revolutions, 1)
-    warmup = integer("warmup", warmup, 1)
+    max_revolutions = count("max_revolutions", max_revolutions)
+    warmup = count("warmup", warmup)
     choice("method", method, METHODS)
     groups = {}
     for i, c in enumerate(cases):

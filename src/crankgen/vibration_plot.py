@@ -60,4 +60,6 @@ def modes_figure(m):
 def plot_modes(m, path):
     """modes_figure written atomically to path (returned)."""
     from .io import save_figure
+    from .io import output_path
+    path = output_path(path)
     return save_figure(modes_figure(m), path, dpi=110)

@@ -11,7 +11,8 @@ from ..notices import BeyondTheoryWarning
 from ..cases import run_case
 from ..errors import NoResultError, ParameterError
 from ..parameters import check_full_turn
-from ..validation import choice, in_range, integer
+from ..limits import count
+from ..validation import choice, in_range, sequence
 from .core import CORRECTORS, PREDICTORS, Continuer, Settings
 from .mechanism import PARAMETERS, MechanismMap
 
@@ -142,9 +143,9 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
                         ds_max=in_range("ds_max", ds_max, 0, None, True),
                         dp_max=(abs(stop - start) / 50 if dp_max is None
                                 else in_range("dp_max", dp_max, 0, None, True)),
-                        max_points=integer("max_points", max_points, 2),
+                        max_points=count("max_points", max_points),
                         tol=in_range("tol", tol, 0, None, True),
-                        max_period=integer("max_period", max_period, 1),
+                        max_period=count("max_period", max_period),
                         switch_step=in_range("switch_step", switch_step, 0, None, True),
                         corrector=choice("corrector", corrector, CORRECTORS),
                         predictor=choice("predictor", predictor, PREDICTORS)).check()
@@ -234,12 +235,10 @@ def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up
     from .sweeps import sweep_map
 
     _check_progress(progress)
-    if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
-        raise ParameterError(f"values must be a sequence of {parameter} values (a list or an "
-                             f"array), got {type(values).__name__} {values!r}")
-    values = list(values)
+    values = sequence("values", values, f"{parameter} values")
     if not values:
         raise ParameterError("values must hold at least one parameter value")
+    count("values", len(values), f"values ({len(values)} {parameter} values)")
     values = [in_range(f"values ({parameter})", v) for v in values]
     given = mech
     mech, fields, scales, values = si_parameter(mech, parameter, units, fields, case, values)
@@ -247,10 +246,10 @@ def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up
     c0 = make_case(mech, parameter, min(values), case, model=model, **fields)
     for v in values:
         make_case(None, parameter, v, c0)                      # validates every value
-    transient = integer("transient", transient, 0)
-    samples = integer("samples", samples, 2)
+    transient = count("transient", transient)
+    samples = count("samples", samples)
     time_scheme.warn_steps([c0], omega_b=None if scales is None else scales.omega_b)
-    max_period = integer("max_period", max_period, 1)
+    max_period = count("max_period", max_period)
     t0 = time.perf_counter()
     if c0.motion_record.driven:      # the autonomous motion's section map, from the run-up from rest
         fmap, x0 = _motor_start(c0, parameter)

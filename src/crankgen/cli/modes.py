@@ -127,13 +127,12 @@ def _cmd_campbell(args):
 
     from ..campbell_diagram import campbell
     from ..progress import Progress
+    from ..limits import count
     from ..validation import in_range, integer
 
-    integer("--speeds", args.speeds, 2)
-    integer("--angles", args.angles, 2)
+    count("speeds", args.speeds, "--speeds")
+    count("angles", args.angles, "--angles")
     integer("--modes", args.count, 1)
-    if args.speeds > 10000 or args.angles > 3600:
-        raise UsageError("--speeds must be at most 10000 and --angles at most 3600")
     mech, fields, units = _mechanism(args)
     unit = 1.0 if units == "crankgen" else mech.omega_b
     start = 0.0 if args.start is None else in_range("--from", args.start, 0.0)
