@@ -62,6 +62,59 @@ def _compiled(case, d0, v0, n_steps, tol, progress):
     return t, X[:, :N], V[:, :N], A[:, :N], crank, res.y[0], res.iterations[0], res.G_history[0]
 
 
+# the most memory a chunk's states may take when the caller keeps none (history=False): small
+# enough that the run's memory is what the result keeps, large enough that a chunk's start is free
+CHUNK_BYTES = 2**20
+
+
+def _compiled_light(case, d0, v0, n_steps, tol, progress, stops):
+    """_compiled without the run's history (history=False): the march in chunks of at most
+    CHUNK_BYTES of states, keeping per step only the crank (theta, thetad, thetadd), the engine's
+    outputs and the iterations, and the bordered states (d, v, a, crank, y, g) at the steps in
+    `stops` (for requested times), so that memory grows by what the result keeps."""
+    batch = _engine.Batch([case], entries=(engine_motor.ENTRY,))
+    N = batch.N
+    theta0, speed0 = motor.crank_start(case)
+    X, V, A, G = np.append(d0, theta0)[None], np.append(v0, speed0)[None], None, None
+    size = max(1, min(n_steps, CHUNK_BYTES // (4 * 8 * (N + 1))))
+    t = np.arange(n_steps + 1, dtype=float)
+    t *= batch.dt[0]
+    y = crank = iterations = None
+    stops = sorted(set(stops))
+    captured, done = {}, 0
+    while done < n_steps:
+        k = min(size, n_steps - done)
+        res = _engine.march_motor(batch, k, X, V, A0=A, G0=G, keep_history=True, tol=tol)
+        if y is None:                  # the engine's own layout and types for the whole run
+            y = np.full((n_steps + 1,) + res.y.shape[2:], np.nan)
+            crank = np.full((n_steps + 1, 3), np.nan)
+            iterations = np.zeros(n_steps, dtype=res.iterations.dtype)
+        first = 0 if done == 0 else 1
+        rows = slice(done + first, done + k + 1)
+        y[rows] = res.y[0, first:]
+        for j, h in enumerate((res.X_history, res.V_history, res.A_history)):
+            crank[rows, j] = h[0, first:, N]
+        iterations[done:done + k] = res.iterations[0]
+        for s in stops:
+            if done <= s <= done + k and s not in captured:
+                j = s - done
+                captured[s] = (res.X_history[0, j, :N].copy(), res.V_history[0, j, :N].copy(),
+                               res.A_history[0, j, :N].copy(), crank[s].copy(), y[s].copy(),
+                               None if s == 0 else res.G_history[0, j].copy())
+        if res.status[0] != _engine.OK:
+            m = done + int(res.fail_step[0])
+            raise ConvergenceError(f"step {m} (t* = {t[m]:.6g}) of the motor-driven crank: "
+                                   f"{_engine.STATUS_TEXT[int(res.status[0])]} (residual norm "
+                                   f"{res.fail_residual[0]:.3e})" + motor.step_hint(case, float(batch.dt[0])),
+                                   step=m, time=float(t[m]), residual=float(res.fail_residual[0]))
+        X, V, A, G = res.X, res.V, res.A, res.G
+        del res                        # this chunk's history goes before the next one is made
+        done += k
+        if progress is not None:
+            progress(done, n_steps)
+    return t, crank, y, iterations, captured
+
+
 def _step_to(case, model, settings, engine, tol, x, v, a, g, tau):
     """One step of length tau from the bordered state (x, v, a, g) (N + 1 each; g None: a start, the
     step the starter): (d, v, a, crank, y)."""
@@ -92,10 +145,13 @@ def simulate_motor(cls, case, revolutions, t_req, history, store_nodes, tol, pro
         n_steps = max(1, int(np.ceil(max(t_req) / dt - 1e-9)))
     else:
         n_steps = run_length(case, 10.0 if revolutions is None else revolutions)[1]
-    check_run_size(case.n_elements, n_steps, stored="nodes" if store_nodes else "states",
+    light = not history and not store_nodes and engine != "numpy"
+    check_run_size(case.n_elements, n_steps, stored="outputs" if light else "nodes" if store_nodes else "states",
                    n_times=0 if t_req is None else len(t_req),
                    names={"n_steps": "revolutions", "n_times": "times"})
     info = dict(info, revolutions=n_steps / case.steps_per_rev, revolutions_of="no-load revolutions")
+    if light:
+        return _light_result(cls, model, settings, case, n_steps, t_req, tol, progress, d0, v0, dt, info, scales)
     if engine == "numpy":
         t, d, v, a, crank, y, iterations, g = _reference(model, case, d0, v0, dt, n_steps, settings, progress)
     else:
@@ -122,3 +178,30 @@ def simulate_motor(cls, case, revolutions, t_req, history, store_nodes, tol, pro
     if not history:
         result = replace(result, states=None, rates=None, accelerations=None)
     return result
+
+
+def _light_result(cls, model, settings, case, n_steps, t_req, tol, progress, d0, v0, dt, info, scales):
+    """simulate_motor's result with history=False by the compiled engine (_compiled_light): t, theta,
+    the crank's speed and acceleration, the engine's outputs and iterations per step, the states at
+    the requested times."""
+    from .simulation import _landing
+    landing = None if t_req is None else list(zip(*(x.tolist() for x in _landing(t_req, dt))))
+    stops = [] if landing is None else [int(k) for k, _ in landing]
+    t, crank, y, iterations, captured = _compiled_light(case, d0, v0, n_steps, tol, progress, stops)
+    result = cls(t=t, theta=crank[:, 0].copy(), outputs=engine_columns(y),
+                 iterations=iterations.astype(np.int32, copy=False), settings=dict(info, history=False), nodes=None,
+                 case=case, states=None, rates=None, accelerations=None, scales=scales, crank=crank)
+    if landing is None:
+        return result
+    rows = []
+    for k, tau in landing:
+        d, v, a, c, yk, g = captured[int(k)]
+        if tau == 0.0:
+            rows.append((d, v, a, c, yk))
+            continue
+        rows.append(_step_to(case, model, settings, "compiled", tol, np.append(d, c[0]), np.append(v, c[1]),
+                             np.append(a, c[2]), g, tau))
+    D, Vr, Ar, C, Y = (np.array([r[j] for r in rows]) for j in range(5))
+    at = _result(cls, model, case, t_req, D, Vr, Ar, C, Y, np.zeros(len(rows)), dict(info, times=True), False,
+                 scales)
+    return replace(result, at_times=at)

@@ -235,10 +235,10 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     y, iterations = y[0], iterations[0].astype(np.int32)
     if history:
         D, V, A = D[0], V[0], A[0]
-    t = dt * np.arange(n_steps + 1)
-    kin = _kinematics.case_state(case, t)
-    nodes = reference.full_nodal(D, kin) if store_nodes else None
-    result = SimulationResult(t=t, theta=kin.theta, outputs=engine_columns(y),
+    t = np.arange(n_steps + 1, dtype=float)
+    t *= dt                                          # the kept arrays only: t, theta, y, iterations
+    nodes = reference.full_nodal(D, _kinematics.case_state(case, t)) if store_nodes else None
+    result = SimulationResult(t=t, theta=_kinematics.crank_angle(case, t), outputs=engine_columns(y),
                               iterations=iterations, settings=dict(info, history=history), nodes=nodes,
                               case=case, states=D, rates=V, accelerations=A, scales=scales)
     if status[0] != _engine.OK:
@@ -364,11 +364,14 @@ def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progr
     D, V, A, G, previous = np.array(D0, dtype=float), np.array(V0, dtype=float), None, G0, None
     status = np.zeros(B, dtype=np.int64)
     fail_step, fail_res = np.zeros(B, dtype=np.int64), np.zeros(B)
-    ys, its, hist = [], [], ([], [], [])
+    hist = ([], [], [])
+    y_all = its_all = None           # the per-step outputs, filled chunk by chunk (no copies joined)
     size = max(1, -(-n_steps // chunks)) if progress is not None else n_steps
     stops = np.unique(np.asarray([k for k in stops if 0 <= k <= n_steps], dtype=np.int64))
     if not keep_states and stops.size:
         size = min(size, max(1, CHUNK_BYTES // (3 * 8 * B * max(1, batch.N))))
+    if not keep_states:              # the engine's own per-chunk arrays stay within CHUNK_BYTES
+        size = min(size, max(1, CHUNK_BYTES // (8 * B * (len(schema.ENGINE_OUTPUTS) + 1))))
     if stops.size and stops[0] == 0:
         first = _engine.march(batch, 0, D0=D, V0=V, G0=G, tol=tol, status=status)
         A, status = first.A, first.status
@@ -383,8 +386,15 @@ def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progr
         new_fail = (res.status != _engine.OK) & (status == _engine.OK)
         fail_step[new_fail], fail_res[new_fail] = res.fail_step[new_fail], res.fail_residual[new_fail]
         status = res.status
-        ys.append(res.y if done == 0 else res.y[:, 1:])
-        its.append(res.iterations)
+        if done == 0 and k == n_steps:                         # one chunk: the engine's arrays as they are
+            y_all, its_all = res.y, res.iterations
+        else:
+            if y_all is None:
+                y_all = np.full((B, n_steps + 1) + res.y.shape[2:], np.nan)
+                its_all = np.zeros((B, n_steps), dtype=res.iterations.dtype)
+            first = 0 if done == 0 else 1
+            y_all[:, done + first:done + k + 1] = res.y[:, first:]
+            its_all[:, done:done + k] = res.iterations
         for stop in stops[next_stop:last_stop]:
             j = int(stop) - done
             captured[int(stop)] = (res.D_history[:, j].copy(), res.V_history[:, j].copy(),
@@ -401,9 +411,7 @@ def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progr
             # case that does not advance), and progress must not count steps never computed
             if progress is not None:
                 progress(int(np.max(fail_step)) - 1)
-            rest = n_steps - done
-            ys.append(np.full((B, rest, 3), np.nan))
-            its.append(np.zeros((B, rest), dtype=its[-1].dtype))
+            rest = n_steps - done                               # NaN rows and no iterations (y_all's fill)
             if keep_states:
                 for store in hist:
                     store.append(np.full(store[-1].shape[:1] + (rest,) + store[-1].shape[2:], np.nan))
@@ -411,7 +419,7 @@ def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progr
         if progress is not None:
             progress(done)
     histories = tuple(np.concatenate(h, axis=1) if keep_states else None for h in hist)
-    return (np.concatenate(ys, axis=1), np.concatenate(its, axis=1), status, fail_step, fail_res) + histories
+    return (y_all, its_all, status, fail_step, fail_res) + histories
 
 
 def _failure(status, step, residual, dt, result=None):

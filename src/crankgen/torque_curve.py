@@ -76,7 +76,14 @@ def _parse(label, value):
     return pairs
 
 
-def _real(label, x):
+def _real(label, x, text=False):
+    """A pair's entry as a float: a real number (text only where the curve was given as text:
+    text=True; booleans never)."""
+    from .validation import not_a_number
+    if isinstance(x, np.ndarray) and x.shape == ():
+        x = x[()]
+    if (not_a_number(x) and not (text and isinstance(x, str))) or isinstance(x, (complex, np.complexfloating)):
+        raise ParameterError(f"{label} must be {RANGE_TEXT}; {x!r} is not a number")
     try:
         y = float(x)
     except (TypeError, ValueError):
@@ -89,17 +96,23 @@ def _real(label, x):
 def canonical(label, value):
     """The curve as a tuple of (s, f) float pairs, checked; value: such pairs, their text
     "0:1,0.8:2.2,1:0" or a callable f(s) (tabulated).  ParameterError names what is wrong."""
+    from .records import _ordered
     if callable(value):
         return tabulate(value, label=label)
-    if isinstance(value, str):
+    as_text = isinstance(value, str)
+    if as_text:
         value = _parse(label, value)
-    if isinstance(value, (bytes, dict, set, frozenset)) or not hasattr(value, "__len__"):
-        raise ParameterError(f"{label} must be {RANGE_TEXT}, got {value!r}")
+    items = _ordered(value)
+    if items is None:
+        raise ParameterError(f"{label} must be {RANGE_TEXT}, got {value!r}"[:300])
+    if len(items) > MAX_POINTS:
+        raise ParameterError(f"{label} takes 2 to {MAX_POINTS} pairs, got {len(items)}")
     pairs = []
-    for item in value:
-        if isinstance(item, (str, bytes)) or not hasattr(item, "__len__") or len(item) != 2:
-            raise ParameterError(f"{label} must be {RANGE_TEXT}; {item!r} is not a pair (S, F)")
-        pairs.append((_real(label, item[0]), _real(label, item[1])))
+    for raw in items:
+        item = _ordered(raw) if not isinstance(raw, (str, bytes)) else None
+        if item is None or len(item) != 2:
+            raise ParameterError(f"{label} must be {RANGE_TEXT}; {raw!r} is not a pair (S, F)")
+        pairs.append((_real(label, item[0], text), _real(label, item[1], text)))
     if not 2 <= len(pairs) <= MAX_POINTS:
         raise ParameterError(f"{label} takes 2 to {MAX_POINTS} pairs, got {len(pairs)}")
     s = [p[0] for p in pairs]
@@ -228,15 +241,16 @@ def departure(curve, s):
 
 def tabulate(func, span=SPAN, tol=TOLERANCE, label="torque_curve"):
     """The pairs of a per-unit curve func(s) on span, bisected until the interpolant matches func
-    within tol / 2 at every interval's quarter points (module docstring)."""
+    within tol / 2 at every interval's quarter points (module docstring), by crankgen's rule for
+    callables (crankgen.callables): each value one real finite number; continuous with a bounded
+    slope (Newton's crank row and the step-size advice use it): a stretch narrower than
+    callables.NARROWEST that still fails is a jump, refused where it is."""
+    from .callables import check_continuous, sample
+
+    who = f"{label}: F(S)"
+
     def value(s):
-        try:
-            y = float(func(float(s)))
-        except Exception as exc:
-            raise ParameterError(f"{label}: the callable failed at per-unit speed {s:g}: {exc}") from exc
-        if not math.isfinite(y):
-            raise ParameterError(f"{label}: the callable gave {y!r} at per-unit speed {s:g}")
-        return y
+        return sample(who, func, float(s), "S")
 
     lo, hi = span
     s = sorted(set(np.linspace(lo, hi, 13).tolist()) | {0.0, 1.0})
@@ -251,7 +265,10 @@ def tabulate(func, span=SPAN, tol=TOLERANCE, label="torque_curve"):
         a, b = knots[:-1, None], knots[1:, None]
         probes = a + (b - a) * np.array([0.25, 0.5, 0.75])
         error = np.abs(evaluate(curve, probes)[0] - np.vectorize(value)(probes)).max(axis=1)
-        failing = ((a + b)[:, 0] / 2)[error > tol / 2]
+        bad = error > tol / 2
+        for lo_k, hi_k in zip(a[bad, 0].tolist(), b[bad, 0].tolist()):
+            check_continuous(who, lo_k, hi_k, f[lo_k], f[hi_k], "S")
+        failing = ((a + b)[:, 0] / 2)[bad]
         if not len(failing):
             return canonical(label, curve)
         if len(knots) + len(failing) > MAX_POINTS:
