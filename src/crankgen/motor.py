@@ -64,7 +64,12 @@ def step_hint(case, dt):
     if tau >= dt:
         return ""
     return (f"; the motor's time constant J Omega_nl / (T_stall max|f'|) = {tau:.3g} is shorter than the step "
-            f"{dt:.3g}: raise steps_per_rev above {math.ceil(case.steps_per_rev * dt / tau)}")
+            f"{dt:.3g}: raise steps_per_rev above {_count_text(case.steps_per_rev * dt / tau)}")
+
+
+def _count_text(x):
+    """A step count as text: the integer, or 3 digits of one no run could take (1.12e+53)."""
+    return f"{math.ceil(x)}" if x < 1e9 else f"{x:.3g}"
 
 
 def crank_state(case, crank):

@@ -38,6 +38,7 @@ LINEAR = ((0.0, 1.0), (1.0, 0.0))      # the default: T_m = T_stall (1 - s)
 MAX_POINTS = 512
 TOLERANCE = 1e-5                       # a callable's tabulation error, in units of T_stall
 SPAN = (0.0, 1.2)                      # where a callable is tabulated (per-unit speed)
+MAGNITUDE = 50                         # a per-unit speed or torque beyond 10^MAGNITUDE is refused (as SI's)
 RANGE_TEXT = ("per-unit pairs S:F (S = thetad / Omega_nl increasing, F = T_m / T_stall) through 0:1 and 1:0, "
               "comma-separated, e.g. 0:1,0.8:2.2,1:0; or a callable F(S)")
 
@@ -115,6 +116,11 @@ def canonical(label, value):
         pairs.append((_real(label, item[0], text), _real(label, item[1], text)))
     if not 2 <= len(pairs) <= MAX_POINTS:
         raise ParameterError(f"{label} takes 2 to {MAX_POINTS} pairs, got {len(pairs)}")
+    big = next(((x, y) for x, y in pairs if max(abs(x), abs(y)) > 10.0 ** MAGNITUDE), None)
+    if big is not None:
+        raise ParameterError(f"{label}: the pair {number_text(big[0])}:{number_text(big[1])} is beyond "
+                             f"1e{MAGNITUDE} (per-unit speeds and torques of a motor; floating point would overflow "
+                             "in the crank's equation)")
     s = [p[0] for p in pairs]
     if any(b <= a for a, b in zip(s, s[1:])):
         raise ParameterError(f"{label}: the per-unit speeds S must increase, got {', '.join(map(number_text, s))}")
@@ -284,9 +290,9 @@ def per_unit(speeds, torques):
     units (rad/s and N m from a data sheet: give stall_torque and no_load_speed to an
     SIMechanism's motor; crankgen's units: to crankgen.Motor).  The table holds the speed 0 (its
     torque is the stall torque) and one speed of torque 0 above it (the no-load speed)."""
-    w = np.asarray(speeds, dtype=float)
-    T = np.asarray(torques, dtype=float)
-    if w.ndim != 1 or w.shape != T.shape or len(w) < 2 or not (np.all(np.isfinite(w)) and np.all(np.isfinite(T))):
+    from .validation import numbers_array
+    w, T = numbers_array("per_unit speeds", speeds), numbers_array("per_unit torques", torques)
+    if w.shape != T.shape or len(w) < 2:
         raise ParameterError("per_unit takes two sequences of finite numbers of the same length (at least 2)")
     at_rest = np.flatnonzero(w == 0)
     if len(at_rest) != 1 or T[at_rest[0]] <= 0:

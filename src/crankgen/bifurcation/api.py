@@ -59,6 +59,40 @@ def locking_limit(case, parameter, start, stop, samples=400):
     return hi, f"the {case.guide_record.name} guide needs {needs}"
 
 
+def stall_limit(case, parameter, start, stop, samples=400):
+    """(value, why) of the first value of `parameter` from start towards stop at which a motor
+    cannot turn the crank: its drive T_m(thetad) - T_load (the generated crank equation, with its
+    torque curve, at rest on no linkage: motor.crank_equation with no pin force) is nowhere positive
+    for thetad in [0, 1.2 Omega_nl]; to 1e-12 of the range by bisection; None when there is none or
+    the crank is prescribed.  A motor continued in its load torque towards its stall torque stops
+    short of it (the linkage's own torque over a revolution takes the rest): this names why."""
+    from dataclasses import replace as _replace
+
+    from .. import motor, torque_curve
+    if not case.motion_record.driven:
+        return None
+    s = np.linspace(torque_curve.SPAN[0], torque_curve.SPAN[1], 241)
+
+    def stalls(p):
+        c = _replace(case, **{parameter: float(p)})
+        speed = s * torque_curve.of(c)[2]                     # the curve's speed scale: Omega_nl
+        crank = np.stack([np.zeros_like(speed), speed, np.zeros_like(speed)], axis=-1)
+        g = motor.crank_equation(c, motor.crank_state(c, crank), np.zeros((len(s), 2)))[..., 0]
+        return bool(np.all(g >= 0))                           # g = -(T_m - T_load) with no rod
+    try:
+        values = np.linspace(start, stop, samples + 1)
+        bad = next((k for k, p in enumerate(values) if stalls(p)), None)
+    except (ParameterError, ValueError, ZeroDivisionError, FloatingPointError):
+        return None
+    if bad is None or bad == 0:
+        return None
+    lo, hi = float(values[bad - 1]), float(values[bad])
+    while abs(hi - lo) > 1e-12 * abs(stop - start):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if stalls(mid) else (mid, hi)
+    return hi, "the motor's torque T_m(thetad) no longer exceeds the load torque at any speed"
+
+
 def _check_progress(progress):
     if progress is not None and not callable(progress):
         raise ParameterError(f"progress must be None or a function, got {progress!r}")
@@ -174,6 +208,14 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
             if not br.stop_reason.startswith("reached"):
                 br.stop_reason += (f"; {parameter} = {value:.6g} is the locking limit: beyond it the crank "
                                    f"cannot turn a full revolution ({why})")
+    stall = stall_limit(c0, parameter, start, stop) if driven else None
+    if stall is not None:
+        value, why = stall
+        for br in diagram.branches:
+            if not br.stop_reason.startswith("reached"):
+                br.stop_reason += (f"; {parameter} = {value:.6g} is the stall limit: there {why}, so it cannot "
+                                   "turn the crank (the motion stalls before it, where the linkage's own torque "
+                                   "over a revolution takes what is left)")
     for sp in diagram.special_points:
         sp.case = fmap.case_at(sp.parameter)
     if driven and quantities:        # a motor's branches: its orbits' quantities, the crank's speeds among them
