@@ -2,8 +2,8 @@
 
 import sys
 
-from .. import schema
-from ..charts.axes import X_DEFAULT, Y_DEFAULT
+from ..declaration import schema
+from ..analyses.charts.axes import X_DEFAULT, Y_DEFAULT
 from .options import UsageError, _Outputs, _add_mechanism_options, _add_model_options, _add_output_options, _explicit
 
 CHART_NAMES = ("curves.csv", "codim2_points.csv", "regions.csv", "lines.csv", "curve_multipliers.csv",
@@ -63,9 +63,9 @@ def add_command(sub):
 
 
 def _cmd_chart(args):
-    from ..cases import make_case
-    from ..charts import stability_chart
-    from ..limits import count
+    from ..declaration.cases import make_case
+    from ..analyses.charts import stability_chart
+    from ..analyses.limits import count
     fields = _explicit(args)
     for axis in (args.x, args.y):
         name = axis[0]

@@ -3,7 +3,7 @@
 import argparse
 import sys
 
-from .. import schema
+from ..declaration import schema
 from . import si_file
 from .options import UsageError, _Outputs, _add_model_options, _explicit, _model_options, _say
 
@@ -87,7 +87,7 @@ def _branch_model(args):
     """The case of the first point, checked (the continued parameter set to the range's start).
     Refused: the continued parameter also given by its own flag (its values are --from/--to), and
     a parameter the case's guide or crank motion does not read."""
-    from ..cases import make_case
+    from ..declaration.cases import make_case
 
     args.parameter = _parameter(args)
     fields = _explicit(args)
@@ -118,8 +118,8 @@ def _si_range(args, values=None):
     args.si_mechanism = None
     if args.si is None:
         return values
-    from ..si import to_crankgen
-    from ..validation import in_range
+    from ..declaration.si import to_crankgen
+    from ..declaration.validation import in_range
     args.parameter = _parameter(args)
     if args.parameter in schema.UNIT_PARAMETERS.values():
         raise UsageError(f"with --si, {schema.PARAMETERS[args.parameter].label} is the rod's section (sqrt(I/A)/L): "
@@ -143,7 +143,7 @@ def _checked_branch_model(args, continuation, values=()):
     except ParameterError as e:
         if getattr(args, "si_mechanism", None) is None:
             raise
-        from ..si import si_unit
+        from ..declaration.si import si_unit
         unit = si_unit(args.parameter)
         lo, hi = args.si_range
         raise UsageError(f"{e} (with --si: --from {lo:g} --to {hi:g}{'' if unit == '1' else ' ' + unit} "
@@ -151,9 +151,9 @@ def _checked_branch_model(args, continuation, values=()):
 
 
 def _checked(args, continuation, values):
-    from .. import schema
-    from ..bifurcation.api import make_case
-    from ..validation import in_range, integer
+    from ..declaration import schema
+    from ..analyses.bifurcation.api import make_case
+    from ..declaration.validation import in_range, integer
     from .runs import _resolved
 
     start, stop = in_range("--from", args.start), in_range("--to", args.stop)
@@ -182,17 +182,17 @@ POINCARE_NAMES = ("poincare_summary.csv", "poincare_samples.csv", "poincare.png"
 def _cmd_continue(args):
     import numpy as np
 
-    from ..bifurcation import continuation, poincare
+    from ..analyses.bifurcation import continuation, poincare
     from ..progress import Progress
-    from ..limits import count
+    from ..analyses.limits import count
 
     if args.sweep is not None:
         count("sweep", args.sweep, "--sweep")
     _si_range(args)
     section = None
     if args.section is not None:                 # with --si: the rod's, its stresses in Pa
-        from ..sections import parse
-        from ..stresses import check_section
+        from ..declaration.sections import parse
+        from ..analyses.stresses import check_section
         section = parse(args.section)
         check_section(section, args.si_mechanism)
     case = _checked_branch_model(args, continuation=True)
@@ -247,12 +247,12 @@ def _printed(args, view):
 
 
 def _axis(parameter):
-    from ..bifurcation.diagram import axis
+    from ..analyses.bifurcation.diagram import axis
     return axis(parameter)
 
 
 def _title(args, what):
-    from ..bifurcation.diagram import describe
+    from ..analyses.bifurcation.diagram import describe
     c = _branch_model(args)
     return describe(c.as_dict(), what, args.parameter)
 
@@ -260,11 +260,11 @@ def _title(args, what):
 def _cmd_poincare(args):
     import numpy as np
 
-    from ..bifurcation import continuation, poincare
+    from ..analyses.bifurcation import continuation, poincare
     from ..progress import Progress
 
-    from ..limits import count
-    from ..validation import integer
+    from ..analyses.limits import count
+    from ..declaration.validation import integer
 
     integer("--values", args.values, 2)
     count("values", args.values, "--values")
