@@ -75,7 +75,7 @@ def check_values(who, values, x, where="x"):
                              f"array of them), got {_what(values)}")
     if np.iscomplexobj(arr):
         if np.any(arr.imag != 0):
-            raise ParameterError(f"{who} must be real, got complex values")
+            raise ParameterError(f"{who} must return one real number per {where}, got complex values")
         arr = arr.real
     arr = np.broadcast_to(arr.astype(float), shape).copy()
     bad = ~np.isfinite(arr)

@@ -113,7 +113,7 @@ def canonical(label, value):
         item = _ordered(raw) if not isinstance(raw, (str, bytes)) else None
         if item is None or len(item) != 2:
             raise ParameterError(f"{label} must be {RANGE_TEXT}; {raw!r} is not a pair (S, F)")
-        pairs.append((_real(label, item[0], text), _real(label, item[1], text)))
+        pairs.append((_real(label, item[0], as_text), _real(label, item[1], as_text)))
     if not 2 <= len(pairs) <= MAX_POINTS:
         raise ParameterError(f"{label} takes 2 to {MAX_POINTS} pairs, got {len(pairs)}")
     big = next(((x, y) for x, y in pairs if max(abs(x), abs(y)) > 10.0 ** MAGNITUDE), None)

@@ -203,13 +203,13 @@ def output_path(path, suffixes=None, name="path"):
     if not text.strip() or text.endswith(os.sep):
         raise OutputPathError(f"{name} must name a file, got {text!r}")
     path = Path(text)
-    if suffixes and path.suffix.lower() not in suffixes:
-        raise OutputPathError(f"{path}: this output is written as {' or '.join(suffixes)}; give a path ending "
-                              "so")
     try:
         check_target(path)
     except NotRegularFileError as exc:
         raise OutputPathError(str(exc)) from None
+    if suffixes and path.suffix.lower() not in suffixes:
+        raise OutputPathError(f"{path}: this output is written as {' or '.join(suffixes)}; give a path ending "
+                              "so")
     folder = path.parent
     probe = folder
     try:
