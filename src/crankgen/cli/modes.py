@@ -82,11 +82,11 @@ def _mechanism(args):
 
 def _cmd_modes(args):
     from ..analyses.modes import modes
-    from ..declaration.validation import integer
+    from ..declaration.validation import angle, integer
 
     integer("--count", args.count, 1)
     mech, fields, units = _mechanism(args)
-    theta = fields.pop(schema.CRANK_ANGLE, 0.0)
+    theta = angle(f"--{schema.PARAMETERS[schema.CRANK_ANGLE].cli}", fields.pop(schema.CRANK_ANGLE, 0.0))
     omega = fields.pop(schema.CRANK_SPEED, None)
     m = modes(mech, omega, theta, count=args.count, model=args.model, units=units, **fields)  # checks all
     out = _Outputs(args.out, MODES_NAMES, args.force)
