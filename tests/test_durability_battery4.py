@@ -414,16 +414,18 @@ def test_G13_a_field_given_twice_in_an_si_file_is_refused(tmp_path, capsys):
     assert not (tmp_path / "o").exists()
 
 
+@pytest.mark.parametrize("motion", ["motor", "shaft"])
 @pytest.mark.parametrize("curve, peak", [(None, 1.0), (((0, 1), (0.5, 2), (1, 0)), 2.0)])
-def test_G18_the_stall_limit_of_a_motor_is_where_its_peak_torque_meets_the_load(curve, peak):
+def test_G18_the_stall_limit_of_a_motor_is_where_its_peak_torque_meets_the_load(curve, peak, motion):
     """The motor turns the crank while T_stall max F(S) exceeds the load torque (closed form: the
-    peak of the per-unit curve, at a knot of a shape-preserving interpolant)."""
+    peak of the per-unit curve, at a knot of a shape-preserving interpolant), directly or through
+    a flexible shaft (whose torque, untwisted, carries the motor's to the crank)."""
     from crankgen.analyses.bifurcation.api import stall_limit
     extra = {} if curve is None else {"torque_curve": curve}
-    case = Case(motion="motor", stall_torque=0.05, **extra, **SMALL)
+    case = Case(motion=motion, stall_torque=0.05, **extra, **SMALL)
     value, why = stall_limit(case, "load_torque", 0.0, 0.2)
     assert value == pytest.approx(0.05 * peak, abs=1e-9) and "load torque" in why
-    loaded = Case(motion="motor", stall_torque=0.05, load_torque=0.02, **extra, **SMALL)
+    loaded = Case(motion=motion, stall_torque=0.05, load_torque=0.02, **extra, **SMALL)
     assert stall_limit(loaded, "stall_torque", 0.05, 0.001)[0] == pytest.approx(0.02 / peak, abs=1e-9)
     assert stall_limit(case, "load_torque", 0.0, 0.04 * peak) is None
     assert stall_limit(Case(**SMALL), "omega", 0.2, 0.5) is None                       # a prescribed crank

@@ -28,7 +28,8 @@ import numpy as np
 from ..errors import ParameterError
 from ..declaration.si import SIMechanism
 from ..declaration.sections import Section
-from ..declaration.units import Scales, in_L, scales_of
+from ..declaration.si import scales_of
+from ..declaration.units import Scales, in_L
 
 MATCH = 1e-3          # relative agreement asked of a section and the mechanism's rod (0.1 %)
 

@@ -90,7 +90,7 @@ def weigh(case, t, states, amplitude=np.nan):
     mesh = model_a.mesh
     axial = np.zeros(mesh.n_dofs, dtype=bool)
     axial[[mesh.reduced_index(k, U) for k in range(n + 1) if mesh.reduced_index(k, U) is not None]] = True
-    axial[mesh.slider_dof] = True
+    axial[mesh.reduced_coordinates()[0]] = True
     return ExactWeights(case, float(amplitude), slope, _rms(e_x - e_a) / _rms(e_a), _rms(k_x - k_a) / _rms(k_a),
                         _rms(f_x[:, ~axial] - f_a[:, ~axial]) / _rms(f_a[:, ~axial]))
 
@@ -101,7 +101,7 @@ def scaled_states(case, states, s):
     mesh = Model.from_case(case).mesh
     out = np.array(states, dtype=float) * s
     axial = [mesh.reduced_index(k, U) for k in range(case.n_elements + 1)
-             if mesh.reduced_index(k, U) is not None] + [mesh.slider_dof]
+             if mesh.reduced_index(k, U) is not None] + [mesh.reduced_coordinates()[0]]
     out[:, axial] *= s
     return out
 

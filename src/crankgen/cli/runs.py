@@ -80,7 +80,7 @@ def _loads_and_stress(result, section, si, stress=True):
     """The summary lines of the peak loads and (stress=True) the outer-fibre stresses of a result."""
     from ..analyses.stresses import peak_loads
     from ..analyses.stresses import stress as stress_of
-    from ..declaration.units import scales_of
+    from ..declaration.si import scales_of
     scales = None if si is None else scales_of(si)
     loads = "; ".join(f"{p.name} {p.value:.4g} {p.units} (t{'' if scales else '*'} = {p.t:.4g}"
                       f"{' s' if scales else ''}, crank angle {math.degrees(p.theta) % 360:.1f} deg)"
@@ -99,7 +99,7 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
     from ..progress import Progress
     from ..analyses.simulation import simulate
 
-    kind = "no-load revolutions" if case.motion_record.driven else "revolutions"     # a motor's run: crankgen.analyses.motor_simulation
+    kind = "no-load revolutions" if case.motion_record.driven else "revolutions"     # a driven crank's run
     _say(args, f"simulate: {_describe(case)}, {revolutions:g} {kind} ({steps} steps)")
     transient = case.motion_record.transient
     if transient and revolutions < getattr(case, transient):
@@ -182,12 +182,12 @@ STEADY_NAMES = ["steady.csv", "orbit.csv", "orbit.png"]
 def _resolved(case, where=""):
     """Steady states need a crank motion periodic in the crank angle, a turning crank and
     Omega* * steps_per_rev >= 1 (crankgen.steady_states refuses coarser steps); checked here,
-    before any output or progress line, and said in one line.  A motor-driven crank's motion is
-    autonomous: shot on the section theta = theta0 (crankgen.analyses.motor_steady)."""
+    before any output or progress line, and said in one line.  A driven crank's motion is
+    autonomous: shot on the section of its crank angle (crankgen.analyses.section)."""
     if case.motion_record.driven:
-        from ..analyses.motor_steady import check_steady
+        from ..discrete.system import check_coordinates
         try:
-            check_steady(case, where)
+            check_coordinates(case)
         except ParameterError as exc:
             raise UsageError(str(exc)) from None
         return
@@ -261,7 +261,7 @@ def _steady(args, case, out, section=None, si=None):
     if st.status == "failed":
         row["message"] = _failure_text(st.message, case.approach)
     if si is not None:
-        from ..declaration.si import row_in_si
+        from ..results.si_row import row_in_si
         row.update(row_in_si(row, si))
     out.wrote(write_csv(out.path("steady.csv"), *flat_table(list(row), [row])))
     if st.v_mid is not None:

@@ -7,8 +7,8 @@ One check per kind of input, used wherever that kind enters (docs/howto/input-ch
     sequence        an ordered collection of items: a list, tuple, range, array or generator (text, a
                     mapping, a set, a scalar are refused)
     numbers_array   a number or a sequence of numbers, as a 1-d float array
-    angle           a number taken modulo 2 pi (records.angle: reduced exactly, refused beyond
-                    records.ANGLE_LIMIT)
+    angle           a number taken modulo 2 pi (angle_value: reduced exactly, refused beyond
+                    ANGLE_LIMIT)
     integer         a whole number >= a minimum; a count with a bound: crankgen.limits.count
 """
 
@@ -50,8 +50,7 @@ def sequence(name, values, what="values"):
     """The items of an ordered collection as a list: a list, tuple, range, array of one or more
     dimensions (its first axis), a generator or an iterator (consumed once).  Text, a mapping, a
     set (its order is not the caller's), a scalar or a 0-d array are refused, naming `name`."""
-    from .values import ordered as _ordered
-    items = _ordered(values)
+    items = ordered(values)
     if items is None:
         raise ParameterError(f"{name} must be a sequence of {what} (a list, a tuple, an array or a generator), "
                              f"got {type(values).__name__} {values!r}"[:240])
@@ -60,9 +59,8 @@ def sequence(name, values, what="values"):
 
 def angle(name, value):
     """value as an angle in rad (a number): reduced modulo 2 pi exactly beyond one turn, refused
-    beyond records.ANGLE_LIMIT, where a float no longer names a position (records.angle)."""
-    from .values import angle as _angle
-    return _angle(name, finite_number(name, value))
+    beyond ANGLE_LIMIT, where a float no longer names a position (angle_value)."""
+    return angle_value(name, finite_number(name, value))
 
 
 def in_range(name, value, low=None, high=None, low_open=False, high_open=False):
@@ -122,3 +120,42 @@ def numbers_array(name, values):
         return np.array([finite_number(name, v) for v in items], dtype=float)
     except ParameterError as exc:
         raise (bad if "must be a number" in str(exc) else exc) from None
+
+
+# Angles (a crank angle, a guide's inclination, ...: every float crankgen uses modulo 2 pi).  An
+# angle up to ANGLE_LIMIT rad from zero is reduced modulo 2 pi exactly; beyond it the float has lost
+# the digits of the position it names (floats near 1e7 are 1.9e-9 rad apart, near 1e17 16 rad
+# apart: more than a turn) and it is refused.  docs/howto/input-checks.md states the rule.
+ANGLE_LIMIT = 1e7
+
+
+def reduced_angle(x):
+    """An angle beyond one turn either way, reduced to (-pi, pi]: the angle of the same crank
+    position.  The reduction is exact (the sine and cosine reduce their argument by 2 pi to full
+    precision), so the run's theta0 + Omega* t keeps every digit of its time.  Angles within one
+    turn are kept as given."""
+    return math.atan2(math.sin(x), math.cos(x)) + 0.0
+
+
+def angle_value(label, x):
+    """A finite float x taken as an angle (rad): refused beyond ANGLE_LIMIT (its crank position is
+    lost to rounding), reduced modulo 2 pi exactly beyond one turn, kept as given within one."""
+    if abs(x) > ANGLE_LIMIT:
+        raise ParameterError(f"{label} = {x:g} rad is too far from 0 to name an angle: floats that large are "
+                             f"{math.ulp(x):.2g} rad apart, so the position it means is lost to rounding; "
+                             f"angles are taken within {ANGLE_LIMIT:g} rad of 0 (reduced modulo 2 pi "
+                             "exactly): give it modulo 2 pi")
+    return reduced_angle(x) if abs(x) > 2 * math.pi else x
+
+
+def ordered(value):
+    """The items of an ordered collection (a list, tuple, range, array of one or more dimensions, a
+    generator or iterator: consumed once) as a list, or None for what is not one: text, a mapping,
+    a set (unordered), a scalar, a 0-d array."""
+    if isinstance(value, (str, bytes, bytearray, dict, set, frozenset)) or not hasattr(value, "__iter__") \
+            or (type(value).__module__ == "numpy" and getattr(value, "ndim", 1) == 0):
+        return None
+    try:
+        return list(value)
+    except TypeError:
+        return None

@@ -11,6 +11,7 @@ import numbers
 
 from . import torque_curve
 from ..errors import ParameterError
+from .validation import ANGLE_LIMIT, angle_value as angle, ordered, reduced_angle  # noqa: F401  (the rules' home)
 
 
 def _bracket(low, high, low_open, high_open):
@@ -41,45 +42,6 @@ def real(label, value):
     if not math.isfinite(x):
         raise ParameterError(f"{label} must be finite, got {value!r}")
     return x + 0.0                     # -0.0 -> 0.0: one canonical zero
-
-
-# Angles (a crank angle, a guide's inclination, ...: every float crankgen uses modulo 2 pi).  An
-# angle up to ANGLE_LIMIT rad from zero is reduced modulo 2 pi exactly; beyond it the float has lost
-# the digits of the position it names (floats near 1e7 are 1.9e-9 rad apart, near 1e17 16 rad
-# apart: more than a turn) and it is refused.  docs/howto/input-checks.md states the rule.
-ANGLE_LIMIT = 1e7
-
-
-def reduced_angle(x):
-    """An angle beyond one turn either way, reduced to (-pi, pi]: the angle of the same crank
-    position.  The reduction is exact (the sine and cosine reduce their argument by 2 pi to full
-    precision), so the run's theta0 + Omega* t keeps every digit of its time.  Angles within one
-    turn are kept as given."""
-    return math.atan2(math.sin(x), math.cos(x)) + 0.0
-
-
-def angle(label, x):
-    """A finite float x taken as an angle (rad): refused beyond ANGLE_LIMIT (its crank position is
-    lost to rounding), reduced modulo 2 pi exactly beyond one turn, kept as given within one."""
-    if abs(x) > ANGLE_LIMIT:
-        raise ParameterError(f"{label} = {x:g} rad is too far from 0 to name an angle: floats that large are "
-                             f"{math.ulp(x):.2g} rad apart, so the position it means is lost to rounding; "
-                             f"angles are taken within {ANGLE_LIMIT:g} rad of 0 (reduced modulo 2 pi "
-                             "exactly): give it modulo 2 pi")
-    return reduced_angle(x) if abs(x) > 2 * math.pi else x
-
-
-def ordered(value):
-    """The items of an ordered collection (a list, tuple, range, array of one or more dimensions, a
-    generator or iterator: consumed once) as a list, or None for what is not one: text, a mapping,
-    a set (unordered), a scalar, a 0-d array."""
-    if isinstance(value, (str, bytes, bytearray, dict, set, frozenset)) or not hasattr(value, "__iter__") \
-            or (type(value).__module__ == "numpy" and getattr(value, "ndim", 1) == 0):
-        return None
-    try:
-        return list(value)
-    except TypeError:
-        return None
 
 
 def plain(value):

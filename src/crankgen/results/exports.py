@@ -82,6 +82,15 @@ def per_step(result, si=None, x=(0.5,), fiber=None, theory=True):
     for name in output_names(result):
         columns.append(column(name, schema.OUTPUTS[name].units, si is not None))
         values.append(np.asarray(view.quantity(name), dtype=float))
+    coordinates = getattr(result, "coordinates", None) or {}
+    for c in result.case.motion_record.coordinates if coordinates else ():
+        if c.crank:                             # the crank's angle and speed are outputs already
+            continue
+        # another declared co-ordinate (a rotor's angle): its value and rate (an angle's: rad, omega_b)
+        for k, (label, units) in enumerate(((c.name, c.units), (c.name + "_rate", "omega_b"))):
+            factor = 1.0 if si is None else si.scales.factor(units)
+            columns.append(column(label, units, si is not None))
+            values.append(np.asarray(coordinates[c.name][:, k], dtype=float) * factor)
     motor = getattr(result, "motor_torque", None)
     if motor is not None:                      # a motor-driven crank: the motor's torque on its curve
         units = schema.OUTPUTS["torque"].units

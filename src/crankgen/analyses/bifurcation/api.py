@@ -16,7 +16,7 @@ from ...declaration.parameters import check_full_turn
 from ..limits import count
 from ...declaration.validation import choice, in_range, sequence
 from .core import CORRECTORS, PREDICTORS, Continuer, Settings
-from .mechanism import PARAMETERS, MechanismMap
+from .mechanism import PARAMETERS, MechanismMap, mechanism_map
 
 
 def make_case(mech, parameter, value, case, **fields):
@@ -61,27 +61,50 @@ def locking_limit(case, parameter, start, stop, samples=400):
     return hi, f"the {case.guide_record.name} guide needs {needs}"
 
 
+def _motor_shortfall(case, speed):
+    """T_load - T_m(speed) (...,): the sum of the declared co-ordinates' equations (the generated
+    coordinates_<motion>, a torque curve's departure from the linear law on the motor's row, as
+    discrete.system.Model.coordinate_equations) with every co-ordinate at rest at its start but
+    turning at `speed`, no acceleration and no force at the pin (no linkage): what couples the
+    co-ordinates (a shaft's torque, untwisted and not twisting) cancels in the sum."""
+    from ..._generated import kinematics as generated
+    from ...declaration import torque_curve
+    from ...discrete import kinematics
+    coords = case.motion_record.coordinates
+    m = len(coords)
+    speed = np.asarray(speed, dtype=float)
+    z0, _ = kinematics.coordinates_start(case)
+    z = np.concatenate([np.broadcast_to(z0, speed.shape + (m,)), np.repeat(speed[..., None], m, axis=-1),
+                        np.zeros(speed.shape + (m,))], axis=-1)
+    theta0 = z0[next(j for j, c in enumerate(coords) if c.crank)]
+    kin = kinematics.crank_state(case, np.stack([np.full_like(speed, theta0), speed, np.zeros_like(speed)], axis=-1))
+    g = np.array(getattr(generated, f"coordinates_{case.motion_record.name}")(
+        kin.vector, z, np.zeros(speed.shape + (2,)), case.kinematic_parameters), dtype=float)[..., 0]
+    law = torque_curve.of(case)
+    motor = next((j for j, c in enumerate(coords) if c.motor), None)
+    if motor is not None and law is not None and tuple(law[0]) != torque_curve.LINEAR:
+        curve, stall, no_load, _ = law
+        g[..., motor] -= stall * torque_curve.departure(curve, speed / no_load)[0]
+    return g.sum(axis=-1)
+
+
 def stall_limit(case, parameter, start, stop, samples=400):
     """(value, why) of the first value of `parameter` from start towards stop at which a motor
-    cannot turn the crank: its drive T_m(thetad) - T_load (the generated crank equation, with its
-    torque curve, at rest on no linkage: motor.crank_equation with no pin force) is nowhere positive
-    for thetad in [0, 1.2 Omega_nl]; to 1e-12 of the range by bisection; None when there is none or
-    the crank is prescribed.  A motor continued in its load torque towards its stall torque stops
-    short of it (the linkage's own torque over a revolution takes the rest): this names why."""
+    cannot turn the crank: its drive T_m(speed) - T_load (the declared co-ordinates' equations at
+    rest on no linkage: _motor_shortfall) is nowhere positive for speeds in [0, 1.2 Omega_nl]; to
+    1e-12 of the range by bisection; None when there is none or the crank is prescribed.  A motor
+    continued in its load torque towards its stall torque stops short of it (the linkage's own
+    torque over a revolution takes the rest): this names why."""
     from dataclasses import replace as _replace
 
-    from ...discrete import motor
     from ...declaration import torque_curve
-    if not case.motion_record.driven:
+    if not case.motion_record.coordinates or torque_curve.of(case) is None:
         return None
     s = np.linspace(torque_curve.SPAN[0], torque_curve.SPAN[1], 241)
 
     def stalls(p):
         c = _replace(case, **{parameter: float(p)})
-        speed = s * torque_curve.of(c)[2]                     # the curve's speed scale: Omega_nl
-        crank = np.stack([np.zeros_like(speed), speed, np.zeros_like(speed)], axis=-1)
-        g = motor.crank_equation(c, motor.crank_state(c, crank), np.zeros((len(s), 2)))[..., 0]
-        return bool(np.all(g >= 0))                           # g = -(T_m - T_load) with no rod
+        return bool(np.all(_motor_shortfall(c, s * torque_curve.of(c)[2]) >= 0))   # speeds up to 1.2 Omega_nl
     try:
         values = np.linspace(start, stop, samples + 1)
         bad = next((k for k, p in enumerate(values) if stalls(p)), None)
@@ -93,7 +116,7 @@ def stall_limit(case, parameter, start, stop, samples=400):
     while abs(hi - lo) > 1e-12 * abs(stop - start):
         mid = 0.5 * (lo + hi)
         lo, hi = (lo, mid) if stalls(mid) else (mid, hi)
-    return hi, "the motor's torque T_m(thetad) no longer exceeds the load torque at any speed"
+    return hi, "the motor's torque T_m no longer exceeds the load torque at any speed"
 
 
 def _check_progress(progress):
@@ -119,18 +142,18 @@ def si_parameter(mech, parameter, units, fields, case, values):
 
 
 def _add_quantities(diagram, case, parameter, section, progress, fmap=None):
-    """Every branch point's physical quantities (quantities.py); fmap: a motor-driven crank's
-    MotorMap, whose section map marches its points' orbits."""
+    """Every branch point's physical quantities (quantities.py); fmap: a driven crank's
+    AutonomousMap, whose section map marches its points' orbits."""
     from .quantities import branch_quantities, motor_branch_quantities, motor_units, units
     for k, br in enumerate(diagram.branches):
         if progress is not None:
             progress(f"branch {k}: the physical quantities of its {len(br)} orbits")
         if fmap is None:
             br.quantities, br.quantity_notes = branch_quantities(case, parameter, br, section)
-            br.quantity_units = units(section)
+            br.quantity_units = units(section, case=case)
         else:
             br.quantities, br.quantity_notes = motor_branch_quantities(fmap, br, section)
-            br.quantity_units = motor_units(section)
+            br.quantity_units = motor_units(section, case=case)
 
 
 def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *, model=None, max_period=4, ds=0.05,
@@ -187,12 +210,8 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
                         corrector=choice("corrector", corrector, CORRECTORS),
                         predictor=choice("predictor", predictor, PREDICTORS)).check()
     t0 = time.perf_counter()
-    driven = c0.motion_record.driven
-    if driven:                       # the autonomous motion's section map (bifurcation/motor_map.py)
-        from .motor_map import MotorMap
-        fmap = MotorMap(c0, parameter)
-    else:
-        fmap = MechanismMap(c0, parameter, derivative=choice("derivative", derivative, ("exact", "central")))
+    driven = bool(c0.motion_record.coordinates)
+    fmap = mechanism_map(c0, parameter, derivative)    # the map on the section the declaration gives
     from ..steady import steady_states
     with notices.quiet(BeyondTheoryWarning):            # the continuation warns once, for every point
         first = steady_states([c0], _omega_b=None if scales is None else scales.omega_b)[0]
@@ -202,7 +221,7 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
         raise NoResultError(f"no periodic response to start from at {parameter} = {start:g}: "
                             f"{first.status}, {first.message}{other}")
     cont = Continuer(fmap, start, stop, settings, log=progress)
-    diagram = cont.diagram((first.section_state if driven else first.state) / fmap.s, start,
+    diagram = cont.diagram(fmap.from_steady(first), start,
                            1.0 if stop > start else -1.0)
     lock = locking_limit(c0, parameter, start, stop)
     if lock is not None:
@@ -221,9 +240,9 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
                                    "over a revolution takes what is left)")
     for sp in diagram.special_points:
         sp.case = fmap.case_at(sp.parameter)
-    if driven and quantities:        # a motor's branches: its orbits' quantities, the crank's speeds among them
+    if driven and quantities:        # a driven crank's branches: its orbits' quantities, the crank's speeds among them
         _add_quantities(diagram, c0, parameter, section, progress, fmap)
-    elif driven:                     # a motor's branches: the mean crank speed and revolution time of each orbit
+    elif driven:                     # a driven crank's branches: the mean crank speed and revolution time of each orbit
         for br in diagram.branches:
             speed, period = fmap.speeds(br.states, br.parameter, br.period)
             br.quantities = {"mean_speed": speed, "revolution_time": period}
@@ -250,19 +269,6 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
 continuation.__doc__ = continuation.__doc__.replace("{continuable}", ", ".join(
     f"{n} ({' and '.join(p.readers)} {p.owner})" if p.owner in ("guide", "motion") and len(p.readers) == 1 else n
     for n, p in schema.PARAMETERS.items() if p.continuable))
-
-
-def _motor_start(case, parameter):
-    """(the section map of a motor-driven case, its scaled section state after the run-up from the
-    case's start: MOTOR_WARMUP no-load revolutions, longer while the mean speed still changes by 1 %)."""
-    from ..motor_steady import SectionMap, warm_start
-    from ..steady import MOTOR_WARMUP
-    from .motor_map import MotorMap
-    fmap = MotorMap(case, parameter)
-    Y0, why, _ = warm_start(SectionMap(case), MOTOR_WARMUP, 20 * MOTOR_WARMUP)
-    if Y0 is None:
-        raise NoResultError(f"poincare of a motor-driven crank at {parameter} = {getattr(case, parameter):g}: {why}")
-    return fmap, Y0 / fmap.s
 
 
 def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up", *, model=None, transient=100,
@@ -296,11 +302,8 @@ def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up
     time_scheme.warn_steps([c0], omega_b=None if scales is None else scales.omega_b)
     max_period = count("max_period", max_period)
     t0 = time.perf_counter()
-    if c0.motion_record.driven:      # the autonomous motion's section map, from the run-up from rest
-        fmap, x0 = _motor_start(c0, parameter)
-    else:
-        fmap = MechanismMap(c0, parameter)
-        x0 = fmap.rest()
+    fmap = mechanism_map(c0, parameter)      # from rest (a driven crank: after its run-up)
+    x0 = fmap.rest()
     result = sweep_map(fmap, values, x0, direction, transient, samples, max_period,
                        in_range("tol", tol, 0, None, True),
                        in_range("lyapunov_tol", lyapunov_tol, 0, None, True), progress)
