@@ -330,6 +330,24 @@ def test_a_motor_run_without_history_gives_the_run_with_it_bit_for_bit():
     np.testing.assert_array_equal(light.at_times.states, full.at_times.states)
 
 
+def test_a_failed_motor_step_names_the_motor_time_constant_and_the_steps_that_resolve_it():
+    """A driven crank's failed step says when the step is longer than the motor's time constant
+    tau = J Omega_nl / (T_stall max|f'|) (the linear law: max|f'| = 1; here 0.005 against the step
+    2 pi / (Omega_nl steps_per_rev) = 0.157), with a steps_per_rev whose step is no longer than
+    tau (main's one path for every crank had dropped the sentence); a prescribed crank's does not."""
+    from crankgen.analyses import simulation
+    motor = crankgen.Motor(stall_torque=2.0, no_load_speed=1.0, inertia=0.01)
+    with pytest.raises(crankgen.ConvergenceError) as err:
+        crankgen.simulate(Mechanism(), crank=motor, **SMALL, revolutions=1)
+    text = str(err.value)
+    assert "time constant J Omega_nl / (T_stall max|f'|) = 0.005 is shorter than the step 0.157" in text
+    n = int(text.rsplit("raise steps_per_rev above ", 1)[1])
+    step = lambda spr: 2 * np.pi / spr                                               # Omega_nl = 1
+    assert step(n) <= 0.005 * (1 + 1e-12) and step(n - 1) > 0.005
+    prescribed = crankgen.simulate(Mechanism(), omega=0.5, **SMALL, revolutions=0.05)
+    assert "time constant" not in str(simulation._failure(crankgen.engine.NOT_CONVERGED, 1, 1.0, 1.0, prescribed))
+
+
 # ---- numbers and sequences: Python, NumPy, generators -----------------------------------------
 
 @pytest.mark.parametrize("values", [(w for w in [0.4, 0.5]), (np.float64(w) for w in [0.4, 0.5]),

@@ -22,6 +22,7 @@ from ..declaration import schema
 from ..results.outputs import DeclaredOutputs, StateHistory, engine_columns, takes_engine_outputs
 from .marching import coordinate_histories, crank_of, march_in_chunks, run_angle, run_kinematics, start_state
 from ..declaration.si import si_input
+from ..declaration.torque_curve import step_hint
 from .theory import warn_beyond
 from ..declaration.units import Scales
 from ..declaration.validation import choice, in_range, numbers_array
@@ -367,7 +368,7 @@ def _failure(status, step, residual, dt, result=None):
         partial = _truncated(result, int(step))
     return ConvergenceError(
         f"{_engine.STATUS_TEXT[int(status)]} in step {step} (t* = {step * dt:.6g}): residual norm "
-        f"{residual:.3e}{_exact_rod_hint(status, result)}", step=int(step), time=step * dt,
+        f"{residual:.3e}{_exact_rod_hint(status, result)}{_motor_hint(result, dt)}", step=int(step), time=step * dt,
         residual=float(residual), partial=partial)
 
 
@@ -379,6 +380,15 @@ def _exact_rod_hint(status, result):
         return ""
     return ("; the exact rod's element represents sections turned less than 90 degrees from the "
             "rod's chord (|v_x| < its stretch): a section that turns that far ends the run")
+
+
+def _motor_hint(result, dt):
+    """For a motor-driven crank, whether the step can follow the motor (torque_curve.step_hint: its
+    time constant against the step, and the steps_per_rev that resolves it); "" otherwise."""
+    case = getattr(result, "case", None)
+    if case is None or not case.motion_record.coordinates:
+        return ""
+    return step_hint(case, dt)
 
 
 def _truncated(result, n_points):
