@@ -53,7 +53,7 @@ def run(argv):
     (["simulate", "--model", "rigid"], ["model"]),
     (["simulate", "--model", "exact", "--formulation", "paper"], ["exact", "formulation"]),
     (["steady", "--a", "1.5"], ["a (crank"]),
-    (["steady", "--max-revolutions", "0"], ["max_revolutions"]),
+    (["steady", "--max-revolutions", "0"], ["--max-revolutions"]),      # the flag typed (limits.count)
     (["sweep", "--omega", "0.8:0.2:0.1"], ["range"]),
     (["sweep", "--omega", "0.2:1:x"], ["number"]),
     (["sweep", "--approach", "A,D"], ["approach"]),

@@ -20,8 +20,9 @@ speeds in rad/s and frequencies in rad/s (the table and the figure add rpm and H
 
 import csv
 from dataclasses import dataclass, field, replace
-from pathlib import Path
 from typing import Optional
+
+import numbers
 
 import numpy as np
 
@@ -29,7 +30,8 @@ from ..declaration import schema
 from ..errors import ParameterError
 from .modes import AXIAL_SHARE, FrozenModel, frozen_case
 from ..declaration.units import Scales
-from ..declaration.validation import finite_number, integer
+from .limits import count as bounded
+from ..declaration.validation import finite_number, integer, sequence
 
 EDGES = ("low", "mean", "high")
 EDGE_WORDS = {"low": "enters the band", "mean": "crosses its mean", "high": "leaves the band"}
@@ -101,13 +103,11 @@ class CampbellDiagram:
     def to_csv(self, folder):
         """campbell.csv (one row per speed and mode: the band, its kind, the divergent share) and
         crossings.csv (one row per crossing) in folder; returns the paths."""
-        from ..results.io import atomic_file
-        folder = Path(folder)
-        folder.mkdir(parents=True, exist_ok=True)
+        from ..results.io import atomic_file, output_folder
+        paths = output_folder(folder, ["campbell.csv", "crossings.csv"])
         si = self.scales is not None
         speed_cols = ["crank_speed_rad_per_s", "crank_speed_rpm"] if si else [schema.CRANK_SPEED]
         freq = (lambda name: [f"{name}_rad_per_s", f"{name}_Hz"]) if si else (lambda name: [name])
-        paths = [folder / "campbell.csv", folder / "crossings.csv"]
         with atomic_file(paths[0]) as fh:
             w = csv.writer(fh)
             w.writerow(speed_cols + ["mode", "kind"] + freq("low") + freq("mean") + freq("high")
@@ -148,7 +148,8 @@ class CampbellDiagram:
         crossings of the means, written atomically to path (returned).  SI: crank speed in rpm,
         frequencies in Hz."""
         from ..plots.campbell import campbell_figure
-        from ..results.io import save_figure
+        from ..results.io import output_path, save_figure
+        path = output_path(path)
         return save_figure(campbell_figure(self, title), path, dpi=130)
 
 
@@ -183,14 +184,16 @@ def campbell(mech=None, speeds=None, *, angles=36, count=4, orders=(1, 2, 3, 4, 
     unit = 1.0 if scales is None else scales.omega_b
     if speeds is None:
         speeds = np.linspace(0.0, 1.6, 81) * unit
-    if isinstance(speeds, (str, bytes)) or not hasattr(speeds, "__iter__"):
-        raise ParameterError(f"speeds must be a sequence of crank speeds, got {speeds!r}")
-    speeds = np.array([finite_number("speeds", s) for s in speeds], dtype=float)
+    speeds = np.array([finite_number("speeds", s) for s in sequence("speeds", speeds, "crank speeds")], dtype=float)
     if speeds.size < 2 or np.any(speeds < 0) or np.any(np.diff(speeds) <= 0):
         raise ParameterError("speeds must be two or more increasing crank speeds >= 0")
-    angles = integer("angles", angles, 2)
+    bounded("speeds", speeds.size, f"speeds ({speeds.size} crank speeds)")
+    angles = bounded("angles", angles)
     count = integer("count", count, 1)
-    orders = tuple(integer("orders", k, 1) for k in np.atleast_1d(orders))
+    orders = [orders] if isinstance(orders, numbers.Number) or np.ndim(orders) == 0 and isinstance(
+        orders, (np.generic, np.ndarray)) else orders
+    orders = tuple(integer("orders", k, 1) for k in sequence("orders", orders, "crank orders (integers >= 1)"))
+    bounded("orders", len(orders), f"orders ({len(orders)} crank orders)")
     if progress is not None and not callable(progress):
         raise ParameterError(f"progress must be None or a function, got {progress!r}")
     theta = 2 * np.pi * np.arange(angles) / angles

@@ -22,6 +22,11 @@ The figures are measured on the compiled engine (peak resident memory; about 3 k
 working memory, two copies of every stored step while a run is assembled, 5.5 (2N)^2 doubles per
 steady state being computed) and rounded up.  The limit is the machine's physical memory, or
 CRANKGEN_MEMORY_LIMIT (bytes, or with a suffix K, M, G, T: "8G") when set.
+
+Counts a caller chooses (the lines of a chart, a Poincare sweep's revolutions, a Campbell
+diagram's speeds, ...) are bounded too, whatever memory they take: `count(name, value)` refuses a
+count beyond its bound in COUNTS, naming the bound, what one more costs and how to go past it on
+purpose: the environment variable CRANKGEN_MAX_<NAME> (CRANKGEN_MAX_LINES=500) sets another bound.
 """
 
 import math
@@ -31,7 +36,7 @@ from ..declaration import schema
 from ..errors import ParameterError
 from ..discrete.mesh import NODE_DOFS
 
-__all__ = ["check_run_size", "run_size", "memory_limit", "format_bytes"]
+__all__ = ["check_run_size", "run_size", "memory_limit", "format_bytes", "count", "COUNTS"]
 
 STORED = ("outputs", "states", "nodes", "steady")
 ELEMENT_WORKING = 3200          # bytes of working memory per element of a running case
@@ -133,3 +138,56 @@ def check_run_size(n_elements, n_steps, n_cases=1, stored="states", batch=None, 
     raise ParameterError(f"{what} would need about {format_bytes(size)} of memory, more than "
                          f"{format_bytes(limit)} ({source}); ask for less, or set "
                          "CRANKGEN_MEMORY_LIMIT")
+
+
+# name: (smallest, bound, what each one costs).  The bounds are far above any default, and each is
+# what one call can do in hours on one core (a line of a chart is a continuation: about a minute).
+COUNTS = {
+    "lines": (1, 100, "each line is a continuation of the first parameter"),
+    "max_lines": (1, 200, "each line is a continuation of the first parameter"),
+    "max_period": (1, 64, "an orbit of period k marches k revolutions per map"),
+    "max_points": (2, 100000, "each point is a corrected periodic orbit"),
+    "values": (1, 100000, "each value is a Poincare sweep point"),
+    "transient": (0, 1000000, "revolutions marched at each value"),
+    "samples": (2, 1000000, "revolutions sampled at each value"),
+    "speeds": (2, 10000, "each speed solves the frozen eigenproblem at every angle"),
+    "angles": (2, 3600, "each angle is a frozen eigenproblem per speed"),
+    "orders": (1, 1000, "each crank order is a line and its crossings"),
+    "frames": (1, 2400, "each frame of a GIF is held in memory until it is written"),
+    "max_revolutions": (1, 1000000, "revolutions marched when shooting does not converge"),
+    "warmup": (1, 1000000, "revolutions marched before shooting"),
+    "sweep": (2, 10000, "each value is a Poincare sweep point"),
+    "workers": (1, 256, "each worker is a process holding the compiled engine"),
+}
+
+
+def count_bound(name):
+    """(bound, where it comes from) of the count `name` (COUNTS, or CRANKGEN_MAX_<NAME>)."""
+    variable = f"CRANKGEN_MAX_{name.upper()}"
+    text = os.environ.get(variable)
+    if text:
+        try:
+            bound = int(text)
+            if bound < 1:
+                raise ValueError
+        except ValueError:
+            raise ParameterError(f"{variable} must be a whole number >= 1, got {text!r}") from None
+        return bound, variable
+    return COUNTS[name][1], None
+
+
+def count(name, value, label=None):
+    """value as an int checked against its COUNTS entry: at least its smallest, at most its bound,
+    else ParameterError naming `label` (default name), the bound, what each one costs and how to go
+    past it on purpose (CRANKGEN_MAX_<NAME>)."""
+    from ..declaration.validation import integer
+    label = label or name
+    smallest, _, cost = COUNTS[name]
+    n = integer(label, value, smallest)
+    bound, source = count_bound(name)
+    if n > bound:
+        variable = f"CRANKGEN_MAX_{name.upper()}"
+        where = f" (set by {source})" if source else ""
+        raise ParameterError(f"{label} must be at most {bound}{where}, got {n} ({cost}); to go past it on "
+                             f"purpose, set {variable}={n}")
+    return n

@@ -7,6 +7,7 @@ their times, or a driven crank's from its co-ordinate)."""
 import numpy as np
 
 from .. import engine as _engine
+from ..declaration import schema
 from ..discrete import kinematics as _kinematics
 
 
@@ -23,10 +24,11 @@ def start_state(case, d0, v0):
 
 def coordinate_histories(case, Z):
     """{name: (..., 3) value, rate and acceleration} of each declared co-ordinate from Z (..., 3 m)
-    (MarchResult.Z; empty for a prescribed crank)."""
+    (MarchResult.Z; empty for a prescribed crank): views of Z (its columns j, m + j, 2 m + j), so
+    that a run's co-ordinates cost what Z costs."""
     coords = case.motion_record.coordinates
     m = len(coords)
-    return {c.name: np.stack([Z[..., j], Z[..., m + j], Z[..., 2 * m + j]], axis=-1) for j, c in enumerate(coords)}
+    return {c.name: Z[..., j::m] for j, c in enumerate(coords)}
 
 
 def crank_of(case, coordinates):
@@ -34,6 +36,13 @@ def crank_of(case, coordinates):
     prescribed crank."""
     crank = next((c.name for c in case.motion_record.coordinates if c.crank), None)
     return None if crank is None else coordinates[crank]
+
+
+def run_angle(case, t, crank=None):
+    """The crank angle theta of a run's steps (run_kinematics(case, t, crank).theta, without the rest
+    of the kinematic state): the prescribed motion's at the times t, a chunk at a time, or a driven
+    crank's from its history."""
+    return _kinematics.crank_angle(case, t) if crank is None else np.array(crank[..., 0], dtype=float)
 
 
 def run_kinematics(case, t, crank=None):
@@ -44,6 +53,9 @@ def run_kinematics(case, t, crank=None):
 
 # the most memory a chunk's states may take while the states at requested times are picked from it
 CHUNK_BYTES = 64 * 2**20
+# the most memory the engine's per-step arrays of a chunk (outputs, co-ordinates, iterations) may
+# take when the states are not kept: a run with history=False then grows by what its result keeps
+OUTPUT_CHUNK_BYTES = 2**18
 
 
 def march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progress=None,
@@ -59,16 +71,22 @@ def march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progre
     them long), so the work grows linearly with the stops; the marching is the same as without
     them (chunks continue from the state and history where the last one ended).  G0: generalized-
     alpha's algorithmic accelerations (None: the run starts, its first step the starter); the
-    captured states hold them as a fourth entry (None at step 0 of a start)."""
+    captured states hold them as a fourth entry (None at step 0 of a start).  Without keep_states
+    a chunk's per-step arrays are at most OUTPUT_CHUNK_BYTES, written into the run's own as they
+    come: a run grows by what it returns (a march in chunks gives the numbers of one march)."""
     B = len(batch)
     D, V, A, G, previous = np.array(D0, dtype=float), np.array(V0, dtype=float), None, G0, None
     status = np.zeros(B, dtype=np.int64)
     fail_step, fail_res = np.zeros(B, dtype=np.int64), np.zeros(B)
-    ys, zs, its, hist = [], [], [], ([], [], [])
+    hist = ([], [], [])
+    y_all = z_all = its_all = None    # the per-step arrays, filled chunk by chunk (no copies joined)
     size = max(1, -(-n_steps // chunks)) if progress is not None else n_steps
     stops = np.unique(np.asarray([k for k in stops if 0 <= k <= n_steps], dtype=np.int64))
     if not keep_states and stops.size:
         size = min(size, max(1, CHUNK_BYTES // (3 * 8 * B * max(1, batch.N))))
+    if not keep_states:
+        per_step = len(schema.ENGINE_OUTPUTS) + 3 * (batch.N - batch.mesh.n_rod) + 1
+        size = min(size, max(1, OUTPUT_CHUNK_BYTES // (8 * B * per_step)))
     if stops.size and stops[0] == 0:
         first = _engine.march(batch, 0, D0=D, V0=V, G0=G, tol=tol, status=status)
         A, status = first.A, first.status
@@ -83,9 +101,17 @@ def march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progre
         new_fail = (res.status != _engine.OK) & (status == _engine.OK)
         fail_step[new_fail], fail_res[new_fail] = res.fail_step[new_fail], res.fail_residual[new_fail]
         status = res.status
-        ys.append(res.y if done == 0 else res.y[:, 1:])
-        zs.append(res.Z if done == 0 else res.Z[:, 1:])
-        its.append(res.iterations)
+        if done == 0 and k == n_steps:                         # one chunk: the engine's arrays as they are
+            y_all, z_all, its_all = res.y, res.Z, res.iterations
+        else:
+            if y_all is None:
+                y_all = np.full((B, n_steps + 1) + res.y.shape[2:], np.nan)
+                z_all = np.full((B, n_steps + 1) + res.Z.shape[2:], np.nan)
+                its_all = np.zeros((B, n_steps), dtype=res.iterations.dtype)
+            first = 0 if done == 0 else 1
+            y_all[:, done + first:done + k + 1] = res.y[:, first:]
+            z_all[:, done + first:done + k + 1] = res.Z[:, first:]
+            its_all[:, done:done + k] = res.iterations
         for stop in stops[next_stop:last_stop]:
             j = int(stop) - done
             captured[int(stop)] = (res.D_history[:, j].copy(), res.V_history[:, j].copy(),
@@ -96,16 +122,14 @@ def march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progre
             for store, h in zip(hist, (res.D_history, res.V_history, res.A_history)):
                 store.append(h if done == 0 else h[:, 1:])
         D, V, A, G, previous = res.D, res.V, res.A, res.G, res.previous
+        del res                                                # this chunk's arrays go before the next is made
         done += k
         if not np.any(status == _engine.OK):
             # every case has stopped: the rest would be NaN rows (what the engine writes for a
             # case that does not advance), and progress must not count steps never computed
             if progress is not None:
                 progress(int(np.max(fail_step)) - 1)
-            rest = n_steps - done
-            ys.append(np.full((B, rest, ys[-1].shape[2]), np.nan))
-            zs.append(np.full((B, rest, zs[-1].shape[2]), np.nan))
-            its.append(np.zeros((B, rest), dtype=its[-1].dtype))
+            rest = n_steps - done                               # NaN rows and no iterations (y_all's fill)
             if keep_states:
                 for store in hist:
                     store.append(np.full(store[-1].shape[:1] + (rest,) + store[-1].shape[2:], np.nan))
@@ -113,5 +137,4 @@ def march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progre
         if progress is not None:
             progress(done)
     histories = tuple(np.concatenate(h, axis=1) if keep_states else None for h in hist)
-    return ((np.concatenate(ys, axis=1), np.concatenate(its, axis=1), status, fail_step, fail_res) + histories
-            + (np.concatenate(zs, axis=1),))
+    return (y_all, its_all, status, fail_step, fail_res) + histories + (z_all,)

@@ -35,7 +35,7 @@ from ..discrete.mesh import PSI, U, V
 from ..discrete.system import Model
 from ..declaration.si import SIMechanism
 from ..declaration.units import Scales
-from ..declaration.validation import choice, finite_number, integer
+from ..declaration.validation import angle, choice, finite_number, integer
 
 UNITS = ("crankgen", "si")
 AXIAL_SHARE = 0.5              # a mode whose kinetic energy is more than half axial is "axial"
@@ -237,7 +237,7 @@ def modes(mech=None, omega=None, theta=0.0, *, count=6, model=None, case=None, u
     frequencies k^2 in units of omega_b at theta = 0, where the rod lies along its guide).
     Returns a Modes."""
     c, scales = frozen_case(mech, omega, model=model, case=case, units=units, **fields)
-    theta = finite_number("theta (crank angle, rad)", theta)
+    theta = angle("theta (crank angle, rad)", theta)
     fm = FrozenModel(c)
     count = min(integer("count", count, 1), fm.N)
     kin, d, lam, vec, M = fm.eigen([theta])

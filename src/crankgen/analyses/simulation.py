@@ -20,8 +20,9 @@ from ..discrete.initial import initial_state
 from ..discrete.newmark import NewmarkSettings, integrate
 from ..declaration import schema
 from ..results.outputs import DeclaredOutputs, StateHistory, engine_columns, takes_engine_outputs
-from .marching import coordinate_histories, crank_of, march_in_chunks, run_kinematics, start_state
+from .marching import coordinate_histories, crank_of, march_in_chunks, run_angle, run_kinematics, start_state
 from ..declaration.si import si_input
+from ..declaration.torque_curve import step_hint
 from .theory import warn_beyond
 from ..declaration.units import Scales
 from ..declaration.validation import choice, in_range, numbers_array
@@ -251,10 +252,11 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
         _engine.Batch([case]), d0[None], v0[None], n_steps, tol, history,
         None if progress is None else (lambda done: progress(done, n_steps)), stops=stops, captured=captured,
         G0=None if g0 is None else g0[None])
-    y, iterations, Z = y[0], iterations[0].astype(np.int32), Z[0]
+    y, iterations, Z = y[0], iterations[0].astype(np.int32, copy=False), Z[0]
     if history:
         D, V, A = D[0], V[0], A[0]
-    t = dt * np.arange(n_steps + 1)
+    t = np.arange(n_steps + 1, dtype=float)
+    t *= dt                                          # no temporary of the run's length
     result = _result(reference, case, t, y, iterations, dict(info, history=history), D, V, A, Z, store_nodes, scales)
     if status[0] != _engine.OK:
         raise _failure(status[0], fail_step[0], fail_res[0], dt, result)
@@ -272,12 +274,14 @@ def _result(model, case, t, y, iterations, info, D, V, A, Z, store_nodes, scales
     declared co-ordinates per step (MarchResult.Z)."""
     coordinates = coordinate_histories(case, Z) if case.motion_record.coordinates else None
     crank = None if coordinates is None else crank_of(case, coordinates)
-    kin = run_kinematics(case, t, crank)
     n_rod = model.n_rod
     nodal = [None if x is None else x[..., :n_rod] for x in (D, V, A)]
-    return SimulationResult(t=np.asarray(t, dtype=float), theta=kin.theta, outputs=engine_columns(y),
+    # theta alone, not the run's whole kinematic state (8 bytes a step; the nodes need the rest)
+    theta = run_angle(case, t, crank)
+    return SimulationResult(t=np.asarray(t, dtype=float), theta=theta, outputs=engine_columns(y),
                             iterations=np.asarray(iterations, dtype=np.int32), settings=info,
-                            nodes=model.full_nodal(nodal[0], kin) if store_nodes else None, case=case,
+                            nodes=model.full_nodal(nodal[0], run_kinematics(case, t, crank)) if store_nodes else None,
+                            case=case,
                             states=nodal[0], rates=nodal[1], accelerations=nodal[2], scales=scales, crank=crank,
                             coordinates=coordinates)
 
@@ -364,7 +368,7 @@ def _failure(status, step, residual, dt, result=None):
         partial = _truncated(result, int(step))
     return ConvergenceError(
         f"{_engine.STATUS_TEXT[int(status)]} in step {step} (t* = {step * dt:.6g}): residual norm "
-        f"{residual:.3e}{_exact_rod_hint(status, result)}", step=int(step), time=step * dt,
+        f"{residual:.3e}{_exact_rod_hint(status, result)}{_motor_hint(result, dt)}", step=int(step), time=step * dt,
         residual=float(residual), partial=partial)
 
 
@@ -376,6 +380,15 @@ def _exact_rod_hint(status, result):
         return ""
     return ("; the exact rod's element represents sections turned less than 90 degrees from the "
             "rod's chord (|v_x| < its stretch): a section that turns that far ends the run")
+
+
+def _motor_hint(result, dt):
+    """For a motor-driven crank, whether the step can follow the motor (torque_curve.step_hint: its
+    time constant against the step, and the steps_per_rev that resolves it); "" otherwise."""
+    case = getattr(result, "case", None)
+    if case is None or not case.motion_record.coordinates:
+        return ""
+    return step_hint(case, dt)
 
 
 def _truncated(result, n_points):

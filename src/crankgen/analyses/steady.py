@@ -47,14 +47,14 @@ from ..discrete import time_scheme
 from ..discrete import kinematics as _kinematics
 from ..declaration.cases import Case, run_case
 from ..errors import ParameterError
-from .limits import check_run_size
+from .limits import check_run_size, count
 from .section import WARMUP, CrankSection, TimeSection
 from ..discrete.system import check_coordinates
 from ..results.outputs import DeclaredOutputs, engine_columns, takes_engine_outputs
 from ..declaration.si import si_input
 from .theory import warn_beyond
 from ..declaration.units import Scales
-from ..declaration.validation import choice, in_range, integer
+from ..declaration.validation import choice, in_range
 
 STATUSES = ("periodic", "not-periodic", "unstable", "failed")
 # a state repeating every second revolution is a sub-harmonic response when its change per
@@ -436,8 +436,8 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
     time_scheme.warn_steps([c for c in cases if not c.motion_record.coordinates], stacklevel=_stacklevel,
                            omega_b=_omega_b)   # _omega_b: rad/s too (SI)
     tol = in_range("tol", tol, 0, None, True)
-    max_revolutions = integer("max_revolutions", max_revolutions, 1)
-    warmup = integer("warmup", warmup, 1)
+    max_revolutions = count("max_revolutions", max_revolutions)
+    warmup = count("warmup", warmup)
     choice("method", method, METHODS)
     groups = {}
     for i, c in enumerate(cases):

@@ -30,7 +30,7 @@ from collections.abc import Mapping
 from ..declaration.cases import Case
 from .checkpoint import Checkpoint, CheckpointError, check_checkpoint_file  # noqa: F401 (public here too)
 from ..errors import ParameterError
-from .limits import check_run_size
+from .limits import check_run_size, count
 from .pool_workers import worker_init  # noqa: F401 (the command line's pool initializer)
 from ..results.provenance import code_version
 from .. import notices
@@ -122,7 +122,7 @@ def sweep(cases, executor=None, checkpoint=None, batch_size=BATCH_SIZE, tol=1e-8
     time_scheme.warn_steps(cases)
     batch_size = integer("batch_size", batch_size, 1)
     tol = in_range("tol", tol, 0, None, low_open=True)
-    max_revolutions = integer("max_revolutions", max_revolutions, 1)
+    max_revolutions = count("max_revolutions", max_revolutions)
 
     keys = [case.key() for case in cases]
     multiplicity = Counter(keys)

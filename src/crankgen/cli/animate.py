@@ -41,7 +41,8 @@ def _cmd_animate(args):
     from matplotlib import animation as mpl_animation
 
     from ..errors import ParameterError
-    from ..declaration.validation import in_range, integer
+    from ..analyses.limits import count
+    from ..declaration.validation import in_range
 
     from . import si_file
     si = None if args.si is None else si_file.read(args.si)
@@ -50,7 +51,7 @@ def _cmd_animate(args):
     if args.magnify is not None:
         in_range("--magnify", args.magnify, 0, None, True)
     if args.frames is not None:
-        integer("--frames", args.frames, 1)
+        count("frames", args.frames, "--frames")
     in_range("--fps", args.fps, 0, 100, True)
     if args.format == "mp4" and not mpl_animation.writers.is_available("ffmpeg"):
         raise ParameterError("--format mp4 needs ffmpeg, which is not installed here; write a gif")

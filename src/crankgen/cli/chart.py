@@ -65,7 +65,7 @@ def add_command(sub):
 def _cmd_chart(args):
     from ..declaration.cases import make_case
     from ..analyses.charts import stability_chart
-    from ..declaration.validation import integer
+    from ..analyses.limits import count
     fields = _explicit(args)
     for axis in (args.x, args.y):
         name = axis[0]
@@ -73,9 +73,9 @@ def _cmd_chart(args):
             flag = schema.PARAMETERS[name].cli
             raise UsageError(f"--{flag} is an axis of the chart ({name}): its values are the axis' range; "
                              f"leave out --{flag}")
-    integer("--lines", args.lines, 1)
-    integer("--max-lines", args.max_lines, 1)
-    integer("--max-period", args.max_period, 1)
+    count("lines", args.lines, "--lines")
+    count("max_lines", args.max_lines, "--max-lines")
+    count("max_period", args.max_period, "--max-period")
     fields[args.x[0]] = args.x[1]
     case = make_case(model=args.model, **fields)
     folder = _Outputs(args.out, CHART_NAMES, args.force)

@@ -82,11 +82,11 @@ def _mechanism(args):
 
 def _cmd_modes(args):
     from ..analyses.modes import modes
-    from ..declaration.validation import integer
+    from ..declaration.validation import angle, integer
 
     integer("--count", args.count, 1)
     mech, fields, units = _mechanism(args)
-    theta = fields.pop(schema.CRANK_ANGLE, 0.0)
+    theta = angle(f"--{schema.PARAMETERS[schema.CRANK_ANGLE].cli}", fields.pop(schema.CRANK_ANGLE, 0.0))
     omega = fields.pop(schema.CRANK_SPEED, None)
     m = modes(mech, omega, theta, count=args.count, model=args.model, units=units, **fields)  # checks all
     out = _Outputs(args.out, MODES_NAMES, args.force)
@@ -127,13 +127,12 @@ def _cmd_campbell(args):
 
     from ..analyses.campbell import campbell
     from ..progress import Progress
+    from ..analyses.limits import count
     from ..declaration.validation import in_range, integer
 
-    integer("--speeds", args.speeds, 2)
-    integer("--angles", args.angles, 2)
+    count("speeds", args.speeds, "--speeds")
+    count("angles", args.angles, "--angles")
     integer("--modes", args.count, 1)
-    if args.speeds > 10000 or args.angles > 3600:
-        raise UsageError("--speeds must be at most 10000 and --angles at most 3600")
     mech, fields, units = _mechanism(args)
     unit = 1.0 if units == "crankgen" else mech.omega_b
     start = 0.0 if args.start is None else in_range("--from", args.start, 0.0)

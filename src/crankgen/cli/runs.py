@@ -13,7 +13,7 @@ from pathlib import Path
 from ..declaration import schema
 from ..errors import ConvergenceError, ParameterError
 from ..discrete.kinematics import step_period
-from ..analyses.limits import check_run_size
+from ..analyses.limits import check_run_size, count
 from . import si_file
 from .options import CASE_FIELDS, UsageError, _Outputs, _case, _describe, _flag, _say
 
@@ -211,13 +211,13 @@ def _resolved(case, where=""):
 
 
 def _cmd_steady(args):
-    from ..declaration.validation import in_range, integer
+    from ..declaration.validation import in_range
 
     si = None if args.si is None else si_file.read(args.si)
     case = _case(args) if si is None else si_file.case(args, si)
     section = _section(args, si)
     in_range("tol", args.tol, 0, None, True)
-    integer("max_revolutions", args.max_revolutions, 1)
+    count("max_revolutions", args.max_revolutions, "--max-revolutions")
     check_run_size(case.n_elements, case.steps_per_rev, stored="steady",
                    names={"n_elements": "--elements", "n_steps": "--steps-per-rev"})
     _resolved(case)
@@ -374,9 +374,9 @@ def _cmd_sweep(args):
     from ..declaration.validation import in_range, integer
 
     in_range("tol", args.tol, 0, None, True)
-    integer("max_revolutions", args.max_revolutions, 1)
+    count("max_revolutions", args.max_revolutions, "--max-revolutions")
     batch_size = integer("batch_size", args.batch_size, 1)
-    integer("workers", args.workers, 1)
+    count("workers", args.workers, "--workers")
     si = _si_grid(args)
     models, axes = _sweep_grid(args)
     size = len(models) * math.prod(len(axis) for axis in axes)

@@ -27,6 +27,8 @@ def fields_text():
             return "1|-1"
         if p.kind == "count":
             return "integer"
+        if p.kind == "curve":
+            return 'per-unit pairs [[S, F], ...] or "S:F,..."'
         unit = Scales.si_name(p.units)
         return ("number" if unit == "1" else unit) + (" (two)" if p.kind == "pair" else "")
     parts = [f'"{n}": {u}' for n, u, _ in ROD] + [f'"{si}": {what(p)}' for si, p in schema.SI_FIELDS.items()]
@@ -63,8 +65,16 @@ def read(path):
     from ..results.io import read_regular
     from ..declaration.si import SIMechanism
     names = SIMechanism.field_names()
+
+    def unique(pairs):                 # a field given twice is a mistake, not the last one's value
+        seen = set()
+        for key, _ in pairs:
+            if key in seen:
+                raise UsageError(f"--si {path}: the field {key!r} is given twice; give it once")
+            seen.add(key)
+        return dict(pairs)
     try:
-        data = json.loads(read_regular(path))
+        data = json.loads(read_regular(path), object_pairs_hook=unique)
     except OSError as exc:
         raise UsageError(f"--si {path}: {exc.strerror or exc}; give the path of a JSON file") from None
     except ValueError as exc:

@@ -187,12 +187,10 @@ def _cmd_continue(args):
 
     from ..analyses.bifurcation import continuation, poincare
     from ..progress import Progress
-    from ..declaration.validation import integer
+    from ..analyses.limits import count
 
     if args.sweep is not None:
-        integer("--sweep", args.sweep, 2)
-        if args.sweep > 10000:
-            raise UsageError(f"--sweep must be at most 10000, got {args.sweep}")
+        count("sweep", args.sweep, "--sweep")
     _si_range(args)
     section = None
     if args.section is not None:                 # with --si: the rod's, its stresses in Pa
@@ -268,13 +266,13 @@ def _cmd_poincare(args):
     from ..analyses.bifurcation import continuation, poincare
     from ..progress import Progress
 
+    from ..analyses.limits import count
     from ..declaration.validation import integer
 
     integer("--values", args.values, 2)
-    if args.values > 100000:
-        raise UsageError(f"--values must be at most 100000, got {args.values}")
-    integer("--transient", args.transient, 0)
-    integer("--samples", args.samples, 2)
+    count("values", args.values, "--values")
+    count("transient", args.transient, "--transient")
+    count("samples", args.samples, "--samples")
     values = _si_range(args, np.linspace(args.start, args.stop, args.values))
     case = _checked_branch_model(args, args.with_continuation, values)
     names = POINCARE_NAMES + (CONTINUE_NAMES[:4] if args.with_continuation else ())

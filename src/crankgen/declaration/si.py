@@ -322,6 +322,12 @@ def si_input(mech, units, fields, *, what="this analysis", crank=None, **given):
         if passed:
             raise ParameterError(f"with units='si' the SIMechanism gives the mechanism and its crank motion "
                                  f"(its {SI_NAME[schema.CRANK_SPEED]}, ...): give {what} no {', '.join(passed)}")
+        for name in sorted(set(fields) & set(schema.OPTIONS) & set(SIMechanism.field_names())):
+            value = fields[name]         # a field of the SIMechanism that is also a model option's name
+            if value is not None and not isinstance(value, str):
+                choices = " or ".join(repr(c) for c in schema.OPTIONS[name].choices)
+                raise ParameterError(f"{name}={value!r}: with units='si' the keyword {name} is the model option "
+                                     f"({choices}); the SI value goes in the SIMechanism's field {name}")
         clash = sorted(set(fields) & set(mech.values()))
         if clash:
             raise ParameterError(f"{clash[0]} is given by the SIMechanism (as {SI_NAME.get(clash[0], clash[0])} in "

@@ -38,6 +38,7 @@ LINEAR = ((0.0, 1.0), (1.0, 0.0))      # the default: T_m = T_stall (1 - s)
 MAX_POINTS = 512
 TOLERANCE = 1e-5                       # a callable's tabulation error, in units of T_stall
 SPAN = (0.0, 1.2)                      # where a callable is tabulated (per-unit speed)
+MAGNITUDE = 50                         # a per-unit speed or torque beyond 10^MAGNITUDE is refused (as SI's)
 RANGE_TEXT = ("per-unit pairs S:F (S = thetad / Omega_nl increasing, F = T_m / T_stall) through 0:1 and 1:0, "
               "comma-separated, e.g. 0:1,0.8:2.2,1:0; or a callable F(S)")
 
@@ -76,7 +77,14 @@ def _parse(label, value):
     return pairs
 
 
-def _real(label, x):
+def _real(label, x, text=False):
+    """A pair's entry as a float: a real number (text only where the curve was given as text:
+    text=True; booleans never)."""
+    from .validation import not_a_number
+    if isinstance(x, np.ndarray) and x.shape == ():
+        x = x[()]
+    if (not_a_number(x) and not (text and isinstance(x, str))) or isinstance(x, (complex, np.complexfloating)):
+        raise ParameterError(f"{label} must be {RANGE_TEXT}; {x!r} is not a number")
     try:
         y = float(x)
     except (TypeError, ValueError):
@@ -89,19 +97,30 @@ def _real(label, x):
 def canonical(label, value):
     """The curve as a tuple of (s, f) float pairs, checked; value: such pairs, their text
     "0:1,0.8:2.2,1:0" or a callable f(s) (tabulated).  ParameterError names what is wrong."""
+    from .validation import ordered as _ordered
     if callable(value):
         return tabulate(value, label=label)
-    if isinstance(value, str):
+    as_text = isinstance(value, str)
+    if as_text:
         value = _parse(label, value)
-    if isinstance(value, (bytes, dict, set, frozenset)) or not hasattr(value, "__len__"):
-        raise ParameterError(f"{label} must be {RANGE_TEXT}, got {value!r}")
+    items = _ordered(value)
+    if items is None:
+        raise ParameterError(f"{label} must be {RANGE_TEXT}, got {value!r}"[:300])
+    if len(items) > MAX_POINTS:
+        raise ParameterError(f"{label} takes 2 to {MAX_POINTS} pairs, got {len(items)}")
     pairs = []
-    for item in value:
-        if isinstance(item, (str, bytes)) or not hasattr(item, "__len__") or len(item) != 2:
-            raise ParameterError(f"{label} must be {RANGE_TEXT}; {item!r} is not a pair (S, F)")
-        pairs.append((_real(label, item[0]), _real(label, item[1])))
+    for raw in items:
+        item = _ordered(raw) if not isinstance(raw, (str, bytes)) else None
+        if item is None or len(item) != 2:
+            raise ParameterError(f"{label} must be {RANGE_TEXT}; {raw!r} is not a pair (S, F)")
+        pairs.append((_real(label, item[0], as_text), _real(label, item[1], as_text)))
     if not 2 <= len(pairs) <= MAX_POINTS:
         raise ParameterError(f"{label} takes 2 to {MAX_POINTS} pairs, got {len(pairs)}")
+    big = next(((x, y) for x, y in pairs if max(abs(x), abs(y)) > 10.0 ** MAGNITUDE), None)
+    if big is not None:
+        raise ParameterError(f"{label}: the pair {number_text(big[0])}:{number_text(big[1])} is beyond "
+                             f"1e{MAGNITUDE} (per-unit speeds and torques of a motor; floating point would overflow "
+                             "in the crank's equation)")
     s = [p[0] for p in pairs]
     if any(b <= a for a, b in zip(s, s[1:])):
         raise ParameterError(f"{label}: the per-unit speeds S must increase, got {', '.join(map(number_text, s))}")
@@ -168,7 +187,12 @@ def step_hint(case, dt):
     if tau >= dt:
         return ""
     return (f"; the motor's time constant J Omega_nl / (T_stall max|f'|) = {tau:.3g} is shorter than the step "
-            f"{dt:.3g}: raise steps_per_rev above {math.ceil(case.steps_per_rev * dt / tau)}")
+            f"{dt:.3g}: raise steps_per_rev above {_count_text(case.steps_per_rev * dt / tau)}")
+
+
+def _count_text(x):
+    """A step count as text: the integer, or 3 digits of one no run could take (1.12e+53)."""
+    return f"{math.ceil(x)}" if x < 1e9 else f"{x:.3g}"
 
 
 def batch_tables(cases):
@@ -211,15 +235,16 @@ def departure(curve, s):
 
 def tabulate(func, span=SPAN, tol=TOLERANCE, label="torque_curve"):
     """The pairs of a per-unit curve func(s) on span, bisected until the interpolant matches func
-    within tol / 2 at every interval's quarter points (module docstring)."""
+    within tol / 2 at every interval's quarter points (module docstring), by crankgen's rule for
+    callables (crankgen.callables): each value one real finite number; continuous with a bounded
+    slope (Newton's crank row and the step-size advice use it): a stretch narrower than
+    callables.NARROWEST that still fails is a jump, refused where it is."""
+    from .callables import check_continuous, sample
+
+    who = f"{label}: F(S)"
+
     def value(s):
-        try:
-            y = float(func(float(s)))
-        except Exception as exc:
-            raise ParameterError(f"{label}: the callable failed at per-unit speed {s:g}: {exc}") from exc
-        if not math.isfinite(y):
-            raise ParameterError(f"{label}: the callable gave {y!r} at per-unit speed {s:g}")
-        return y
+        return sample(who, func, float(s), "S")
 
     lo, hi = span
     s = sorted(set(np.linspace(lo, hi, 13).tolist()) | {0.0, 1.0})
@@ -234,7 +259,10 @@ def tabulate(func, span=SPAN, tol=TOLERANCE, label="torque_curve"):
         a, b = knots[:-1, None], knots[1:, None]
         probes = a + (b - a) * np.array([0.25, 0.5, 0.75])
         error = np.abs(evaluate(curve, probes)[0] - np.vectorize(value)(probes)).max(axis=1)
-        failing = ((a + b)[:, 0] / 2)[error > tol / 2]
+        bad = error > tol / 2
+        for lo_k, hi_k in zip(a[bad, 0].tolist(), b[bad, 0].tolist()):
+            check_continuous(who, lo_k, hi_k, f[lo_k], f[hi_k], "S")
+        failing = ((a + b)[:, 0] / 2)[bad]
         if not len(failing):
             return canonical(label, curve)
         if len(knots) + len(failing) > MAX_POINTS:
@@ -250,9 +278,9 @@ def per_unit(speeds, torques):
     units (rad/s and N m from a data sheet: give stall_torque and no_load_speed to an
     SIMechanism's motor; crankgen's units: to crankgen.Motor).  The table holds the speed 0 (its
     torque is the stall torque) and one speed of torque 0 above it (the no-load speed)."""
-    w = np.asarray(speeds, dtype=float)
-    T = np.asarray(torques, dtype=float)
-    if w.ndim != 1 or w.shape != T.shape or len(w) < 2 or not (np.all(np.isfinite(w)) and np.all(np.isfinite(T))):
+    from .validation import numbers_array
+    w, T = numbers_array("per_unit speeds", speeds), numbers_array("per_unit torques", torques)
+    if w.shape != T.shape or len(w) < 2:
         raise ParameterError("per_unit takes two sequences of finite numbers of the same length (at least 2)")
     at_rest = np.flatnonzero(w == 0)
     if len(at_rest) != 1 or T[at_rest[0]] <= 0:

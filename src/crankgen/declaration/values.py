@@ -11,6 +11,7 @@ import numbers
 
 from . import torque_curve
 from ..errors import ParameterError
+from .validation import ANGLE_LIMIT, angle_value as angle, ordered, reduced_angle  # noqa: F401  (the rules' home)
 
 
 def _bracket(low, high, low_open, high_open):
@@ -19,27 +20,28 @@ def _bracket(low, high, low_open, high_open):
     return ("(" if low_open or low is None else "[") + f"{left}, {right}" + (")" if high_open or high is None else "]")
 
 
+def _scalar(value):
+    """A 0-d NumPy array as the scalar it holds (NumPy and SciPy take one as a number)."""
+    if type(value).__name__ == "ndarray" and getattr(value, "shape", None) == ():
+        return value[()]
+    return value
+
+
 def is_number(value):
-    """A real number: a Python or NumPy integer or float (a boolean, a complex number or a string
-    is none; NumPy's scalars register as numbers.Real, its booleans and complex numbers do not)."""
+    """A real number: a Python or NumPy integer or float, or a 0-d array of one (a boolean, a
+    complex number or a string is none; NumPy's scalars register as numbers.Real, its booleans
+    and complex numbers do not)."""
+    value = _scalar(value)
     return isinstance(value, numbers.Real) and not isinstance(value, bool)
 
 
 def real(label, value):
     if not is_number(value):
         raise ParameterError(f"{label} must be a number, got {value!r}")
-    x = float(value)
+    x = float(_scalar(value))
     if not math.isfinite(x):
         raise ParameterError(f"{label} must be finite, got {value!r}")
     return x + 0.0                     # -0.0 -> 0.0: one canonical zero
-
-
-def reduced_angle(x):
-    """An angle beyond one turn either way, reduced to (-pi, pi]: the angle of the same crank
-    position.  The reduction is exact (the sine and cosine reduce their argument by 2 pi to full
-    precision), so a start angle of 1e17 rad gives the crank position of 1e17 rad, and the run's
-    theta0 + Omega* t keeps every digit of its time.  Angles within one turn are kept as given."""
-    return math.atan2(math.sin(x), math.cos(x)) + 0.0
 
 
 def plain(value):
@@ -81,21 +83,19 @@ def canonical(p, value):
         bad_high = p.high is not None and (x >= p.high if p.high_open else x > p.high)
         if bad_low or bad_high:
             raise ParameterError(f"{label} must be in {range_text(p)}, got {x:g}")
-        if p.units == "rad" and abs(x) > 2 * math.pi:
-            x = reduced_angle(x)
-        return x
+        return angle(label, x) if p.units == "rad" else x
     if p.kind == "pair":
-        if isinstance(value, (str, bytes, dict, set, frozenset)) or not hasattr(value, "__len__") \
-                or not hasattr(value, "__getitem__") or len(value) != 2:
+        items = ordered(value)
+        if items is None or len(items) != 2:
             raise ParameterError(f"{label} must be a sequence of two numbers ({p.metavar or 'X,Y'}), "
                                  f"got {value!r}")
-        return tuple(real(f"{label}[{k}]", value[k]) for k in range(2))
+        return tuple(real(f"{label}[{k}]", items[k]) for k in range(2))
     if p.kind == "curve":
         return torque_curve.canonical(label, value)
     if p.kind in ("count", "sign"):
         if not is_number(value):
             raise ParameterError(f"{label} must be {range_text(p)}, got {value!r}")
-        x = float(value)
+        x = float(_scalar(value))
         if not (math.isfinite(x) and x.is_integer()):
             raise ParameterError(f"{label} must be {range_text(p)}, got {value!r}")
         n = int(x)

@@ -96,14 +96,15 @@ def _numeric(values):
 
 
 def _evaluate(name, fn, x, complex_ok=False):
-    """fn at the node positions x: vectorized, else node by node; one real number per node, or
-    ParameterError naming the field and what the callable returned."""
+    """fn at the node positions x: vectorized, else node by node; one real number per node
+    (crankgen.callables' rule, which names the field and what the callable returned).  complex_ok:
+    the complex step's call (complex values kept, a failure raised as it is)."""
+    from ..declaration.callables import check_values
+    who = f"initial state: {name}(x)"
     values = None
     try:
         values = _numeric(fn(x))
-        if values is not None and values.shape == ():
-            values = np.full(x.shape, values[()])
-        if values is not None and values.shape != x.shape:
+        if values is not None and values.shape not in ((), x.shape):
             values = None
     except Exception:
         values = None
@@ -116,17 +117,10 @@ def _evaluate(name, fn, x, complex_ok=False):
             raise ParameterError(f"initial state: calling {name}(x) failed: {exc}") from None
         values = _numeric(one)
         if values is None or values.shape != x.shape:
-            got = one[0]
-            shape = np.shape(got) if _numeric(got) is not None else None
-            what = (f"values of shape {shape}" if shape not in (None, ()) else
-                    f"{type(got).__name__} {got!r}"[:80])
-            raise ParameterError(f"initial state: {name}(x) must return one real number per x (an "
-                                 f"array shaped like x for an array of positions), got {what}")
-    if not complex_ok and np.iscomplexobj(values):
-        if np.any(np.imag(values) != 0):
-            raise ParameterError(f"initial state: {name}(x) must be real")
-        values = np.real(values)
-    return values
+            values = one                                # check_values says what is wrong with it
+    if complex_ok:
+        return np.broadcast_to(np.asarray(values), x.shape)
+    return check_values(who, values, x)
 
 
 def _nodal(name, value, x_user, n):

@@ -51,6 +51,18 @@ def case_state(case, t):
     return _state(getattr(_kinematics, f"guide_{case.guide_record.name}")(crank, params))
 
 
+def crank_angle(case, t, chunk=4096):
+    """The crank angle theta(t) of a case's prescribed motion at the times t (1-d), computed a chunk
+    at a time: a long run's angles cost 8 bytes a step, not its whole kinematic state."""
+    t = np.asarray(t, dtype=float)
+    motion = getattr(_kinematics, f"motion_{case.motion_record.name}")
+    params = case.kinematic_parameters
+    theta = np.empty(t.shape)
+    for k in range(0, t.size, chunk):
+        theta[k:k + chunk] = motion(t[k:k + chunk], params)[..., 0]
+    return theta
+
+
 def crank_state(case, crank):
     """CrankState of the case's guide for crank (..., 3) = (theta, thetad, thetadd) given (a driven
     crank's, from the state's crank co-ordinate)."""

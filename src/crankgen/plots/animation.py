@@ -24,6 +24,7 @@ from ..discrete import kinematics as _kinematics
 from .._generated import geometry as _geometry
 from ..errors import ParameterError
 from ..discrete.mesh import NODE_DOFS, PSI, U, V
+from ..analyses.limits import count as bounded
 from ..declaration.validation import in_range, integer
 
 TARGET = 0.08          # the default magnification shows the largest deflection as about 8 % of L
@@ -96,11 +97,12 @@ class Frames:
 
     def __init__(self, result, magnification=None, frames=None, title=None, scales=None):
         from ..discrete.system import Model
+        check_animatable(result)
         case = result.case
         self.case, self.result = case, result
         t = np.asarray(result.t, dtype=float)
         turns = abs(float(result.theta[-1] - result.theta[0])) / (2 * math.pi)
-        count = len(t) if frames is None else integer("frames", frames, 1)
+        count = len(t) if frames is None else bounded("frames", frames)
         if frames is None:
             count = min(len(t), MAX_FRAMES, max(2, int(math.ceil(turns * FRAMES_PER_REVOLUTION)) + 1))
         self.steps = np.unique(np.round(np.linspace(0, len(t) - 1, min(count, len(t)))).astype(int))
@@ -184,6 +186,22 @@ class Frames:
         return list(art.values())
 
 
+def check_animatable(result):
+    """ParameterError unless result stores the states of two steps or more (its motion): a result
+    simulated with history=False keeps none."""
+    states = getattr(result, "states", None)
+    if getattr(result, "case", None) is None or not hasattr(result, "t"):
+        raise ParameterError(f"animate needs a result of crankgen (a simulation, a steady state), got "
+                             f"{type(result).__name__}")
+    if states is None:
+        why = (" (this run was simulated with history=False, which keeps no states: simulate with "
+               "history=True)" if getattr(result, "settings", {}).get("history") is False else "")
+        raise ParameterError("animate needs a result that stores its states (simulate with history, a steady "
+                             f"state with an orbit){why}")
+    if len(np.asarray(result.t)) < 2:
+        raise ParameterError("animate needs a result of two steps or more")
+
+
 def animate(result, path, magnification=None, frames=None, fps=20, title=None, scales=None, progress=None):
     """Write the motion of a result that stores its states (module docstring) to path: a .gif
     (Pillow), or an .mp4 where ffmpeg is installed.  magnification: of the elastic displacements
@@ -193,30 +211,27 @@ def animate(result, path, magnification=None, frames=None, fps=20, title=None, s
     second; scales: crankgen's units in SI (crankgen.declaration.units.Scales) to draw in metres and seconds
     (default: the result's own, for a run made in SI); progress(done, total) after each frame.
     Returns the path."""
-    from pathlib import Path
-
     from matplotlib import animation as mpl_animation
 
-    path = Path(path)
+    from ..results.io import atomic_path, output_path
+
+    check_animatable(result)
+    path = output_path(path, (".gif", ".mp4"))                # named before any work
     fmt = path.suffix.lower()
-    if fmt not in (".gif", ".mp4"):
-        raise ParameterError(f"an animation is written as .gif or .mp4, got {path.name!r}")
     if fmt == ".mp4" and not mpl_animation.writers.is_available("ffmpeg"):
         raise ParameterError("writing .mp4 needs ffmpeg, which is not installed here; write a .gif")
     fps = in_range("fps", fps, 0, 100, True)
+    if progress is not None and not callable(progress):
+        raise ParameterError(f"progress must be None or a function, got {progress!r}")
     movie = Frames(result, magnification, frames, title, scales)
     fig, _ = movie.figure()
     writer = (mpl_animation.PillowWriter(fps=fps) if fmt == ".gif"
               else mpl_animation.FFMpegWriter(fps=fps))
-    tmp = path.with_name(f".{path.name}.tmp{fmt}")
-    try:
+    with atomic_path(path) as tmp:
         with writer.saving(fig, str(tmp), dpi=fig.dpi):
             for k in range(len(movie)):
                 movie.draw(k)
                 writer.grab_frame()
                 if progress is not None:
                     progress(k + 1, len(movie))
-        tmp.replace(path)
-    finally:
-        tmp.unlink(missing_ok=True)
     return path

@@ -90,7 +90,8 @@ def plot_deflection(result, path, failure=None, si=None, against="t", strain=Non
     si: the result's SI view (crankgen.results.outputs.SIView): v in mm against t in s (or rad/s).
     strain: theory.axial_strain(result, per_step=True) when the caller has it already."""
     from ..analyses import theory
-    from ..results.io import save_figure
+    from ..results.io import output_path, save_figure
+    path = output_path(path)
     if against not in ("t", "crank_speed"):
         raise ValueError(f"against must be 't' or 'crank_speed', got {against!r}")
     fig, ax = subplots(figsize=(7, 3.8), constrained_layout=True)
@@ -133,7 +134,8 @@ def plot_deflection(result, path, failure=None, si=None, against="t", strain=Non
 
 def plot_runup(result, path, ramp_end, failure=None, si=None, strain=None):
     """runup_figure written atomically to path (returned)."""
-    from ..results.io import save_figure
+    from ..results.io import output_path, save_figure
+    path = output_path(path)
     return save_figure(runup_figure(result, ramp_end, failure, si, strain), path)
 
 
@@ -198,7 +200,8 @@ def runup_figure(result, ramp_end, failure=None, si=None, strain=None):
 
 def plot_orbit(state, path, strain=None, si=None):
     """orbit_figure written atomically to path (returned)."""
-    from ..results.io import save_figure
+    from ..results.io import output_path, save_figure
+    path = output_path(path)
     return save_figure(orbit_figure(state, strain, si), path)
 
 

@@ -59,5 +59,6 @@ def modes_figure(m):
 
 def plot_modes(m, path):
     """modes_figure written atomically to path (returned)."""
-    from ..results.io import save_figure
+    from ..results.io import output_path, save_figure
+    path = output_path(path)
     return save_figure(modes_figure(m), path, dpi=110)

@@ -236,5 +236,6 @@ def _title(row, swept, n_groups, shown, si=None):
 
 def plot_sweep(table, path, x=None, si=None):
     """Write the sweep figure (sweep_figure) to path atomically; returns path."""
-    from ..results.io import save_figure
+    from ..results.io import output_path, save_figure
+    path = output_path(path)
     return save_figure(sweep_figure(table, x, si), path, dpi=DPI)

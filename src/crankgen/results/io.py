@@ -8,6 +8,14 @@ FIFO or a socket is refused (`check_target`), and so is a symbolic link pointing
 folder it is in; a link to a regular file inside it is written through (the target is replaced).
 An error while writing names the file the caller asked for, never the temporary file.
 
+One check of an output path for every writer (`output_path`: CSV, JSON, PNG, GIF, MP4, from the
+API and the command line alike), made before any work: the path is a file name (not None, not
+empty, not a folder, a device, a FIFO, a socket or a link out of its folder), its folder exists or
+can be created and is writable; temporary files an earlier, killed writer left beside it are
+removed (`remove_stale_temporaries`: those of a process that no longer runs).  A writer that
+writes by file name (Pillow, ffmpeg) writes a temporary path of its own (`atomic_path`), moved into
+place the same way.
+
 Also: the checks every command makes on its output folder before computing anything
 (`prepare_folder`), so that a bad --out is reported at once, as one line, and leaves nothing behind.
 """
@@ -24,9 +32,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import CrankgenError
+from ..errors import CrankgenError, ParameterError
 
-__all__ = ["OutputExistsError", "OutputPathError", "atomic_write", "atomic_write_text", "csv_text",
+__all__ = ["OutputExistsError", "OutputPathError", "output_path", "output_folder", "atomic_path", "atomic_write", "atomic_write_text", "csv_text",
            "write_csv", "save_figure", "existing_outputs", "prepare_folder", "remove_if_empty",
            "remove_stale_temporaries", "fsync_dir", "check_target", "kind_of", "open_regular", "read_regular"]
 
@@ -35,9 +43,10 @@ class OutputExistsError(CrankgenError):
     """The output folder already holds files that the run would overwrite (and no --force)."""
 
 
-class OutputPathError(CrankgenError):
-    """The output folder cannot be used: it is a file, lies under a file, or is not writable; or
-    an output name is taken by something that is not a regular file."""
+class OutputPathError(ParameterError):
+    """An output path or folder cannot be used: not a path, a folder where a file goes, under a
+    file, not writable, or a name taken by something that is not a regular file (a ParameterError:
+    the path argument is wrong, named in the message)."""
 
 
 def kind_of(mode):
@@ -166,15 +175,106 @@ def fsync_dir(folder):
         os.close(fd)
 
 
-def _temporary(path):
-    """(fd, name) of a new temporary file beside path, created with mode 0666 less the umask."""
+def _temporary(path, suffix=""):
+    """(fd, name) of a new temporary file beside path, `.NAME.PID.XXXXXXXX.tmp[SUFFIX]`, created
+    with mode 0666 less the umask (suffix: for a writer that picks its format by the name's ending)."""
     for _ in range(100):
-        tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
+        tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp{suffix}")
         try:
             return os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666), tmp
         except FileExistsError:
             continue
     raise FileExistsError(f"could not create a temporary file beside {path}")
+
+
+def output_path(path, suffixes=None, name="path"):
+    """The Path of a file a writer is asked to write, checked before any work (module docstring):
+    a str or os.PathLike naming a file, with one of `suffixes` (".gif", ...) when given; absent or
+    a regular file (check_target); its folder a folder or creatable (nothing but folders on the
+    way), writable.  Stale temporary files of its name are removed.  OutputPathError (a crankgen
+    error, one line) names the path and what is wrong."""
+    if isinstance(path, bytes):
+        path = os.fsdecode(path)
+    if not isinstance(path, (str, os.PathLike)):
+        raise OutputPathError(f"{name} must be a file path (a str or a pathlib.Path), got {path!r}"[:200])
+    text = os.fspath(path)
+    if isinstance(text, bytes):
+        text = os.fsdecode(text)
+    if not text.strip() or text.endswith(os.sep):
+        raise OutputPathError(f"{name} must name a file, got {text!r}")
+    path = Path(text)
+    try:
+        check_target(path)
+    except NotRegularFileError as exc:
+        raise OutputPathError(str(exc)) from None
+    if suffixes and path.suffix.lower() not in suffixes:
+        raise OutputPathError(f"{path}: this output is written as {' or '.join(suffixes)}; give a path ending "
+                              "so")
+    folder = path.parent
+    probe = folder
+    try:
+        while not os.path.isdir(probe):
+            if os.path.lexists(probe):
+                st = os.stat(probe) if os.path.exists(probe) else os.lstat(probe)
+                raise OutputPathError(f"{path}: cannot create its folder: {probe} is {kind_of(st.st_mode)}, "
+                                      "not a folder")
+            if probe.parent == probe:
+                break
+            probe = probe.parent
+        if probe == folder:
+            fd, tmp = _temporary(folder / path.name)          # writable? (root ignores mode bits)
+            os.close(fd)
+            os.unlink(tmp)
+            remove_stale_temporaries(folder, [path.name])
+        elif not os.access(probe, os.W_OK | os.X_OK):
+            raise OutputPathError(f"{path}: cannot create its folder {folder}: {probe} is not writable")
+    except OSError as exc:
+        raise OutputPathError(f"{path}: cannot write there: {exc.strerror or exc}") from None
+    return path
+
+
+def output_folder(folder, names, name="folder"):
+    """[Path] of the files `names` a writer puts in `folder`, each checked by output_path before the
+    first is written (a folder argument that is None, empty or a file refused the same way)."""
+    if isinstance(folder, bytes):
+        folder = os.fsdecode(folder)
+    if not isinstance(folder, (str, os.PathLike)) or not os.fspath(folder).strip():
+        raise OutputPathError(f"{name} must be a folder path (a str or a pathlib.Path), got {folder!r}"[:200])
+    folder = Path(os.fspath(folder))
+    if os.path.lexists(folder) and not folder.is_dir():
+        st = os.stat(folder) if os.path.exists(folder) else os.lstat(folder)
+        raise OutputPathError(f"{folder} is {kind_of(st.st_mode)}, not a folder")
+    return [output_path(folder / n) for n in names]
+
+
+@contextlib.contextmanager
+def atomic_path(path):
+    """`with atomic_path(path) as tmp:` -- write the file named tmp (beside path, ending like path:
+    for a writer that picks its format by the name, Pillow's or ffmpeg's), and path appears
+    complete or not at all: tmp is moved into place when the block ends, removed when it raises
+    (KeyboardInterrupt included).  path is checked first (output_path)."""
+    path = output_path(path)
+    target = check_target(path)
+    _ensure_folder(target.parent, path)
+    try:
+        fd, tmp = _temporary(target, target.suffix)
+        os.close(fd)
+    except OSError as exc:
+        raise _named(exc, path, f"cannot create a file in {target.parent}") from None
+    try:
+        yield tmp
+        with open(tmp, "rb+") as fh:
+            os.fsync(fh.fileno())
+        os.replace(tmp, target)
+    except BaseException as exc:
+        try:
+            os.unlink(tmp)
+        except FileNotFoundError:
+            pass
+        if isinstance(exc, OSError):
+            raise _named(exc, path) from None
+        raise
+    fsync_dir(target.parent)
 
 
 def atomic_write(path, write, mode="w", overwrite=True):
@@ -194,7 +294,7 @@ def atomic_file(path, mode="w"):
     """`with atomic_file(path) as fh:` -- write fh, and path appears complete (atomic_write) or not
     at all; text mode uses newline="" (CSV).  Refuses a path that is not a regular file (see
     check_target); an OSError while writing names path, not the temporary file."""
-    path = Path(path)
+    path = output_path(path)
     target = check_target(path)
     _ensure_folder(target.parent, path)
     try:
@@ -338,14 +438,15 @@ def _prepare(folder, names, force, subfolders):
 
 def remove_stale_temporaries(folder, names):
     """Remove temporary files that an earlier, killed run left beside the outputs `names`
-    (`.NAME.PID.XXXXXXXX.tmp` whose process no longer exists); return how many were removed."""
+    (`.NAME.PID.XXXXXXXX.tmp`, or `.tmp.EXT` from atomic_path, whose process no longer exists);
+    return how many were removed."""
     removed = 0
     for name in names:
         where = (Path(folder) / name).parent
         name = Path(name).name
-        for tmp in where.glob(f".{name}.*.tmp"):
+        for tmp in where.glob(f".{glob_escape(name)}.*.tmp*"):
             parts = tmp.name[len(name) + 2:].split(".")
-            if len(parts) != 3 or not parts[0].isdigit():
+            if len(parts) not in (3, 4) or not parts[0].isdigit() or parts[2] != "tmp" or len(parts[1]) != 8:
                 continue
             pid = int(parts[0])
             if pid != os.getpid():
@@ -356,6 +457,8 @@ def remove_stale_temporaries(folder, names):
                     pass
                 except OSError:
                     continue
+            else:
+                continue                            # this process's own: being written now
             try:
                 if tmp.is_file() and not tmp.is_symlink():
                     tmp.unlink()
@@ -363,6 +466,12 @@ def remove_stale_temporaries(folder, names):
             except OSError:
                 pass
     return removed
+
+
+def glob_escape(name):
+    """name with glob's special characters taken literally."""
+    import glob
+    return glob.escape(name)
 
 
 def remove_if_empty(folders):

@@ -353,6 +353,8 @@ class DeclaredOutputs:
         deflection_over_L, axial_strain, beyond_theory) as CSV in full precision, atomically;
         a number that does not exist is an empty field."""
         from .exports import write
+        from .io import output_path
+        path = output_path(path)                   # named before the table is computed
         return write(path, *self.table(x, fiber))
 
     @property
@@ -465,6 +467,8 @@ class SIView:
         """Write the table in SI (t_s, theta_rad, v_mid_m, ..., torque_N_m, crank_on_rod_x_N, ...) as
         CSV in full precision, atomically."""
         from .exports import write
+        from .io import output_path
+        path = output_path(path)                   # named before the table is computed
         return write(path, *self.table(x, fiber))
 
     def __dir__(self):

@@ -13,7 +13,8 @@ from ...notices import BeyondTheoryWarning
 from ...declaration.cases import run_case
 from ...errors import NoResultError, ParameterError
 from ...declaration.parameters import check_full_turn
-from ...declaration.validation import choice, in_range, integer
+from ..limits import count
+from ...declaration.validation import choice, in_range, sequence
 from .core import CORRECTORS, PREDICTORS, Continuer, Settings
 from .mechanism import PARAMETERS, MechanismMap, mechanism_map
 
@@ -58,6 +59,64 @@ def locking_limit(case, parameter, start, stop, samples=400):
     why = fails(hi)
     needs = why.split("needs ", 1)[-1].split("; got", 1)[0]
     return hi, f"the {case.guide_record.name} guide needs {needs}"
+
+
+def _motor_shortfall(case, speed):
+    """T_load - T_m(speed) (...,): the sum of the declared co-ordinates' equations (the generated
+    coordinates_<motion>, a torque curve's departure from the linear law on the motor's row, as
+    discrete.system.Model.coordinate_equations) with every co-ordinate at rest at its start but
+    turning at `speed`, no acceleration and no force at the pin (no linkage): what couples the
+    co-ordinates (a shaft's torque, untwisted and not twisting) cancels in the sum."""
+    from ..._generated import kinematics as generated
+    from ...declaration import torque_curve
+    from ...discrete import kinematics
+    coords = case.motion_record.coordinates
+    m = len(coords)
+    speed = np.asarray(speed, dtype=float)
+    z0, _ = kinematics.coordinates_start(case)
+    z = np.concatenate([np.broadcast_to(z0, speed.shape + (m,)), np.repeat(speed[..., None], m, axis=-1),
+                        np.zeros(speed.shape + (m,))], axis=-1)
+    theta0 = z0[next(j for j, c in enumerate(coords) if c.crank)]
+    kin = kinematics.crank_state(case, np.stack([np.full_like(speed, theta0), speed, np.zeros_like(speed)], axis=-1))
+    g = np.array(getattr(generated, f"coordinates_{case.motion_record.name}")(
+        kin.vector, z, np.zeros(speed.shape + (2,)), case.kinematic_parameters), dtype=float)[..., 0]
+    law = torque_curve.of(case)
+    motor = next((j for j, c in enumerate(coords) if c.motor), None)
+    if motor is not None and law is not None and tuple(law[0]) != torque_curve.LINEAR:
+        curve, stall, no_load, _ = law
+        g[..., motor] -= stall * torque_curve.departure(curve, speed / no_load)[0]
+    return g.sum(axis=-1)
+
+
+def stall_limit(case, parameter, start, stop, samples=400):
+    """(value, why) of the first value of `parameter` from start towards stop at which a motor
+    cannot turn the crank: its drive T_m(speed) - T_load (the declared co-ordinates' equations at
+    rest on no linkage: _motor_shortfall) is nowhere positive for speeds in [0, 1.2 Omega_nl]; to
+    1e-12 of the range by bisection; None when there is none or the crank is prescribed.  A motor
+    continued in its load torque towards its stall torque stops short of it (the linkage's own
+    torque over a revolution takes the rest): this names why."""
+    from dataclasses import replace as _replace
+
+    from ...declaration import torque_curve
+    if not case.motion_record.coordinates or torque_curve.of(case) is None:
+        return None
+    s = np.linspace(torque_curve.SPAN[0], torque_curve.SPAN[1], 241)
+
+    def stalls(p):
+        c = _replace(case, **{parameter: float(p)})
+        return bool(np.all(_motor_shortfall(c, s * torque_curve.of(c)[2]) >= 0))   # speeds up to 1.2 Omega_nl
+    try:
+        values = np.linspace(start, stop, samples + 1)
+        bad = next((k for k, p in enumerate(values) if stalls(p)), None)
+    except (ParameterError, ValueError, ZeroDivisionError, FloatingPointError):
+        return None
+    if bad is None or bad == 0:
+        return None
+    lo, hi = float(values[bad - 1]), float(values[bad])
+    while abs(hi - lo) > 1e-12 * abs(stop - start):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if stalls(mid) else (mid, hi)
+    return hi, "the motor's torque T_m no longer exceeds the load torque at any speed"
 
 
 def _check_progress(progress):
@@ -144,9 +203,9 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
                         ds_max=in_range("ds_max", ds_max, 0, None, True),
                         dp_max=(abs(stop - start) / 50 if dp_max is None
                                 else in_range("dp_max", dp_max, 0, None, True)),
-                        max_points=integer("max_points", max_points, 2),
+                        max_points=count("max_points", max_points),
                         tol=in_range("tol", tol, 0, None, True),
-                        max_period=integer("max_period", max_period, 1),
+                        max_period=count("max_period", max_period),
                         switch_step=in_range("switch_step", switch_step, 0, None, True),
                         corrector=choice("corrector", corrector, CORRECTORS),
                         predictor=choice("predictor", predictor, PREDICTORS)).check()
@@ -171,6 +230,14 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
             if not br.stop_reason.startswith("reached"):
                 br.stop_reason += (f"; {parameter} = {value:.6g} is the locking limit: beyond it the crank "
                                    f"cannot turn a full revolution ({why})")
+    stall = stall_limit(c0, parameter, start, stop) if driven else None
+    if stall is not None:
+        value, why = stall
+        for br in diagram.branches:
+            if not br.stop_reason.startswith("reached"):
+                br.stop_reason += (f"; {parameter} = {value:.6g} is the stall limit: there {why}, so it cannot "
+                                   "turn the crank (the motion stalls before it, where the linkage's own torque "
+                                   "over a revolution takes what is left)")
     for sp in diagram.special_points:
         sp.case = fmap.case_at(sp.parameter)
     if driven and quantities:        # a driven crank's branches: its orbits' quantities, the crank's speeds among them
@@ -219,12 +286,10 @@ def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up
     from .sweeps import sweep_map
 
     _check_progress(progress)
-    if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
-        raise ParameterError(f"values must be a sequence of {parameter} values (a list or an "
-                             f"array), got {type(values).__name__} {values!r}")
-    values = list(values)
+    values = sequence("values", values, f"{parameter} values")
     if not values:
         raise ParameterError("values must hold at least one parameter value")
+    count("values", len(values), f"values ({len(values)} {parameter} values)")
     values = [in_range(f"values ({parameter})", v) for v in values]
     given = mech
     mech, fields, scales, values = si_parameter(mech, parameter, units, fields, case, values)
@@ -232,10 +297,10 @@ def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up
     c0 = make_case(mech, parameter, min(values), case, model=model, **fields)
     for v in values:
         make_case(None, parameter, v, c0)                      # validates every value
-    transient = integer("transient", transient, 0)
-    samples = integer("samples", samples, 2)
+    transient = count("transient", transient)
+    samples = count("samples", samples)
     time_scheme.warn_steps([c0], omega_b=None if scales is None else scales.omega_b)
-    max_period = integer("max_period", max_period, 1)
+    max_period = count("max_period", max_period)
     t0 = time.perf_counter()
     fmap = mechanism_map(c0, parameter)      # from rest (a driven crank: after its run-up)
     x0 = fmap.rest()

@@ -175,9 +175,8 @@ class Curve:
         """curve.csv (one row per point), codim2_points.csv (kind, label, both parameters,
         amplitude, the leading multipliers) and curve_multipliers.csv (every multiplier of every
         point, long format) in folder; returns the paths."""
-        folder = Path(folder)
-        folder.mkdir(parents=True, exist_ok=True)
-        paths = [folder / "curve.csv", folder / "codim2_points.csv", folder / "curve_multipliers.csv"]
+        from ...results.io import output_folder
+        paths = output_folder(folder, ["curve.csv", "codim2_points.csv", "curve_multipliers.csv"])
         write_rows(paths[0], self.rows())
         write_rows(paths[1], self.codim2_rows(), ["kind", "label", "curve_kind", "period", "point",
                                                   *self.names, "amplitude", "multipliers", "description"])

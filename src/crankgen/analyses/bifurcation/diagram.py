@@ -4,7 +4,6 @@ import csv
 import math
 import textwrap
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
@@ -224,10 +223,10 @@ class BifurcationDiagram:
         BifurcationDiagram.read_csv reads them back."""
         from ..theory import beyond
 
-        folder = Path(folder)
-        folder.mkdir(parents=True, exist_ok=True)
+        from ...results.io import output_folder
+        paths = output_folder(folder, ["branches.csv", "special_points.csv", "multipliers.csv", "states.csv"])
+        folder, paths = paths[0].parent, paths[:3]
         name = self.parameter_name
-        paths = [folder / "branches.csv", folder / "special_points.csv", folder / "multipliers.csv"]
         flags = self.eps_at(self.branches[0].parameter[0]) is not None if self.branches else False
         quantities = list(dict.fromkeys(q for br in self.branches for q in br.quantities))
 
@@ -284,6 +283,8 @@ class BifurcationDiagram:
 
         own = ax is None
         if own:
+            from ...results.io import output_path
+            path = output_path(path)
             fig, axes = panels(1, 1, width=7.5, height=4.2)
             ax = axes[0, 0]
         colors = {}

@@ -12,7 +12,8 @@ import numpy as np
 
 from ...declaration import schema
 from ...errors import ParameterError
-from ...declaration.validation import in_range, integer
+from ..limits import count
+from ...declaration.validation import in_range
 from .codim2 import CurveContinuer, CurveSettings
 from .curve import make_curve
 from .defining import KINDS, Defining
@@ -92,7 +93,7 @@ def follow(point, parameter, start, stop, *, bounds=None, ds=0.02, ds_min=1e-5, 
     settings = CurveSettings(ds=in_range("ds", ds, 0, None, True), ds_min=in_range("ds_min", ds_min, 0, None, True),
                              ds_max=in_range("ds_max", ds_max, 0, None, True),
                              dq_max=in_range("dq_max", dq_max, 0, None, True),
-                             max_points=integer("max_points", max_points, 2),
+                             max_points=count("max_points", max_points),
                              tol=in_range("tol", tol, 0, None, True),
                              fd_step=in_range("fd_step", fd_step, 0, None, True)).check()
     from .mechanism_plane import MechanismPlaneMap

@@ -154,6 +154,8 @@ class DiagramSI:
         beyond the theory, |v|/L > 0.1, is shaded where it is); diagram: a continuation drawn over
         a Poincare diagram, sweep: a Poincare diagram drawn over a continuation (computed on the
         same SI mechanism)."""
+        from ...results.io import output_path
+        path = output_path(path)
         mm = 1e3
         d = self.diagram
         unit = {schema.UNIT_PARAMETERS[AMPLITUDE_UNITS]: 1.0 / (mm * self.scales.L)}   # 1 mm in L

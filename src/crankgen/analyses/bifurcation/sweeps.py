@@ -22,7 +22,6 @@ AMPLITUDE_REVOLUTIONS applications when none.
 import csv
 import math
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Optional
 
 import numpy as np
@@ -76,10 +75,9 @@ class PoincareDiagram:
     def to_csv(self, folder):
         """poincare_summary.csv (one row per value and direction) and poincare_samples.csv (every
         sample) in folder; returns the paths."""
-        folder = Path(folder)
-        folder.mkdir(parents=True, exist_ok=True)
+        from ...results.io import output_folder
+        paths = output_folder(folder, ["poincare_summary.csv", "poincare_samples.csv"])
         name = self.parameter_name
-        paths = [folder / "poincare_summary.csv", folder / "poincare_samples.csv"]
         with atomic_file(paths[0]) as fh:
             w = csv.writer(fh)
             w.writerow(["direction", name, "classification", "period", "repeat_residual",
@@ -108,6 +106,8 @@ class PoincareDiagram:
         from ..theory import DEFLECTION_LIMIT
         from .diagram import LABELS, PERIOD_COLORS, TITLE_WIDTH, axis, describe
 
+        from ...results.io import output_path
+        path = output_path(path)
         fig, axes = panels(1, 1, width=7.5, height=4.2)
         ax = axes[0, 0]
         handles = []

@@ -25,7 +25,8 @@ from ..bifurcation import continuation, follow
 from ..bifurcation.api import make_case
 from ..bifurcation.mechanism import PARAMETERS
 from ...errors import CrankgenError, NoResultError, ParameterError
-from ...declaration.validation import in_range, integer
+from ..limits import count as bounded
+from ...declaration.validation import in_range
 from . import regions as _regions
 from .axes import R, X_DEFAULT, Y_DEFAULT
 from .record import ChartLine, Region, StabilityChart
@@ -90,10 +91,10 @@ def stability_chart(mech=None, x=X_DEFAULT, y=Y_DEFAULT, *, model=None, lines=6,
     (xn, x_lo, x_hi), (yn, y_lo, y_hi) = _axis("x", x), _axis("y", y)
     if xn == yn:
         raise ParameterError(f"x and y must be two different parameters, got {xn!r} twice")
-    lines = integer("lines", lines, 1)
+    lines = bounded("lines", lines)
     margin = in_range("margin", margin, 0, None)
-    max_lines = max(integer("max_lines", max_lines, 1), lines)
-    max_period = integer("max_period", max_period, 1)
+    max_lines = max(bounded("max_lines", max_lines), lines)
+    max_period = bounded("max_period", max_period)
     follow_settings = dict(follow_settings or {})
     base = make_case(mech, xn, x_lo, case, model=model, **fields)
     make_case(None, xn, x_hi, base)

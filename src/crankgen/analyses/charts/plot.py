@@ -56,6 +56,8 @@ def chart_title(chart):
 
 def plot_chart(chart, path, title=None):
     """chart_figure written atomically to path (returned)."""
+    from ...results.io import output_path
+    path = output_path(path)
     save_figure(chart_figure(chart, title), path, dpi=130)
     return path
 

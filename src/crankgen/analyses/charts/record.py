@@ -110,11 +110,10 @@ class StabilityChart:
         deflection), codim2_points.csv, regions.csv, lines.csv (the special points the lines found)
         and curve_multipliers.csv (every multiplier of every curve point) in folder; returns the
         paths."""
-        folder = Path(folder)
-        folder.mkdir(parents=True, exist_ok=True)
+        from ...results.io import output_folder
         xn, yn = self.x[0], self.y[0]
-        paths = [folder / n for n in ("curves.csv", "codim2_points.csv", "regions.csv", "lines.csv",
-                                      "curve_multipliers.csv")]
+        paths = output_folder(folder, ["curves.csv", "codim2_points.csv", "regions.csv", "lines.csv",
+                                       "curve_multipliers.csv"])
         rows = [r for k, c in enumerate(self.curves) for r in c.rows(curve=k)]
         write_rows(paths[0], rows, None if rows else ["curve", "kind", "period", "point", xn, yn, "amplitude"])
         pts = []
