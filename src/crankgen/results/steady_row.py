@@ -56,7 +56,7 @@ RESULTS = (
                         "time shared equally by its cases)"),
     ("message", None, "why a case is not periodic, failed or is marked; empty otherwise"),
 )
-# a motor-driven crank's steady motion (crankgen.analyses.motor_steady) adds, before `periods`:
+# a motor-driven crank's steady motion (crankgen.analyses.steady, on the section map) adds, before `periods`:
 _DUTY = duty_units()                   # what sizes its motor (results/motor_duty.py)
 MOTOR_RESULTS = (
     ("revolution_time", "1/omega_b", "a motor-driven crank's steady revolution time T (its period)"),

@@ -22,7 +22,7 @@ in the branch's quantity_notes.
 
 A motor-driven crank's point (motor_branch_quantities) is its section state on theta = theta0
 (mod 2 pi); its orbit is the autonomous motion from there over its `period` revolutions, marched
-by the continuation's own section map (bifurcation/motor_map.py, motor_steady.SectionMap: each
+by the continuation's own section map (analyses/section.py CrankSection: each
 revolution's last step lands on the section), the crank's angle, speed and acceleration per step
 from that run (the declared outputs read the kinematics of them, as a motor simulation's do).
 Beside the quantities above (peak_torque: the torque T_rod the rod demands of the crank), it
