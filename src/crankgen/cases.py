@@ -18,6 +18,7 @@ from . import ingredients, schema
 from ._generated import classes as _classes
 from .errors import ParameterError
 from .parameters import Mechanism, check_full_turn, kinematic_parameters, settle
+from .plausibility import check_speeds
 
 PARAMETER_FIELDS = tuple(schema.PARAMETERS)
 OPTION_FIELDS = tuple(schema.OPTIONS)
@@ -35,6 +36,7 @@ class CaseRules:
     def __post_init__(self):
         given = {n for n in PARAMETER_FIELDS if getattr(self, n) is not None}
         settle(self, PARAMETER_FIELDS)
+        check_speeds(self.parameters())
         check_full_turn(self.parameters())
         options = schema.resolve_options(self.model, **{n: getattr(self, n) for n in OPTION_FIELDS})
         for name, value in options.items():

@@ -131,11 +131,17 @@ class StressHistory:
             value = f"{p.value / 1e6:.4g} MPa" if si else f"{p.value:.4g} E"
             where = f"x = {p.x:.4g} m" if si else f"x* = {p.x:.4g}"
             when = f"t = {p.t:.4g} s" if si else f"t* = {p.t:.4g}"
-            return f"{value} at {where}, {p.fibre} fibre, {when}, crank angle {math.degrees(p.theta) % 360:.1f} deg"
+            return f"{value} at {where}, {p.fibre} fibre, {when}, crank angle {crank_degrees(p.theta):.1f} deg"
         r = self.range
         span = ("" if r is None else
                 f"; largest range per revolution {r / 1e6:.4g} MPa" if si else f"; largest range per revolution {r:.4g} E")
         return f"stress: max {show(self.maximum)}; min {show(self.minimum)}{span}"
+
+
+def crank_degrees(theta):
+    """A crank angle (rad, unwrapped) in degrees within [0, 360), rounded to 1e-9 degree first (so
+    that a full turn reads 0, not 360)."""
+    return round(math.degrees(theta), 9) % 360.0
 
 
 def _whole(turns):
@@ -169,19 +175,21 @@ def check_section(section, si=None, scales=None):
     return scales
 
 
-def stress(result, section, si=None, x=None):
+def stress(result, section, si=None, x=None, scales=None):
     """The outer-fibre stresses of a result that stores its states (a SimulationResult, a
     SteadyState), for the rod's crankgen.sections.Section (module docstring).  si: the
     crankgen.SIMechanism of a run made in crankgen's units from its .mechanism and .omega
     (stresses in Pa); a run made in SI needs none.  x: the positions (x* in [0, 1], or m in SI;
-    default the nodes and the element midpoints).  Returns a StressHistory."""
+    default the nodes and the element midpoints).  scales: the crankgen.units.Scales to give them in
+    SI by (a result's SI view's), in place of si.  Returns a StressHistory."""
     if not isinstance(section, Section):
         raise ParameterError(f"section must be a crankgen.sections.Section (rectangle, circle, tube or "
                              f"Section(A=, I=, c_top=, c_bottom=)), got {type(section).__name__}")
     if getattr(result, "states", None) is None:
         raise ParameterError("stresses need a result that stores its states (simulate with history, "
                              "steady_state with an orbit)")
-    scales = _scales(result, section, si)
+    scales = check_section(section, None, scales) if scales is not None and si is None else \
+        _scales(result, section, si)
     n = result.case.n_elements
     length = 1.0 if scales is None else scales.L
     xs = (np.arange(2 * n + 1) / (2 * n) if x is None
@@ -204,7 +212,8 @@ def stress(result, section, si=None, x=None):
 @dataclass(frozen=True)
 class PeakLoad:
     """The largest magnitude of a load over a result: value (its magnitude; for the torque signed),
-    units, and when (t, theta, step)."""
+    units, when (t, theta, step) and, for a force, its direction then (degrees from the inertial X
+    axis, counter-clockwise; None for the torque)."""
 
     name: str
     value: float
@@ -212,6 +221,7 @@ class PeakLoad:
     t: float
     theta: float
     step: int
+    direction: Optional[float] = None
 
 
 def peak_loads(result, scales: Optional[Scales] = None):
@@ -236,7 +246,8 @@ def peak_loads(result, scales: Optional[Scales] = None):
         magnitude = np.sqrt(sum(v ** 2 for v in values))
         k = int(np.argmax(magnitude))
         value = float(values[0][k]) if len(parts) == 1 else float(magnitude[k])
+        direction = None if len(parts) == 1 else math.degrees(math.atan2(values[1][k], values[0][k]))
         declared = schema.OUTPUTS[parts[0]].units
         units = declared if scales is None else scales.si_name(declared)
-        out.append(PeakLoad(name, value, units, float(t[k]), float(result.theta[k]), k))
+        out.append(PeakLoad(name, value, units, float(t[k]), float(result.theta[k]), k, direction))
     return out

@@ -5,6 +5,7 @@ import math
 import sys
 
 from .. import schema
+from . import si_file
 from .options import (UsageError, _Outputs, _add_mechanism_options, _add_model_options,
                       _add_output_options, _explicit, _int_list, _say)
 
@@ -31,6 +32,7 @@ def add_commands(sub):
     p.add_argument("--si", metavar="FILE", default=None,
                    help="the mechanism in SI from a JSON file (as `crankgen simulate --si`); its "
                         "crank_speed is the frozen speed; frequencies in rad/s and Hz")
+    si_file.add_rpm_option(p)
     _add_output_options(p, "modes", ", ".join(MODES_NAMES))
     p.set_defaults(func=_cmd_modes)
 
@@ -61,6 +63,7 @@ def add_commands(sub):
     p.add_argument("--si", metavar="FILE", default=None,
                    help="the mechanism in SI from a JSON file (as `crankgen simulate --si`; its "
                         "crank_speed is not used); speeds in rad/s, frequencies in Hz")
+    si_file.add_rpm_option(p, single=False)
     _add_output_options(p, "campbell", ", ".join(CAMPBELL_NAMES))
     p.set_defaults(func=_cmd_campbell)
 
@@ -72,11 +75,11 @@ def _mechanism(args):
     from ..parameters import Mechanism
     from . import si_file
 
-    if args.si is None:
+    si = si_file.mechanism(args)
+    if si is None:
         given = _explicit(args)
         mech = Mechanism(**{n: given.pop(n) for n in schema.MECHANISM_PARAMETERS if n in given})
         return mech, given, "crankgen"
-    si = si_file.read(args.si)
     return si, si_file.run_fields(args, si), "si"
 
 
@@ -135,9 +138,12 @@ def _cmd_campbell(args):
     if args.speeds > 10000 or args.angles > 3600:
         raise UsageError("--speeds must be at most 10000 and --angles at most 3600")
     mech, fields, units = _mechanism(args)
+    if args.rpm and units != "si":
+        raise UsageError("--rpm (--from and --to in rpm) needs the rod in SI: --si FILE")
     unit = 1.0 if units == "crankgen" else mech.omega_b
-    start = 0.0 if args.start is None else in_range("--from", args.start, 0.0)
-    stop = 1.6 * unit if args.stop is None else in_range("--to", args.stop, 0.0)
+    per = (2 * math.pi / 60) if args.rpm else 1.0            # --from, --to in rpm: into rad/s
+    start = 0.0 if args.start is None else in_range("--from", args.start, 0.0) * per
+    stop = 1.6 * unit if args.stop is None else in_range("--to", args.stop, 0.0) * per
     if stop <= start:
         raise UsageError(f"--to must exceed --from, got --from {start:g} --to {stop:g}")
     from ..vibration import frozen_case
