@@ -106,9 +106,10 @@ def per_step(result, si=None, x=(0.5,), fiber=None, theory=True, along=False, se
             values.append(np.asarray(view.quantity(name, float(xj), **arguments), dtype=float))
     if stored and (along or section is not None):       # the axial force and stresses along the rod
         from .rod_loads import along_rod
-        more = along_rod(result, si, section)
-        columns += more[0]
-        values += more[1]
+        for name, value in zip(*along_rod(result, si, section)):
+            if name not in columns:            # the mid-span field, when x* = 1/2 is a node, once
+                columns.append(name)
+                values.append(value)
     if theory and getattr(result, "case", None) is not None:      # the range needs the case's eps
         from . import theory as _theory
         from .units import in_L

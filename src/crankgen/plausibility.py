@@ -106,8 +106,8 @@ def check_rod(L, E, rho, A, I, unchecked=()):
     # the mistakes that change the slenderness: lengths of the section in mm or cm, or L in mm
     fixes = (("A in mm^2 and I in mm^4", 1e-3), ("I in mm^4", 1e-6), ("A in cm^2 and I in cm^4", 1e-2),
              ("L in mm", 1e3), ("L in cm", 1e2))
-    likely = [(abs(math.log10(eps * f / 0.01)), what) for what, f in fixes if low <= eps * f <= high]
-    hint = f": {min(likely)[1]}?" if likely else ""
+    likely = sorted((abs(math.log10(eps * f / 0.01)), what) for what, f in fixes if low <= eps * f <= high)
+    hint = (": " + ", or ".join(what for _, what in likely) + "?") if likely else ""
     raise ParameterError(f"SIMechanism: the rod's slenderness sqrt(I/A)/L = {eps:.3g} (radius of gyration "
                          f"sqrt(I/A) = {r:.4g} m, L = {_text(L)} m) is no rod's ({low:g} to {high:g}){hint} "
                          f"give L in m, A in m^2 and I in m^4 ({_hatch('slenderness')})")

@@ -93,7 +93,9 @@ class RodFields:
 
 assert tuple(f.name for f in fields(RodFields)) == tuple(ROD_UNITS)
 
-RPM = 60.0 / (2.0 * math.pi)          # rpm per rad/s
+def rad_per_s(rpm):
+    """A speed in rpm in rad/s: rpm x 2 pi / 60."""
+    return rpm * 2.0 * math.pi / 60.0
 # every SI speed field (rad/s) also taken in rpm: crank_speed_rpm, omega0_rpm, ...
 RPM_FIELDS = {f"{si}_rpm": si for si, p in FIELDS.items()
               if p.kind == "real" and dimensioned(p) and si_unit(p.name) == "rad/s"}
@@ -160,7 +162,7 @@ class SIRules:
             if getattr(self, si) is not None:
                 raise ParameterError(f"SIMechanism: {si} ({getattr(self, si)!r} rad/s) and {rpm} ({value:g} rpm) "
                                      f"are the same speed: give one")
-            object.__setattr__(self, si, value / RPM)
+            object.__setattr__(self, si, rad_per_s(value))
             object.__setattr__(self, rpm, None)
 
     def _check_plausible(self):

@@ -141,9 +141,10 @@ def _cmd_campbell(args):
     if args.rpm and units != "si":
         raise UsageError("--rpm (--from and --to in rpm) needs the rod in SI: --si FILE")
     unit = 1.0 if units == "crankgen" else mech.omega_b
-    per = (2 * math.pi / 60) if args.rpm else 1.0            # --from, --to in rpm: into rad/s
-    start = 0.0 if args.start is None else in_range("--from", args.start, 0.0) * per
-    stop = 1.6 * unit if args.stop is None else in_range("--to", args.stop, 0.0) * per
+    from ..si import rad_per_s
+    per = rad_per_s if args.rpm else float                   # --from, --to in rpm: into rad/s
+    start = 0.0 if args.start is None else per(in_range("--from", args.start, 0.0))
+    stop = 1.6 * unit if args.stop is None else per(in_range("--to", args.stop, 0.0))
     if stop <= start:
         raise UsageError(f"--to must exceed --from, got --from {start:g} --to {stop:g}")
     from ..vibration import frozen_case

@@ -131,9 +131,9 @@ def _si_range(args, values=None):
     if getattr(args, "rpm", False):                 # --from, --to in rpm: into rad/s
         if args.parameter != schema.CRANK_SPEED:
             raise UsageError(f"--rpm says --from and --to are crank speeds in rpm; --parameter is {args.parameter}")
-        from ..si import RPM
-        start, stop = start / RPM, stop / RPM
-        values = None if values is None else [v / RPM for v in values]
+        from ..si import rad_per_s
+        start, stop = rad_per_s(start), rad_per_s(stop)
+        values = None if values is None else [rad_per_s(v) for v in values]
     args.si_range = (start, stop)
     args.start, args.stop = (to_crankgen(args.parameter, v, si.scales) for v in (start, stop))
     args.si_mechanism = si
