@@ -222,6 +222,9 @@ class Verdict:
 
     def __str__(self):
         if not self.words:
+            if self.limits.known:               # a motor-driven crank: the limits, no estimate
+                return ("no estimate of the difference from the exact rod for a motor-driven crank; "
+                        + str(self.limits).replace("range of the theory", "the exact rod's limits"))
             return "model verdict unknown (no stored states)"
         est = ("" if self.error is None or self.exact else
                f"this model's response is an estimated {self.error:.2%} from the exact rod's")
