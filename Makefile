@@ -4,11 +4,14 @@ PYTHON ?= $(if $(wildcard .venv/bin/python),.venv/bin/python,python3)
 
 .PHONY: derive check-generated test bench audit validate
 
+# derive/ reads crankgen's records (src/crankgen), never generated/: no install is needed
+DERIVE = PYTHONPATH=src$${PYTHONPATH:+:$$PYTHONPATH} $(PYTHON) -m derive
+
 derive:            ## regenerate generated/ from the SymPy derivation in derive/
-	$(PYTHON) -m derive
+	$(DERIVE)
 
 check-generated:   ## fail if generated/ differs from what derive/ produces (changed, new or missing files)
-	$(PYTHON) -m derive --check
+	$(DERIVE) --check
 
 test:              ## the test suite (the README's test command without the install)
 	$(PYTHON) -m pytest -q

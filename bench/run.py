@@ -38,8 +38,8 @@ sys.path.insert(0, str(ROOT / "tests"))     # reference.py: the independent Gaus
 
 import crankgen  # noqa: E402
 from crankgen import engine  # noqa: E402
-from crankgen.cases import Case  # noqa: E402
-from crankgen.steady import steady_state, steady_states  # noqa: E402
+from crankgen.declaration.cases import Case  # noqa: E402
+from crankgen.analyses.steady import steady_state, steady_states  # noqa: E402
 
 
 def best_of(fn, repeats=3):
@@ -85,7 +85,7 @@ def kernel_vs_quadrature(n=16, repeats=200):
     elastic r, K; damping r, K, C) for n elements: generated kernels vs Gauss quadrature."""
     import reference as ref
     from crankgen._generated import elements as E
-    from crankgen.model import Model
+    from crankgen.discrete.system import Model
 
     rng = np.random.default_rng(0)
     mech = crankgen.Mechanism()
@@ -95,7 +95,7 @@ def kernel_vs_quadrature(n=16, repeats=200):
     args = (mech.rhoA, mech.rhoI)
     model = Model.from_case(Case(n_elements=n, damping="kelvin-voigt"))
     # the kinematics vector (schema.KINEMATICS): the six above, then thetadd = beta = betad = betadd = 0
-    kin_v = np.zeros(len(crankgen.schema.KINEMATICS))
+    kin_v = np.zeros(len(crankgen.declaration.schema.KINEMATICS))
     kin_v[:len(kin)] = kin
     geo, coef = model.geometry, model.coefficients
 
@@ -270,7 +270,7 @@ def times_linear(counts=(10**4, 3 * 10**4, 10**5), n=2, steps_per_rev=20):
     """simulate(..., history=False, times=...) at that many consecutive steps: wall seconds and
     microseconds per requested time (linear: about the same per time at every count; issue 32
     measured the former rescan of the stops at 2.7 s for 10^4 and 17.8 s for 3x10^4)."""
-    from crankgen import kinematics
+    from crankgen.discrete import kinematics
     case = Case(omega=0.5, n_elements=n, steps_per_rev=steps_per_rev)
     dt = kinematics.step_period(case) / steps_per_rev
     mech = crankgen.Mechanism()

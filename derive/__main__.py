@@ -10,6 +10,11 @@ import difflib
 import sys
 from pathlib import Path
 
+if __name__ == "__main__":
+    # The generator never reads its own output: with generated/ unimportable, a derivation that
+    # reached for it (through crankgen's package or a record) would fail here, not drift silently.
+    sys.modules.setdefault("crankgen._generated", None)
+
 from .emit import emit_module, spec_hash
 from .kernels import ACCUMULATING, MODULES, SCALAR, element_kernels
 from .schema import emit_classes, emit_schema

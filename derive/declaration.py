@@ -34,8 +34,8 @@ from typing import Callable
 
 import sympy as sp
 
-from crankgen import records
-from crankgen.records import Option, Preset
+from crankgen.declaration import records
+from crankgen.declaration.records import Option, Preset
 
 from . import energies as en
 from . import guides, motions
@@ -48,7 +48,7 @@ from .shape_functions import integrate_element
 
 
 # ----------------------------------------------------------------------------------------------
-# Options and presets (crankgen.records.Option, Preset)
+# Options and presets (crankgen.declaration.records.Option, Preset)
 # ----------------------------------------------------------------------------------------------
 
 OPTIONS = (
@@ -90,7 +90,7 @@ DEFAULT_PRESET = "consistent"
 
 EXACT = "exact"                  # the approach of the geometrically exact rod
 
-# Option values that have no meaning together (crankgen.records.Exclusion): a case choosing them is
+# Option values that have no meaning together (crankgen.declaration.records.Exclusion): a case choosing them is
 # refused with the reason.
 EXCLUSIONS = (
     records.Exclusion({"approach": EXACT, "formulation": "paper"},
@@ -107,7 +107,7 @@ EXCLUSIONS = (
 
 @dataclass(frozen=True)
 class Parameter(records.Parameter):
-    """A parameter of a case (crankgen.records.Parameter: kind, default, range, units, flag, ...)
+    """A parameter of a case (crankgen.declaration.records.Parameter: kind, default, range, units, flag, ...)
     with its symbol in the derivation (a pair: a tuple of two), None for a parameter that enters
     no equation.  owner: declared "mechanism" (a Mechanism field) or "run"; a parameter that a
     guide or motion reads (Guide.parameters, Motion.parameters) is owned by those
@@ -310,7 +310,7 @@ class Energy:
 
 @dataclass(frozen=True)
 class Variant(records.Variant):
-    """A variant of a term family (crankgen.records.Variant: name, option values `when`, doc,
+    """A variant of a term family (crankgen.declaration.records.Variant: name, option values `when`, doc,
     switchable groups, energy) with `build`, () -> Term, its element residual; `energy` is the
     Energy it derives from (None: none)."""
 
@@ -323,7 +323,7 @@ class Variant(records.Variant):
 
 @dataclass(frozen=True)
 class Family(records.Family):
-    """A term family (crankgen.records.Family: name, part, doc, energy_kind, variants,
+    """A term family (crankgen.declaration.records.Family: name, part, doc, energy_kind, variants,
     vanishes_with): part "rod" acts on every element, "end" on the end node (the end mass)."""
 
 

@@ -38,7 +38,7 @@ from dataclasses import dataclass
 import sympy as sp
 from sympy.simplify.fu import TR10i
 
-from crankgen import records
+from crankgen.declaration import records
 
 from . import symbols as s
 from .euler_lagrange import total_time_derivative
@@ -54,7 +54,7 @@ END_MAP_ROWS = ("q", "qd", "qdd", "g_s", "dqd_ds", "dqdd_ds", "dqdd_dsd", "g_ss"
 
 @dataclass(frozen=True)
 class Guide(records.Guide):
-    """A guide (crankgen.records.Guide: name, title of its runtime record, parameters it reads
+    """A guide (crankgen.declaration.records.Guide: name, title of its runtime record, parameters it reads
     besides a, doc, keyword aliases of its record) with its geometry: the curve C(beta) (a
     parametric curve), the step C(beta + s) - C(beta) written without cancellation for small s
     (None: the plain difference), the rigid position analysis phi(theta), beta(theta) in closed form

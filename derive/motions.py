@@ -45,7 +45,7 @@ from dataclasses import dataclass
 
 import sympy as sp
 
-from crankgen import records
+from crankgen.declaration import records
 
 from . import symbols as s
 
@@ -62,7 +62,7 @@ initial_speed = sp.Symbol("Omega_i", nonnegative=True)
 
 @dataclass(frozen=True)
 class Motion(records.Motion):
-    """A crank motion (crankgen.records.Motion: name, title of its runtime record, the parameters it
+    """A crank motion (crankgen.declaration.records.Motion: name, title of its runtime record, the parameters it
     reads, doc, keyword aliases) with theta(t), thetad (in t and theta), thetadd (in t, theta and
     thetad), the time of one crank revolution (`period`, None: not periodic) and the time that
     steps_per_rev steps divide (`step_period`: the period, or the fastest revolution)."""

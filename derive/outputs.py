@@ -11,7 +11,7 @@ from typing import Callable
 
 import sympy as sp
 
-from crankgen import records
+from crankgen.declaration import records
 
 from . import energies as en
 from . import symbols as s
@@ -28,7 +28,7 @@ TIP_GUIDES = tuple(g.name for g in GUIDES if g.pivot is not None)
 
 @dataclass(frozen=True)
 class Output(records.Output):
-    """A quantity a result can give (crankgen.records.Output: name, kind, doc, units, arguments,
+    """A quantity a result can give (crankgen.declaration.records.Output: name, kind, doc, units, arguments,
     guides, options, engine) with `build(options)`, its expression in the inputs it names.  kind:
     "step" (one value per stored step), "field" (per stored step at any x* in [0, 1]) or
     "reduction" (per stored step, the sum over the rod's elements of the element expression the
@@ -50,7 +50,7 @@ class Output(records.Output):
 @dataclass(frozen=True)
 class Primitive(records.Primitive):
     """A quantity of the nodal state the engine accumulates at every step for its outputs
-    (crankgen.records.Primitive: name, kind, field, at) with its symbol in the outputs' builds and,
+    (crankgen.declaration.records.Primitive: name, kind, field, at) with its symbol in the outputs' builds and,
     for an integral, its integrand (quadratic in the element's nodal vector q)."""
 
     symbol: sp.Symbol = None

@@ -1,6 +1,6 @@
 """Stage 6: the model representation, between the declaration and code generation.
 
-`schema()` gives the declaration as the runtime sees it: records of crankgen.records (the
+`schema()` gives the declaration as the runtime sees it: records of crankgen.declaration.records (the
 SymPy-free classes the runtime imports), with what follows from the declaration filled in (an
 option's effective default, a parameter's owner, readers, flag and slots in the parameter vector,
 a choice parameter's guides or motions, a variant's kernel name, an output's inputs and kernels),
@@ -23,8 +23,8 @@ from functools import lru_cache
 
 import sympy as sp
 
-from crankgen import records
-from crankgen.records import Layout, project
+from crankgen.declaration import records
+from crankgen.declaration.records import Layout, project
 
 from . import declaration as model
 from . import energies as en
@@ -46,7 +46,7 @@ END_COORDINATES = (gd.sp_s, gd.sp_sd, gd.sp_sdd)
 
 @dataclass(frozen=True)
 class Schema:
-    """The records of generated/schema.py (crankgen.records) and its layouts."""
+    """The records of generated/schema.py (crankgen.declaration.records) and its layouts."""
 
     options: tuple
     presets: tuple
@@ -56,7 +56,7 @@ class Schema:
     motions: tuple
     families: tuple
     outputs: tuple
-    primitives: tuple            # what the engine accumulates for its outputs (crankgen.records.Primitive)
+    primitives: tuple            # what the engine accumulates for its outputs (crankgen.declaration.records.Primitive)
     printed_iteration: dict
     switchable_groups: tuple
     parameter_vector: Layout     # every parameter entering an equation, one slot each (a pair: two)
@@ -70,8 +70,8 @@ class Schema:
     unit_parameters: dict        # {unit: the parameter giving its value in L}
     element_dofs: int
     node: Layout                 # the components of a node, in the element's order (eq. 14)
-    constraints: tuple           # the DOF map: the constraints condensed out (crankgen.records.Constraint)
-    exclusions: tuple            # option values refused together (crankgen.records.Exclusion)
+    constraints: tuple           # the DOF map: the constraints condensed out (crankgen.declaration.records.Constraint)
+    exclusions: tuple            # option values refused together (crankgen.declaration.records.Exclusion)
 
 
 def _symbols(p):

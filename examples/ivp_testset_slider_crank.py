@@ -119,7 +119,7 @@ def published_initial_state():
     u_t = uS', and v_t = w' + delta' (x + uS): the actual chord turns at phi2' = -74.9958 rad/s, the
     rigid one at -75 rad/s (phi' = 75 clockwise), and the 0.0042 rad/s between them is a
     transverse velocity growing along the rod.  crankgen projects these fields on its mesh by
-    nodal interpolation (crankgen.initial) and checks the pin and the guide: here the end moves
+    nodal interpolation (crankgen.discrete.initial) and checks the pin and the guide: here the end moves
     along the guide because the published phi2' satisfies (L + q4) phi2' = -L phi', the test set's
     own consistency condition.
     """

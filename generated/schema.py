@@ -8,7 +8,7 @@ runtime's classes of this schema are in classes.py.
 
 import math
 
-from crankgen.records import Constraint, Exclusion, Family, Guide, Layout, Motion, Option, Output, Parameter, Preset, Primitive, Variant
+from crankgen.declaration.records import Constraint, Exclusion, Family, Guide, Layout, Motion, Option, Output, Parameter, Preset, Primitive, Variant
 
 KERNELS_HASH = '38ac2076ed444a2c'
 ELEMENT_KERNELS = ('dissipation_kelvin_voigt_A', 'dissipation_kelvin_voigt_A_averaged', 'dissipation_kelvin_voigt_B', 'dissipation_kelvin_voigt_B_averaged', 'dissipation_kelvin_voigt_C', 'dissipation_kelvin_voigt_exact', 'dissipation_kelvin_voigt_exact_averaged', 'dissipation_paper_A', 'dissipation_paper_B', 'dissipation_paper_C', 'elastic_lagrange_A', 'elastic_lagrange_A_averaged', 'elastic_lagrange_B', 'elastic_lagrange_B_averaged', 'elastic_lagrange_C', 'elastic_lagrange_exact', 'elastic_lagrange_exact_averaged', 'elastic_paper_A', 'elastic_paper_B', 'elastic_paper_C', 'gravity_uniform', 'inertia_lagrange', 'inertia_lagrange_exact', 'inertia_paper', 'rocker_spring_torsional', 'slider_dissipation_paper', 'slider_gravity_uniform', 'slider_inertia_lagrange', 'slider_inertia_paper')

@@ -14,7 +14,7 @@ Gauss-Legendre ..."): the discrete model is defined by that rule.
 import numpy as np
 
 import reference as ref
-from crankgen import schema
+from crankgen.declaration import schema
 
 QUADRATURE = {v.kernel: v.quadrature for f in schema.FAMILIES for v in f.variants if v.quadrature}
 EXACT_POINTS = {int(text.split("-point")[0]) for text in QUADRATURE.values()}

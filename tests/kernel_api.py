@@ -1,8 +1,8 @@
 """The element kernels under their physical argument lists, for the kernel tests.
 
 Generated element kernels share one calling convention, (q, qd, qdd, geo, coef, kin) with
-geo = (l, x0), coef = the coefficient vector (crankgen.ingredients.COEFFICIENTS) and kin = the
-kinematics vector of crankgen.schema.KINEMATICS (a, theta, thetad, phi, phid, phidd, thetadd, ...).  The tests compare them with independent quadrature and finite
+geo = (l, x0), coef = the coefficient vector (crankgen.declaration.ingredients.COEFFICIENTS) and kin = the
+kinematics vector of crankgen.declaration.schema.KINEMATICS (a, theta, thetad, phi, phid, phidd, thetadd, ...).  The tests compare them with independent quadrature and finite
 differences written with physical arguments (l, x0, rhoA, ..., a, theta, ...); these wrappers pack
 those arguments into the convention (and cut slider terms to the last node's (u, v)), nothing else.
 """
@@ -11,7 +11,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from crankgen import ingredients, schema
+from crankgen.declaration import ingredients, schema
 from crankgen._generated import elements as E
 from crankgen._generated import energy as _energy
 

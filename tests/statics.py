@@ -1,7 +1,7 @@
 """Static equilibria of crankgen's discrete model with the crank at rest (test helper).
 
 With omega = 0 the rigid kinematics are constant and the inertia and damping forces vanish at zero
-rates, so an equilibrium is a root of the NumPy reference's residual R(d) (crankgen.model.Model,
+rates, so an equilibrium is a root of the NumPy reference's residual R(d) (crankgen.discrete.system.Model,
 the generated kernels and the guide's end map), found by Newton's method on its tangent
 K = dR/dd.  Gravity's forces do not depend on the state, so a load that scales a gravity field,
 R(d) + lam G, can itself be the unknown of a displacement-controlled Newton: one DOF prescribed,
@@ -10,8 +10,8 @@ the load factor lam found.
 
 import numpy as np
 
-from crankgen.cases import Case
-from crankgen.model import Model
+from crankgen.declaration.cases import Case
+from crankgen.discrete.system import Model
 
 
 def _terms(model, d):

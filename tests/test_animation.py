@@ -1,4 +1,4 @@
-"""Watching the mechanism move (crankgen.animation): the frames' count in the written file, the
+"""Watching the mechanism move (crankgen.plots.animation): the frames' count in the written file, the
 first frame of a run from rest at the rigid mechanism's position (read from the figure's artists),
 the inertial node positions against the declared outputs of the rod's end, a four-bar's rocker,
 a continuation point's orbit, and the command."""
@@ -10,9 +10,9 @@ import pytest
 from PIL import Image
 
 import crankgen
-from crankgen import kinematics
-from crankgen.animation import Frames, inertial_nodes, orbit
-from crankgen.bifurcation.mechanism import orbit_peak
+from crankgen.discrete import kinematics
+from crankgen.plots.animation import Frames, inertial_nodes, orbit
+from crankgen.analyses.bifurcation.mechanism import orbit_peak
 
 TINY = dict(n_elements=2, steps_per_rev=20)
 

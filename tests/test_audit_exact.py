@@ -13,7 +13,7 @@ import crankgen
 from crankgen._derive.audit import exact_strain as X
 from crankgen.audit import exact_weights as W
 from crankgen.audit.term_weights import consistent_case
-from crankgen.mesh import NODE_DOFS, PSI, U, V
+from crankgen.discrete.mesh import NODE_DOFS, PSI, U, V
 
 VALUES = {X.u_x: sp.Rational(37, 100), X.v_x: sp.Rational(-81, 100), X.v_xx: sp.Rational(64, 100),
           X.u_xx: sp.Rational(-29, 100), X.m2: sp.Rational(93, 100), X.var: sp.Rational(41, 100)}
@@ -59,7 +59,7 @@ def test_the_membrane_difference_is_the_leading_dropped_term_at_small_amplitude(
     """The exact element stretch less A's membrane strain, from the two models' declared outputs, is
     (var(v_x^2) - <v_x^2>^2 - 4 <v_x^2> u_x) / 8 (7.1) to relative order delta^2: the element
     means computed here by 8-point Gauss quadrature of the Hermite slopes of the nodal values."""
-    from crankgen.outputs import StateHistory
+    from crankgen.results.outputs import StateHistory
     case, st = orbit
     n, l = case.n_elements, 1.0 / case.n_elements
     for s, tol in ((0.25, 0.05), (0.0625, 0.004)):

@@ -11,9 +11,9 @@ import pytest
 from scipy.optimize import brentq
 
 import crankgen
-from crankgen import schema
-from crankgen.cases import Case
-from crankgen.kinematics import case_state
+from crankgen.declaration import schema
+from crankgen.declaration.cases import Case
+from crankgen.discrete.kinematics import case_state
 
 A, E, H, LAM, OMEGA = 0.15, 0.05, 0.03, 0.3, 0.8
 

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen.bifurcation import MechanismMap, sweep_map
-from crankgen.charts import StabilityChart, stability_chart
+from crankgen.analyses.bifurcation import MechanismMap, sweep_map
+from crankgen.analyses.charts import StabilityChart, stability_chart
 
 SMALL = dict(n_elements=4, steps_per_rev=50)
 X, Y = ("omega", 0.8, 1.4), ("eps", 0.01, 0.04)
@@ -116,8 +116,8 @@ def test_the_chart_files_read_back(chart, tmp_path):
     assert {r["words"] for r in regions} == {g.words for g in chart.regions}
     png = chart.plot(tmp_path / "chart.png")
     assert png.exists()
-    from crankgen.charts.plot import chart_figure
-    from crankgen.plotting import layout_problems
+    from crankgen.analyses.charts.plot import chart_figure
+    from crankgen.plots.figures import layout_problems
     assert layout_problems(chart_figure(chart)) == []
 
 

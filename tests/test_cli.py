@@ -84,7 +84,7 @@ def test_out_that_cannot_be_created_or_written_is_refused(tmp_path, capsys, monk
     assert run(["simulate", "--out", str(tmp_path / ("x" * 300) / "y"), "--quiet"]) == 2
     one_line_error(capsys, "cannot", "File name too long")
     assert list(tmp_path.iterdir()) == []
-    from crankgen import io as cio
+    from crankgen.results import io as cio
 
     def no_write(path):
         raise PermissionError(13, "Permission denied", str(path))
@@ -116,7 +116,7 @@ def test_version(capsys):
 def test_interrupt_leaves_no_empty_folder(tmp_path, capsys, monkeypatch):
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
-    monkeypatch.setattr(crankgen.simulation, "simulate", interrupted)
+    monkeypatch.setattr(crankgen.analyses.simulation, "simulate", interrupted)
     out = tmp_path / "a" / "b"
     assert run(["simulate", "--out", str(out)] + TINY) == 130
     assert not (tmp_path / "a").exists()
@@ -222,7 +222,7 @@ def _without_wall_time(rows):
 
 
 def test_sweep_grid_and_resume_after_an_interruption(tmp_path, capsys, monkeypatch):
-    sweep_module = sys.modules["crankgen.sweeps"]        # (crankgen.sweep is the function)
+    sweep_module = sys.modules["crankgen.analyses.sweeps"]        # (crankgen.sweep is the function)
     whole = tmp_path / "whole"
     assert run(SWEEP + ["--out", str(whole)]) == 0
     rows = read_csv(whole / "sweep.csv")
@@ -288,7 +288,7 @@ def test_case_from_csv_text_still_converts():
 
 # ---- atomic writes ---------------------------------------------------------------------------
 def test_atomic_write_leaves_nothing_on_failure_and_old_file_intact(tmp_path):
-    from crankgen.io import atomic_write, atomic_write_text
+    from crankgen.results.io import atomic_write, atomic_write_text
     path = atomic_write_text(tmp_path / "x.csv", "old\n")
 
     def broken(fh):
@@ -308,7 +308,7 @@ def test_leftover_temporaries_of_a_killed_run_are_removed(tmp_path):
     other = tmp_path / f".notes.txt.{dead}.0badc0de.tmp"
     for p in (stale, alive, other):
         p.write_text("half")
-    from crankgen.io import prepare_folder
+    from crankgen.results.io import prepare_folder
     prepare_folder(tmp_path, ["simulation.csv", "v_mid.png"])
     assert not stale.exists() and alive.exists() and other.exists()
 

@@ -5,7 +5,7 @@ called; unknown options point to the command's own --help."""
 import pytest
 
 import crankgen
-from crankgen import bifurcation
+from crankgen.analyses import bifurcation
 from crankgen.cli import main
 
 CALLS = []
@@ -16,9 +16,9 @@ def no_computing(monkeypatch):
     """Every entry point a command computes with records the call and refuses."""
     import crankgen.audit
     import crankgen.experiments
-    import crankgen.simulation
-    import crankgen.steady
-    import crankgen.sweeps
+    import crankgen.analyses.simulation
+    import crankgen.analyses.steady
+    import crankgen.analyses.sweeps
     CALLS.clear()
 
     def refuse(name):
@@ -26,8 +26,8 @@ def no_computing(monkeypatch):
             CALLS.append(name)
             raise AssertionError(f"{name} was called")
         return f
-    for module, name in ((crankgen.simulation, "simulate"), (crankgen.steady, "steady_states"),
-                         (crankgen.sweeps, "sweep"), (bifurcation, "continuation"),
+    for module, name in ((crankgen.analyses.simulation, "simulate"), (crankgen.analyses.steady, "steady_states"),
+                         (crankgen.analyses.sweeps, "sweep"), (bifurcation, "continuation"),
                          (bifurcation, "poincare"), (crankgen.experiments, "reproduce"),
                          (crankgen.audit, "write_report")):
         monkeypatch.setattr(module, name, refuse(name))
@@ -95,7 +95,7 @@ def test_the_steady_command_refuses_exactly_what_steady_states_refuses(tmp_path,
             api = 0
         except ParameterError:
             api = 2
-        monkeypatch.setattr(crankgen.steady, "steady_states", lambda *a, **k: (_ for _ in ()).throw(
+        monkeypatch.setattr(crankgen.analyses.steady, "steady_states", lambda *a, **k: (_ for _ in ()).throw(
             AssertionError("computing")))
         try:
             rc = main(["steady", "--omega", str(omega), "--steps-per-rev", str(spr), "--elements", "1",

@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from crankgen.bifurcation.curve import Curve
-from crankgen.bifurcation.follow import follow_map
-from crankgen.bifurcation.plane_maps import FunctionPlaneMap
+from crankgen.analyses.bifurcation.curve import Curve
+from crankgen.analyses.bifurcation.follow import follow_map
+from crankgen.analyses.bifurcation.plane_maps import FunctionPlaneMap
 
 
 def cusp_map(c=0.3):

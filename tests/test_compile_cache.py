@@ -7,7 +7,7 @@ import sys
 
 import pytest
 
-from crankgen import compile_cache
+from crankgen.engine import cache as compile_cache
 
 
 def test_the_cache_folder_changes_with_the_kernels_and_the_engine_code(monkeypatch):
@@ -114,7 +114,7 @@ def test_an_unusable_cache_folder_is_reported_as_what_it_is(tmp_path, kind):
         (tmp_path / "file").write_text("x")
         target = tmp_path / "file" / "cache"
         expected = "a file, not a folder"
-    code = ("import crankgen.compile_cache as c; print(c.READ_ONLY); print(c.READ_ONLY_NOTE)")
+    code = ("import crankgen.engine.cache as c; print(c.READ_ONLY); print(c.READ_ONLY_NOTE)")
     out = subprocess.run([sys.executable, "-c", code], env=dict(os.environ, CRANKGEN_CACHE_DIR=str(target)),
                          capture_output=True, text=True, check=True).stdout
     assert out.splitlines()[0] == "True"

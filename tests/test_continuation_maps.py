@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from crankgen.bifurcation import FunctionMap, Settings, continue_map, sweep_map
+from crankgen.analyses.bifurcation import FunctionMap, Settings, continue_map, sweep_map
 
 
 def logistic():
@@ -127,7 +127,7 @@ def test_every_corrector_and_predictor_finds_the_known_points(corrector, predict
 def test_broyden_corrector_evaluates_the_jacobians_less_often():
     """The quasi-Newton corrector iterates on the map's values (Map.value) and evaluates the
     Jacobians about once per point; Newton evaluates them at every iterate."""
-    from crankgen.bifurcation.core import Continuer
+    from crankgen.analyses.bifurcation.core import Continuer
 
     calls = {}
 

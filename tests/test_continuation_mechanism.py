@@ -5,9 +5,9 @@ import pytest
 
 import crankgen
 from crankgen import engine
-from crankgen.bifurcation.mechanism import orbit_peak
-from crankgen.cases import Case
-from crankgen.steady import _scaled_change
+from crankgen.analyses.bifurcation.mechanism import orbit_peak
+from crankgen.declaration.cases import Case
+from crankgen.analyses.steady import _scaled_change
 
 MODEL = dict(formulation="lagrange", damping="kelvin-voigt", membrane="averaged", n_elements=4,
              steps_per_rev=50)
@@ -124,7 +124,7 @@ def test_exact_parameter_derivative_matches_central_differences(parameter, value
     extrapolated central difference of the map itself (marched with Newton to 1e-14)."""
     from dataclasses import replace
 
-    from crankgen.bifurcation import MechanismMap
+    from crankgen.analyses.bifurcation import MechanismMap
 
     case = Case(**{**MODEL, "n_elements": 3, "steps_per_rev": 30}, **{parameter: value})
     fmap = MechanismMap(case, parameter)
@@ -147,8 +147,8 @@ def test_the_parameter_derivative_at_a_bound_of_the_range_stays_inside_it():
     (-3 P(0) + 4 P(h) - P(2h)) / 2h, Richardson-extrapolated, marched with Newton to 1e-14."""
     from dataclasses import replace
 
-    from crankgen.bifurcation import MechanismMap
-    from crankgen.bifurcation.mechanism import difference_pair
+    from crankgen.analyses.bifurcation import MechanismMap
+    from crankgen.analyses.bifurcation.mechanism import difference_pair
 
     assert difference_pair("mu", 0.0, 1e-7) == (0.0, 2e-7)
     assert difference_pair("mu", 0.3, 1e-7) == (0.3 - 1e-7, 0.3 + 1e-7)

@@ -17,9 +17,9 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen import kinematics as _kinematics
-from crankgen import schema
-from crankgen.cases import Case
+from crankgen.discrete import kinematics as _kinematics
+from crankgen.declaration import schema
+from crankgen.declaration.cases import Case
 from crankgen.errors import ParameterError
 
 import four_bar as fb

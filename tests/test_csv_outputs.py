@@ -1,6 +1,6 @@
 """Every CSV crankgen writes parses with pandas.read_csv into numbers, words and empty fields under
 a header; units are in the column names (theta_deg, u0_L, psi0_rad); responses carry the theory
-flags (crankgen.theory).  The reproduce tables are checked in test_reproduce.py."""
+flags (crankgen.analyses.theory).  The reproduce tables are checked in test_reproduce.py."""
 
 import math
 
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen import theory
+from crankgen.analyses import theory
 from crankgen.cli import main
 from helpers import check_csv
 

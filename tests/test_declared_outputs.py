@@ -12,7 +12,7 @@ def test_the_transmission_angle_is_the_angle_between_coupler_and_rocker():
     mech = crankgen.Mechanism(a=0.15, guide=crankgen.Circle(center=(d, e), radius=c))
     r = crankgen.simulate(mech, omega=0.6, n_elements=3, steps_per_rev=40, revolutions=1.5,
                           store_nodes=True)
-    from crankgen.kinematics import case_state
+    from crankgen.discrete.kinematics import case_state
     kin = case_state(r.case, r.t)
     u, v = r.nodes[:, -3], r.nodes[:, -2]                      # the end node's (u, v)
     e_i = np.stack([np.cos(kin.phi), -np.sin(kin.phi)], -1)

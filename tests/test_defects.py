@@ -86,7 +86,7 @@ def test_a_continuation_with_no_periodic_start_is_a_failed_run(tmp_path, capsys,
     """`continue --from 1.6 --to 0.2` computed, then exited 2 (a usage error): it is a run that
     found nothing to start from (exit 1), and the message says a continuation can start from the
     other end."""
-    from crankgen import steady
+    from crankgen.analyses import steady
 
     def not_periodic(cases, **kwargs):
         return [crankgen.SteadyState(c, "not-periodic", None, None, 400, 0, None,
@@ -117,8 +117,8 @@ def test_a_failed_run_does_not_report_completion(tmp_path, capsys):
 def test_a_run_up_is_drawn_against_the_revolutions_too(tmp_path, capsys):
     """Against the crank speed alone, every revolution after the ramp fell on one vertical line;
     and a run shorter than its ramp ended below the final speed without saying so."""
-    from crankgen.kinematics import time_of_revolutions
-    from crankgen.plotting import runup_figure
+    from crankgen.discrete.kinematics import time_of_revolutions
+    from crankgen.plots.figures import runup_figure
 
     res = crankgen.simulate(crankgen.Mechanism(), crank=crankgen.RunUp(start=0.2, stop=0.8, revolutions=1),
                             revolutions=2, n_elements=2, steps_per_rev=20)
@@ -159,12 +159,12 @@ def test_convergence_figure_spans_the_counts_computed_and_used():
 
 
 def test_poincare_figure_shades_the_range_beyond_the_theory(tmp_path):
-    from crankgen.bifurcation.sweeps import PoincareDiagram, PoincarePoint
+    from crankgen.analyses.bifurcation.sweeps import PoincareDiagram, PoincarePoint
     seen = {}
     pc = PoincareDiagram("omega", [PoincarePoint("up", w, "irregular", 0, 0.1, 0.2, 30,
                                                  np.linspace(-40, 40, 30)) for w in (1.4, 1.5)],
                          info=dict(eps=0.01, approach="A"))
-    from crankgen.bifurcation import sweeps
+    from crankgen.analyses.bifurcation import sweeps
     real = sweeps.save_figure
     try:
         sweeps.save_figure = lambda fig, path, **kw: seen.setdefault("fig", fig)
@@ -179,7 +179,7 @@ def test_poincare_figure_shades_the_range_beyond_the_theory(tmp_path):
 
 def test_a_label_away_from_its_point_has_a_leader():
     """'PD 1.322' floated 16 points above its point with no line to it."""
-    from crankgen.plotting import panels, place_labels
+    from crankgen.plots.figures import panels, place_labels
 
     fig, axes = panels(1, 1)
     ax = axes[0, 0]
@@ -221,7 +221,7 @@ def test_the_first_compile_time_is_said_alike_by_the_program_and_the_readme():
 
 
 def test_the_continuation_docstring_names_every_continuable_parameter():
-    from crankgen import schema
+    from crankgen.declaration import schema
     doc = " ".join(crankgen.continuation.__doc__.split())
     for name in schema.CONTINUABLE:
         assert re.search(rf"\b{name}\b", doc), name
@@ -242,7 +242,7 @@ def test_the_ivp_plot_writes_micrometres():
 
 def test_a_periodic_poincare_point_has_no_lyapunov_number_rather_than_nan():
     """The README says no result holds NaN; PoincarePoint.lyapunov was nan where periodic."""
-    from crankgen.bifurcation import FunctionMap, sweep_map
+    from crankgen.analyses.bifurcation import FunctionMap, sweep_map
 
     logistic = FunctionMap(lambda x, r: (r * x * (1 - x), r * (1 - 2 * x), x * (1 - x)), 1, "r")
     pc = sweep_map(logistic, [2.8, 3.2], np.array([0.3]), "up", 200, 16, 8, 1e-8, 0.01, None)

@@ -9,7 +9,8 @@ import numba
 import numpy as np
 import pytest
 
-from crankgen import constraints, mesh, schema
+from crankgen.discrete import constraints, mesh
+from crankgen.declaration import schema
 from crankgen.engine import elements, records
 
 MAPPED = mesh.MAPPED

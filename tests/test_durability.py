@@ -16,10 +16,10 @@ import pytest
 
 import crankgen
 from crankgen import Case, ParameterError, engine, sweep
-from crankgen.provenance import code_version
+from crankgen.results.provenance import code_version
 from helpers import fake_steady_states as _fake_states
 
-sweep_mod = importlib.import_module("crankgen.sweeps")
+sweep_mod = importlib.import_module("crankgen.analyses.sweeps")
 
 SMALL = dict(formulation="paper", n_elements=2, eps=0.1, steps_per_rev=24)
 CASES = [Case(omega=w, approach=ap, **SMALL) for w in (0.3, 0.5, 0.8) for ap in ("A", "C")]

@@ -17,11 +17,11 @@ import pytest
 
 import crankgen
 from crankgen import Case, Circle, Fluctuation, InitialState, Mechanism, ParameterError, RunUp, SIMechanism
-from crankgen import kinematics
+from crankgen.discrete import kinematics
 from crankgen.cli import main
 from helpers import fake_steady_states
 
-sweep_mod = importlib.import_module("crankgen.sweeps")
+sweep_mod = importlib.import_module("crankgen.analyses.sweeps")
 SMALL = dict(n_elements=2, steps_per_rev=20)
 STEEL = dict(L=0.3, a=0.15, E=2e11, rho=7870, A=6.4e-5, I=3.41e-10, slider_mass=0.0756, crank_speed=150.0)
 
@@ -162,7 +162,7 @@ def test_a_last_time_just_past_a_step_is_reached():
 
 def test_states_at_many_times_match_the_run_whatever_the_chunks(monkeypatch):
     """States at every step taken from chunks of a few steps (history=False) are the run's own."""
-    sim = importlib.import_module("crankgen.simulation")
+    sim = importlib.import_module("crankgen.analyses.simulation")
     monkeypatch.setattr(sim, "CHUNK_BYTES", 3 * 8 * 6 * 7)            # 7 steps a chunk
     dt = _dt()
     full = crankgen.simulate(Mechanism(), omega=0.5, **SMALL, revolutions=2)
@@ -275,11 +275,11 @@ def test_a_guide_parameter_given_twice_is_refused():
 
 def test_a_mechanism_parameter_as_a_keyword_builds_the_mechanism_or_is_refused_beside_one():
     """simulate(omega=0.1, eps=0.02) raised a raw TypeError (make_case got eps twice)."""
-    case = crankgen.cases.run_case(omega=0.1, eps=0.02, ms=0.3)
+    case = crankgen.declaration.cases.run_case(omega=0.1, eps=0.02, ms=0.3)
     assert (case.eps, case.ms) == (0.02, 0.3)
     assert case == Case(eps=0.02, ms=0.3, omega=0.1)
     with pytest.raises(ParameterError, match="eps given both in the mechanism and as a keyword"):
-        crankgen.cases.run_case(Mechanism(), omega=0.1, eps=0.02)
+        crankgen.declaration.cases.run_case(Mechanism(), omega=0.1, eps=0.02)
     with pytest.raises(ParameterError, match="eps given both"):
         crankgen.steady_state(Mechanism(), omega=0.1, eps=0.02)
 
@@ -305,7 +305,7 @@ def test_a_fifo_given_as_si_file_is_refused_without_waiting(tmp_path):
 
 def test_the_locking_limit_inside_a_continuation_range_is_found():
     """A four-bar with a = 0.1, c = 0.8 locks for |d| < a + |1 - c| = 0.3 (closed form)."""
-    from crankgen.bifurcation.api import locking_limit
+    from crankgen.analyses.bifurcation.api import locking_limit
     case = Case(a=0.1, guide="circle", c=0.8, d=-1.0)
     value, why = locking_limit(case, "d", -1.0, 1.0)
     assert value == pytest.approx(-0.3, abs=1e-9) and "||D| - a*| > |1 - c|" in why
@@ -314,8 +314,8 @@ def test_the_locking_limit_inside_a_continuation_range_is_found():
 
 def test_crankgen_continue_prints_and_writes_each_branch_stop_reason(tmp_path, capsys, monkeypatch):
     """Main printed "1 branches, 39 points, 0 special points" and nothing about why."""
-    from crankgen.bifurcation.diagram import BifurcationDiagram, Branch
-    import crankgen.bifurcation as bif
+    from crankgen.analyses.bifurcation.diagram import BifurcationDiagram, Branch
+    import crankgen.analyses.bifurcation as bif
 
     reason = "step below ds_min at d = -0.34 (...); d = -0.3 is the locking limit"
 

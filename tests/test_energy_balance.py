@@ -30,8 +30,8 @@ import pytest
 import crankgen
 import energy_balance as eb
 from crankgen import engine
-from crankgen.cases import Case
-from crankgen.model import Model
+from crankgen.declaration.cases import Case
+from crankgen.discrete.system import Model
 
 MECH = dict(a=0.1, eps=0.01, ms=0.5, mu=0.5)
 OMEGA, N_EL, REVS = 0.8, 4, 2

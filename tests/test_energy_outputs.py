@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen import schema
-from crankgen.model import Model
+from crankgen.declaration import schema
+from crankgen.discrete.system import Model
 
 import energy_balance as eb
 

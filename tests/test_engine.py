@@ -8,8 +8,8 @@ import scipy.linalg
 
 import crankgen
 from crankgen import engine
-from crankgen.cases import Case
-from crankgen.steady import steady_state, steady_states
+from crankgen.declaration.cases import Case
+from crankgen.analyses.steady import steady_state, steady_states
 
 # every scheme with generalized-alpha (rho_inf = 0.8), Newton's also with Newmark (rho_inf = 1)
 COMBOS = [(f, ap, dmp, integ, rho) for f in ("lagrange", "paper") for ap in "ABC"
@@ -170,11 +170,11 @@ def test_newton_with_reused_factorization_agrees_with_full_newton():
 def test_newton_control_is_one_code_for_engine_and_reference():
     """The engine compiles the very functions the NumPy reference calls (newton.py), so the
     schemes' constants and decisions cannot drift apart."""
-    from crankgen import newton
+    from crankgen.discrete import newton
     from crankgen.engine import kernels as compiled
     assert compiled.next_iteration.py_func is newton.next_iteration
     assert compiled.extrapolation_weight.py_func is newton.extrapolation_weight
-    from crankgen import newmark
+    from crankgen.discrete import newmark
     assert newmark.SCHEMES is newton.SCHEMES and newmark.HISTORY is newton.HISTORY
 
 
@@ -338,7 +338,7 @@ def test_compiled_lane_function_gives_each_element_the_one_element_numbers_to_th
     differently in the lane functions)."""
     import numba
 
-    from crankgen import schema
+    from crankgen.declaration import schema
     from crankgen.engine.calls import address, call
     from crankgen.engine.kernels import SIGNATURES, compiled
 

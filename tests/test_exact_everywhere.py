@@ -8,7 +8,7 @@ import pytest
 
 import crankgen
 import exact_reference as xr
-from crankgen.model import Model
+from crankgen.discrete.system import Model
 
 MECH = crankgen.Mechanism(a=0.1, eps=0.01, ms=0.5, mu=0.5)
 SMALL = dict(n_elements=4, steps_per_rev=60)

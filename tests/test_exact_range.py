@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen import theory
+from crankgen.analyses import theory
 from crankgen.notices import BeyondTheoryWarning
 
 SMALL = dict(n_elements=4, steps_per_rev=50)

@@ -15,10 +15,10 @@ import pytest
 
 import exact_reference as xr
 import reference as ref
-from crankgen import schema
+from crankgen.declaration import schema
 from crankgen._generated import elements as E
 from crankgen._generated import energy as En
-from crankgen.cases import Case
+from crankgen.declaration.cases import Case
 from crankgen.errors import ParameterError
 from kernel_api import coef, vec
 from reference import assert_close

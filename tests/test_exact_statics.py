@@ -21,7 +21,7 @@ import pytest
 from scipy.special import ellipe, ellipk
 
 import statics
-from crankgen.mesh import PSI, U, V
+from crankgen.discrete.mesh import PSI, U, V
 
 N = 16                                   # elements (a node at midspan)
 EPS = 1e-3                               # slenderness: EA / EI = 1e6, a nearly inextensible rod

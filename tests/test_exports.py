@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen import schema
+from crankgen.declaration import schema
 from crankgen.cli import main
 from helpers import check_csv
 
@@ -95,8 +95,8 @@ def test_the_sweep_figure_draws_the_table(mixed_sweep):
     the periodic rows against the swept parameter with the most values (omega)."""
     import matplotlib
     matplotlib.use("Agg")
-    from crankgen.plotting import layout_problems
-    from crankgen.sweep_plot import sweep_figure
+    from crankgen.plots.figures import layout_problems
+    from crankgen.plots.sweep import sweep_figure
     assert (mixed_sweep / "sweep.png").stat().st_size > 10000
     rows = check_csv(mixed_sweep / "sweep.csv")
     table = crankgen.SweepTable(rows.astype(object).where(rows.notna(), None).to_dict("records"))
@@ -123,7 +123,7 @@ def test_the_orbit_figure_draws_the_loads_in_si():
     computed here from the rod; the title wraps inside the figure."""
     import matplotlib
     matplotlib.use("Agg")
-    from crankgen.plotting import layout_problems, orbit_figure
+    from crankgen.plots.figures import layout_problems, orbit_figure
     L, E, rho, A, I = 0.3, 2e11, 7870.0, 6.4e-5, 3.41e-10
     steel = crankgen.SIMechanism(L=L, a=0.15, E=E, rho=rho, A=A, I=I, slider_mass=0.0756, crank_speed=150.0,
                                  damping=2e-4, gravity=(0.0, -9.81), offset=0.01)
@@ -145,7 +145,7 @@ def test_the_sweep_figure_spans_the_cases_without_an_orbit(mixed_sweep):
     ends of the swept range marked not-periodic here are still within the x-limits."""
     import matplotlib
     matplotlib.use("Agg")
-    from crankgen.sweep_plot import sweep_figure
+    from crankgen.plots.sweep import sweep_figure
     rows = check_csv(mixed_sweep / "sweep.csv")
     records = rows.astype(object).where(rows.notna(), None).to_dict("records")
     for r in records:

@@ -24,7 +24,7 @@ from crankgen import Case, ParameterError, sweep
 from crankgen.cli import main
 from helpers import fake_steady_states as _fake_states
 
-sweep_mod = importlib.import_module("crankgen.sweeps")
+sweep_mod = importlib.import_module("crankgen.analyses.sweeps")
 TINY = ["--elements", "2", "--steps-per-rev", "20"]
 SMALL = dict(model="paper", n_elements=2, eps=0.1, steps_per_rev=24)
 CHILD_TIMEOUT = 300          # seconds: a safety net for a child that hangs, never a wait for it
@@ -176,7 +176,7 @@ for cases in ([], [Case(omega=0.9, model="paper", n_elements=2, eps=0.1, steps_p
     try:
         crankgen.sweep(cases, checkpoint=sys.argv[1])
         print("opened")
-    except crankgen.sweeps.CheckpointError as exc:
+    except crankgen.analyses.sweeps.CheckpointError as exc:
         print("refused:", exc)
 """
 
@@ -292,7 +292,7 @@ def test_runs_too_large_for_the_machine_are_refused_before_computing(tmp_path, c
     one_line_error(capsys, "100000000 cases", "--omega (100000)", "--eps (1000)", "GiB")
     assert not out.exists()
 
-    from crankgen.limits import check_run_size
+    from crankgen.analyses.limits import check_run_size
     with pytest.raises(ParameterError, match=r"^revolutions x n_elements: .* (TiB|PiB)"):
         check_run_size(16, 10**12, names={"n_steps": "revolutions"})
     calls = []

@@ -1,4 +1,4 @@
-"""Figures: measured, not estimated.  crankgen.plotting.layout_problems finds what a reader would
+"""Figures: measured, not estimated.  crankgen.plots.figures.layout_problems finds what a reader would
 see as broken (text or a legend beyond the image, a legend over a panel, panels overlapping, a
 special-point label over data); every figure of a reproduce run and of the continue / poincare
 commands has none.  The colours of distinct meanings are distinct."""
@@ -9,7 +9,7 @@ import pytest
 
 matplotlib.use("Agg")
 
-from crankgen.plotting import fit_panels, layout_problems, panels, place_labels  # noqa: E402
+from crankgen.plots.figures import fit_panels, layout_problems, panels, place_labels  # noqa: E402
 
 
 def test_the_checker_sees_a_clipped_legend_and_a_label_on_data():
@@ -77,7 +77,7 @@ def test_every_reproduce_figure_is_laid_out_cleanly(tiny, name):
 def test_continue_and_poincare_figures(tmp_path, monkeypatch):
     """The command-line figures, captured before they are saved: laid out cleanly, axes named
     after what they show, a title, the legend outside the data."""
-    from crankgen.bifurcation import diagram, sweeps
+    from crankgen.analyses.bifurcation import diagram, sweeps
     from crankgen.cli import main
     seen = {}
 
@@ -109,8 +109,8 @@ def test_continue_and_poincare_figures(tmp_path, monkeypatch):
 def test_branch_colours_differ_from_the_approach_colours():
     from matplotlib.colors import to_rgb
 
-    from crankgen.bifurcation.diagram import PERIOD_COLORS
-    from crankgen.plotting import APPROACH_COLORS
+    from crankgen.analyses.bifurcation.diagram import PERIOD_COLORS
+    from crankgen.plots.figures import APPROACH_COLORS
     approaches = [np.array(to_rgb(c)) for c in APPROACH_COLORS.values()]
     for period, c in PERIOD_COLORS.items():
         distance = min(np.linalg.norm(np.array(to_rgb(c)) - a) for a in approaches)

@@ -18,11 +18,11 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen import kinematics as _kinematics
-from crankgen import schema
-from crankgen.cases import Case
+from crankgen.discrete import kinematics as _kinematics
+from crankgen.declaration import schema
+from crankgen.declaration.cases import Case
 from crankgen.errors import ParameterError
-from crankgen.model import Model
+from crankgen.discrete.system import Model
 
 import four_bar as fb
 
@@ -173,7 +173,7 @@ def test_reduced_tangents_are_derivatives_of_the_reduced_residual():
     _, E, r, K_, C_, M_ = model.unprojected_terms(kin, d, v, a)
     E = E.copy()
     E[schema.END_MAP_ROWS["g_ss"]] = 0.0
-    from crankgen.constraints import project
+    from crankgen.discrete.constraints import project
     last = project(E, r[-1], K_[-1], C_[-1], M_[-1])
     K_[-1], C_[-1], M_[-1] = last[1], last[2], last[3]
     s = model.mesh.slider_dof

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen import schema
-from crankgen.cases import Case
+from crankgen.declaration import schema
+from crankgen.declaration.cases import Case
 
 ALPHA, E, THETA0 = 0.35, 0.04, 0.2
 TINY = dict(n_elements=4, steps_per_rev=60, omega=0.7, a=0.15)

@@ -26,7 +26,7 @@ import pytest
 
 import crankgen
 import four_bar
-from crankgen.kinematics import case_state
+from crankgen.discrete.kinematics import case_state
 from independent_model import SliderCrank
 
 A, EPS, MS = 0.1, 0.05, 0.5

@@ -9,13 +9,13 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen import ingredients, schema
-from crankgen.cases import Case
+from crankgen.declaration import ingredients, schema
+from crankgen.declaration.cases import Case
 from crankgen.errors import ParameterError
-from crankgen.model import Model
-from crankgen.newmark import integrate
-from crankgen.outputs import StateHistory, mid_deflection
-from crankgen.steady import steady_state
+from crankgen.discrete.system import Model
+from crankgen.discrete.newmark import integrate
+from crankgen.results.outputs import StateHistory, mid_deflection
+from crankgen.analyses.steady import steady_state
 
 import reference as ref
 from helpers import bending_mode_state, observed_order, zero_crossing_frequency

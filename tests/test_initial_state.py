@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen.initial import reduced_state
-from crankgen.mesh import PSI, U, V, Mesh
+from crankgen.discrete.initial import reduced_state
+from crankgen.discrete.mesh import PSI, U, V, Mesh
 
 RUN = dict(omega=0.8, n_elements=4, steps_per_rev=40, revolutions=0.5)
 
@@ -164,8 +164,8 @@ def test_the_end_on_a_rocker_circle_is_found_and_checked():
     """Four-bar (circle guide) at theta0 = 0.6: an end displacement and velocity made from the
     guide's end map at s = 2e-4, s_t = 1e-3 give back those s and s_t; a point off the circle is
     refused."""
-    from crankgen import kinematics as K
-    from crankgen import schema
+    from crankgen.discrete import kinematics as K
+    from crankgen.declaration import schema
     mech = crankgen.Mechanism(guide=crankgen.Circle(center=(1.0, 0.0), radius=0.8))
     case = crankgen.Case(**mech.values(), omega=0.8, n_elements=4, theta0=0.6)
     E = K.end_map(case, K.case_state(case, 0.0).vector, 2e-4, 1e-3)

@@ -13,7 +13,7 @@ import zlib
 import numpy as np
 import pytest
 
-from crankgen import ingredients, schema
+from crankgen.declaration import ingredients, schema
 from crankgen._generated import elements as gen_elements
 from crankgen._generated import energy as gen_energy
 from crankgen._generated import fields as gen_fields

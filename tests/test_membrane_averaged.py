@@ -6,8 +6,8 @@ import pytest
 
 import reference as ref
 from kernel_api import damping, energy, lagrange
-from crankgen.cases import Case
-from crankgen.steady import steady_states
+from crankgen.declaration.cases import Case
+from crankgen.analyses.steady import steady_states
 
 
 @pytest.fixture

@@ -1,4 +1,4 @@
-"""The model verdict (crankgen.model_error) against the measured difference between the models: the
+"""The model verdict (crankgen.analyses.model_error) against the measured difference between the models: the
 consistent model's steady orbit and the geometrically exact rod's, each found by the engine by
 shooting, compared node by node over the revolution (the largest |v| difference over the largest
 |v|).  The estimate is computed from the consistent model's orbit alone."""
@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen import model_error
+from crankgen.analyses import model_error
 
 N_EL = 8
 

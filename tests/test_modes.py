@@ -117,8 +117,8 @@ def test_modes_refuse_what_they_cannot_freeze():
 
 
 def test_campbell_bands_orders_and_crossings(tmp_path):
-    from crankgen.plotting import layout_problems
-    from crankgen.campbell_plot import campbell_figure
+    from crankgen.plots.figures import layout_problems
+    from crankgen.plots.campbell import campbell_figure
 
     d = crankgen.campbell(crankgen.Mechanism(), speeds=np.linspace(0, 1.2, 25), angles=12, count=3,
                           n_elements=4)

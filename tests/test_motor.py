@@ -1,4 +1,4 @@
-"""The motor-driven crank (crankgen.motor, engine/motor.py): its limits against independent truths
+"""The motor-driven crank (crankgen.discrete.motor, engine/motor.py): its limits against independent truths
 (the rigid slider-crank's one-degree-of-freedom equation integrated here by scipy; the constant-speed
 crank as the motor stiffens), its energy balance, and the two engines against each other."""
 
@@ -8,8 +8,8 @@ from scipy.integrate import solve_ivp
 
 import crankgen
 from crankgen.errors import ParameterError
-from crankgen.model import Model
-from crankgen.motor import crank_state
+from crankgen.discrete.system import Model
+from crankgen.discrete.motor import crank_state
 
 import energy_balance as eb
 

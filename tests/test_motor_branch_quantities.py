@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen.bifurcation import BifurcationDiagram
-from crankgen.bifurcation.motor_map import MotorMap
-from crankgen.bifurcation.quantities import motor_orbit, motor_orbit_quantities
-from crankgen.motor_steady import SectionMap
+from crankgen.analyses.bifurcation import BifurcationDiagram
+from crankgen.analyses.bifurcation.motor_map import MotorMap
+from crankgen.analyses.bifurcation.quantities import motor_orbit, motor_orbit_quantities
+from crankgen.analyses.motor_steady import SectionMap
 from crankgen.notices import BeyondTheoryWarning
 
 MOTOR = dict(stall_torque=0.05, inertia=0.05, load_torque=0.002)
@@ -202,10 +202,10 @@ def test_the_si_files_have_them_in_si(tmp_path):
 
 
 def test_a_point_of_a_motor_branch_animates_its_orbit(branch):
-    """crankgen.animation.orbit of a motor-driven point: the run from its section state (its crank
+    """crankgen.plots.animation.orbit of a motor-driven point: the run from its section state (its crank
     speed the point's) over its revolution time, to the nearest step: one crank revolution, the
     crank-speed range the point's."""
-    from crankgen.animation import orbit
+    from crankgen.plots.animation import orbit
     d, br = branch
     i = len(br) // 2
     r = orbit(d, 0, i)

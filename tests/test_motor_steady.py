@@ -1,4 +1,4 @@
-"""The steady motion of a motor-driven crank (crankgen.motor_steady): an autonomous periodic orbit
+"""The steady motion of a motor-driven crank (crankgen.analyses.motor_steady): an autonomous periodic orbit
 found by shooting on the section theta = theta0 (mod 2 pi), checked against marching, against
 another section and against the flow's monodromy matrix (its trivial multiplier)."""
 
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen import motor_steady
+from crankgen.analyses import motor_steady
 
 MOTOR = dict(stall_torque=0.05, no_load_speed=0.8, inertia=0.05, load_torque=0.002)
 
@@ -86,7 +86,7 @@ def test_the_orbit_figure_draws_the_crank_speed_of_a_driven_crank(steady):
     right-hand axis, the state's own samples against the crank angle in degrees."""
     import matplotlib.pyplot as plt
 
-    from crankgen.plotting import orbit_figure
+    from crankgen.plots.figures import orbit_figure
     fig = orbit_figure(steady)
     speed_axes = [ax for ax in fig.axes if ax.get_ylabel() == "crank speed Omega*"]
     assert len(speed_axes) == 1

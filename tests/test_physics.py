@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen.model import Model
-from crankgen.newmark import NewmarkSettings, integrate
-from crankgen.outputs import StateHistory, mid_deflection
+from crankgen.discrete.system import Model
+from crankgen.discrete.newmark import NewmarkSettings, integrate
+from crankgen.results.outputs import StateHistory, mid_deflection
 
 import energy_balance as eb
 from helpers import bending_mode_state, observed_order, zero_crossing_frequency

@@ -1,4 +1,4 @@
-"""Unit mistakes named before any work (crankgen.plausibility), and speeds in rpm.
+"""Unit mistakes named before any work (crankgen.declaration.plausibility), and speeds in rpm.
 
 Each likely mistake is made on a real mechanism (a steel press rod, 0.25 m, 10 x 10 mm, 3000 rpm)
 and must be refused in one line that names the field and the unit it was likely given in, before

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen import theory
-from crankgen.cases import Case
+from crankgen.analyses import theory
+from crankgen.declaration.cases import Case
 from crankgen.errors import ParameterError
 from crankgen.notices import BeyondTheoryWarning
 

@@ -36,9 +36,9 @@ import pytest
 import crankgen
 import energy_balance as eb
 import four_bar as fb
-from crankgen import schema
-from crankgen.kinematics import case_state
-from crankgen.model import Model
+from crankgen.declaration import schema
+from crankgen.discrete.kinematics import case_state
+from crankgen.discrete.system import Model
 
 A = 0.3
 GEOMETRY = {"line": dict(offset=0.1), "circle": dict(guide="circle", c=0.9, d=1.1, offset=0.2)}

@@ -44,7 +44,7 @@ def test_every_python_block_runs_as_written(k, tmp_path, monkeypatch):
                                                      transient=3, samples=4))
     monkeypatch.setattr(crankgen, "campbell", _small(crankgen.campbell, n_elements=4, angles=8))
     monkeypatch.setattr(crankgen, "follow", _small(crankgen.follow, max_points=8))
-    from crankgen import animation
+    from crankgen.plots import animation
     monkeypatch.setattr(animation, "MAX_FRAMES", 6)          # a few frames of every animation
     code = textwrap.dedent(PYTHON_BLOCKS[k])            # a block inside a list item is indented
     exec(compile(code, f"README.md python block {k + 1}", "exec"), {"__name__": "readme"})

@@ -437,7 +437,7 @@ def test_output_files_have_the_mode_open_gives(tiny_run):
 def test_second_command_line_run_recomputes_nothing(tiny_run, capsys, monkeypatch):
     """Nothing is computed: every engine entry point the steps use refuses to run."""
     from crankgen.experiments import runner
-    from crankgen import bifurcation
+    from crankgen.analyses import bifurcation
 
     def refuse(*args, **kwargs):
         raise AssertionError("a kept step was recomputed")
@@ -657,8 +657,8 @@ def test_a_transient_is_still_growing_when_its_last_revolution_exceeds_the_one_b
 def test_the_exact_rods_rows_sit_beside_unchanged_rows_of_the_two_models(tiny_run, tmp_path):
     """Figure 5 without the exact rod (exact_rows=False) has every row and column of the two models
     the tiny run has; the exact rod's rows use the consistent model's element count for A and are
-    flagged by the exact rod's own limits (crankgen.theory), from their own measures."""
-    from crankgen import theory
+    flagged by the exact rod's own limits (crankgen.analyses.theory), from their own measures."""
+    from crankgen.analyses import theory
     _, out = tiny_run
     alone = tmp_path / "alone"
     reproduce(alone, config=ReproduceConfig.tiny().with_(exact_rows=False), quiet=True, figures=[5])

@@ -98,7 +98,7 @@ class _Ctx:
 
 
 def test_a_continuation_that_fails_is_recorded_not_raised(monkeypatch):
-    import crankgen.bifurcation as B
+    import crankgen.analyses.bifurcation as B
 
     def fails(*a, **k):
         raise CrankgenError("no periodic response to start from")

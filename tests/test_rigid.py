@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen import rigid
+from crankgen.analyses import rigid
 from crankgen.cli.main import main
 from helpers import check_csv
 

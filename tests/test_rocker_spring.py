@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen import kinematics
-from crankgen.cases import Case
-from crankgen.model import Model
-from crankgen.vibration import FrozenModel
+from crankgen.discrete import kinematics
+from crankgen.declaration.cases import Case
+from crankgen.discrete.system import Model
+from crankgen.analyses.modes import FrozenModel
 
 import four_bar as fb
 

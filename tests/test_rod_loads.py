@@ -1,4 +1,4 @@
-"""The rod's loads in the files a designer reads (crankgen.rod_loads): the axial force and both
+"""The rod's loads in the files a designer reads (crankgen.analyses.rod_loads): the axial force and both
 outer-fibre stresses along the rod in simulation.csv, their peaks, the Euler buckling margin and the
 bearing loads as magnitude and direction, checked against the section forces computed here from
 the stored state (nodes.csv: u, v and the slope of every node, in m) with this file's own element:

@@ -16,20 +16,21 @@ import ast
 from pathlib import Path
 
 import crankgen
-from crankgen import schema
+from crankgen.declaration import schema
 
 ROOT = Path(crankgen.__file__).resolve().parent
 STUDIES = ("experiments", "audit")
 # (module, word): what the word means there
-HOMONYMS = {("bifurcation/diagram.py", "branch"): "a branch of periodic orbits of a continuation (a CSV column), "
+HOMONYMS = {("analyses/bifurcation/diagram.py", "branch"): "a branch of periodic orbits of a continuation (a CSV column), "
                                                    "not the four-bar's closure",
-            ("parameters.py", "a"): "the SI crank length in metres, a field of SIMechanism (its a* = a / L is "
+            ("declaration/parameters.py", "a"): "the SI crank length in metres, a field of SIMechanism (its a* = a / L is "
                                     "the parameter)",
-            ("animation.py", "branch"): "a branch of periodic orbits of a continuation",
-            ("bifurcation/diagram_files.py", "branch"): "a branch of periodic orbits of a continuation (a "
+            ("plots/animation.py", "branch"): "a branch of periodic orbits of a continuation",
+            ("analyses/bifurcation/diagram_files.py", "branch"): "a branch of periodic orbits of a continuation (a "
                                                         "CSV column and JSON key), not the four-bar's closure",
-            ("campbell_diagram.py", "order"): "a crank order (k Omega) of a Campbell diagram (a CSV column)",
-            ("sections.py", "circle"): "a circular cross-section of the rod"}
+            ("analyses/campbell.py", "order"): "a crank order (k Omega) of a Campbell diagram (a CSV column)",
+            ("declaration/sections.py", "circle"): "a circular cross-section of the rod",
+            ("engine/__init__.py", "motor"): "the engine's module motor.py, named where its names load"}
 
 
 def forbidden():

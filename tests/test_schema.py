@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen import schema
-from crankgen.cases import Case
+from crankgen.declaration import schema
+from crankgen.declaration.cases import Case
 from crankgen.cli import main as cli_main_function
 from crankgen.cli.options import _float_grid
 from crankgen.errors import ConvergenceError, ParameterError

@@ -1,10 +1,10 @@
-"""generated/schema.py holds the declaration's records: the classes of crankgen.records, printed by
+"""generated/schema.py holds the declaration's records: the classes of crankgen.declaration.records, printed by
 repr, equal to the records the representation makes of derive/declaration.py (a hand edit of the
 generated file, or a declaration changed without `make derive`, fails here)."""
 
 import dataclasses
 
-from crankgen import records, schema
+from crankgen.declaration import records, schema
 from crankgen._derive import representation as ir
 from crankgen._generated import classes as generated_classes
 from crankgen._generated import schema as generated
@@ -26,7 +26,7 @@ def test_the_generated_schema_holds_the_declarations_records():
 
 
 def test_the_records_are_the_runtimes_classes():
-    """One class per concept: the generated tables hold instances of crankgen.records, which the
+    """One class per concept: the generated tables hold instances of crankgen.declaration.records, which the
     runtime reads as they are (no parallel set of runtime records)."""
     for table, cls in (("OPTIONS", records.Option), ("PRESETS", records.Preset), ("PARAMETERS", records.Parameter),
                        ("GUIDES", records.Guide), ("MOTIONS", records.Motion), ("FAMILIES", records.Family),

@@ -14,13 +14,13 @@ from pathlib import Path
 
 import pytest
 
-from crankgen import compile_cache
+from crankgen.engine import cache as compile_cache
 
 RUN = ("import crankgen; r = crankgen.simulate(crankgen.Mechanism(), n_elements=2, steps_per_rev=20, "
        "revolutions=1, model='paper', approach='C'); print('ok', repr(r.v_mid[-1]))")
 READ_ONLY_CHILD = """
 import sys
-import crankgen.compile_cache as cc
+import crankgen.engine.cache as cc
 cc._writable = lambda folder: False          # this process may not write the shared cache
 cc.CACHE, cc.READ_ONLY = cc.cache_folder()
 assert cc.READ_ONLY, cc.CACHE

@@ -15,7 +15,7 @@ import pytest
 
 import crankgen
 from crankgen.cli import main as cli_main
-from crankgen.units import Scales, parse
+from crankgen.declaration.units import Scales, parse
 
 L, A_CRANK, E, RHO, SIDE, OMEGA = 0.3, 0.15, 2.0e11, 7870.0, 0.008, 150.0
 AREA, INERTIA = SIDE**2, SIDE**4 / 12

@@ -249,7 +249,7 @@ def test_a_step_warning_of_an_analysis_in_si_gives_the_mode_in_rad_per_s():
     unresolved mode's frequency in omega_b and in rad/s, the latter omega_b's value in SI times it."""
     import re
 
-    from crankgen.time_scheme import StepWarning
+    from crankgen.discrete.time_scheme import StepWarning
     si = crankgen.SIMechanism(**ROD, a=0.1, slider_mass=0.05, crank_speed=0.5 * OMEGA_B)
     with pytest.warns(StepWarning) as caught:
         crankgen.steady_state(si, units="si", rho_inf=1.0, n_elements=4, steps_per_rev=60)
@@ -263,7 +263,7 @@ def test_si_unit_names_follow_the_dimensions():
     """The SI name of a declared unit, from its dimensions worked out by hand here: a moment of
     inertia rho A L^3 (kg/m m^3) is kg m^2, a torque rho A L^3 omega_b^2 N m, a force N, a speed
     L omega_b m/s."""
-    from crankgen.units import Scales
+    from crankgen.declaration.units import Scales
     assert Scales.si_name("rhoA L^3") == "kg m^2"
     assert Scales.si_name("rhoA L^3 omega_b^2") == "N m"
     assert Scales.si_name("rhoA L^2 omega_b^2") == "N"

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen.time_scheme import StepWarning
+from crankgen.discrete.time_scheme import StepWarning
 
 L, A_CRANK, E, RHO, AREA, INERTIA, M_SLIDER, OMEGA = 0.3, 0.15, 2e11, 7870.0, 6.4e-5, 3.41e-10, 0.0756, 150.0
 STEEL = crankgen.SIMechanism(L=L, a=A_CRANK, E=E, rho=RHO, A=AREA, I=INERTIA, slider_mass=M_SLIDER,

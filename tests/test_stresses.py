@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen import sections
+from crankgen.declaration import sections
 
 
 def test_sections_are_the_textbooks():

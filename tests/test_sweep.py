@@ -14,7 +14,7 @@ import crankgen
 from crankgen import Case, ParameterError, SteadyState, SweepTable, sweep
 
 # `crankgen.sweep` is the function; the module is reached through sys.modules.
-sweep_mod = importlib.import_module("crankgen.sweeps")
+sweep_mod = importlib.import_module("crankgen.analyses.sweeps")
 
 SMALL = dict(formulation="paper", n_elements=2, mu=0.5)
 # Mixed approaches in an order the structural grouping of chunks changes, so the tests also check

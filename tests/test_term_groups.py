@@ -6,15 +6,15 @@ import numpy as np
 import pytest
 
 import reference as ref
-from crankgen import ingredients
+from crankgen.declaration import ingredients
 from crankgen._generated import elements as E
 from crankgen._generated import groups
-from crankgen.ingredients import SWITCHABLE_GROUPS
+from crankgen.declaration.ingredients import SWITCHABLE_GROUPS
 from kernel_api import _kin, coef, vec
 from crankgen.audit.backbone import backbone
-from crankgen.cases import Case
+from crankgen.declaration.cases import Case
 from crankgen.errors import ParameterError
-from crankgen.steady import steady_state, steady_states
+from crankgen.analyses.steady import steady_state, steady_states
 from crankgen.audit.term_weights import consistent_case, group_weights
 
 

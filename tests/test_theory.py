@@ -1,4 +1,4 @@
-"""crankgen.theory against the derivation: the approach it calls ill-posed is the one whose strain
+"""crankgen.analyses.theory against the derivation: the approach it calls ill-posed is the one whose strain
 energy (derive/, the densities the kernels are generated from) is unbounded below; the flags."""
 
 import math
@@ -6,7 +6,7 @@ import math
 import pytest
 import sympy as sp
 
-from crankgen import theory
+from crankgen.analyses import theory
 
 
 @pytest.mark.parametrize("approach", ["A", "B", "C"])

@@ -1,4 +1,4 @@
-"""The time schemes (crankgen.time_scheme) against their theory, on a linear problem with a closed
+"""The time schemes (crankgen.discrete.time_scheme) against their theory, on a linear problem with a closed
 form: the rod at rest (the crank does not turn, approach C, exact Lagrange equations), whose reduced
 equations M qdd + C qd + K q = 0 are exactly linear.  Its modes come from M and K assembled here;
 a modal state's motion is known in closed form (undamped: q cos(omega t)).
@@ -19,10 +19,11 @@ import numpy as np
 import pytest
 import scipy.linalg
 
-from crankgen import engine, time_scheme
-from crankgen.cases import Case
-from crankgen.model import Model
-from crankgen.newmark import NewmarkSettings, integrate
+from crankgen import engine
+from crankgen.discrete import time_scheme
+from crankgen.declaration.cases import Case
+from crankgen.discrete.system import Model
+from crankgen.discrete.newmark import NewmarkSettings, integrate
 
 N_ELEMENTS = 4
 
@@ -82,7 +83,7 @@ def test_second_order_convergence_to_the_closed_form(rho_inf):
 
 def _chung_hulbert_matrix(rho, wh):
     """One step of Chung & Hulbert's method on qdd + omega^2 q = 0, acting on (q, h qd, h^2 a),
-    from its three equations (derived here, independently of crankgen.time_scheme):
+    from its three equations (derived here, independently of crankgen.discrete.time_scheme):
         (1 - am) a1 + am a0 + w2 ((1 - af) q1 + af q0) = 0,
         q1 = q0 + v0 + (1/2 - beta) a0 + beta a1,   v1 = v0 + (1 - gamma) a0 + gamma a1."""
     am, af = (2 * rho - 1) / (rho + 1), rho / (rho + 1)

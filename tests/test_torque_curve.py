@@ -9,7 +9,7 @@ from scipy.integrate import solve_ivp
 from scipy.interpolate import PchipInterpolator
 
 import crankgen
-from crankgen import torque_curve
+from crankgen.declaration import torque_curve
 from crankgen.engine.motor import hermite
 from crankgen.errors import ParameterError
 
@@ -147,7 +147,7 @@ def test_a_run_s_motor_torque_is_the_crank_equation_s(tmp_path):
     balance = J * r.crank_acceleration + load + np.asarray(r.torque)
     assert np.max(r.crank_speed) / 0.8 > 0.85                  # past the breakdown torque
     assert np.max(np.abs(r.motor_torque - balance)) < 1e-8 * np.max(np.abs(r.motor_torque))
-    from crankgen.exports import per_step
+    from crankgen.results.exports import per_step
     columns, values = per_step(r)
     assert np.array_equal(values[columns.index("motor_torque_rhoA_L3_omega_b2")], r.motor_torque)
     assert crankgen.simulate(omega=0.8, n_elements=2, revolutions=0.1).motor_torque is None

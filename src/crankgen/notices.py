@@ -1,9 +1,9 @@
 """The warnings crankgen gives once per call, and quiet(): a call that warned for all its parts
 (a sweep, for its cases) runs the parts quietly.
 
-- StepWarning (crankgen.time_scheme): a run's step leaves a mode of the rod unresolved and the
+- StepWarning (crankgen.discrete.time_scheme): a run's step leaves a mode of the rod unresolved and the
   time scheme does not damp it;
-- BeyondTheoryWarning (crankgen.theory): a response leaves the range of the theory.
+- BeyondTheoryWarning (crankgen.analyses.theory): a response leaves the range of the theory.
 The command line reports the range of the theory in its own lines and files, and silences the
 second."""
 
@@ -19,7 +19,7 @@ class StepWarning(UserWarning):
 
 
 class BeyondTheoryWarning(UserWarning):
-    """A response leaves the range of the theory (crankgen.theory)."""
+    """A response leaves the range of the theory (crankgen.analyses.theory)."""
 
 
 @contextlib.contextmanager

@@ -12,9 +12,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import engine, schema
-from ..cases import Case
-from ..mesh import Mesh, PSI, V
+from .. import engine
+from ..declaration import schema
+from ..declaration.cases import Case
+from ..discrete.mesh import Mesh, PSI, V
 
 STANDSTILL = 1e-9       # Omega* of a crank that does not move over the run
 

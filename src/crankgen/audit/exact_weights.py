@@ -21,12 +21,12 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .. import ingredients
+from ..declaration import ingredients
 from .._generated import elements as _elements
-from ..constraints import project_residual
-from ..mesh import PSI, U, NODE_DOFS
-from ..model import Model
-from ..outputs import StateHistory
+from ..discrete.constraints import project_residual
+from ..discrete.mesh import PSI, U, NODE_DOFS
+from ..discrete.system import Model
+from ..results.outputs import StateHistory
 
 
 @dataclass(frozen=True)
@@ -41,7 +41,7 @@ class ExactWeights:
 
 def exact_case(case):
     """The geometrically exact rod's case with the parameters and mesh of `case`."""
-    from ..cases import Case
+    from ..declaration.cases import Case
     values = case.as_dict()
     for option in ("formulation", "approach", "membrane", "damping", "groups_off"):
         values.pop(option, None)
@@ -114,7 +114,7 @@ def scaled(case, steady, factors=(1.0, 0.5, 0.25, 0.125)):
 
 def weights_table(eps_values, omegas, n_elements):
     """([ExactWeights], {(eps, Omega*): (consistent SteadyState, exact SteadyState)}, skipped)."""
-    from ..steady import steady_states
+    from ..analyses.steady import steady_states
     from .term_weights import consistent_case
     cases = [consistent_case(e, w, n_elements) for e in eps_values for w in omegas]
     exacts = [exact_case(c) for c in cases]

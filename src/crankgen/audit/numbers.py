@@ -3,9 +3,9 @@ convergence), computed from runs of the compiled engine; Markdown out, no SymPy.
 
 import math
 
-from ..cases import Case
-from ..ingredients import SWITCHABLE_GROUPS
-from ..steady import steady_states
+from ..declaration.cases import Case
+from ..declaration.ingredients import SWITCHABLE_GROUPS
+from ..analyses.steady import steady_states
 from .backbone import backbone
 from .term_weights import (DAMPING_GROUPS, ELASTIC_GROUPS, KINETIC_GROUPS, switch_off_table,
                            weights_table)

@@ -141,7 +141,7 @@ def write_report(out_dir="audit", sections=None, progress=None):
     from .._derive import audit as derived     # lazy: SymPy is loaded here, not at import time
     report = _Report(derived)
     text = report.document(chosen, progress)
-    from ..io import atomic_write
+    from ..results.io import atomic_write
     path = Path(out_dir) / "report.md"
     return atomic_write(path, lambda fh: fh.write(text.encode("utf-8")), mode="wb")
 

@@ -12,13 +12,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import engine, ingredients
+from .. import engine
+from ..declaration import ingredients
 from .._generated import groups as _groups
-from ..cases import Case
-from ..constraints import project_residual
-from ..mesh import NDOF, U
-from ..model import Model
-from ..steady import steady_states
+from ..declaration.cases import Case
+from ..discrete.constraints import project_residual
+from ..discrete.mesh import NDOF, U
+from ..discrete.system import Model
+from ..analyses.steady import steady_states
 
 ELASTIC_GROUPS = ("stiffness", "cubic_axial", "cubic_transverse", "quartic")
 KINETIC_GROUPS = ("inertia", "gyroscopic", "phidd", "centrifugal", "forcing")

@@ -43,7 +43,7 @@ def _cmd_animate(args):
     from matplotlib import animation as mpl_animation
 
     from ..errors import ParameterError
-    from ..validation import in_range, integer
+    from ..declaration.validation import in_range, integer
 
     from . import si_file
     si = si_file.mechanism(args)
@@ -63,9 +63,9 @@ def _cmd_animate(args):
     out = _Outputs(args.out, [name], args.force)
     try:
         result = _run(args, case, revolutions)
-        from ..animation import Frames, animate
+        from ..plots.animation import Frames, animate
         from ..progress import Progress
-        from ..units import scales_of
+        from ..declaration.units import scales_of
         scales = None if si is None else scales_of(si)
         movie = Frames(result, args.magnify, args.frames, scales=scales)
         with Progress("animate (frames)", len(movie), enabled=not args.quiet) as progress:
@@ -82,13 +82,13 @@ def _run(args, case, revolutions):
     from ..progress import Progress
 
     if args.steady:
-        from ..steady import steady_states
+        from ..analyses.steady import steady_states
         _say(args, f"animate: the steady orbit of {_describe(case)}")
         st = steady_states([case])[0]
         if st.states is None:
             raise ConvergenceError(f"no periodic orbit to animate: {st.status}, {st.message}")
         return st
-    from ..simulation import run_length, simulate
+    from ..analyses.simulation import run_length, simulate
     steps = run_length(case, revolutions)[1]
     _say(args, f"animate: {_describe(case)}, {revolutions:g} revolutions ({steps} steps)")
     with Progress("animate", steps, enabled=not args.quiet) as progress:

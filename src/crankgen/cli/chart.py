@@ -2,8 +2,8 @@
 
 import sys
 
-from .. import schema
-from ..charts.axes import X_DEFAULT, Y_DEFAULT
+from ..declaration import schema
+from ..analyses.charts.axes import X_DEFAULT, Y_DEFAULT
 from .options import UsageError, _Outputs, _add_mechanism_options, _add_model_options, _add_output_options, _explicit
 
 CHART_NAMES = ("curves.csv", "codim2_points.csv", "regions.csv", "lines.csv", "curve_multipliers.csv",
@@ -101,9 +101,9 @@ def _given(args):
 
 
 def _cmd_chart(args):
-    from ..cases import make_case
-    from ..charts import stability_chart
-    from ..validation import integer
+    from ..declaration.cases import make_case
+    from ..analyses.charts import stability_chart
+    from ..declaration.validation import integer
     from . import si_file
     given = _given(args)
     _quick(args, given)
@@ -111,7 +111,7 @@ def _cmd_chart(args):
     if args.rpm and si is None:
         raise UsageError("--rpm (a crank-speed axis in rpm) needs the rod in SI: --si FILE")
     if si is not None:                     # an axis given is in SI; a default one in crankgen's units
-        from ..charts import si_view
+        from ..analyses.charts import si_view
         args.x, args.y = (si_view.to_model(a, si.scales, args.rpm) if which in given else a
                           for which, a in (("x", args.x), ("y", args.y)))
     fields = _explicit(args) if si is None else si_file.run_fields(args, si, keep=(args.x[0], args.y[0]))
@@ -141,14 +141,14 @@ def _cmd_chart(args):
         if si is None:
             png = folder.wrote(chart.plot(folder.path("chart.png")))
         else:
-            from ..charts import si_view
+            from ..analyses.charts import si_view
             paths.append(folder.wrote(si_view.to_csv(chart, folder.path("curves_si.csv"), si.scales, args.rpm)))
             png = folder.wrote(si_view.plot(chart, folder.path("chart.png"), si.scales, args.rpm))
     finally:
         folder.abandon()
     print("\n".join(chart.summary()))
     if si is not None:
-        from ..charts import si_view
+        from ..analyses.charts import si_view
         print("\n".join(si_view.describe(chart, si.scales, args.rpm)))
     print(f"{len(chart.curves)} curves, {len(chart.codim2)} codimension-two points, "
           f"{sum(1 for g in chart.regions if g.key is not None)} named regions in "

@@ -1,4 +1,4 @@
-"""`crankgen compare`: the rigid mechanism beside the flexible one (crankgen.rigid.compare)."""
+"""`crankgen compare`: the rigid mechanism beside the flexible one (crankgen.analyses.rigid.compare)."""
 
 from . import si_file
 from .options import (_Outputs, _add_mechanism_options, _add_model_options, _add_output_options, _case,
@@ -11,7 +11,7 @@ def add_command(sub):
     p = sub.add_parser("compare", help="rigid against flexible: crank torque, pin forces and stress, one table",
                        description="How much the rod's flexibility changes what a mechanism is sized by: "
                                    "the rigid mechanism (kineto-static: its rigid motion's loads carried by "
-                                   "the rod quasi-statically, crankgen.rigid) beside the flexible one (its "
+                                   "the rod quasi-statically, crankgen.analyses.rigid) beside the flexible one (its "
                                    "steady periodic state) at the same crank angles. Prints and writes "
                                    "compare.csv (quantity, units, rigid, flexible, flexible/rigid: peak and "
                                    "RMS crank torque, peak pin forces at A and B, peak compression, tension "
@@ -31,7 +31,7 @@ def add_command(sub):
 
 
 def _cmd_compare(args):
-    from ..rigid import compare
+    from ..analyses.rigid import compare
     from .runs import _resolved, _section
 
     si = si_file.mechanism(args)

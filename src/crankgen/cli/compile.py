@@ -2,13 +2,14 @@
 
 Run by the owner of an installation (for a system-wide install: the administrator), it fills the
 installation's own cache folder, which every user then loads read-only; run by a user, it fills
-the cache crankgen would use for that user (crankgen.compile_cache)."""
+the cache crankgen would use for that user (crankgen.engine.cache)."""
 
 import time
 
 
 def _cmd_compile(args):
-    from ..compile_cache import CACHE, READ_ONLY, WHY_READ_ONLY
+    from ..engine import helper  # noqa: F401  (the modules of the entry points, registered)
+    from ..engine.cache import CACHE, READ_ONLY, WHY_READ_ONLY
     from ..engine.build import ENTRIES, done, prepare
     from ..engine.kernels import all_build_items
 

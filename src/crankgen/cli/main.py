@@ -15,7 +15,7 @@ import warnings
 
 from ..audit import SECTIONS as AUDIT_SECTIONS
 from ..errors import ConvergenceError, CrankgenError, NoResultError
-from ..provenance import VERSION
+from ..results.provenance import VERSION
 from .options import (_Parser, _add_mechanism_options, _add_model_options, _add_output_options,
                       _figure_list, _float_grid, _number_list)
 from . import si_file
@@ -31,7 +31,7 @@ from .studies import (CONTINUE_NAMES, POINCARE_NAMES, _add_branch_model_options,
 
 # ---- parser ------------------------------------------------------------------------------------
 def build_parser():
-    from ..provenance import kernels_hash
+    from ..results.provenance import kernels_hash
 
     parser = _Parser(
         prog="crankgen",
@@ -341,7 +341,7 @@ def _main(argv):
     if extra:
         _unrecognized(parser, args, extra)
     name = f"crankgen {args.command}"
-    from ..compile_cache import set_quiet
+    from ..engine.cache import set_quiet
     set_quiet(getattr(args, "quiet", False))
     try:
         return args.func(args)

@@ -4,7 +4,7 @@ crank angle, and their bands against crank speed with the crank orders."""
 import math
 import sys
 
-from .. import schema
+from ..declaration import schema
 from . import si_file
 from .options import (UsageError, _Outputs, _add_mechanism_options, _add_model_options,
                       _add_output_options, _explicit, _int_list, _say)
@@ -71,8 +71,8 @@ def add_commands(sub):
 def _mechanism(args):
     """(mech, fields, units): the Mechanism and the command line's case fields, or with --si the
     crankgen.SIMechanism and the fields that may go with it (crankgen.cli.si_file)."""
-    from .. import schema
-    from ..parameters import Mechanism
+    from ..declaration import schema
+    from ..declaration.parameters import Mechanism
     from . import si_file
 
     si = si_file.mechanism(args)
@@ -84,8 +84,8 @@ def _mechanism(args):
 
 
 def _cmd_modes(args):
-    from ..vibration import modes
-    from ..validation import integer
+    from ..analyses.modes import modes
+    from ..declaration.validation import integer
 
     integer("--count", args.count, 1)
     mech, fields, units = _mechanism(args)
@@ -110,8 +110,8 @@ def _cmd_modes(args):
 
 
 def _write_modes(m, out):
-    from ..io import write_csv
-    from ..vibration_plot import plot_modes
+    from ..results.io import write_csv
+    from ..plots.modes import plot_modes
 
     rows = m.table()
     out.wrote(write_csv(out.path("modes.csv"), list(rows[0]), rows))
@@ -128,9 +128,9 @@ def _write_modes(m, out):
 def _cmd_campbell(args):
     import numpy as np
 
-    from ..campbell_diagram import campbell
+    from ..analyses.campbell import campbell
     from ..progress import Progress
-    from ..validation import in_range, integer
+    from ..declaration.validation import in_range, integer
 
     integer("--speeds", args.speeds, 2)
     integer("--angles", args.angles, 2)
@@ -141,13 +141,13 @@ def _cmd_campbell(args):
     if args.rpm and units != "si":
         raise UsageError("--rpm (--from and --to in rpm) needs the rod in SI: --si FILE")
     unit = 1.0 if units == "crankgen" else mech.omega_b
-    from ..si import rad_per_s
+    from ..declaration.si import rad_per_s
     per = rad_per_s if args.rpm else float                   # --from, --to in rpm: into rad/s
     start = 0.0 if args.start is None else per(in_range("--from", args.start, 0.0))
     stop = 1.6 * unit if args.stop is None else per(in_range("--to", args.stop, 0.0))
     if stop <= start:
         raise UsageError(f"--to must exceed --from, got --from {start:g} --to {stop:g}")
-    from ..vibration import frozen_case
+    from ..analyses.modes import frozen_case
     frozen_case(mech, None, model=args.model, units=units, **fields)      # the case, checked first
     out = _Outputs(args.out, CAMPBELL_NAMES, args.force)
     try:

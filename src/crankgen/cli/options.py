@@ -8,8 +8,9 @@ import re
 import sys
 from pathlib import Path
 
-from .. import schema
+from ..declaration import schema
 from ..errors import CrankgenError, ParameterError
+from ..declaration import values as _values
 
 # The named models (presets of the schema): --model sets their options; an explicit --formulation,
 # --damping or --membrane overrides the model's value for that option.
@@ -47,7 +48,7 @@ def _default_text(p):
     if p.kind == "pair":
         return ",".join(f"{x:g}" for x in default)
     if p.kind == "curve":
-        return p.text(default)
+        return _values.text(p, default)
     return f"{default:g}" if isinstance(default, float) else str(default)
 
 
@@ -56,7 +57,7 @@ def _help(p, many):
     every = schema.GUIDES if p.owner == "guide" else schema.MOTIONS
     if p.owner in ("guide", "motion") and set(p.readers) != set(every):
         where = f" [{' and '.join(p.readers)} {p.owner}]"
-    rng = f", {p.range_text}" if (p.kind == "real" and (p.low, p.high) != (None, None)) or p.kind == "count" else ""
+    rng = f", {_values.range_text(p)}" if (p.kind == "real" and (p.low, p.high) != (None, None)) or p.kind == "count" else ""
     by_model = "".join(f"; with --model {name}: {preset.settings[p.name]:g}"
                        for name, preset in schema.PRESETS.items() if p.name in preset.settings)
     return f"{p.doc}{rng}{where} (default {_default_text(p)}{by_model})" + many
@@ -134,7 +135,7 @@ def _curve(p):
     """argparse type: a torque curve's per-unit pairs 'S:F,S:F,...' (crankgen.torque_curve)."""
     def parse(text):
         try:
-            return p.canonical(text)
+            return _values.canonical(p, text)
         except ParameterError as exc:
             raise argparse.ArgumentTypeError(str(exc)) from None
     return parse
@@ -237,7 +238,7 @@ CASE_FIELDS = tuple(schema.PARAMETERS) + tuple(schema.OPTIONS)
 
 def _flag(name):
     """The command-line flag (without --) of a case field."""
-    from .. import schema
+    from ..declaration import schema
     spec = schema.PARAMETERS.get(name) or schema.OPTIONS.get(name)
     return name if spec is None else spec.cli          # a flag of its own name (--rpm)
 
@@ -254,14 +255,14 @@ def _model_options(args):
 
 
 def _case(args):
-    from ..cases import make_case
+    from ..declaration.cases import make_case
     return make_case(model=args.model, **_explicit(args))
 
 
 def _describe(case):
     main, other = schema.describe(case.parameters())
     extra = "" if case.rotary_inertia else ", no rotary inertia"
-    from ..time_scheme import label
+    from ..discrete.time_scheme import label
     return (f"approach {case.approach}, {case.formulation} formulation, {case.damping} damping, "
             f"{case.membrane} membrane, {label(case.rho_inf)}, "
             + ", ".join(main + [f"n = {case.n_elements}"] + other) + extra)
@@ -277,8 +278,8 @@ class _Outputs:
     stops before writing anything, the folders it created are removed again."""
 
     def __init__(self, folder, names, force, subfolders=()):
-        from ..compile_cache import announce
-        from ..io import prepare_folder
+        from ..engine.cache import announce
+        from ..results.io import prepare_folder
         self.folder = Path(folder)
         self.created = prepare_folder(folder, names, force, subfolders)
         self.written = []
@@ -292,7 +293,7 @@ class _Outputs:
         return path
 
     def abandon(self):
-        from ..io import remove_if_empty
+        from ..results.io import remove_if_empty
         if not self.written:
             remove_if_empty(self.created)
 

@@ -1,7 +1,7 @@
 """`crankgen simulate`, `crankgen steady`, `crankgen sweep`: runs of the mechanism.
 
 Everything a command can check is checked before anything is computed or created: the
-parameters, the memory the run would need (crankgen.limits: steps x degrees of freedom, elements,
+parameters, the memory the run would need (crankgen.analyses.limits: steps x degrees of freedom, elements,
 the size of a sweep's grid before it is built), the output folder and the checkpoint."""
 
 import itertools
@@ -10,10 +10,10 @@ import os
 import sys
 from pathlib import Path
 
-from .. import schema
+from ..declaration import schema
 from ..errors import ConvergenceError, ParameterError
-from ..kinematics import step_period
-from ..limits import check_run_size
+from ..discrete.kinematics import step_period
+from ..analyses.limits import check_run_size
 from . import si_file
 from .options import CASE_FIELDS, UsageError, _Outputs, _case, _describe, _flag, _say
 
@@ -21,7 +21,7 @@ from .options import CASE_FIELDS, UsageError, _Outputs, _case, _describe, _flag,
 
 def _failure_text(failure, approach):
     """A failed run's reason; for an ill-posed approach, what that means (not an instability)."""
-    from ..theory import ill_posed
+    from ..analyses.theory import ill_posed
 
     text = str(failure)
     if ill_posed(approach):
@@ -33,7 +33,7 @@ def _failure_text(failure, approach):
 def _theory_note(deflection, strain, result=None):
     """'; beyond the theory (...)' when a response leaves the range of the theory (the paper's, and
     what to use beyond it; an exact-model result's by the exact rod's own limits)."""
-    from ..theory import CRITERION, REMEDY, is_exact, reasons
+    from ..analyses.theory import CRITERION, REMEDY, is_exact, reasons
 
     if getattr(result, "case", None) is not None and is_exact(result.case):
         flag = result.beyond_theory
@@ -43,15 +43,15 @@ def _theory_note(deflection, strain, result=None):
 
 
 def _cmd_simulate(args):
-    from ..validation import in_range
+    from ..declaration.validation import in_range
 
     si = si_file.mechanism(args)
     case = _case(args) if si is None else si_file.case(args, si)    # validates every parameter ...
     section = _section(args, si)
     revolutions = in_range("revolutions", args.revolutions, 0, None, True)
     in_range("tol", args.tol, 0, None, True)
-    from ..kinematics import check_crank_steps
-    from ..simulation import run_length
+    from ..discrete.kinematics import check_crank_steps
+    from ..analyses.simulation import run_length
 
     dt, steps = run_length(case, revolutions)
     check_crank_steps(case, dt, steps * dt)
@@ -69,8 +69,8 @@ def _section(args, si):
     """The --section of the command line, checked against the SI rod (None: not given)."""
     if getattr(args, "section", None) is None:
         return None
-    from ..sections import parse
-    from ..stresses import check_section
+    from ..declaration.sections import parse
+    from ..analyses.stresses import check_section
     section = parse(args.section)
     check_section(section, si)
     return section
@@ -78,11 +78,11 @@ def _section(args, si):
 
 def _loads_and_stress(result, section, si, stress=True):
     """The summary lines of the peak loads and (stress=True) the outer-fibre stresses of a result."""
-    from ..stresses import peak_loads
-    from ..stresses import stress as stress_of
-    from ..units import scales_of
+    from ..analyses.stresses import peak_loads
+    from ..analyses.stresses import stress as stress_of
+    from ..declaration.units import scales_of
     scales = None if si is None else scales_of(si)
-    from ..stresses import crank_degrees
+    from ..analyses.stresses import crank_degrees
     loads = "; ".join(f"{p.name} {p.value:.4g} {p.units}"
                       + ("" if p.direction is None else f" towards {p.direction:.1f} deg")
                       + f" (t{'' if scales else '*'} = {p.t:.4g}"
@@ -97,12 +97,12 @@ def _loads_and_stress(result, section, si, stress=True):
 def _simulate(args, case, revolutions, steps, out, si=None, section=None):
     import numpy as np
 
-    from ..io import write_csv
-    from ..plotting import plot_deflection
+    from ..results.io import write_csv
+    from ..plots.figures import plot_deflection
     from ..progress import Progress
-    from ..simulation import simulate
+    from ..analyses.simulation import simulate
 
-    kind = "no-load revolutions" if case.motion_record.driven else "revolutions"     # a motor's run: crankgen.motor_simulation
+    kind = "no-load revolutions" if case.motion_record.driven else "revolutions"     # a motor's run: crankgen.analyses.motor_simulation
     _say(args, f"simulate: {_describe(case)}, {revolutions:g} {kind} ({steps} steps)")
     transient = case.motion_record.transient
     if transient and revolutions < getattr(case, transient):
@@ -131,19 +131,19 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
                 "status": f"failed: {_failure_text(failure, case.approach)}"}
         rows = itertools.chain(rows, [last])
     out.wrote(write_csv(out.path("simulation.csv"), columns, rows))
-    from ..rod_loads import summary, summary_line
-    from ..tables import flat_table
+    from ..analyses.rod_loads import summary, summary_line
+    from ..results.tables import flat_table
     peaks = summary(res, section, si) if len(res.t) > 1 else {}
     if peaks:
         out.wrote(write_csv(out.path("summary.csv"), *flat_table(list(peaks), [peaks])))
     if args.nodes and res.nodes is not None:
         nodes = res.nodes if view is None else view.nodes
-        from ..mesh import NODE_DOFS
+        from ..discrete.mesh import NODE_DOFS
         n = nodes.shape[1] // NODE_DOFS
         # node i at x* = i / n: u, v (along and across the rigid rod; units of L, or m with --si)
         # and the slope psi = dv/dx (rad)
-        # then every node's inertial position X, Y (crankgen.animation.inertial_nodes)
-        from ..animation import inertial_nodes
+        # then every node's inertial position X, Y (crankgen.plots.animation.inertial_nodes)
+        from ..plots.animation import inertial_nodes
         length = "L" if view is None else "m"
         node_columns = columns[:2] + [f"{q}{i}_{unit}" for i in range(n)
                                              for q, unit in (("u", length), ("v", length),
@@ -157,8 +157,8 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
     # speed it passes (its resonances) and against the revolutions, other runs against time
     transient = case.motion_record.transient
     if transient and getattr(res, "states", None) is not None:
-        from ..kinematics import time_of_revolutions
-        from ..plotting import plot_runup
+        from ..discrete.kinematics import time_of_revolutions
+        from ..plots.figures import plot_runup
         out.wrote(plot_runup(res, out.path("v_mid.png"), time_of_revolutions(case, getattr(case, transient)),
                              failure=failure, si=view, strain=strain))
     else:
@@ -182,7 +182,7 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
 
 
 def _theta_at(case, t):
-    from ..kinematics import case_state
+    from ..discrete.kinematics import case_state
     return case_state(case, t).theta
 
 
@@ -197,7 +197,7 @@ def _resolved(case, where="", speed=None):
     autonomous: shot on the section theta = theta0 (crankgen.motor_steady).  speed: how the user gave
     the crank speed when not by its flag (an --si file's field, --rpm), named in the messages."""
     if case.motion_record.driven:
-        from ..motor_steady import check_steady
+        from ..analyses.motor_steady import check_steady
         try:
             check_steady(case, where)
         except ParameterError as exc:
@@ -224,7 +224,7 @@ def _resolved(case, where="", speed=None):
 
 
 def _cmd_steady(args):
-    from ..validation import in_range, integer
+    from ..declaration.validation import in_range, integer
 
     si = si_file.mechanism(args)
     case = _case(args) if si is None else si_file.case(args, si)
@@ -258,11 +258,11 @@ def _method_text(args, case):
 def _steady(args, case, out, section=None, si=None):
     from dataclasses import replace
 
-    from .. import theory
-    from ..io import write_csv
-    from ..plotting import plot_orbit
-    from ..steady import steady_states
-    from ..tables import flat_table
+    from ..analyses import theory
+    from ..results.io import write_csv
+    from ..plots.figures import plot_orbit
+    from ..analyses.steady import steady_states
+    from ..results.tables import flat_table
 
     _say(args, f"steady: {_describe(case)}; {_method_text(args, case)}")
     st = steady_states([case], tol=args.tol, max_revolutions=args.max_revolutions,
@@ -274,10 +274,10 @@ def _steady(args, case, out, section=None, si=None):
     if st.status == "failed":
         row["message"] = _failure_text(st.message, case.approach)
     if si is not None:
-        from ..si import row_in_si
+        from ..declaration.si import row_in_si
         row.update(row_in_si(row, si))
     if section is not None and st.states is not None:        # the peak stresses, where and when
-        from ..rod_loads import stress_peaks
+        from ..analyses.rod_loads import stress_peaks
         row.update(stress_peaks(st, section, si))
     out.wrote(write_csv(out.path("steady.csv"), *flat_table(list(row), [row])))
     if st.v_mid is not None:
@@ -323,7 +323,7 @@ def _steady(args, case, out, section=None, si=None):
     elif st.states is not None:                  # the loads a motor and its bearings are sized from
         print(_loads_and_stress(st, None, si, stress=False)[0])
     if st.states is not None:
-        from ..rod_loads import summary_line
+        from ..analyses.rod_loads import summary_line
         print(summary_line(row, si is not None))
         print(f"model: {st.verdict}")
     print(f"wrote {', '.join(str(p) for p in out.written)}")
@@ -358,9 +358,9 @@ def _sweep_cases(args, models, axes, si=None):
     file's field; the others are the run's settings."""
     from dataclasses import replace
 
-    from ..cases import make_case
+    from ..declaration.cases import make_case
     from ..errors import ParameterError
-    from ..si import SI_NAME
+    from ..declaration.si import SI_NAME
 
     cases = []
     for model in models:
@@ -404,7 +404,7 @@ SWEEP_NAMES = ["sweep.csv", "sweep_columns.csv", "sweep.png"]
 
 
 def _cmd_sweep(args):
-    from ..validation import in_range, integer
+    from ..declaration.validation import in_range, integer
 
     in_range("tol", args.tol, 0, None, True)
     integer("max_revolutions", args.max_revolutions, 1)
@@ -415,7 +415,7 @@ def _cmd_sweep(args):
     size = len(models) * math.prod(len(axis) for axis in axes)
     given = [f"--{_flag(axis[0][0])} ({len(axis)})" for axis in axes
              if len(axis) > 1] + ([f"models ({len(models)})"] if len(models) > 1 else [])
-    from .. import schema
+    from ..declaration import schema
     elements = _listed(args.n_elements) if args.n_elements is not None else [schema.PARAMETERS["n_elements"].default]
     steps = _listed(args.steps_per_rev) if args.steps_per_rev is not None else [schema.PARAMETERS["steps_per_rev"].default]
     check_run_size(max(elements), max(steps), size, "steady",
@@ -443,8 +443,8 @@ def _check_checkpoint(path, out):
     """Refuse, before anything is created, a checkpoint that is not a regular file (a folder, a
     device, a FIFO, a socket, a link out of its folder), has no folder, or is not a crankgen sweep
     checkpoint of this format version.  Nothing is opened but a regular file."""
-    from ..io import NotRegularFileError, check_target
-    from ..sweeps import check_checkpoint_file
+    from ..results.io import NotRegularFileError, check_target
+    from ..analyses.sweeps import check_checkpoint_file
 
     try:
         target = check_target(path)
@@ -463,7 +463,7 @@ def _sweep(args, cases, checkpoint, out, si=None):
     from collections import Counter
 
     from ..progress import Progress
-    from ..sweeps import sweep, worker_init
+    from ..analyses.sweeps import sweep, worker_init
 
     if args.fresh and checkpoint.exists():
         _say(args, f"sweep: --fresh: the records of {checkpoint} are discarded, every case is "
@@ -496,13 +496,13 @@ def _sweep(args, cases, checkpoint, out, si=None):
     finally:
         if executor is not None:
             _stop_pool(executor, now=not finished)
-    from ..io import write_csv
-    from ..tables import flat_table
+    from ..results.io import write_csv
+    from ..results.tables import flat_table
     shown = table if si is None else table.si_view(si)
     columns, rows = flat_table(shown.columns, shown.rows)
     out.wrote(write_csv(out.path("sweep.csv"), columns, rows))
     out.wrote(write_csv(out.path("sweep_columns.csv"), ["column", "units", "meaning"], shown.describe(columns)))
-    from ..sweep_plot import plot_sweep, varying
+    from ..plots.sweep import plot_sweep, varying
     drawn = [c for c in varying(table.rows, table.columns)
              if c in schema.PARAMETERS and schema.PARAMETERS[c].kind in ("real", "count")]
     if drawn:

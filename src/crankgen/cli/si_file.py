@@ -1,7 +1,7 @@
 """`--si FILE`: the mechanism and its crank motion in SI from a JSON file, for every command that
 runs a mechanism (simulate, steady, sweep, continue, poincare, modes, campbell, animate).
 
-The file holds the fields of a crankgen.SIMechanism (crankgen.si): the rod's L, E, rho, A, I and
+The file holds the fields of a crankgen.SIMechanism (crankgen.declaration.si): the rod's L, E, rho, A, I and
 every parameter of the mechanism, its guide and its crank motion by its SI name, in the SI unit of
 its declared units.  With --si a parameter with a unit (the crank length, the end mass, the
 damping, gravity, the offset, a four-bar's c and d, the crank speeds) and the choice of guide and
@@ -12,13 +12,13 @@ stay flags."""
 
 import json
 
-from .. import schema
+from ..declaration import schema
 from .options import UsageError, _explicit
 
 
 def fields_text():
     """The file's fields with their units, for --help: {"L": m, ..., "crank_speed": rad/s, ...}."""
-    from ..units import ROD, Scales
+    from ..declaration.units import ROD, Scales
 
     def what(p):
         if p.kind == "choice":
@@ -47,7 +47,7 @@ def add_option(p, what):
 def range_text():
     """The SI unit of each parameter a continuation can vary with --si, from the declaration
     ("crank_speed (omega) in rad/s, a in m, ..."); the slenderness left out (the rod's section)."""
-    from ..si import si_unit
+    from ..declaration.si import si_unit
     out = []
     for name in schema.CONTINUABLE:
         if name in schema.UNIT_PARAMETERS.values():
@@ -72,7 +72,7 @@ def add_rpm_option(p, single=True):
 
 
 def _crank_field():
-    from ..si import SI_NAME
+    from ..declaration.si import SI_NAME
     return SI_NAME[schema.CRANK_SPEED]
 
 
@@ -112,8 +112,8 @@ def read(path, rpm=None, replace_speed=False):
     """The crankgen.SIMechanism of a JSON file (UsageError naming what is wrong); rpm: the crank
     speed in rpm from the command line (the file must then give none, unless replace_speed: a
     sweep's grid replaces the file's)."""
-    from ..io import read_regular
-    from ..si import SIMechanism
+    from ..results.io import read_regular
+    from ..declaration.si import SIMechanism
     names = SIMechanism.field_names()
     try:
         data = json.loads(read_regular(path))
@@ -146,7 +146,7 @@ def run_fields(args, si, keep=()):
     options and the dimensionless parameters the file leaves out.  A flag for a parameter the
     file gives, for one with a unit, or choosing the guide or crank motion is refused (UsageError
     naming the file's field).  keep: names the command reads itself, passed on unchecked."""
-    from ..si import SI_NAME, dimensioned
+    from ..declaration.si import SI_NAME, dimensioned
     given = _explicit(args)
     in_file = si.values()
     for name in given:

@@ -3,7 +3,7 @@
 import argparse
 import sys
 
-from .. import schema
+from ..declaration import schema
 from . import si_file
 from .options import UsageError, _Outputs, _add_model_options, _explicit, _model_options, _say
 
@@ -87,7 +87,7 @@ def _branch_model(args):
     """The case of the first point, checked (the continued parameter set to the range's start).
     Refused: the continued parameter also given by its own flag (its values are --from/--to), and
     a parameter the case's guide or crank motion does not read."""
-    from ..cases import make_case
+    from ..declaration.cases import make_case
 
     args.parameter = _parameter(args)
     fields = _explicit(args)
@@ -120,8 +120,8 @@ def _si_range(args, values=None):
         if getattr(args, "rpm", False):
             raise UsageError("--rpm (--from and --to in rpm) needs the rod in SI: --si FILE")
         return values
-    from ..si import to_crankgen
-    from ..validation import in_range
+    from ..declaration.si import to_crankgen
+    from ..declaration.validation import in_range
     args.parameter = _parameter(args)
     if args.parameter in schema.UNIT_PARAMETERS.values():
         raise UsageError(f"with --si, {schema.PARAMETERS[args.parameter].label} is the rod's section (sqrt(I/A)/L): "
@@ -131,7 +131,7 @@ def _si_range(args, values=None):
     if getattr(args, "rpm", False):                 # --from, --to in rpm: into rad/s
         if args.parameter != schema.CRANK_SPEED:
             raise UsageError(f"--rpm says --from and --to are crank speeds in rpm; --parameter is {args.parameter}")
-        from ..si import rad_per_s
+        from ..declaration.si import rad_per_s
         start, stop = rad_per_s(start), rad_per_s(stop)
         values = None if values is None else [rad_per_s(v) for v in values]
     args.si_range = (start, stop)
@@ -151,7 +151,7 @@ def _checked_branch_model(args, continuation, values=()):
     except ParameterError as e:
         if getattr(args, "si_mechanism", None) is None:
             raise
-        from ..si import si_unit
+        from ..declaration.si import si_unit
         unit = si_unit(args.parameter)
         lo, hi = args.si_range
         raise UsageError(f"{e} (with --si: --from {lo:g} --to {hi:g}{'' if unit == '1' else ' ' + unit} "
@@ -159,9 +159,9 @@ def _checked_branch_model(args, continuation, values=()):
 
 
 def _checked(args, continuation, values):
-    from .. import schema
-    from ..bifurcation.api import make_case
-    from ..validation import in_range, integer
+    from ..declaration import schema
+    from ..analyses.bifurcation.api import make_case
+    from ..declaration.validation import in_range, integer
     from .runs import _resolved
 
     start, stop = in_range("--from", args.start), in_range("--to", args.stop)
@@ -190,9 +190,9 @@ POINCARE_NAMES = ("poincare_summary.csv", "poincare_samples.csv", "poincare.png"
 def _cmd_continue(args):
     import numpy as np
 
-    from ..bifurcation import continuation, poincare
+    from ..analyses.bifurcation import continuation, poincare
     from ..progress import Progress
-    from ..validation import integer
+    from ..declaration.validation import integer
 
     if args.sweep is not None:
         integer("--sweep", args.sweep, 2)
@@ -201,8 +201,8 @@ def _cmd_continue(args):
     _si_range(args)
     section = None
     if args.section is not None:                 # with --si: the rod's, its stresses in Pa
-        from ..sections import parse
-        from ..stresses import check_section
+        from ..declaration.sections import parse
+        from ..analyses.stresses import check_section
         section = parse(args.section)
         check_section(section, args.si_mechanism)
     case = _checked_branch_model(args, continuation=True)
@@ -257,12 +257,12 @@ def _printed(args, view):
 
 
 def _axis(parameter):
-    from ..bifurcation.diagram import axis
+    from ..analyses.bifurcation.diagram import axis
     return axis(parameter)
 
 
 def _title(args, what):
-    from ..bifurcation.diagram import describe
+    from ..analyses.bifurcation.diagram import describe
     c = _branch_model(args)
     return describe(c.as_dict(), what, args.parameter)
 
@@ -270,10 +270,10 @@ def _title(args, what):
 def _cmd_poincare(args):
     import numpy as np
 
-    from ..bifurcation import continuation, poincare
+    from ..analyses.bifurcation import continuation, poincare
     from ..progress import Progress
 
-    from ..validation import integer
+    from ..declaration.validation import integer
 
     integer("--values", args.values, 2)
     if args.values > 100000:

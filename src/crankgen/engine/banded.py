@@ -8,7 +8,7 @@ iteration matrices (see the note before KB_FIXED).
 
 import numpy as np
 
-from ..schema import ELEMENT_DOFS as NDOF
+from ..declaration.schema import ELEMENT_DOFS as NDOF
 from .compiled import jit
 
 

@@ -24,8 +24,8 @@ import tempfile
 import time
 from pathlib import Path
 
-from .. import compile_cache
-from ..compile_cache import READ_ONLY
+from . import cache
+from .cache import READ_ONLY
 
 try:
     import fcntl
@@ -56,7 +56,7 @@ def label(item):
 
 
 def _marker(item):
-    return compile_cache.kernel_mark(item.replace(":", "-"))
+    return cache.kernel_mark(item.replace(":", "-"))
 
 
 def done(item):
@@ -64,7 +64,7 @@ def done(item):
 
 
 def _mark(item):
-    compile_cache.mark_kernel(item.replace(":", "-"))
+    cache.mark_kernel(item.replace(":", "-"))
 
 
 @contextlib.contextmanager
@@ -73,7 +73,7 @@ def _lock(item, wait):
     if fcntl is None or READ_ONLY:
         yield True
         return
-    path = compile_cache.CACHE / "locks" / f"{item.replace(':', '-')}.lock"
+    path = cache.CACHE / "locks" / f"{item.replace(':', '-')}.lock"
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         fh = open(path, "a")
@@ -106,8 +106,10 @@ def compile_item(item):
 
 
 def _compile_entry(name):
-    """Compile an engine entry point with the compiler its module registered (engine/__init__.py
-    imports every such module)."""
+    """Compile an engine entry point with the compiler its module registered (the module is
+    imported by whoever asks for the entry: a Batch, `crankgen compile`, the helper process)."""
+    if name not in _ENTRY_COMPILERS:
+        raise RuntimeError(f"no compiler registered for the engine entry {name!r}: import its module first")
     _ENTRY_COMPILERS[name]()
 
 
@@ -152,10 +154,10 @@ def _helper(items, report):
     if READ_ONLY or fcntl is None or len(items) < 2 or (os.cpu_count() or 1) < 2 \
             or os.environ.get("CRANKGEN_BUILD_PROCESSES") == "1":
         return None
-    env = dict(os.environ, CRANKGEN_CACHE_DIR=str(compile_cache.CACHE.parent),
+    env = dict(os.environ, CRANKGEN_CACHE_DIR=str(cache.CACHE.parent),
                CRANKGEN_BUILD_PARENT=str(os.getpid()), CRANKGEN_BUILD_REPORT=str(report))
     try:
-        return subprocess.Popen([sys.executable, "-m", "crankgen.engine.build", *reversed(items)],
+        return subprocess.Popen([sys.executable, "-m", "crankgen.engine.helper", *reversed(items)],
                                 stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                                 stderr=subprocess.DEVNULL, env=env, start_new_session=False)
     except OSError:
@@ -197,7 +199,7 @@ def prepare(items, quiet=False):
     from numba.core import config
     if config.DISABLE_JIT:                        # plain Python: nothing to compile
         return []
-    quiet = quiet or bool(compile_cache.QUIET)
+    quiet = quiet or bool(cache.QUIET)
     todo = [item for item in items if not done(item)]
     if not todo:
         return []
@@ -265,8 +267,3 @@ def main(argv=None):
     _run(items, None, time.perf_counter())
     return 0
 
-
-if __name__ == "__main__":
-    # the registered compilers live in the package's module crankgen.engine.build, not in __main__
-    from crankgen.engine.build import main as _main
-    sys.exit(_main())

@@ -3,7 +3,7 @@
 numba's own cache is keyed by the source file of each compiled function: a function that calls a
 function of another file (the Newmark step) is not recompiled when only that other file changed,
 so after `make derive` or an edit of the engine a stale engine would run.  Every crankgen function
-is therefore cached in the folder of crankgen.compile_cache, named by CODE_HASH (the generated
+is therefore cached in the folder of crankgen.engine.cache, named by CODE_HASH (the generated
 kernels' specification and the engine's source), with that hash also in its source stamp: changed
 kernels or engine code always get a fresh compilation.
 
@@ -31,7 +31,7 @@ from numba.core.extending import intrinsic, overload
 from numba.core.untyped_passes import TranslateByteCode
 
 from .._generated import schema as _table
-from ..compile_cache import CACHE, CODE_HASH, READ_ONLY, announce, is_warm  # noqa: F401
+from .cache import CACHE, CODE_HASH, READ_ONLY, announce, is_warm  # noqa: F401
 
 KERNELS_HASH = _table.KERNELS_HASH
 _PACKAGE = Path(__file__).resolve().parent.parent

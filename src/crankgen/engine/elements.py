@@ -11,7 +11,7 @@ separate matrices the projection needs), RESIDUAL (residual only, for iterations
 factorization).  Nothing here names a family, a guide, a motion, a slot or an element.
 """
 
-from .. import schema
+from ..declaration import schema
 from .._generated import per_step as _per_step
 from .calls import call
 from .compiled import jit, plain

@@ -23,8 +23,8 @@ import numpy as np
 from numba import types
 from numba.core import config
 
-from .. import newton as _newton
-from .. import schema
+from ..discrete import newton as _newton
+from ..declaration import schema
 from .._generated import elements as _elements
 from .._generated import kinematics as _kinematics
 from .calls import address

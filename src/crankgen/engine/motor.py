@@ -1,4 +1,4 @@
-"""The motor-driven crank in the compiled engine: the bordered Newton step of crankgen.motor (the
+"""The motor-driven crank in the compiled engine: the bordered Newton step of crankgen.discrete.motor (the
 NumPy reference; its docstring gives the equations) on the state (d, theta) of N + 1 numbers, and
 the march of a batch of such cases.
 
@@ -14,7 +14,8 @@ import math
 
 import numpy as np
 
-from .. import newton, schema
+from ..discrete import newton
+from ..declaration import schema
 from .banded import assemble_band, assemble_band_newmark, assemble_vector, band_factor, band_lu_solve, band_solve
 from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
 from .build import entry_point
@@ -25,7 +26,7 @@ from .kernels import next_iteration
 from .records import N_OUTPUTS, make_work
 from .step import NOT_CONVERGED, NOT_FINITE, OK, SINGULAR, STARTER_BETA, STARTER_GAMMA, TOO_LARGE
 
-COLUMN_STEP = 1e-7               # crankgen.motor.COLUMN_STEP
+COLUMN_STEP = 1e-7               # crankgen.discrete.motor.COLUMN_STEP
 ENTRY = "driven"                 # the entry point's name (engine/build.py): the march of driven cranks
 _PIN = next(c for c in schema.CONSTRAINTS if c.map is None and c.node == 0)
 PIN_SLOTS = np.array([schema.NODE.index(c) for c in _PIN.eliminated], dtype=np.int64)
@@ -348,7 +349,7 @@ def march_motor(batch, n_steps, X0, V0, A0=None, G0=None, keep_history=False, to
     DOFs, then the crank angle / speed).  A0: the accelerations (default solved: R = 0, g = 0);
     G0: generalized-alpha's algorithmic accelerations (default: a start, its first step the
     starter, time_scheme.STARTER, and G0 = A0).  status: cases not OK on entry are not advanced."""
-    from .march import parallel_slices
+    from .batch import parallel_slices
     from .records import Scheme
     B, M1 = len(batch), batch.N + 1
     X0 = np.ascontiguousarray(X0, dtype=float).reshape(B, M1)
@@ -375,9 +376,9 @@ def march_motor(batch, n_steps, X0, V0, A0=None, G0=None, keep_history=False, to
 
 
 def compiling_batch():
-    from ..cases import Case
+    from ..declaration.cases import Case
     from .kernels import noop_tables
-    from .march import Batch
+    from .batch import Batch
     driven = next(name for name, m in schema.MOTIONS.items() if m.driven)
     return Batch([Case(motion=driven, n_elements=2, steps_per_rev=4)], entries=(ENTRY,), kernels_table=noop_tables())
 

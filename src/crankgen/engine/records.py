@@ -10,7 +10,7 @@
   (the kinematic parameters), the time step, `p` (the parameter vector, for the engine's
   outputs), the Newton scheme code (newton.SCHEMES), whether the one-pass scheme iterates with the
   printed eq. (37) matrices, the natural size of every reduced DOF (`scales`), and the time
-  scheme's (beta, gamma, alpha_m, alpha_f) (`integ`: crankgen.time_scheme; alpha_m = alpha_f = 0
+  scheme's (beta, gamma, alpha_m, alpha_f) (`integ`: crankgen.discrete.time_scheme; alpha_m = alpha_f = 0
   is Newmark), and a motor's torque curve (`curve`: its departure from the drive kernel's linear
   law at its first `curve_n` knots, rows (thetad, D, D'); count 0: none; crankgen.torque_curve).
 - MeshData: the mesh as the engine reads it: the element DOF map, bandwidth, element length, and
@@ -26,7 +26,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from .. import schema
+from ..declaration import schema
 from .banded import KB_FIXED
 from .compiled import jit
 
@@ -82,7 +82,7 @@ def _condensation(n):
     """The DOF map's condensation on n elements: (mapped (n,): for each element the index of its
     holding of the mapped constraint's node, -1 none; held (h,): the holding elements; held_slots
     (h, K_ELIM): the eliminated components' places in each; held_reduced (h, M_RED): the places of
-    the reduced co-ordinates there, the first eliminated ones), the same as crankgen.mesh.Mesh.holders."""
+    the reduced co-ordinates there, the first eliminated ones), the same as crankgen.discrete.mesh.Mesh.holders."""
     node = MAPPED_NODE % (n + 1)
     count = (1 if node >= 1 else 0) + (1 if node < n else 0)
     mapped = np.full(n, -1, dtype=np.int64)

@@ -11,14 +11,14 @@ band LU: banded.py)."""
 
 import numpy as np
 
-from .. import newton
+from ..discrete import newton
 from .banded import (KB_FIXED, assemble_band, assemble_fixed, assemble_vector, band_factor, band_lu_solve,
                      factor_fixed)
 from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
 from .compiled import jit
 from .elements import FULL, RESIDUAL, element_loop, iteration_matrices, kinematics, step_outputs
 from .build import entry_point
-from .march import compiling_batch, parallel_slices
+from .batch import compiling_batch, parallel_slices
 from .records import N_OUTPUTS, Scheme, make_work
 from .step import OK, SINGULAR, initial_acceleration, newmark_step
 

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from .. import newton, time_scheme
+from ..discrete import newton, time_scheme
 from .banded import (KB_FIXED, assemble_band, assemble_band_newmark, assemble_fixed, assemble_vector,
                      band_factor, band_lu_solve, band_solve, factor_fixed, solve_fixed)
 from .compiled import jit
@@ -49,7 +49,7 @@ def initial_acceleration(kern, cases, b, mesh, t0, d, v, out, w):
 def newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, alg, hist, n_prev, d_new, v_new, a_new, alg_new, w,
                  start=False):
     """One step of case b from (d, v, acc, alg) to (d_new, v_new, a_new, alg_new) at t_new: Newmark,
-    or generalized-alpha in Arnold & Bruls' form (crankgen.time_scheme; the case's row of
+    or generalized-alpha in Arnold & Bruls' form (crankgen.discrete.time_scheme; the case's row of
     cases.integ: beta, gamma, alpha_m, alpha_f).  acc: the accelerations qdd (R = 0 holds with
     them), alg: the algorithmic accelerations (for Newmark read as acc).  The predictors
         dp = d + dt v + dt^2 (1/2 - beta) alg + dt^2 beta abar,  vp = v + dt (1 - gamma) alg + dt gamma abar,
@@ -59,7 +59,7 @@ def newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, alg, hist, n_pr
     hist[k]: the displacements k + 1 steps before d, of which the first n_prev (0 to HISTORY) are
     known, for the starting guess.  start: the first step of a generalized-alpha run from a state
     without algorithmic accelerations, taken with Newmark's beta = 1/2, gamma = 1 (STARTER:
-    crankgen.time_scheme), alg_new = a_new.  Returns (status, iterations, residual norm)."""
+    crankgen.discrete.time_scheme), alg_new = a_new.  Returns (status, iterations, residual norm)."""
     N = d.shape[0]
     sel, coef, params, scales = cases.select[b], cases.coef[b], cases.params[b], cases.scales[b]
     dofs, kb, l = mesh.dofs, mesh.kb, mesh.l

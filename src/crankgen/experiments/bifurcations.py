@@ -63,8 +63,8 @@ def _run(ctx, m, eps, n, spr):
     (period, origin, stop_reason, omega, amplitude, stable, max_abs_multiplier arrays), special
     points (kind, omega, amplitude, period, branch, multiplier) and beyond (None when there is
     nothing beyond: no special point and the crank-period branch reached the end of the range)."""
-    from ..bifurcation import continuation
-    from ..parameters import Mechanism
+    from ..analyses.bifurcation import continuation
+    from ..declaration.parameters import Mechanism
 
     cfg = ctx.config
     lo, hi = cfg.bif_range
@@ -112,7 +112,7 @@ def beyond_edge(rec, hi):
 
 def _beyond(ctx, mech, m, n, spr, edge, label):
     """Poincare sweep up over bif_beyond_values speeds in (edge, hi]."""
-    from ..bifurcation import poincare
+    from ..analyses.bifurcation import poincare
 
     cfg = ctx.config
     hi = cfg.bif_range[1]

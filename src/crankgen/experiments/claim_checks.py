@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from .. import theory
+from ..analyses import theory
 from . import findings as fd
 from .claim_measures import (ANGLE, CLOSE, FACTOR, ILL, Missing, NOTICEABLE, NOT_COMPUTABLE,
                              NOT_REPRODUCED, Outcome, PARTLY, REPRODUCED, SAME, SLOPE, SPEED, STABLE,

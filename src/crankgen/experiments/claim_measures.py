@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .. import theory
+from ..analyses import theory
 from . import findings as fd
 from .figures import DIVERGED    # a run of an ill-posed approach that failed
 

@@ -4,7 +4,7 @@ from dataclasses import asdict, dataclass, field, replace
 
 import numpy as np
 
-from .. import schema
+from ..declaration import schema
 
 
 @dataclass(frozen=True)
@@ -142,7 +142,7 @@ class ReproduceConfig:
     differ_threshold: float = 0.10       # "B or C differs from A by more than 10 %"
     crossing_rel_tol: float = 0.05       # extension spread at a common crossing / largest spread
     agree_tol: float = 0.01              # models "agree" when relative differences are below this
-    # extra keyword arguments for crankgen.steady.steady_states (e.g. max_revolutions)
+    # extra keyword arguments for crankgen.analyses.steady.steady_states (e.g. max_revolutions)
     steady_options: dict = field(default_factory=dict)
 
     def __post_init__(self):

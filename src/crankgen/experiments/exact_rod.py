@@ -6,7 +6,7 @@ exact_rocker pivoted at (1, 0)) at eps = exact_eps: crankgen.continuation over O
 exact_range of the consistent model and of the exact rod (model="consistent" / "exact", the same
 mesh, steps and corrector tolerance, period doublings followed up to exact_max_period).  Where a
 branch of the exact rod stops before the end of the range, the orbit at its last point is marched
-and its section rotation and outer-fibre strain read (crankgen.theory.exact_measures): the
+and its section rotation and outer-fibre strain read (crankgen.analyses.theory.exact_measures): the
 element's own limit is a rotation of 90 degrees.  Then both models are marched from rest at
 Omega* = exact_snap_omega for exact_snap_revolutions revolutions (the consistent model's
 snap-through orbit).  `compare` pairs the special points (same kind and period, nearest in
@@ -33,7 +33,7 @@ POINT_COLUMNS = ["mechanism", "model", "eps", "n_elements", "steps_per_rev", "ki
 
 def mechanism(cfg, name):
     """The crankgen.Mechanism of a mechanism's name at the step's eps."""
-    from ..parameters import Mechanism
+    from ..declaration.parameters import Mechanism
     from .._generated.classes import Circle
     guide = {} if name == "slider-crank" else dict(guide=Circle(center=(1.0, 0.0), radius=cfg.exact_rocker))
     return Mechanism(a=cfg.a, eps=cfg.exact_eps, ms=cfg.ms, mu=cfg.mu, **guide)
@@ -57,7 +57,7 @@ def exact_rod(ctx):
 
 
 def _run(ctx, name, m):
-    from ..bifurcation import continuation
+    from ..analyses.bifurcation import continuation
     cfg = ctx.config
     lo, hi = cfg.exact_range
     label = f"exact rod, {name}, {m.key} model"
@@ -89,9 +89,10 @@ def _end_measures(mech, m, cfg, br, hi):
     marched for its period, its largest section rotation (degrees) and outer-fibre strain."""
     if str(br.stop_reason).startswith("reached") or not len(br):
         return None
-    from .. import notices, theory
-    from ..simulation import simulate
-    from ..mesh import Mesh
+    from .. import notices
+    from ..analyses import theory
+    from ..analyses.simulation import simulate
+    from ..discrete.mesh import Mesh
     state = np.asarray(br.states[-1], dtype=float)
     parts = tuple(state.reshape(-1, Mesh(cfg.exact_elements).n_dofs))      # (d, v) or (d, v, a)
     out = dict(omega=float(br.parameter[-1]), amplitude=float(br.amplitude[-1]))
@@ -109,8 +110,9 @@ def _end_measures(mech, m, cfg, br, hi):
 def _snap(ctx, m):
     """A march from rest at exact_snap_omega: the per-revolution peaks of |v*| (the last ones), or
     where it stopped and why."""
-    from .. import notices, theory
-    from ..simulation import simulate
+    from .. import notices
+    from ..analyses import theory
+    from ..analyses.simulation import simulate
     cfg = ctx.config
     mech = mechanism(cfg, "slider-crank")
     om, revs = cfg.exact_snap_omega, cfg.exact_snap_revolutions

@@ -11,17 +11,17 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .. import theory
-from ..cases import Case
+from ..analyses import theory
+from ..declaration.cases import Case
 from . import findings as fd
 from .config import APPROACHES, EXACT, MODELS
 
 STABLE = "periodic"
-# A run of an approach whose strain energy is unbounded below (crankgen.theory: approach B) that
+# A run of an approach whose strain energy is unbounded below (crankgen.analyses.theory: approach B) that
 # fails has diverged: its status is DIVERGED (the word every table, figure and CSV uses), never an
 # amplitude or a stability result.  A failure of another approach stays "failed".
 DIVERGED = "diverged"
-# Range of the theory (crankgen.theory): |v| / L = eps |v*| above THEORY_LIMIT or an axial strain of
+# Range of the theory (crankgen.analyses.theory): |v| / L = eps |v*| above THEORY_LIMIT or an axial strain of
 # the neutral axis above STRAIN_LIMIT is "beyond the theory".
 THEORY_LIMIT = theory.DEFLECTION_LIMIT
 STRAIN_LIMIT = theory.STRAIN_LIMIT
@@ -70,7 +70,7 @@ class TransientCurve:
     fail_time: float = math.nan
     t: np.ndarray = field(default=None, repr=False)
     v_mid: np.ndarray = field(default=None, repr=False)
-    axial_strain: np.ndarray = field(default=None, repr=False)   # per step (crankgen.theory)
+    axial_strain: np.ndarray = field(default=None, repr=False)   # per step (crankgen.analyses.theory)
 
     @property
     def ok(self):
@@ -153,7 +153,7 @@ def steady_row(model_key, s, **extra):
                envelope=math.nan, envelope_note="",
                axial_strain=theory.axial_strain(s) if orbit else math.nan,
                strain_energy_bound=theory.strain_energy(c.approach))
-    if c.approach == EXACT.key:       # the exact rod's own limits (crankgen.theory)
+    if c.approach == EXACT.key:       # the exact rod's own limits (crankgen.analyses.theory)
         row["fibre_strain"], row["section_rotation_deg"] = (theory.exact_measures(s) if orbit
                                                             else (math.nan, math.nan))
     row.update(extra)
@@ -172,7 +172,7 @@ def response_of(row):
 
 def flag_theory(row):
     """deflection_over_L (|v|/L of the row's response, response_of) and beyond_theory ("yes" when
-    it or the row's axial strain exceeds the limits of crankgen.theory; an exact-rod row by the
+    it or the row's axial strain exceeds the limits of crankgen.analyses.theory; an exact-rod row by the
     exact rod's own limits: its eps, outer-fibre strain and section rotation)."""
     row["deflection_over_L"], row["beyond_theory"] = beyond_theory(
         row["eps"], response_of(row), row.get("axial_strain", math.nan))

@@ -1,4 +1,4 @@
-"""Output of `crankgen reproduce`: the atomic writers of crankgen.io (every file written to a
+"""Output of `crankgen reproduce`: the atomic writers of crankgen.results.io (every file written to a
 temporary file beside it, `.NAME.*.tmp`, synced and moved into place, with the mode open() would
 give it), the clean-up of a killed run's temporary files, file hashes for the manifest, and the
 figures' data as JSON."""
@@ -11,8 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..io import (OutputExistsError, _cell, atomic_write, atomic_write_text, csv_text,  # noqa: F401
-                  existing_outputs, save_figure, write_csv)
+from ..results.io import (OutputExistsError, _cell, atomic_write, atomic_write_text, csv_text, existing_outputs,  # noqa: F401
+                          save_figure, write_csv)
 
 
 def remove_temporaries(folder, names):

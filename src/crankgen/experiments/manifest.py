@@ -14,7 +14,7 @@ import warnings
 from pathlib import Path
 
 from ..errors import CrankgenError
-from ..io import read_regular
+from ..results.io import read_regular
 from .io import atomic_write, file_hash, to_json
 
 NAME = "manifest.json"

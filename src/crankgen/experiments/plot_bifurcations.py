@@ -8,7 +8,7 @@ import numpy as np
 
 LABELS = {"fold": "F", "period-doubling": "PD", "neimark-sacker": "NS"}
 MARKERS = {"fold": "s", "period-doubling": "o", "neimark-sacker": "D"}
-from ..bifurcation.diagram import PERIOD_COLORS  # noqa: E402  (one colour per period, everywhere)
+from ..analyses.bifurcation.diagram import PERIOD_COLORS  # noqa: E402  (one colour per period, everywhere)
 FONT = 8
 
 
@@ -82,7 +82,7 @@ def draw(ax, run, label_points=True):
 
 def _labels(ax, pts):
     """Kind and Omega* beside each special point, where the text covers no drawn point or line,
-    no other label, and stays inside the frame (crankgen.plotting.place_labels)."""
-    from ..plotting import place_labels
+    no other label, and stays inside the frame (crankgen.plots.figures.place_labels)."""
+    from ..plots.figures import place_labels
     place_labels(ax, [(s["omega"], s["amplitude"], f"{LABELS[s['kind']]} {s['omega']:.4g}",
                        _color(s["period"])) for s in pts], fontsize=FONT)

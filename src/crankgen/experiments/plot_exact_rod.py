@@ -6,7 +6,7 @@ and Omega* (plot_bifurcations.py); an exact-rod branch that ends before the rang
 
 import math
 
-from ..plotting import panels
+from ..plots.figures import panels
 from . import plot_bifurcations as PB
 from .plot_style import legend_below, panel_grid
 

@@ -4,7 +4,7 @@ room they take, and the legend entry of series that coincide."""
 
 import math
 
-from ..plotting import beyond_patch
+from ..plots.figures import beyond_patch
 
 FONT = 8                                   # legends, insets, annotations (pt)
 # per approach: line style and marker, so that coinciding curves stay visible

@@ -6,13 +6,13 @@ filled triangle inside the frame at the top (both in the series' colour); hollow
 unstable orbits and the settled transients of non-periodic responses; deflections beyond the
 theory (|v|/L > 0.1) lie in a shaded band.  Curves that coincide keep distinct markers and line
 styles, and the legend says so.  Legends sit below the axes, labels wrapped to the panel; the
-layout is measured (crankgen.plotting.fit_panels); no text is smaller than 8 pt."""
+layout is measured (crankgen.plots.figures.fit_panels); no text is smaller than 8 pt."""
 
 import math
 
 import numpy as np
 
-from ..plotting import APPROACH_COLORS, fit_panels, mark_at_axis, panels, shade_beyond
+from ..plots.figures import APPROACH_COLORS, fit_panels, mark_at_axis, panels, shade_beyond
 from . import findings as fd
 
 from .config import APPROACHES, MODELS

@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-from ..plotting import APPROACH_COLORS, panels
+from ..plots.figures import APPROACH_COLORS, panels
 from . import plot_bifurcations as PB
 from .config import APPROACHES, EXACT, MODELS
 from . import figures as F

@@ -10,7 +10,7 @@ from collections import OrderedDict
 import numpy as np
 
 from .. import __version__
-from .. import theory
+from ..analyses import theory
 from . import figures as F
 from . import claims
 from . import findings as fd
@@ -342,7 +342,7 @@ def _claims(cfg, conv, data, missing):
 
 
 def _theory(cfg, data):
-    """Results that leave the range of the theory (crankgen.theory: deflection or axial strain);
+    """Results that leave the range of the theory (crankgen.analyses.theory: deflection or axial strain);
     a run that diverged has no result and is only counted."""
     rows, diverged = [], []
 

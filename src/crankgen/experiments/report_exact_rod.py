@@ -1,12 +1,12 @@
 """findings.md, the geometrically exact rod beside the two models: its amplitudes in Figures 5 and
-6 against the consistent model's and the paper's (approach A), its own range (crankgen.theory:
+6 against the consistent model's and the paper's (approach A), its own range (crankgen.analyses.theory:
 slenderness, outer-fibre strain, section rotation), and the consistent model's special points
 re-read on it (data: exact_rod.py): which survive, move or vanish, the hysteresis loop, the
 snap-through orbit and where the exact rod's branches end."""
 
 import math
 
-from .. import theory
+from ..analyses import theory
 from . import figures as F
 from . import exact_rod as XR
 from .config import EXACT, MODELS
@@ -165,7 +165,7 @@ def _range(data):
         for m in f.tripped:
             count[m.name] = count.get(m.name, 0) + 1
     paper = sum(1 for r in rows if r["deflection_over_L"] > F.THEORY_LIMIT)
-    return [f"The exact rod's own range (crankgen.theory, README): of its {len(known)} steady rows in "
+    return [f"The exact rod's own range (crankgen.analyses.theory, README): of its {len(known)} steady rows in "
             f"Figures 5 and 6, {sum(1 for f in known if f)} leave its limits ("
             + (", ".join(f"{n}: {k}" for n, k in count.items()) or "none")
             + f"); rows with |v|/L above the paper's limit of {F.THEORY_LIMIT:g}, which does not apply "

@@ -11,18 +11,18 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import steady as _steady
-from .. import theory
+from ..analyses import steady as _steady
+from ..analyses import theory
 from ..errors import CrankgenError
-from ..cases import Case
+from ..declaration.cases import Case
 from ..progress import Progress
-from ..simulation import simulate_many
+from ..analyses.simulation import simulate_many
 from . import bifurcations as BF
 from . import exact_rod as XR
 from . import figures as F
 from . import plots, report
 from .config import FIGURES, ReproduceConfig
-from ..provenance import code_version
+from ..results.provenance import code_version
 from .io import (OutputExistsError, atomic_write_text, read_json, remove_temporaries, save_figure,
                  write_csv, write_json)
 from .manifest import NAME as MANIFEST, Manifest
@@ -121,8 +121,8 @@ class Context:
         and of several cases, transients with states, the revolution map of the continuation)."""
         if self.engine is not None:
             return
-        from ..bifurcation.mechanism import MechanismMap
-        from ..compile_cache import is_warm
+        from ..analyses.bifurcation.mechanism import MechanismMap
+        from ..engine.cache import is_warm
         compiled = not is_warm()
         t0 = time.perf_counter()
         self.log("starting the compiled engine" + (f" (compiling it for this machine, once: {COMPILE_TIME})"
@@ -197,7 +197,7 @@ class Context:
 
 
 def run_version():
-    """What made a step: crankgen.provenance.code_version() and a hash of this package's source
+    """What made a step: crankgen.results.provenance.code_version() and a hash of this package's source
     (figures, plots, claims, findings), so that a rerun with changed reproduce code recomputes."""
     import hashlib
     h = hashlib.sha256()

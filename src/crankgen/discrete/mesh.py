@@ -1,0 +1,157 @@
+"""Mesh of the connecting rod and its DOF map: from element DOFs to the reduced (free) DOFs.
+
+Full nodal vector: the components of each node (schema.NODE: u, v, psi, eq. 14), nodes 0..n along
+the rod.  Each constraint of the DOF map (schema.CONSTRAINTS, declared in derive/declaration.py)
+eliminates components of its node; its reduced co-ordinates take the places of the first of them,
+in order.  The crank pin eliminates u_0, v_0; the guide replaces (u_n, v_n) by the reduced
+co-ordinate s of its end map, (u_n, v_n) = g(s, t) (a slider: s (cos phi, sin phi), eq. 26; see
+constraints.py).  The reduced vector is
+
+    [psi_0,  u_1, v_1, psi_1,  ...,  u_{n-1}, v_{n-1}, psi_{n-1},  s, psi_n]     (3 n entries).
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..declaration import schema
+from ..declaration.validation import integer
+
+NDOF = schema.ELEMENT_DOFS
+COMPONENTS = schema.NODE                      # (u, v, psi)
+NODE_DOFS = len(COMPONENTS)                   # per node; an element holds two nodes' (NDOF)
+U, V, PSI = range(NODE_DOFS)
+MAPPED = next(c for c in schema.CONSTRAINTS if c.map is not None)   # the constraint with reduced co-ordinates
+
+
+def element_slots(node_in_element, components):
+    """The places in an element's nodal vector of components of its node 0 (first) or 1 (second)."""
+    return tuple(node_in_element * NODE_DOFS + COMPONENTS.index(c) for c in components)
+
+
+@dataclass(frozen=True)
+class Mesh:
+    """n equal elements of length l = 1/n on 0 <= x <= 1 (units of L), with the DOF map of the
+    schema's constraints."""
+
+    n_elements: int
+    element_dofs: np.ndarray = field(init=False, repr=False)
+
+    def __post_init__(self):
+        n = integer("n_elements", self.n_elements, 1)
+        object.__setattr__(self, "n_elements", n)
+        object.__setattr__(self, "_index", self._numbering())
+        object.__setattr__(self, "element_dofs", self._element_dofs())
+
+    def node_of(self, constraint):
+        """The node (0 .. n) a constraint holds."""
+        return constraint.node % (self.n_elements + 1)
+
+    def _numbering(self):
+        """{(node, component): reduced index or None} and {(constraint, j): reduced index} of the
+        DOF map: nodes in order, components in order; an eliminated component gives its place to
+        the constraint's j-th reduced co-ordinate (j its rank among the eliminated), or none."""
+        held = {self.node_of(c): c for c in schema.CONSTRAINTS}
+        index, k = {}, 0
+        for node in range(self.n_elements + 1):
+            c = held.get(node)
+            for comp in range(NODE_DOFS):
+                name = COMPONENTS[comp]
+                if c is not None and name in c.eliminated:
+                    j = c.eliminated.index(name)
+                    if j < len(c.reduced):
+                        index[(c.name, j)] = k
+                    else:
+                        index[(node, comp)] = None
+                        continue
+                index[(node, comp)] = k
+                k += 1
+        index["size"] = k
+        return index
+
+    @property
+    def n_dofs(self):
+        """Number of reduced DOFs (3 n with the pin and the guide)."""
+        return self._index["size"]
+
+    @property
+    def dummy(self):
+        """Index standing for 'no reduced DOF' (pinned or constrained-away); gathers a zero."""
+        return self.n_dofs
+
+    @property
+    def length(self):
+        return 1.0 / self.n_elements
+
+    @property
+    def x0(self):
+        """x co-ordinate of the first node of each element."""
+        return np.arange(self.n_elements) * self.length
+
+    def reduced_coordinates(self, constraint=MAPPED):
+        """The reduced indices of a constraint's reduced co-ordinates."""
+        return tuple(self._index[(constraint.name, j)] for j in range(len(constraint.reduced)))
+
+    @property
+    def slider_dof(self):
+        """The reduced index of the end map's reduced co-ordinate s (the end's deviation along its guide)."""
+        return self.reduced_coordinates()[0]
+
+    def holders(self, constraint=MAPPED):
+        """[(element, slots of the eliminated components there, slots of the reduced co-ordinates)]
+        of the elements holding a constraint's node (one at the first or last node, two inside)."""
+        node = self.node_of(constraint)
+        out = []
+        for e, at in ((node - 1, 1), (node, 0)):
+            if 0 <= e < self.n_elements:
+                slots = element_slots(at, constraint.eliminated)
+                out.append((e, slots, slots[:len(constraint.reduced)]))
+        return out
+
+    def reduced_index(self, node, component):
+        """Reduced index of (node, component), or None if constrained away (or holding a reduced
+        co-ordinate of its constraint: reduced_coordinates)."""
+        return self._index.get((node, component))
+
+    def _element_dofs(self):
+        """(n, NDOF) reduced index of each element DOF; an eliminated slot holding a reduced
+        co-ordinate holds its index (the end element's u_n slot holds s)."""
+        held = {self.node_of(c): c for c in schema.CONSTRAINTS}
+        dofs = np.empty((self.n_elements, NDOF), dtype=np.intp)
+        for e in range(self.n_elements):
+            for k in range(NDOF):
+                node, comp = e + k // NODE_DOFS, k % NODE_DOFS
+                c = held.get(node)
+                idx = self._index.get((node, comp))
+                if c is not None and COMPONENTS[comp] in c.eliminated:
+                    j = c.eliminated.index(COMPONENTS[comp])
+                    idx = self._index[(c.name, j)] if j < len(c.reduced) else None
+                dofs[e, k] = self.dummy if idx is None else idx
+        return dofs
+
+    def gather(self, reduced):
+        """Element view (..., n, NDOF) of reduced vectors (..., N); constrained slots are 0 (a slot
+        holding a reduced co-ordinate holds it, mapped by constraints.py)."""
+        reduced = np.asarray(reduced)
+        padded = np.concatenate([reduced, np.zeros(reduced.shape[:-1] + (1,))], axis=-1)
+        return padded[..., self.element_dofs]
+
+    def dof_scales(self, sizes, end=None):
+        """Natural size of each reduced DOF in units of L: the size of its component (sizes: one per
+        component of a node, schema.NODE order, from schema.natural_sizes; a number: the slenderness
+        eps, whose declared sizes are taken: u* = u / eps^2, v* = v / eps), and `end` for the end
+        map's reduced co-ordinate (its guide's natural size; default: the axial size, a slider)."""
+        if np.ndim(sizes) == 0:
+            sizes = schema.natural_sizes({schema.UNIT_PARAMETERS["r"]: float(sizes)})
+        scales = np.empty(self.n_dofs)
+        keys = [k for k in self._index if isinstance(k, tuple) and self._index[k] is not None]
+        for node, comp in (k for k in keys if not isinstance(k[0], str)):
+            scales[self._index[(node, comp)]] = sizes[comp]
+        for key in (k for k in keys if isinstance(k[0], str)):      # the reduced co-ordinates
+            scales[self._index[key]] = sizes[U] if end is None else end
+        return scales
+
+    def locate(self, x):
+        """(element index, zeta) of the point x in [0, 1]."""
+        e = min(int(np.floor(x * self.n_elements)), self.n_elements - 1)
+        return e, (x - e * self.length) / self.length

@@ -1,0 +1,214 @@
+"""The discrete model in plain NumPy (the reference the compiled engine is tested against): mesh +
+the generated element kernels of the selected term families + the guide's end map + assembly.
+
+For reduced displacements d, velocities v and accelerations a at time t the model gives the
+reduced residual R(t, d, v, a) of eq. (30) (exact Lagrange or printed form) and the Newmark
+iteration matrix  S = dR/da + c_v dR/dv + c_d dR/dd  in band storage.  Everything that depends on
+the case (families, kernels, coefficients, guide, crank motion) comes from the Case and the
+declared model (crankgen.declaration.ingredients, crankgen.discrete.kinematics); this module loops over them and never
+names one.
+"""
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import kinematics as _kinematics
+from .assembly import BandedAssembler
+from ..declaration.cases import Case
+from ..declaration import schema
+from .constraints import ROWS, expand, project
+from .mesh import COMPONENTS, MAPPED, NODE_DOFS, Mesh
+from ..declaration.schema import ELEMENT_DOFS as NDOF
+
+# positional model options of Model.build, in the order its callers pass them
+_BUILD_POSITIONAL = ("formulation", "approach", "damping", "membrane")
+
+
+@dataclass(frozen=True)
+class ElementTerms:
+    """Element residuals and tangents (n, 6) / (n, 6, 6), constraint already applied."""
+
+    r: np.ndarray
+    K: np.ndarray
+    C: np.ndarray
+    M: np.ndarray
+
+
+@dataclass(frozen=True)
+class Model:
+    case: Case
+    assembler: BandedAssembler = field(init=False, repr=False)
+    mesh: Mesh = field(init=False, repr=False)
+
+    def __post_init__(self):
+        mesh = Mesh(self.case.n_elements)
+        object.__setattr__(self, "mesh", mesh)
+        object.__setattr__(self, "assembler", BandedAssembler(mesh))
+        object.__setattr__(self, "_selection", self.case.selection)
+        object.__setattr__(self, "_coefficients", self.case.coefficients)
+
+    @classmethod
+    def build(cls, mechanism, omega, n_elements, *options, **settings):
+        """The model of a mechanism at crank speed omega with n_elements; options: formulation,
+        approach, damping, membrane (positional, in this order) or any Case field by keyword
+        (model= a preset; the default model is `consistent`)."""
+        settings.update(zip(_BUILD_POSITIONAL, options))
+        if "groups_off" in settings and not isinstance(settings["groups_off"], str):
+            settings["groups_off"] = ",".join(settings["groups_off"])
+        return cls(Case.from_mechanism(mechanism, omega=omega, n_elements=n_elements, **settings))
+
+    @classmethod
+    def from_case(cls, case):
+        return cls(case)
+
+    @property
+    def mechanism(self):
+        return self.case.mechanism
+
+    @property
+    def omega(self):
+        return self.case.omega
+
+    @property
+    def selection(self):
+        return self._selection
+
+    @property
+    def coefficients(self):
+        return self._coefficients
+
+    @property
+    def options(self):
+        return self.selection.options
+
+    @property
+    def n_dofs(self):
+        return self.mesh.n_dofs
+
+    def kinematics(self, t):
+        return _kinematics.case_state(self.case, t)
+
+    @property
+    def geometry(self):
+        """(n, 2): (l, x0) of every element, the kernels' geo."""
+        mesh = self.mesh
+        return np.stack([np.full(mesh.n_elements, mesh.length), mesh.x0], axis=-1)
+
+    def nodal_state(self, kin, d, v, a):
+        """Element nodal vectors q, qd, qdd (..., n, NDOF) with the constrained node mapped by the
+        constraint's map (the guide's end map) in every element holding it, and the map's values
+        E (..., rows, k)."""
+        p, pd, pdd = self.mesh.gather(d), self.mesh.gather(v), self.mesh.gather(a)
+        S = self.mesh.slider_dof
+        E = _kinematics.end_map(self.case, kin.vector, np.asarray(d)[..., S], np.asarray(v)[..., S],
+                                np.asarray(a)[..., S])
+        for e, slots, _ in self.mesh.holders():
+            p[..., e, :], pd[..., e, :], pdd[..., e, :] = expand(E, p[..., e, :], pd[..., e, :], pdd[..., e, :],
+                                                                 slots)
+        return p, pd, pdd, E
+
+    def unprojected_terms(self, kin, d, v, a, secant=False, rod_only=None):
+        """(q, E, r, K, C, M): the element terms before the projection on the reduced co-ordinates
+        (the eliminated rows of an element holding a constrained node are the force the constraint
+        must apply: the guide's with the end mass included).  rod_only: a list that receives a copy
+        of r with the rod's own families alone (before the constrained node's end mass's)."""
+        q, qd, qdd, E = self.nodal_state(kin, d, v, a)
+        geo, coef, kv = self.geometry, self.coefficients, kin.vector
+        shape = q.shape[:-1]
+        n = NDOF
+        r, K, C, M = np.zeros(shape + (n,)), np.zeros(shape + (n, n)), np.zeros(shape + (n, n)), np.zeros(shape + (n, n))
+        lead = (slice(None),) * (q.ndim - 2)
+        kb = kv[..., None, :] if kv.ndim > 1 else kv
+        e = self.mesh.holders()[0][0]           # the element whose families the constrained node carries
+        parts = [("rod", lead + (slice(None),), (q, qd, qdd, geo), kb),
+                 (MAPPED.name, lead + (e,), (q[..., e, :], qd[..., e, :], qdd[..., e, :], geo[e]), kv)]
+        for part, where, args, kin_arg in parts:
+            if part != "rod" and rod_only is not None:
+                rod_only.append(r.copy())
+            for _name, kernel in self.selection.vectorized(part):
+                out = kernel(*args, coef, kin_arg)
+                r[where] += out[0]
+                K[where] += out[4] if secant and len(out) > 4 else out[1]
+                C[where] += out[2]
+                M[where] += out[3]
+        return q, E, r, K, C, M
+
+    def element_terms(self, kin, d, v, a, secant=False):
+        """Residual and tangents per element.  secant=True gives the printed iteration matrices of
+        eq. (37) where the selected variants declare one (K_printed), for the one-pass scheme."""
+        _, E, r, K, C, M = self.unprojected_terms(kin, d, v, a, secant)
+        for e, slots, reduced in self.mesh.holders():
+            r[..., e, :], K[..., e, :, :], C[..., e, :, :], M[..., e, :, :] = project(
+                E, r[..., e, :], K[..., e, :, :], C[..., e, :, :], M[..., e, :, :], slots, reduced)
+        return ElementTerms(r, K, C, M)
+
+    def reactions(self, t, d, v, a):
+        """The force each constraint of the DOF map applies to the rod (schema.CONSTRAINTS order:
+        the crank pin's, the guide's), each (..., k), in the moving frame (e_i, e_j), at time(s) t
+        for reduced states d, v, a (..., N): the residual rows of its eliminated components (summed
+        over the elements holding its node; the end node's reaction is normal to the guide:
+        g_s . end = 0 at a solution)."""
+        return self.joint_forces(t, d, v, a)[0]
+
+    def joint_forces(self, t, d, v, a, kin=None):
+        """(reactions, rod's): the force each constraint applies (reactions, above), and the same
+        rows of the rod's own families alone: at the guide's node, the force the end mass applies
+        to the rod (the rod applies its opposite to the end mass, through the pin at B); at the
+        crank pin, the reaction itself (no end mass there).  kin: the kinematics (a CrankState) in
+        place of the prescribed motion's at t (a motor-driven crank's, crankgen.discrete.motor)."""
+        rod = []
+        kin = self.kinematics(t) if kin is None else kin
+        _, _, r, _, _, _ = self.unprojected_terms(kin, d, v, a, rod_only=rod)
+
+        def at_constraints(x):
+            return tuple(sum(x[..., e, list(slots)] for e, slots, _ in self.mesh.holders(c))
+                         for c in schema.CONSTRAINTS)
+        return at_constraints(r), at_constraints(rod[0] if rod else r)
+
+    def residual(self, t, d, v, a):
+        """Reduced residual R(t, d, v, a)."""
+        terms = self.element_terms(self.kinematics(t), d, v, a)
+        return self.assembler.vector(terms.r)
+
+    def linearize(self, kin, d, v, a, c_v, c_d, secant=False):
+        """(R, S) with S = dR/da + c_v dR/dv + c_d dR/dd in band storage."""
+        terms = self.element_terms(kin, d, v, a, secant=secant)
+        S = terms.M + c_v * terms.C + c_d * terms.K
+        return self.assembler.vector(terms.r), self.assembler.banded(S)
+
+    def energy(self, kind, t, d, v, kin=None):
+        """Sum of the selected families' energies of one kind ('kinetic': T_c + T_s, 'potential':
+        U_c plus gravity's V, 'dissipation': the Rayleigh function D) at time t for reduced d, v
+        (kin: the kinematics in place of the prescribed motion's at t)."""
+        kin = self.kinematics(t) if kin is None else kin
+        q, qd, _, _ = self.nodal_state(kin, d, v, np.zeros_like(d))
+        geo, coef = self.geometry, self.coefficients
+        total = 0.0
+        for _name, part, kernel in self.selection.energy_kernels(kind):
+            if part == "rod":
+                total += float(np.sum(kernel(q, qd, geo, coef, kin.vector)))
+            else:
+                total += float(kernel(q[-1], qd[-1], geo[-1], coef, kin.vector))
+        return total
+
+    def energies(self, t, d, v):
+        """(kinetic T_c + T_s, potential U_c + V) of the model at time t for reduced d, v."""
+        return self.energy("kinetic", t, d, v), self.energy("potential", t, d, v)
+
+    def full_nodal(self, d, kin):
+        """Full nodal vectors (..., 3 (n+1)) [u_0, v_0, psi_0, ...] from reduced d (..., N) at the
+        kinematics kin (a CrankState of the same leading shape)."""
+        d = np.asarray(d)
+        mesh = self.mesh
+        out = np.zeros(d.shape[:-1] + (NODE_DOFS * (mesh.n_elements + 1),))
+        for node in range(mesh.n_elements + 1):
+            for comp in range(NODE_DOFS):
+                idx = mesh.reduced_index(node, comp)
+                if idx is not None:
+                    out[..., NODE_DOFS * node + comp] = d[..., idx]
+        E = _kinematics.end_map(self.case, kin.vector, d[..., mesh.slider_dof])
+        node = mesh.node_of(MAPPED)
+        for a, name in enumerate(MAPPED.eliminated):
+            out[..., NODE_DOFS * node + COMPONENTS.index(name)] = E[..., ROWS["q"], a]
+        return out
