@@ -8,8 +8,9 @@ the fields of a crankgen.SIMechanism.  The example
 1. runs the press up from rest (crankgen.simulate): how long until it reaches 95 % of its final
    mean speed;
 2. finds its steady motion (crankgen.steady_state: shooting on the crank's section, the revolution
-   time unknown): mean speed, speed fluctuation, peak and RMS motor torque, mean power, the peak
-   crank torque and pin force, and which model to trust there;
+   time unknown): mean speed, speed fluctuation, peak and RMS motor torque, mean power (the load's
+   20 N m and the rod's damping), the peak crank torque and pin force, the rod's buckling margin,
+   and which model to trust there;
 3. does the same with a flywheel five times heavier: the speed fluctuation falls about as the
    inertia grows, the motor's peak torque with it.
 
@@ -34,15 +35,19 @@ from crankgen.notices import BeyondTheoryWarning
 
 ROD = dict(L=0.25, E=2.1e11, rho=7850.0, A=1e-4, I=0.01 ** 4 / 12)      # m, Pa, kg/m^3, m^2, m^4
 PRESS = dict(ROD, a=0.05, slider_mass=0.5, damping=2e-4)                  # m, kg, s
-# a motor whose no-load speed is 3000 rpm, its stall torque 400 N m (a geared motor's at the crank)
-MOTOR = dict(motion="motor", stall_torque=400.0, no_load_speed_rpm=3000.0)
+# a motor whose no-load speed is 3000 rpm, its stall torque 400 N m (at the crank), against the
+# press's work: a constant 20 N m (6.3 kW at 3000 rpm)
+MOTOR = dict(motion="motor", stall_torque=400.0, no_load_speed_rpm=3000.0, load_torque=20.0)
 FLYWHEELS = (0.02, 0.1)                          # kg m^2: the rotor, crank and flywheel about the crank
 SETTINGS = dict(n_elements=4)                    # the rod's first bending mode is at 7.9 times the speed
 
 
 def run(inertia):
     si = crankgen.SIMechanism(**PRESS, **MOTOR, inertia=inertia)
-    start = crankgen.simulate(si, units="si", revolutions=12, **SETTINGS)        # from rest
+    # five of the motor's time constants J Omega_nl / T_stall, in no-load revolutions
+    omega = si.no_load_speed
+    revolutions = max(10, math.ceil(5 * inertia * omega / MOTOR["stall_torque"] * omega / (2 * math.pi)))
+    start = crankgen.simulate(si, units="si", revolutions=revolutions, **SETTINGS)        # from rest
     speed = start.si.crank_speed
     t = start.si.t
     steady = crankgen.steady_state(si, units="si", **SETTINGS)
@@ -95,11 +100,13 @@ def main():
     a1.set(xlabel="time (s)", ylabel="crank speed (rpm)", title="run-up from rest")
     a2.set(xlabel="crank angle (degrees)", ylabel="crank speed (rpm)", title="steady revolution: speed")
     a3.set(xlabel="crank angle (degrees)", ylabel="torque (N m)", title="steady revolution: torque")
-    for ax in (a1, a2, a3):
+    for ax in (a1, a2):
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
+    a3.grid(alpha=0.3)
+    a3.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.18), ncol=2, frameon=False)
     fig.suptitle("a press (steel rod 0.25 m, 10 x 10 mm; crank 50 mm; ram 0.5 kg) driven by a motor of 400 N m "
-                 "stall torque and 3000 rpm no-load speed", fontsize=10)
+                 "stall torque and 3000 rpm no-load speed, a 20 N m load", fontsize=10)
     fig.tight_layout()
     fig.savefig(out / "motor_press.png", dpi=120)
     print(f"wrote {out}/motor_press.png and {out}/motor_press.csv")

@@ -224,7 +224,7 @@ class Verdict:
         if not self.words:
             if self.limits.known:               # a motor-driven crank: the limits, no estimate
                 return ("no estimate of the difference from the exact rod for a motor-driven crank; "
-                        + str(self.limits).replace("range of the theory", "the exact rod's limits"))
+                        + str(self.limits).replace("the range of the theory", "the exact rod's limits"))
             return "model verdict unknown (no stored states)"
         est = ("" if self.error is None or self.exact else
                f"this model's response is an estimated {self.error:.2%} from the exact rod's")
