@@ -30,6 +30,10 @@ def fields_text():
         unit = Scales.si_name(p.units)
         return ("number" if unit == "1" else unit) + (" (two)" if p.kind == "pair" else "")
     parts = [f'"{n}": {u}' for n, u, _ in ROD] + [f'"{si}": {what(p)}' for si, p in schema.SI_FIELDS.items()]
+    from ..declaration.plausibility import CHECKS
+    from ..declaration.si import RPM_FIELDS
+    parts += [f'"{name}": rpm' for name in RPM_FIELDS]
+    parts.append('"unchecked": [the plausibility checks to skip, of ' + ", ".join(CHECKS) + "]")
     return "{" + ", ".join(parts) + "}"
 
 
