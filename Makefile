@@ -2,7 +2,7 @@
 # `make test` finds the test dependencies without activating it; `make PYTHON=...` overrides.
 PYTHON ?= $(if $(wildcard .venv/bin/python),.venv/bin/python,python3)
 
-.PHONY: derive check-generated test bench audit validate
+.PHONY: derive check-generated test bench audit validate docs docs-clean
 
 # derive/ reads crankgen's records (src/crankgen), never generated/: no install is needed
 DERIVE = PYTHONPATH=src$${PYTHONPATH:+:$$PYTHONPATH} $(PYTHON) -m derive
@@ -24,3 +24,9 @@ audit:             ## symbolic audit report: audit/report.md
 
 validate:          ## optional: compare with Exudyn's ANCF cable model (installs exudyn)
 	$(PYTHON) -m pip install exudyn && $(PYTHON) validate/compare.py
+
+docs:              ## the documentation site: docs/_build/html (warnings are errors; runs the gallery)
+	$(PYTHON) -m sphinx -W --keep-going -b html -j 1 docs docs/_build/html
+
+docs-clean:        ## remove what make docs generates (the site, the gallery's pages, the generated reference)
+	rm -rf docs/_build docs/gallery docs/_generated docs/reference/_generated

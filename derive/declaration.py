@@ -220,6 +220,19 @@ PARAMETERS = (
               "a motor's torque-speed curve in per-unit, T_m / T_stall against thetad / Omega_nl, as pairs S:F "
               "through 0:1 and 1:0 (cubic Hermite, shape-preserving, between them; linear beyond); the default "
               "0:1,1:0 is the linear law", owner="run", metavar="S:F,S:F,...", axis="torque curve s:f"),
+    Parameter("rotor_inertia", "real", 0.02, "rotor_inertia (motor rotor's J_rotor*)",
+              "the moment of inertia J_rotor* of a motor's rotor behind a flexible shaft (motion shaft; the "
+              "crank side's is `inertia`), units of rho A L^3", owner="run", low=0.0, low_open=True,
+              units="rhoA L^3", continuable=True, symbol=motions.rotor_inertia, axis="rotor inertia J_rotor*"),
+    Parameter("shaft_stiffness", "real", 1.0, "shaft_stiffness (shaft's torsional stiffness k*)",
+              "the torsional stiffness k* of the shaft between a motor's rotor and the crank (motion shaft), "
+              "units of rho A L^3 omega_b^2 per rad", owner="run", low=0.0, low_open=True,
+              units="rhoA L^3 omega_b^2", continuable=True, symbol=motions.shaft_stiffness,
+              axis="shaft stiffness k*"),
+    Parameter("shaft_damping", "real", 0.0, "shaft_damping (shaft's torsional damping c*)",
+              "the torsional damping c* of the shaft between a motor's rotor and the crank (motion shaft), "
+              "units of rho A L^3 omega_b per rad", owner="run", low=0.0, units="rhoA L^3 omega_b",
+              continuable=True, symbol=motions.shaft_damping, axis="shaft damping c*"),
     Parameter("initial_speed", "real", 0.0, "initial_speed (motor-driven crank's speed at t = 0)",
               "the crank speed at t = 0 of a motor-driven crank (0: a start from rest), units of omega_b",
               owner="run", low=0.0, units="omega_b", symbol=motions.initial_speed),
@@ -341,11 +354,21 @@ def _weighted(residual, variables, axial_rows, groups):
 # equations, the natural size of each component
 # ----------------------------------------------------------------------------------------------
 
+BODIES = (
+    records.Body("crank", "rigid", "the crank, from its axis O to the crank pin A (length a*): turned by the "
+                 "prescribed motion or a driven motion's crank co-ordinate", "crank angle"),
+    records.Body("rod", "flexible", "the connecting rod (a four-bar's coupler): an Euler-Bernoulli beam of "
+                 "n_elements elements, its nodes' (u, v, psi) in the moving frame of the rigid linkage's chord "
+                 "A-B", "chord", node=s.NODE, elements="n_elements"),
+    records.Body("end", "rigid", "the end mass ms* at B on the guide: a slider on a line, a four-bar's rocker "
+                 "tip on its circle", "guide"),
+)
 CONSTRAINTS = (
-    records.Constraint("pin", 0, ("u", "v"), "the crank pin holds the rod's first node: u = v = 0"),
+    records.Constraint("pin", 0, ("u", "v"), "the crank pin holds the rod's first node: u = v = 0",
+                       body="rod", joint="crank"),
     records.Constraint("end", -1, ("u", "v"), "the guide holds the rod's last node: (u, v) = g(s, t), the "
                        "end map of the case's guide (derive/guides.py), one reduced co-ordinate s",
-                       reduced=("s",), map="end_map"),
+                       reduced=("s",), map="end_map", body="rod", joint="end"),
 )
 END = CONSTRAINTS[1]
 # natural size of each component of a node (units of L) for Newton's scaled increments: the paper's

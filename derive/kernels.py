@@ -16,7 +16,8 @@ One calling convention per kernel kind:
   thetadd); guide_<g>(crank, params) -> kin; end_map_<g>(send, kin, params) -> E (8, 2) with
   send = (s, sd, sdd) (rows: guides.END_MAP_ROWS); rigid_end_<g>(kin, params) -> (X, Y);
   margins_<g>(params); end_scale_<g>(eps, params); period_<m>(params), step_period_<m>(params);
-  drive_<m>(kin, pin, params) -> (g, dg/dthetadd, dg/dthetad, dg/dpin) for a driven crank.
+  coordinates_<m>(kin, z, pin, params) -> (m, 3 m + 3) for a driven motion: each co-ordinate's equation
+  and its derivatives (representation.coordinate_equations); start_<m>(params) -> (2, m) their start.
   params is the kinematic parameter vector (representation.kinematic_parameters).
 - shape kernels (module `shape`): shape functions and the slope Gram matrix.
 - audit group kernels (module `groups`): the consistent model's element forces split by kind, in
@@ -154,12 +155,15 @@ def kinematics_kernels():
                           (Output("T", sp.Matrix([period]), "period"),)))
         out.append(Kernel(f"step_period_{m.name}", "The time steps_per_rev steps divide.", (PARAMS,),
                           (Output("T", sp.Matrix([form.step_period]), "step period"),)))
-        if form.crank_equation is not None:
-            out.append(Kernel(f"drive_{m.name}", "A driven crank's equation g = J thetadd - (T_m(thetad) - "
-                              "T_load) + T_rod (T_rod = a (e_r x F_pin), F_pin = pin in the moving frame) and "
-                              "its derivatives in thetadd, thetad, pin_i and pin_j.", (KIN, PIN, PARAMS_BESIDE_KIN),
-                              (Output("g", form.crank_equation, "(g, dg/dthetadd, dg/dthetad, dg/dpin_i, "
-                                      "dg/dpin_j)"),)))
+        if form.equations is not None:
+            Z = vector("z", form.inputs)
+            names = ", ".join(c.name for c in m.coordinates)
+            out.append(Kernel(f"coordinates_{m.name}", f"The equations of the co-ordinates ({names}) of the driven "
+                              "motion and their derivatives, row per co-ordinate: (g, dg/dz, dg/dzd, dg/dzdd, "
+                              "dg/dpin_i, dg/dpin_j); the crank's co-ordinate is the kinematics' theta.",
+                              (KIN, Z, PIN, PARAMS_BESIDE_KIN), (Output("g", form.equations, "equations"),)))
+            out.append(Kernel(f"start_{m.name}", "The co-ordinates' values and rates at t = 0.", (PARAMS,),
+                              (Output("z0", form.start, "start"),)))
     for form in rep.guides:
         g = form.record
         solve = None if form.closure is None else Solve(*form.closure)

@@ -26,19 +26,32 @@ it (an added 0.0 changes no sum).
   cos c >= 0 keeps psi in the branch of chi), the tangent of the difference of the two angles
   whose tangents are (tan c + k) / m and k / m gives
       D0 = n pi + atan2(m sin c, cos c + k sin c)            (D0 = 0 exactly at theta0 = 0).
-- motor: the crank is not prescribed: its angle is one more degree of freedom, driven by a motor
-  of characteristic T_m(thetad) = T_stall (1 - thetad / Omega_nl) (a DC motor, or an induction
-  motor near synchronous speed), with the inertia J of crank, rotor and flywheel about the crank
-  axis and a constant load torque T_load:
+- motor: the crank is not prescribed: its angle is one more degree of freedom, a declared
+  co-ordinate of the state (`Coordinate`, crank=True) with its own equation, driven by a motor of
+  characteristic T_m(thetad) = T_stall (1 - thetad / Omega_nl) (a DC motor, or an induction motor
+  near synchronous speed), with the inertia J of crank, rotor and flywheel about the crank axis and
+  a constant load torque T_load:
       J thetadd - T_m(thetad) + T_load + T_rod = 0,
   T_rod = a (e_r x F_pin) the torque the rod and end mass demand (the output `torque`: the
-  crank's generalized residual of the same energies).  `drive` is the net motor torque
-  T_m - T_load, `inertia` J.  Its theta(t) = theta0 + Omega_i t is only the crank's start (the
-  speed at t = 0, Omega_i, default 0: from rest); its step period is the no-load revolution
-  2 pi / Omega_nl (the fastest the motor turns the crank in steady running).  The drive holds the
-  linear law; a case's per-unit torque_curve f (crankgen.torque_curve: a table, cubic Hermite
+  crank's generalized residual of the same energies; `ROD_TORQUE` here, substituted by the
+  representation).  Its theta(t) = theta0 + Omega_i t is only the crank's start (the speed at
+  t = 0, Omega_i, default 0: from rest); its step period is the no-load revolution 2 pi / Omega_nl
+  (the fastest the motor turns the crank in steady running).  The equation holds the linear law;
+  a case's per-unit torque_curve f (crankgen.declaration.torque_curve: a table, cubic Hermite
   between its points) replaces it at run time by T_stall f(thetad / Omega_nl), added to the
-  generated equation as its departure from the linear law.
+  equation of the co-ordinate the motor drives (motor=True) as its departure from the linear law.
+
+- shaft: the motor drives the crank through a torsionally flexible shaft: the motor rotor's angle
+  phi_m is a second co-ordinate (its equation J_rotor phidd_m - T_m(phid_m) + T_shaft = 0), the
+  crank's carries the shaft's torque T_shaft = k (phi_m - theta) + c (phid_m - thetad):
+      J thetadd + T_load + T_rod - T_shaft = 0;
+  J is then the crank's and any flywheel's on the crank side, the torque curve drives the rotor.
+  The rotor starts with the crank (phi_m = theta0, the same speed: an untwisted shaft).
+
+A driven motion's co-ordinates (`coordinates`) each carry their symbols (the crank's are the
+kinematics' theta, thetad, thetadd), their equation's residual and their start (value and rate at
+t = 0); the generated kernel `coordinates_<motion>` gives every equation and its derivatives, the
+runtime steps them with the rods' nodal co-ordinates by one bordered Newton iteration.
 """
 
 from dataclasses import dataclass
@@ -58,6 +71,36 @@ no_load_speed = sp.Symbol("Omega_nl", positive=True)
 inertia = sp.Symbol("J_crank", nonnegative=True)
 load_torque = sp.Symbol("T_load", real=True)
 initial_speed = sp.Symbol("Omega_i", nonnegative=True)
+# a flexible shaft between the motor and the crank: the rotor's inertia, the shaft's torsional
+# stiffness and damping, and the rotor's angle, speed and acceleration (a co-ordinate)
+rotor_inertia = sp.Symbol("J_rotor", positive=True)
+shaft_stiffness = sp.Symbol("k_shaft", positive=True)
+shaft_damping = sp.Symbol("c_shaft", nonnegative=True)
+rotor, rotor_rate, rotor_acceleration = sp.symbols("phi_m phid_m phidd_m", real=True)
+# the torque the rod and end mass demand of the crank (the output `torque`, in the crank pin's force
+# and the kinematics): the representation substitutes it into a driven crank's equation
+ROD_TORQUE = sp.Symbol("T_rod", real=True)
+
+
+@dataclass(frozen=True)
+class Coordinate(records.Coordinate):
+    """A co-ordinate of the state (crankgen.declaration.records.Coordinate: name, doc, units,
+    crank, motor) with its symbols (value, rate, acceleration: the kinematics' theta, thetad,
+    thetadd for the crank's), its equation's residual (in them, the other co-ordinates', ROD_TORQUE
+    and the parameters) and its start (its value and rate at t = 0, in the parameters)."""
+
+    value: sp.Symbol = None
+    rate: sp.Symbol = None
+    acceleration: sp.Symbol = None
+    equation: sp.Expr = None
+    start: tuple = None
+
+
+def crank_coordinate(equation, doc, motor=False):
+    """The crank angle as a co-ordinate of the state: the kinematics' symbols, the start theta0 at
+    the initial speed."""
+    return Coordinate("theta", doc, "rad", crank=True, motor=motor, value=s.theta, rate=s.thetad,
+                      acceleration=s.thetadd, equation=equation, start=(theta0, initial_speed))
 
 
 @dataclass(frozen=True)
@@ -72,8 +115,6 @@ class Motion(records.Motion):
     thetadd: sp.Expr = None
     period: object = None
     step_period: sp.Expr = None
-    drive: sp.Expr = None         # a driven crank's net motor torque T_m(thetad) - T_load (None: prescribed)
-    inertia: sp.Expr = None       # a driven crank's inertia J about the crank axis
 
 
 def _wrap(z):
@@ -129,6 +170,9 @@ def fluctuation():
 
 def motor():
     law = stall_torque * (1 - s.thetad / no_load_speed)
+    crank = crank_coordinate(inertia * s.thetadd - law + load_torque + ROD_TORQUE,
+                             "the crank angle, driven by the motor: J thetadd - T_m(thetad) + T_load + T_rod = 0",
+                             motor=True)
     return Motion("motor", "Motor", ("stall_torque", "no_load_speed", "inertia", "load_torque", "initial_speed",
                                      "theta0", "torque_curve"),
                   "a motor drives the crank (its angle a degree of freedom): J thetadd = T_stall f(thetad / "
@@ -136,11 +180,30 @@ def motor():
                   "f(s) = 1 - s, the linear law)", (("load", ("load_torque",)),),
                   label="motor-driven crank",
                   theta=theta0 + initial_speed * s.t, thetad=initial_speed, thetadd=sp.Integer(0), period=None,
-                  step_period=2 * sp.pi / no_load_speed, drive=law - load_torque, inertia=inertia,
+                  step_period=2 * sp.pi / no_load_speed, coordinates=(crank,), driven=True,
                   characteristic=("torque_curve", "stall_torque", "no_load_speed", "inertia"))
 
 
-MOTIONS = (constant(), runup(), fluctuation(), motor())
+def shaft():
+    law = stall_torque * (1 - rotor_rate / no_load_speed)
+    torque = shaft_stiffness * (rotor - s.theta) + shaft_damping * (rotor_rate - s.thetad)      # T_shaft
+    crank = crank_coordinate(inertia * s.thetadd + load_torque + ROD_TORQUE - torque,
+                             "the crank angle, driven through the shaft: J thetadd + T_load + T_rod - T_shaft = 0")
+    rotor_angle = Coordinate("rotor", "the motor rotor's angle: J_rotor phidd_m - T_m(phid_m) + T_shaft = 0", "rad",
+                             motor=True, value=rotor, rate=rotor_rate, acceleration=rotor_acceleration,
+                             equation=rotor_inertia * rotor_acceleration - law + torque, start=(theta0, initial_speed))
+    return Motion("shaft", "ShaftMotor", ("stall_torque", "no_load_speed", "inertia", "rotor_inertia", "shaft_stiffness",
+                                          "shaft_damping", "load_torque", "initial_speed", "theta0", "torque_curve"),
+                  "a motor drives the crank through a torsionally flexible shaft (the rotor's angle and the crank's "
+                  "degrees of freedom): J_rotor phidd_m = T_m(phid_m) - T_shaft, J thetadd = T_shaft - T_load - (the "
+                  "torque the rod demands), T_shaft = k (phi_m - theta) + c (phid_m - thetad)",
+                  (("load", ("load_torque",)),), label="motor through a flexible shaft",
+                  theta=theta0 + initial_speed * s.t, thetad=initial_speed, thetadd=sp.Integer(0), period=None,
+                  step_period=2 * sp.pi / no_load_speed, coordinates=(crank, rotor_angle), driven=True,
+                  characteristic=("torque_curve", "stall_torque", "no_load_speed", "rotor_inertia"))
+
+
+MOTIONS = (constant(), runup(), fluctuation(), motor(), shaft())
 
 
 def rates(motion):

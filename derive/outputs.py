@@ -252,3 +252,17 @@ OUTPUTS = (
            "the rod's end), positive counter-clockwise", "L", options=MEMBRANE_OPTIONS,
            build=lambda o: chord_deflection()),
 )
+
+
+# ----------------------------------------------------------------------------------------------
+# Reductions over time (records.Reduction): a peak, RMS, mean or range of an output along a steady
+# revolution, a continuation point's orbit or a run's last revolution.  Each is a column of the
+# steady and sweep tables and a quantity of every branch point, with its output's units
+# (crankgen.results.reductions computes them).
+# ----------------------------------------------------------------------------------------------
+
+REDUCTIONS = (
+    records.Reduction("rms_bending_moment_mid", "bending_moment", "rms",
+                      "the RMS over the revolution of the bending moment at mid-span (what a fatigue "
+                      "check of the rod's bending starts from, beside its peak)", at=0.5),
+)

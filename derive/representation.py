@@ -72,6 +72,8 @@ class Schema:
     node: Layout                 # the components of a node, in the element's order (eq. 14)
     constraints: tuple           # the DOF map: the constraints condensed out (crankgen.declaration.records.Constraint)
     exclusions: tuple            # option values refused together (crankgen.declaration.records.Exclusion)
+    bodies: tuple = ()           # the mechanism's bodies (records.Body): the flexible ones' meshes, the joints' ends
+    reductions: tuple = ()       # reductions over time of the outputs (records.Reduction)
 
 
 def _symbols(p):
@@ -101,7 +103,8 @@ def _kinematic_symbols():
     for g in model.GUIDES:
         exprs += [g.curve, g.step, g.phi, g.beta, g.guess] + [m for m, _ in g.margin]
     for m in model.MOTIONS:
-        exprs += [m.theta, m.thetad, m.thetadd, m.period, m.step_period, m.drive, m.inertia]
+        exprs += [m.theta, m.thetad, m.thetadd, m.period, m.step_period]
+        exprs += [c.equation for c in m.coordinates] + [x for c in m.coordinates for x in c.start]
     used = set().union(*(sp.sympify(e).free_symbols for e in exprs if e is not None))
     return tuple(sym for sym in parameter_symbols().values() if sym in used)
 
@@ -184,7 +187,8 @@ def _guide_record(g):
 
 
 def _motion_record(m):
-    return project(m, records.Motion, periodic=m.period is not None, driven=m.drive is not None)
+    return project(m, records.Motion, periodic=m.period is not None, driven=bool(m.coordinates),
+                   coordinates=tuple(project(c, records.Coordinate) for c in m.coordinates))
 
 
 def _energy_name(energy):
@@ -229,6 +233,13 @@ def _constraints():
         if not set(c.eliminated) <= set(s.NODE) or len(c.reduced) > len(c.eliminated):
             raise ValueError(f"constraint {c.name}: eliminated {c.eliminated} must be components of a node "
                              f"{s.NODE}, at least as many as its reduced co-ordinates {c.reduced}")
+    bodies = {b.name: b for b in model.BODIES}
+    for c in model.CONSTRAINTS:
+        if c.body not in bodies or bodies[c.body].kind != "flexible" or c.joint not in bodies:
+            raise ValueError(f"constraint {c.name}: it must hold a node of a flexible body and join it to a "
+                             f"declared body, got body {c.body!r}, joint {c.joint!r}")
+        if not set(c.eliminated) <= set(bodies[c.body].node):
+            raise ValueError(f"constraint {c.name}: {c.eliminated} are not components of {c.body}'s nodes")
     for f in model.FAMILIES:
         if f.part != "rod" and f.part != mapped[0].name:
             raise ValueError(f"family {f.name}: part {f.part!r} is neither 'rod' nor the mapped constraint")
@@ -270,7 +281,8 @@ def schema():
         unit_parameters=_unit_parameters(),
         element_dofs=ELEMENT_DOFS, node=Layout("node", s.NODE, "the components of a node (eq. 14): axial "
                                                 "and transverse displacement, slope"),
-        constraints=_constraints(), exclusions=_exclusions())
+        constraints=_constraints(), exclusions=_exclusions(), bodies=tuple(model.BODIES),
+        reductions=_reductions())
 
 
 # ---- the SymPy forms ----------------------------------------------------------------------------------
@@ -287,16 +299,45 @@ class MotionForm:
     crank: sp.Matrix             # (theta, thetad, thetadd) in t and the kinematic parameters
     period: object               # time of one revolution (None: not periodic)
     step_period: sp.Expr         # the time steps_per_rev steps divide
-    crank_equation: sp.Matrix = None   # a driven crank's (g, dg/dthetadd, dg/dthetad, dg/dpin_i, dg/dpin_j)
+    equations: sp.Matrix = None  # a driven motion's co-ordinate equations and derivatives (coordinate_equations)
+    start: sp.Matrix = None      # its co-ordinates' start (2, m): values, rates at t = 0
+    inputs: tuple = ()           # the co-ordinate kernel's z vector: (z_j, zd_j, zdd_j of every co-ordinate)
 
 
-def crank_equation(m):
-    """A driven crank's equation g = J thetadd - (T_m(thetad) - T_load) + T_rod = 0 (derive/motions.py),
-    T_rod the output `torque` (the torque the rod demands, from the crank pin's force `pin` in the
-    moving frame and the kinematics), with its derivatives in thetadd, thetad and the pin force."""
+def coordinate_symbols(m):
+    """The symbols of a driven motion's co-ordinates: (values, rates, accelerations), each (m,)."""
+    return tuple(tuple(getattr(c, k) for c in m.coordinates) for k in ("value", "rate", "acceleration"))
+
+
+def coordinate_equations(m):
+    """A driven motion's co-ordinate equations (derive/motions.py), ROD_TORQUE the output `torque`
+    (the torque the rod demands, from the crank pin's force `pin` in the moving frame and the
+    kinematics): (m, 3 m + 3), row i (g_i, dg_i/dz_j, dg_i/dzd_j, dg_i/dzdd_j for every co-ordinate
+    j, dg_i/dpin_i, dg_i/dpin_j); the crank's z, zd, zdd are the kinematics' theta, thetad, thetadd
+    (the derivatives are explicit: through the kinematics' other entries and the pin force the
+    crank angle acts on the rod, which the runtime differences)."""
     torque = next(o for o in outputs.OUTPUTS if o.name == "torque").build({})
-    g = m.inertia * s.thetadd - m.drive + torque
-    return sp.Matrix([g] + [sp.diff(g, x) for x in (s.thetadd, s.thetad, outputs.pin[0], outputs.pin[1])])
+    variables = [x for group in coordinate_symbols(m) for x in group] + list(outputs.pin)
+    rows = []
+    for c in m.coordinates:
+        g = c.equation.subs(mo.ROD_TORQUE, torque)
+        rows.append([g] + [sp.diff(g, x) for x in variables])
+    return sp.Matrix(rows)
+
+
+def coordinate_inputs(m):
+    """The symbols of the co-ordinate kernel's z vector, z_j, then zd_j, then zdd_j for every
+    co-ordinate j: the co-ordinates' own symbols, a placeholder for the crank's (its kernel reads
+    the kinematics' theta, thetad, thetadd, computed from the same numbers)."""
+    crank = (s.theta, s.thetad, s.thetadd)
+    return tuple(sp.Symbol(f"{kind}_{c.name}_unused") if x in crank else x
+                 for kind, group in zip(("z", "zd", "zdd"), coordinate_symbols(m))
+                 for c, x in zip(m.coordinates, group))
+
+
+def coordinate_start(m):
+    """(2, m): each co-ordinate's value and rate at t = 0."""
+    return sp.Matrix([[c.start[0] for c in m.coordinates], [c.start[1] for c in m.coordinates]])
 
 
 @dataclass(frozen=True)
@@ -367,8 +408,10 @@ def _motions():
         mo.check(m)
         crank = sp.Matrix(mo.rates(m))
         assert {names[sym] for sym in crank.free_symbols if sym in names} <= set(m.parameters), m.name
+        driven = bool(m.coordinates)
         out.append(MotionForm(_motion_record(m), crank, m.period, m.step_period,
-                              None if m.drive is None else crank_equation(m)))
+                              coordinate_equations(m) if driven else None, coordinate_start(m) if driven else None,
+                              coordinate_inputs(m) if driven else ()))
     return tuple(out)
 
 
@@ -551,6 +594,29 @@ def _outputs_records():
 
 def _outputs():
     return tuple(OutputForm(_output_record(o, forms), forms[1]) for o, forms in _all_output_forms())
+
+
+REDUCTION_KINDS = ("peak", "max", "min", "range", "mean", "rms")
+
+
+def _reductions():
+    """The declared reductions over time (derive/outputs.py REDUCTIONS), checked, with their
+    output's units and guides: a field at an x* in [0, 1] with its arguments, any other kind of
+    output without."""
+    records_by_name = {r.name: r for r in _outputs_records()}
+    out = []
+    for r in outputs.REDUCTIONS:
+        o = records_by_name.get(r.output)
+        if o is None or r.kind not in REDUCTION_KINDS:
+            raise ValueError(f"reduction {r.name}: output {r.output!r} must be declared and kind {r.kind!r} one of "
+                             f"{REDUCTION_KINDS}")
+        if (o.kind == "field") != (r.at is not None) or (o.kind == "field" and not 0 <= r.at <= 1) \
+                or set(dict(r.arguments)) != set(o.arguments if o.kind == "field" else ()):
+            raise ValueError(f"reduction {r.name}: a field's needs its x* in [0, 1] and its arguments {o.arguments}")
+        if r.name in records_by_name:
+            raise ValueError(f"reduction {r.name}: the name of an output")
+        out.append(project(r, records.Reduction, units=o.units, guides=o.guides))
+    return tuple(out)
 
 
 @dataclass(frozen=True)

@@ -22,8 +22,8 @@ from . import symbols as _symbols
 from .emit import ELEMENT_MODES, LANES, lane_rows
 from .guides import END_MAP_ROWS
 
-RECORD_CLASSES = ("Constraint", "Exclusion", "Family", "Guide", "Layout", "Motion", "Option", "Output", "Parameter", "Preset",
-                  "Primitive", "Variant")
+RECORD_CLASSES = ("Body", "Constraint", "Coordinate", "Exclusion", "Family", "Guide", "Layout", "Motion", "Option", "Output", "Parameter", "Preset",
+                  "Primitive", "Reduction", "Variant")
 
 
 def _printer():
@@ -116,6 +116,8 @@ def _table_source(schema):
         f"NODE = {literal(schema.node)}",
         f"ELEMENT_DOFS = {schema.element_dofs!r}",
         f"CONSTRAINTS = {literal(schema.constraints)}",
+        "# the mechanism's bodies: the flexible ones' node layouts and element counts, the joints' ends",
+        f"BODIES = {literal(schema.bodies)}",
         "# what an element kernel's one-element function adds, by its mode argument (derive/emit.py)",
         f"ELEMENT_MODES = {ELEMENT_MODES!r}",
         "# an element kernel's lane function: LANES elements at once, on a buffer of LANE_SIZE values whose",
@@ -133,6 +135,8 @@ def _table_source(schema):
         "# by the kernel per_step), units, the guides it exists for, the options it depends on, the",
         "# kernels' inputs, its kernels by option values",
         f"OUTPUTS = {literal(schema.outputs)}",
+        "# reductions over time of the outputs (a revolution's peak, RMS, mean, range), declared once",
+        f"REDUCTIONS = {literal(schema.reductions)}",
         "# what the engine accumulates at every step for its outputs (per_step's prims, in this order)",
         f"PRIMITIVES = {literal(schema.primitives)}",
         "# option values under which the one-pass scheme iterates with the printed eq. (37) matrices",

@@ -52,7 +52,7 @@ def run(inertia):
     t = start.si.t
     steady = crankgen.steady_state(si, units="si", **SETTINGS)
     row = steady.row()
-    from crankgen.declaration.si import row_in_si
+    from crankgen.results.si_row import row_in_si
     row.update(row_in_si(row, si))
     mean = row["mean_speed_rad_per_s"]
     reached = float(t[np.argmax(speed >= 0.95 * mean)])

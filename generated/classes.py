@@ -64,6 +64,9 @@ class CaseFields:
     inertia: object = None
     load_torque: object = None
     torque_curve: object = None
+    rotor_inertia: object = None
+    shaft_stiffness: object = None
+    shaft_damping: object = None
     initial_speed: object = None
     n_elements: object = None
     steps_per_rev: object = None
@@ -110,6 +113,9 @@ class SIFields:
     inertia: object = None
     load_torque: object = None
     torque_curve: object = None
+    rotor_inertia: object = None
+    shaft_stiffness: object = None
+    shaft_damping: object = None
     initial_speed: object = None
 
 
@@ -177,5 +183,13 @@ class Motor(Spec):
     defaults = {'stall_torque': 0.05, 'no_load_speed': 1.0, 'inertia': 0.05, 'load_torque': 0.0, 'initial_speed': 0.0, 'theta0': 0.0, 'torque_curve': ((0.0, 1.0), (1.0, 0.0))}
 
 
+class ShaftMotor(Spec):
+    """a motor drives the crank through a torsionally flexible shaft (the rotor's angle and the crank's degrees of freedom): J_rotor phidd_m = T_m(phid_m) - T_shaft, J thetadd = T_shaft - T_load - (the torque the rod demands), T_shaft = k (phi_m - theta) + c (phid_m - thetad).  Parameters: stall_torque, no_load_speed, inertia, rotor_inertia, shaft_stiffness, shaft_damping, load_torque, initial_speed, theta0, torque_curve; keywords load = (load_torque)."""
+
+    kind = 'motion'
+    declaration = MOTIONS[4]    # shaft
+    defaults = {'stall_torque': 0.05, 'no_load_speed': 1.0, 'inertia': 0.05, 'rotor_inertia': 0.02, 'shaft_stiffness': 1.0, 'shaft_damping': 0.0, 'load_torque': 0.0, 'initial_speed': 0.0, 'theta0': 0.0, 'torque_curve': ((0.0, 1.0), (1.0, 0.0))}
+
+
 GUIDE_CLASSES = (Line, Circle, Cam, Incline,)
-MOTION_CLASSES = (Constant, RunUp, Fluctuation, Motor,)
+MOTION_CLASSES = (Constant, RunUp, Fluctuation, Motor, ShaftMotor,)

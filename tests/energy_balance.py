@@ -175,7 +175,7 @@ def nodal_states(model, kin, d, v, a):
     """Element nodal vectors (Nt, n, 6) of reduced histories (Nt, N), the end mapped here."""
     mesh = model.mesh
     q, qd, qdd = mesh.gather(d), mesh.gather(v), mesh.gather(a)
-    S = mesh.slider_dof
+    S = mesh.reduced_coordinates()[0]
     for Q, val in zip((q, qd, qdd), end_state(model, kin, d[:, S], v[:, S], a[:, S])[:3]):
         Q[:, -1, 3:5] = val
     return q, qd, qdd
@@ -330,7 +330,7 @@ def power_history(model, t, d, v, a, averaged=False):
     Q_phi = frame_moment(model, kin, q, qd, qdd) - (rs[:, 0] * vs - rs[:, 1] * (1.0 + us))
     T = kinetic_energy(model, kin, q, qd)
     U = strain_energy(model, q, options["approach"], averaged)
-    S = model.mesh.slider_dof
+    S = model.mesh.reduced_coordinates()[0]
     tangent = end_state(model, kin, d[:, S], v[:, S], a[:, S])[3]
     return {"E": T + U, "T": T, "U": U,
             "P_pin": np.sum(F_pin * V_pin, -1), "P_diss": P_diss, "P_frame": kin.phid * Q_phi,

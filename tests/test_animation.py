@@ -11,7 +11,7 @@ from PIL import Image
 
 import crankgen
 from crankgen.discrete import kinematics
-from crankgen.plots.animation import Frames, inertial_nodes, orbit
+from crankgen.plots.animation import Frames, inertial_nodes
 from crankgen.analyses.bifurcation.mechanism import orbit_peak
 
 TINY = dict(n_elements=2, steps_per_rev=20)
@@ -79,14 +79,14 @@ def test_a_steady_orbit_and_a_four_bar(tmp_path):
 def test_a_continuation_points_orbit():
     d = crankgen.continuation(crankgen.Mechanism(), "omega", 0.5, 0.55, max_period=1, n_elements=2,
                               steps_per_rev=30)
-    run = orbit(d, 0, 3)
+    run = d.orbit(0, 3)
     br = d.branches[0]
     assert run.case.omega == pytest.approx(br.parameter[3])
     assert orbit_peak(run.v_mid) == pytest.approx(br.amplitude[3], rel=1e-6)      # the same orbit
     assert run.v_mid[0] == pytest.approx(br.section[3, 0], rel=1e-9)               # its start
     assert run.v_mid[-1] == pytest.approx(run.v_mid[0], abs=1e-6)                   # periodic
     with pytest.raises(crankgen.ParameterError, match="point must be below"):
-        orbit(d, 0, len(br))
+        d.orbit(0, len(br))
 
 
 def test_formats_and_the_command(tmp_path, capsys):

@@ -64,14 +64,14 @@ def test_si_constructor_converts_to_paper_parameters():
     A = math.pi * (2 * r) ** 2                      # solid circle of radius 2r has r_g = r
     I = math.pi * (2 * r) ** 4 / 4
     omega_b = (math.pi / L) ** 2 * math.sqrt(E * I / (rho * A))
-    mech, omega = crankgen.Mechanism.from_si(L=L, a=0.03, E=E, rho=rho, A=A, I=I,
-                                             slider_mass=0.5 * rho * A * L,
-                                             crank_speed=0.8 * omega_b, damping=0.5 / omega_b)
+    si = crankgen.SIMechanism(L=L, a=0.03, E=E, rho=rho, A=A, I=I, slider_mass=0.5 * rho * A * L,
+                              crank_speed=0.8 * omega_b, damping=0.5 / omega_b)
+    mech, omega = si.mechanism, si.omega
     assert mech.a == pytest.approx(0.1) and mech.eps == pytest.approx(0.01)
     assert mech.ms == pytest.approx(0.5) and mech.mu == pytest.approx(0.5)
     assert omega == pytest.approx(0.8)
     with pytest.raises(crankgen.ParameterError):
-        crankgen.Mechanism.from_si(L=-1, a=0.03, E=E, rho=rho, A=A, I=I, slider_mass=1, crank_speed=1)
+        crankgen.SIMechanism(L=-1, a=0.03, E=E, rho=rho, A=A, I=I, slider_mass=1, crank_speed=1)
 
 
 def test_cli_writes_csv_and_png(tmp_path):

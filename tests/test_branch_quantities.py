@@ -49,8 +49,7 @@ def test_every_branch_point_has_its_orbits_quantities(diagram):
 def test_a_period_two_point_measures_both_revolutions(diagram):
     two = next(b for b in diagram.branches if b.period == 2)
     i = len(two) // 2
-    from crankgen.plots.animation import orbit
-    run = orbit(diagram, diagram.branches.index(two), i)           # simulate over its two revolutions
+    run = diagram.orbit(diagram.branches.index(two), i)           # simulate over its two revolutions
     for name, value in _quantities_of(run, 4).items():
         assert abs(two.quantities[name][i] - value) < 1e-6 * abs(value), name
 

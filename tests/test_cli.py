@@ -317,7 +317,7 @@ def test_documents_cite_no_file_outside_the_repository(capsys):
     """README, docs/ and every --help text state things in the project's own words."""
     from pathlib import Path
     root = Path(__file__).resolve().parent.parent
-    texts = [root / "README.md"] + sorted((root / "docs").glob("*.md"))
+    texts = [root / "README.md"] + sorted((root / "docs").rglob("*.md"))
     for command in ("simulate", "steady", "sweep", "reproduce", "audit"):
         assert run([command, "--help"]) == 0
     helps = capsys.readouterr().out

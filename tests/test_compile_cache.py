@@ -49,8 +49,8 @@ DAMAGE = [("elements.inertia_lagrange_lanes", ".nbc", lambda b: b"\x00garbage" *
           ("elements.elastic_lagrange_A_averaged_lanes", ".nbi", lambda b: b[: len(b) // 3]),
           ("elements.slider_inertia_lagrange_element", ".nbc", lambda b: b""),
           ("kinematics.motion_constant_into", ".nbi", lambda b: b""),
-          ("march._march_cases", ".nbc", lambda b: b[: len(b) // 2]),
-          ("march._initial_accelerations", ".nbc", lambda b: b"\x80\x05garbage" * 9),
+          ("batch._march_cases", ".nbc", lambda b: b[: len(b) // 2]),
+          ("batch._initial_accelerations", ".nbc", lambda b: b"\x80\x05garbage" * 9),
           ("kernels.noop_lanes", ".nbi", lambda b: b"\x80\x05garbage")]
 
 

@@ -162,7 +162,7 @@ def test_a_last_time_just_past_a_step_is_reached():
 
 def test_states_at_many_times_match_the_run_whatever_the_chunks(monkeypatch):
     """States at every step taken from chunks of a few steps (history=False) are the run's own."""
-    sim = importlib.import_module("crankgen.analyses.simulation")
+    sim = importlib.import_module("crankgen.analyses.marching")
     monkeypatch.setattr(sim, "CHUNK_BYTES", 3 * 8 * 6 * 7)            # 7 steps a chunk
     dt = _dt()
     full = crankgen.simulate(Mechanism(), omega=0.5, **SMALL, revolutions=2)
@@ -351,5 +351,6 @@ def test_crankgen_compile_counts_only_what_it_compiled(monkeypatch, capsys):
 def test_sweeps_is_split_into_modules_of_one_concern():
     """Driver, checkpoint store, lock, pool workers and table each in a module under 600 lines."""
     root = Path(crankgen.__file__).parent
-    for name in ("sweeps", "checkpoint", "file_lock", "pool_workers", "sweep_table"):
+    for name in ("analyses/sweeps", "analyses/checkpoint", "analyses/file_lock", "analyses/pool_workers",
+                 "results/sweep_table"):
         assert len((root / f"{name}.py").read_text().splitlines()) < 600, name

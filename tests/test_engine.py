@@ -113,11 +113,11 @@ def test_iteration_matrix_factorizations_agree_on_a_real_step():
     """The iteration matrix of a 16-element case: fixed-bandwidth LU = pivoted band LU = dense."""
     case = Case(omega=0.8, n_elements=16, damping="kelvin-voigt", membrane="pointwise")
     b = engine.Batch([case])
-    n, N = 16, b.N
+    n, N = 16, b.mesh.n_rod          # the rod's nodal unknowns; the crank's co-ordinate follows them
     rng = np.random.default_rng(5)
-    d, v, a = (1e-4 * rng.standard_normal(N) for _ in range(3))
+    d, v, a = (1e-4 * rng.standard_normal(b.N) for _ in range(3))
     kb, dofs, l = b.meshdata.kb, b.meshdata.dofs, b.meshdata.l
-    w = engine.make_work(n, N, kb)
+    w = engine.make_work(n, b.N, kb, N)
     sel, cf, params = b.records.select[0], b.records.coef[0], b.records.params[0]
 
     def loop(mode, cv, cd):
@@ -226,7 +226,7 @@ def test_lock_step_batch_equals_single_runs_and_isolates_failures():
 
 
 def test_balanced_slices_cover_every_case_and_share_the_active_ones_evenly():
-    from crankgen.engine.march import balanced_bounds
+    from crankgen.engine.batch import balanced_bounds
     rng = np.random.default_rng(3)
     for _ in range(200):
         lo = int(rng.integers(0, 5))

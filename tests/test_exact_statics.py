@@ -58,7 +58,7 @@ def buckled_branch(model_options, ks):
             d[axial] *= w / last
         d, lam = statics.displacement_control(model, G, mid, w, d, lam)
         last = w
-        out.append((lam * MS / P_CR, d[mid], d[mesh.slider_dof]))
+        out.append((lam * MS / P_CR, d[mid], d[mesh.reduced_coordinates()[0]]))
     return np.array(out)
 
 

@@ -232,7 +232,7 @@ def test_simulation_to_csv_on_a_full_disk_keeps_the_old_file(tmp_path):
 
 POOL = """
 import os, signal, sys
-from crankgen import pool_workers, sweeps
+from crankgen.analyses import pool_workers, sweeps
 from crankgen.cli import main
 if sys.argv[2] == "watchdog":                       # the portable fallback alone
     pool_workers._set_parent_death_signal = lambda signum: False

@@ -36,7 +36,7 @@ def test_the_published_initial_state_is_consistent_and_lands_on_the_mesh():
     example.check_published_state()
     import crankgen
     from crankgen.discrete.initial import reduced_state
-    from crankgen.declaration.units import scales_of
+    from crankgen.declaration.si import scales_of
     si = example.mechanism()
     case = crankgen.Case(**si.mechanism.values(), omega=si.omega, n_elements=4, **example.MODEL)
     d0, v0 = reduced_state(case, example.published_initial_state(), scales_of(si))

@@ -337,10 +337,12 @@ PARAM_RANGES = {"a": (0.05, 0.3), "offset": (-0.1, 0.1), "c": (0.7, 0.9), "d": (
                 "branch": (1.0, 1.0), "cam_height": (0.0, 0.04), "cam_wavelength": (0.2, 0.4), "inclination": (-1.0, 1.0), "omega": (0.2, 3.0), "omega0": (0.2, 3.0), "ramp": (1.0, 5.0),
                 "fluctuation": (-0.5, 0.5), "order": (2.0, 2.0), "theta0": (-3.0, 3.0),
                 "stall_torque": (0.01, 1.0), "no_load_speed": (0.2, 3.0), "inertia": (0.01, 1.0),
-                "load_torque": (-0.1, 0.1), "initial_speed": (0.0, 3.0)}
+                "load_torque": (-0.1, 0.1), "initial_speed": (0.0, 3.0),
+                "rotor_inertia": (0.01, 1.0), "shaft_stiffness": (1.0, 100.0), "shaft_damping": (0.0, 0.1)}
 OTHER_VECTORS = {"crank": [(0.0, 6.3), (0.2, 3.0), (-1.0, 1.0)], "send": [(-1e-3, 1e-3), (-0.1, 0.1), (-1.0, 1.0)],
                  "q_end": [(-1e-3, 1e-3)] * 2, "qd_end": [(-1e-2, 1e-2)] * 2, "pin": [(-5.0, 5.0)] * 2,
-                 "end": [(-5.0, 5.0)] * 2, "rod_end": [(-5.0, 5.0)] * 2}
+                 "end": [(-5.0, 5.0)] * 2, "rod_end": [(-5.0, 5.0)] * 2, "z": None, "z0": None}
+# a driven motion's co-ordinates (values, rates, accelerations): as many as its docstring says
 SCALAR_RANGE = {"zeta": (0.0, 1.0), "l": (0.05, 0.5), "t": (0.0, 10.0), "eps": (0.005, 0.1),
                 "s": (-1e-3, 1e-3), "fiber": (-2.0, 2.0)}
 
@@ -364,6 +366,8 @@ def _params(rng, shape, size):
 def _vector(rng, name, kernel, shape):
     if name == "params":
         return _params(rng, shape, _input_size(kernel, name))
+    if OTHER_VECTORS[name] is None:
+        return rng.uniform(-1.0, 1.0, shape + (_input_size(kernel, name),))
     return np.stack([rng.uniform(lo, hi, shape) for lo, hi in OTHER_VECTORS[name]], axis=-1)
 
 
@@ -390,8 +394,8 @@ def test_every_kernel_is_covered():
         expected |= {f"kinematics.{k}_{g}" for k in ("guide", "end_map", "rigid_end", check, "end_scale")}
     for m in schema.MOTIONS:
         expected |= {f"kinematics.{k}_{m}" for k in ("motion", "period", "step_period")}
-        if schema.MOTIONS[m].driven:
-            expected.add(f"kinematics.drive_{m}")            # a driven crank's equation
+        if schema.MOTIONS[m].driven:                         # a driven crank's co-ordinates: equations, start
+            expected |= {f"kinematics.coordinates_{m}", f"kinematics.start_{m}"}
     expected |= {f"elements.{k}" for k in dispatch.ELEMENT_KERNELS}
     for ap in APPROACHES:
         expected |= {f"energy.strain_energy_{ap}", f"energy.dissipation_{ap}"}

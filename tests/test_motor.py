@@ -1,4 +1,4 @@
-"""The motor-driven crank (crankgen.discrete.motor, engine/motor.py): its limits against independent truths
+"""The motor-driven crank (its angle a declared co-ordinate of the DOF map: crankgen.discrete.newmark, engine/coordinates.py): its limits against independent truths
 (the rigid slider-crank's one-degree-of-freedom equation integrated here by scipy; the constant-speed
 crank as the motor stiffens), its energy balance, and the two engines against each other."""
 
@@ -9,7 +9,7 @@ from scipy.integrate import solve_ivp
 import crankgen
 from crankgen.errors import ParameterError
 from crankgen.discrete.system import Model
-from crankgen.discrete.motor import crank_state
+from crankgen.discrete.kinematics import crank_state
 
 import energy_balance as eb
 
@@ -169,8 +169,9 @@ def test_a_motor_run_refuses_what_it_cannot_take():
 
 
 def test_simulate_many_runs_motor_driven_cases_beside_prescribed_ones():
-    """simulate_many of a motor-driven case gives simulate's run of it, bit for bit, and a
-    prescribed case in the same list keeps its batched run; the progress counts the cases."""
+    """simulate_many of a motor-driven case gives simulate's run of it, bit for bit (one path: its
+    own batch, its state the DOF map's), and a prescribed case in the same list keeps its batched
+    run; the progress counts the case-steps of both."""
     motor = crankgen.Case(motion="motor", stall_torque=0.05, no_load_speed=0.8, inertia=0.05, n_elements=2)
     prescribed = crankgen.Case(omega=0.8, n_elements=2)
     seen = []
@@ -181,4 +182,4 @@ def test_simulate_many_runs_motor_driven_cases_beside_prescribed_ones():
     assert runs[0].crank_speed[-1] > 0.5                      # it ran up
     batched = crankgen.simulate_many([prescribed], 1)[0]
     np.testing.assert_array_equal(runs[1].v_mid, batched.v_mid)
-    assert seen[-1] == (2, 2)
+    assert seen[-1] == (200, 200)

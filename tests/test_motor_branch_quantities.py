@@ -12,9 +12,9 @@ import pytest
 
 import crankgen
 from crankgen.analyses.bifurcation import BifurcationDiagram
-from crankgen.analyses.bifurcation.motor_map import MotorMap
+from crankgen.analyses.bifurcation.mechanism import AutonomousMap as MotorMap
 from crankgen.analyses.bifurcation.quantities import motor_orbit, motor_orbit_quantities
-from crankgen.analyses.motor_steady import SectionMap
+from crankgen.analyses.section import CrankSection
 from crankgen.notices import BeyondTheoryWarning
 
 MOTOR = dict(stall_torque=0.05, inertia=0.05, load_torque=0.002)
@@ -44,11 +44,9 @@ def _revolution(br, i):
     and the state at T (simulate's landing on a requested time): the revolution's steps."""
     p = float(br.parameter[i])
     case = crankgen.Case(motion="motor", no_load_speed=p, **MOTOR, **RUN)
-    X, V, _ = SectionMap(case).full(br.states[i])
-    N = X.shape[1] - 1
+    X, V, _ = CrankSection(case).full(br.states[i])
     T = float(br.quantities["revolution_time"][i])
-    r = crankgen.simulate(case=replace(case, initial_speed=float(V[0, N]), theta0=float(X[0, N])),
-                          initial=(X[0, :N], V[0, :N]), times=[T], tol=1e-12)
+    r = crankgen.simulate(case=case, initial=(X[0], V[0]), times=[T], tol=1e-12)
     return r, r.t < T, T
 
 
@@ -202,13 +200,12 @@ def test_the_si_files_have_them_in_si(tmp_path):
 
 
 def test_a_point_of_a_motor_branch_animates_its_orbit(branch):
-    """crankgen.plots.animation.orbit of a motor-driven point: the run from its section state (its crank
+    """BifurcationDiagram.orbit of a motor-driven point: the run from its section state (its crank
     speed the point's) over its revolution time, to the nearest step: one crank revolution, the
     crank-speed range the point's."""
-    from crankgen.plots.animation import orbit
     d, br = branch
     i = len(br) // 2
-    r = orbit(d, 0, i)
+    r = d.orbit(0, i)
     T = float(br.quantities["revolution_time"][i])
     dt = r.t[1] - r.t[0]
     assert abs(r.t[-1] - T) <= dt / 2 + 1e-12

@@ -1,4 +1,4 @@
-"""Continuation of a motor-driven crank's steady motion in a motor parameter (bifurcation/motor_map.py)
+"""Continuation of a motor-driven crank's steady motion in a motor parameter (bifurcation/mechanism.py, AutonomousMap)
 against independent steady states at the branch's points."""
 
 import warnings

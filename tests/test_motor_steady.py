@@ -1,4 +1,4 @@
-"""The steady motion of a motor-driven crank (crankgen.analyses.motor_steady): an autonomous periodic orbit
+"""The steady motion of a motor-driven crank (crankgen.analyses.section, CrankSection): an autonomous periodic orbit
 found by shooting on the section theta = theta0 (mod 2 pi), checked against marching, against
 another section and against the flow's monodromy matrix (its trivial multiplier)."""
 
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import crankgen
-from crankgen.analyses import motor_steady
+from crankgen.analyses import section as motor_steady
 
 MOTOR = dict(stall_torque=0.05, no_load_speed=0.8, inertia=0.05, load_torque=0.002)
 
@@ -53,7 +53,7 @@ def test_the_orbit_does_not_depend_on_the_section(steady):
 
 
 def test_the_flow_has_the_trivial_multiplier_and_the_map_the_others(steady):
-    m = motor_steady.SectionMap(steady.case)
+    m = motor_steady.CrankSection(steady.case)
     M = motor_steady.monodromy(m, steady.section_state, steady.period)
     mu = np.linalg.eigvals(M)
     trivial = mu[np.argmin(np.abs(mu - 1.0))]

@@ -1,4 +1,5 @@
-"""The README's examples run as written: every ```python block (in a temporary folder, with the
+"""The README's and the documentation's examples run as written: every ```python block of README.md
+and of the Markdown pages of docs/ (in a temporary folder, with the
 continuation, the Poincare sweep, the Campbell diagram, the two-parameter curves and the animations
 made small: they take
 minutes at the README's sizes), every
@@ -17,8 +18,24 @@ import crankgen
 
 ROOT = Path(__file__).resolve().parent.parent
 README = (ROOT / "README.md").read_text(encoding="utf-8")
-PYTHON_BLOCKS = re.findall(r"```python\n(.*?)```", README, flags=re.S)
-BASH_BLOCKS = re.findall(r"```bash\n(.*?)```", README, flags=re.S)
+# the pages of the documentation (what a build generates is not a page of the repository); the
+# blocks a build runs itself ({crankgen-run}) are checked by tests/test_docs.py
+PAGES = [ROOT / "README.md"] + sorted(p for p in (ROOT / "docs").rglob("*.md")
+                                       if not {"_build", "_generated", "gallery"} & set(p.relative_to(ROOT / "docs").parts))
+
+
+def _blocks(language):
+    """[(where, code)] of every ```language block of the pages."""
+    out = []
+    for page in PAGES:
+        text = page.read_text(encoding="utf-8")
+        for k, code in enumerate(re.findall(rf"```{language}\n(.*?)```", text, flags=re.S)):
+            out.append((f"{page.relative_to(ROOT)} {language} block {k + 1}", code))
+    return out
+
+
+PYTHON_BLOCKS = _blocks("python")
+BASH_BLOCKS = [code for _, code in _blocks("bash")]
 
 
 def _small(real, **overrides):
@@ -31,11 +48,12 @@ def _small(real, **overrides):
     return call
 
 
-def test_the_readme_has_python_examples():
-    assert len(PYTHON_BLOCKS) >= 2 and any("continuation" in b for b in PYTHON_BLOCKS)
+def test_the_readme_and_the_docs_have_python_examples():
+    assert re.search(r"```python\n", README)
+    assert len(PYTHON_BLOCKS) >= 15 and any("continuation" in code for _, code in PYTHON_BLOCKS)
 
 
-@pytest.mark.parametrize("k", range(len(PYTHON_BLOCKS)))
+@pytest.mark.parametrize("k", range(len(PYTHON_BLOCKS)), ids=lambda k: PYTHON_BLOCKS[k][0])
 def test_every_python_block_runs_as_written(k, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     monkeypatch.setattr(crankgen, "continuation", _small(crankgen.continuation, n_elements=2,
@@ -46,8 +64,9 @@ def test_every_python_block_runs_as_written(k, tmp_path, monkeypatch):
     monkeypatch.setattr(crankgen, "follow", _small(crankgen.follow, max_points=8))
     from crankgen.plots import animation
     monkeypatch.setattr(animation, "MAX_FRAMES", 6)          # a few frames of every animation
-    code = textwrap.dedent(PYTHON_BLOCKS[k])            # a block inside a list item is indented
-    exec(compile(code, f"README.md python block {k + 1}", "exec"), {"__name__": "readme"})
+    where, code = PYTHON_BLOCKS[k]
+    code = textwrap.dedent(code)                        # a block inside a list item is indented
+    exec(compile(code, where, "exec"), {"__name__": "readme"})
     for name in re.findall(r"""(?:to_csv|plot)\("([^"]+)""", code):      # what it says it writes
         assert (tmp_path / name).exists(), name
 

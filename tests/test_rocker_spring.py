@@ -58,7 +58,7 @@ def flexible_statics(case, theta):
     phi = float(kin.phi[0])
     F = Fi * np.array([math.cos(phi), -math.sin(phi)]) + Fj * np.array([math.sin(phi), math.cos(phi)])
     A = case.a * np.array([math.cos(theta), math.sin(theta)])
-    s = float(d[0, model.mesh.slider_dof])
+    s = float(d[0, model.mesh.reduced_coordinates()[0]])
     return float(kin.beta[0]) + s, F, _cross(A, F), s
 
 
@@ -95,7 +95,7 @@ def test_the_springs_energy_and_force(s):
     model = Model(case)
     kin = model.kinematics(0.0)
     d = np.zeros(model.n_dofs)
-    d[model.mesh.slider_dof] = s
+    d[model.mesh.reduced_coordinates()[0]] = s
     q = model.nodal_state(kin, d, 0 * d, 0 * d)[0][-1]
     geo, coef, z = model.geometry[-1], model.coefficients, np.zeros(6)
     V = energy.rocker_spring_potential(q, z, geo, coef, kin.vector)

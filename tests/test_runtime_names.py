@@ -29,8 +29,7 @@ HOMONYMS = {("analyses/bifurcation/diagram.py", "branch"): "a branch of periodic
             ("analyses/bifurcation/diagram_files.py", "branch"): "a branch of periodic orbits of a continuation (a "
                                                         "CSV column and JSON key), not the four-bar's closure",
             ("analyses/campbell.py", "order"): "a crank order (k Omega) of a Campbell diagram (a CSV column)",
-            ("declaration/sections.py", "circle"): "a circular cross-section of the rod",
-            ("engine/__init__.py", "motor"): "the engine's module motor.py, named where its names load"}
+            ("declaration/sections.py", "circle"): "a circular cross-section of the rod"}
 
 
 def forbidden():

@@ -65,7 +65,7 @@ def test_a_four_bar_with_gravity_and_a_run_up_in_si_is_its_dimensionless_twin(fo
 
 def test_the_si_mechanism_comes_back_from_its_case(four_bar_runs):
     """The case of the SI run, converted back to SI on the same rod, is the SIMechanism given
-    (every field, the run-up's ramp and the start angle included), and Mechanism.from_si gives the
+    (every field, the run-up's ramp and the start angle included), and its .mechanism and .crank are the
     dimensionless mechanism and the run-up's record."""
     si, _ = four_bar_runs
     given = _four_bar_si()
@@ -73,7 +73,8 @@ def test_the_si_mechanism_comes_back_from_its_case(four_bar_runs):
     for name, value in given.si_values().items():
         got = getattr(back, name)
         assert (got == pytest.approx(value, rel=1e-12)) if not isinstance(value, str) else got == value, name
-    mech, crank = crankgen.Mechanism.from_si(**ROD, **given.si_values())
+    rebuilt = crankgen.SIMechanism(**ROD, **given.si_values())
+    mech, crank = rebuilt.mechanism, rebuilt.crank
     twin, twin_crank = _four_bar_scaled()
     assert mech.c == pytest.approx(twin.c, rel=1e-14) and mech.gravity[1] == pytest.approx(twin.gravity[1], rel=1e-12)
     assert type(crank) is crankgen.RunUp

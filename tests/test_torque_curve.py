@@ -10,7 +10,7 @@ from scipy.interpolate import PchipInterpolator
 
 import crankgen
 from crankgen.declaration import torque_curve
-from crankgen.engine.motor import hermite
+from crankgen.engine.coordinates import hermite
 from crankgen.errors import ParameterError
 
 # an induction motor's shape: locked-rotor torque 1, breakdown torque 2.2 near synchronous speed 1,

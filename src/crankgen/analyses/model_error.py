@@ -70,7 +70,7 @@ class _Linear:
     """The model's linearization along a result's states and the defect forcing, in chunks of steps."""
 
     def __init__(self, result):
-        from ..audit.exact_weights import exact_case
+        from ..declaration.cases import exact_case
         from ..discrete.system import Model
         case = result.case
         self.t = np.asarray(result.t, dtype=float)
@@ -92,7 +92,7 @@ class _Linear:
 def _axial_dofs(mesh):
     """The reduced indices of the axial unknowns: u of every node that has one, and the end's."""
     from ..discrete.mesh import U
-    idx = {mesh.reduced_index(node, U) for node in range(mesh.n_elements + 1)} | {mesh.slider_dof}
+    idx = {mesh.reduced_index(node, U) for node in range(mesh.n_elements + 1)} | set(mesh.reduced_coordinates())
     return np.array(sorted(i for i in idx if i is not None), dtype=np.intp)
 
 

@@ -99,7 +99,7 @@ class Modes:
 
 def _axial_dofs(mesh):
     """Reduced indices of the axial unknowns: u of the interior nodes and the end co-ordinate."""
-    idx = [mesh.reduced_index(node, U) for node in range(1, mesh.n_elements)] + [mesh.slider_dof]
+    idx = [mesh.reduced_index(node, U) for node in range(1, mesh.n_elements)] + [mesh.reduced_coordinates()[0]]
     return np.array(sorted(set(idx)), dtype=np.intp)
 
 
@@ -178,9 +178,9 @@ class FrozenModel:
                 idx = mesh.reduced_index(node, comp)
                 if idx is not None and not (node == n and comp == U):
                     out[:, :, node, comp] = vectors[:, idx, :]
-        E = _kinematics.end_map(self.case, kin.vector, d[:, mesh.slider_dof])
+        E = _kinematics.end_map(self.case, kin.vector, d[:, mesh.reduced_coordinates()[0]])
         g_s = E[:, _kinematics.schema.END_MAP_ROWS["g_s"], :]                  # (T, 2)
-        s = vectors[:, mesh.slider_dof, :]                                        # (T, m)
+        s = vectors[:, mesh.reduced_coordinates()[0], :]                                        # (T, m)
         out[:, :, n, U] = g_s[:, None, 0] * s
         out[:, :, n, V] = g_s[:, None, 1] * s
         big = np.max(np.abs(out[..., :2]), axis=(2, 3))

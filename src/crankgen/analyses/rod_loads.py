@@ -2,7 +2,7 @@
 
 - **Along the rod** (`along_rod`): the axial force N at every node, and with a
   crankgen.sections.Section the normal stress at both outer fibres, sigma = N/A - M y/I
-  (crankgen.stresses), per step: columns of the per-step table (simulation.csv, orbit.csv).
+  (crankgen.analyses.stresses), per step: columns of the per-step table (simulation.csv, orbit.csv).
 - **The bearing loads** (`joint_columns`): every joint force the guide declares as X and Y
   components (crank_on_rod at the crank pin A, rod_on_slider or rod_on_tip at B, the guide's or
   rocker's force) also as magnitude |F| and direction atan2(F_Y, F_X) in the inertial frame
@@ -11,7 +11,7 @@
   along the rod and at which crank angle), the Euler buckling margin of the rod under the largest
   compression, and each joint force's largest magnitude with its direction and crank angle; with
   a section the largest tension and compression stress (`stress_peaks`).  One row: steady.csv
-  (crankgen.steady_row), simulate's summary.csv.
+  (crankgen.results.steady_row), simulate's summary.csv (crankgen.cli.runs).
 
 **The buckling margin** is the pinned-pinned rod's Euler load pi^2 EI / L^2 over the largest
 compressive axial force anywhere along the rod over the result (in crankgen's units the Euler
@@ -28,7 +28,6 @@ import math
 import numpy as np
 
 from ..declaration import schema
-from ..results.exports import column
 
 EULER_LOAD = math.pi ** 2          # the pinned-pinned Euler load in units of EI/L^2 (N* = pi^2)
 AXIAL = "axial_force"
@@ -60,22 +59,24 @@ def _points(case):
 
 
 def joint_columns(result, si=None):
-    """(columns, arrays): each joint force's magnitude (its components' unit) and direction (degrees
-    in crankgen's units, rad in SI, as the crank angle's column), per step."""
+    """[(name, units, array)]: each joint force's magnitude (its components' declared units; the
+    column is named with them, crankgen.results.exports.column) and direction (units None: the name
+    is complete; degrees in crankgen's units, rad in SI, as the crank angle's column), per step."""
     view = result if si is None else si
-    columns, values = [], []
+    out = []
     for base, x, y in joints(result.case.guide_record.name):
         fx, fy = (np.asarray(view.quantity(name), dtype=float) for name in (x, y))
         angle = np.arctan2(fy, fx)
-        columns += [column(f"{base}_magnitude", schema.OUTPUTS[x].units, si is not None),
-                    f"{base}_angle_" + ("rad" if si is not None else "deg")]
-        values += [np.hypot(fx, fy), angle if si is not None else np.degrees(angle)]
-    return columns, values
+        out += [(f"{base}_magnitude", schema.OUTPUTS[x].units, np.hypot(fx, fy)),
+                (f"{base}_angle_" + ("rad" if si is not None else "deg"), None,
+                 angle if si is not None else np.degrees(angle))]
+    return out
 
 
 def along_rod(result, si=None, section=None):
-    """(columns, arrays): the axial force at every node (x* = i/n, or x in m in SI) per step, and
-    with a Section the stress at its top and bottom outer fibres there (units of E, or Pa in SI)."""
+    """[(name, units, array)]: the axial force at every node (x* = i/n, or x in m in SI; its declared
+    units) per step, and with a Section the stress at its top and bottom outer fibres there (units
+    None: the name is complete, _E for units of E, _Pa in SI)."""
     from .stresses import stress
     case = result.case
     xs = _nodes(case)
@@ -84,15 +85,13 @@ def along_rod(result, si=None, section=None):
     where = [f"{x * length:g}" + ("m" if si is not None else "") for x in xs]
     units = schema.OUTPUTS[AXIAL].units
     N = np.asarray(view.quantity(AXIAL, xs * length), dtype=float).reshape(len(result.t), -1)
-    columns = [column(f"{AXIAL}_at_{w}", units, si is not None) for w in where]
-    values = [N[:, j] for j in range(len(xs))]
+    out = [(f"{AXIAL}_at_{w}", units, N[:, j]) for j, w in enumerate(where)]
     if section is not None:
         history = stress(result, section, x=xs * length, scales=None if si is None else si.scales)
         unit = "Pa" if si is not None else "E"
         for fibre, array in (("top", history.top), ("bottom", history.bottom)):
-            columns += [f"stress_{fibre}_at_{w}_{unit}" for w in where]
-            values += [array[:, j] for j in range(len(xs))]
-    return columns, values
+            out += [(f"stress_{fibre}_at_{w}_{unit}", None, array[:, j]) for j, w in enumerate(where)]
+    return out
 
 
 def _crank_degrees(theta):
@@ -205,7 +204,7 @@ def stress_peaks(result, section, si=None):
 def summary_line(values, si=False):
     """One line of the peaks for a command's output: the largest compression with where and when,
     the buckling margin, and the bearing loads' peaks with their direction (values: `peaks`, in SI
-    with si: the SI columns of crankgen.si.row_in_si beside them)."""
+    with si: the SI columns of crankgen.results.si_row.row_in_si beside them)."""
     force = "N" if si else "EI/L^2"
 
     def x_text(name):
@@ -221,20 +220,3 @@ def summary_line(values, si=False):
         parts.append(f"largest tension {t:.4g} {force} at {x_text('peak_tension')}, crank angle "
                      f"{values['peak_tension_crank_angle_deg']:.1f} deg")
     return "axial force: " + ("; ".join(parts) if parts else "none")
-
-
-def summary(result, section=None, si=None):
-    """One row of what sizes the rod and its bearings over a result (simulate's summary.csv): the
-    peaks in crankgen's units (`peaks`), the model's verdict (model_error, verdict:
-    crankgen.analyses.model_error), and with si (the crankgen.SIMechanism of the run) their SI columns
-    (crankgen.si.row_in_si), with a section the stress peaks (`stress_peaks`, in Pa with si)."""
-    out = dict(peaks(result))
-    judged = result.verdict
-    out.update(model_error=judged.error, verdict=judged.words or None)
-    if si is not None:
-        from ..declaration.si import row_in_si
-        extra = row_in_si(out, si)
-        out.update({k: v for k, v in extra.items() if k not in out})
-    if section is not None:
-        out.update(stress_peaks(result, section, si))
-    return out

@@ -15,11 +15,12 @@ from ..discrete.kinematics import check_crank_steps
 from ..declaration.cases import Case, run_case
 from ..errors import ConvergenceError, ParameterError
 from .limits import check_run_size
-from ..discrete.system import Model
+from ..discrete.system import Model, check_coordinates
 from ..discrete.initial import initial_state
 from ..discrete.newmark import NewmarkSettings, integrate
 from ..declaration import schema
 from ..results.outputs import DeclaredOutputs, StateHistory, engine_columns, takes_engine_outputs
+from .marching import coordinate_histories, crank_of, march_in_chunks, run_kinematics, start_state
 from ..declaration.si import si_input
 from .theory import warn_beyond
 from ..declaration.units import Scales
@@ -54,7 +55,8 @@ class SimulationResult(DeclaredOutputs):
     accelerations: Optional[np.ndarray] = field(default=None, repr=False)
     at_times: Optional["SimulationResult"] = field(default=None, repr=False)
     scales: Optional[Scales] = field(default=None, repr=False)      # crankgen's units in SI (units="si")
-    crank: Optional[np.ndarray] = field(default=None, repr=False)   # a motor-driven crank's (theta, thetad, thetadd)
+    crank: Optional[np.ndarray] = field(default=None, repr=False)   # a driven crank's (theta, thetad, thetadd)
+    coordinates: Optional[dict] = field(default=None, repr=False)   # a driven motion's co-ordinates: name -> (steps, 3)
 
     @property
     def crank_angle(self):
@@ -63,12 +65,21 @@ class SimulationResult(DeclaredOutputs):
 
     @property
     def motor_torque(self):
-        """A motor-driven crank's motor torque T_m(thetad) per step, on its torque-speed curve (units
-        of the output torque; crankgen.torque_curve); None for a prescribed crank."""
-        if self.crank is None:
+        """A motor's torque T_m per step, on its torque-speed curve at the speed of the co-ordinate it
+        drives (units of the output torque; crankgen.declaration.torque_curve); None for a
+        prescribed crank."""
+        if not self.coordinates:
             return None
-        from ..declaration.torque_curve import motor_torque
-        return motor_torque(self.case, self.crank[:, 1])
+        from ..results.motor_duty import motor_torque
+        motor = next(c.name for c in self.case.motion_record.coordinates if c.motor)
+        return motor_torque(self.case, self.coordinates[motor][:, 1])
+
+    def last_revolution(self):
+        """{name: value} of every declared reduction over time (schema.REDUCTIONS: a peak, RMS,
+        mean or range of an output) over the run's last crank revolution (crankgen.results.reductions;
+        None without states)."""
+        from ..results import reductions
+        return reductions.values(self, reductions.last_revolution(self))
 
     @property
     def crank_acceleration(self):
@@ -79,8 +90,8 @@ class SimulationResult(DeclaredOutputs):
 
 
 def run_length(case, revolutions):
-    """(time step, number of steps) of a run of `revolutions` crank revolutions (a motor-driven
-    crank's: no-load revolutions, crankgen.analyses.motor_simulation)."""
+    """(time step, number of steps) of a run of `revolutions` crank revolutions (a driven crank's:
+    revolutions of its step period, the no-load revolution of a motor)."""
     dt = _kinematics.step_period(case) / case.steps_per_rev
     if case.periodic or case.motion_record.driven:
         return dt, max(1, int(round(revolutions * case.steps_per_rev)))
@@ -176,10 +187,11 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     if revolutions is not None:
         revolutions = in_range("revolutions", revolutions, 0, None, True)
     case = run_case(mech, case, model=model, omega=omega, crank=crank, **fields)
-    if case.motion_record.driven:
-        return _simulate_driven(case, revolutions, times, history, store_nodes, tol, progress, initial, engine,
-                                scales)
-    time_scheme.warn_steps([case], omega_b=None if scales is None else scales.omega_b)
+    driven = bool(case.motion_record.coordinates)
+    if driven:
+        check_coordinates(case)
+    else:
+        time_scheme.warn_steps([case], omega_b=None if scales is None else scales.omega_b)
     settings = NewmarkSettings.of_case(case, tol=tol)
     reference = Model.from_case(case)          # the case's runtime model (model= names its preset)
     if not isinstance(history, (bool, np.bool_)):
@@ -206,11 +218,17 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
                    n_times=0 if times is None else len(t_req),
                    names={"n_steps": "revolutions" if times is None else "revolutions (or the last of times)",
                           "n_times": "times"})
-    check_crank_steps(case, dt, n_steps * dt)
+    if not driven:
+        check_crank_steps(case, dt, n_steps * dt)
     if landing is not None:
         landing = list(zip(landing[0].astype(np.int64).tolist(), landing[1].tolist()))
     d0, v0, g0 = initial_state(case, initial, scales)
+    if driven and g0 is not None:
+        raise ParameterError("a driven crank's run starts from (d0, v0): give no algorithmic accelerations")
+    d0, v0 = start_state(case, d0, v0)
     info = dict(case.as_dict(), revolutions=revolutions, tol=tol, engine=engine)
+    if driven:
+        info["revolutions_of"] = "no-load revolutions"
     stops = sorted({k for k, _ in landing}) if landing is not None else []
     if engine == "numpy":
         hist = integrate(reference, d0, v0, 0.0, dt, n_steps, settings, progress=progress, g0=g0)
@@ -229,19 +247,15 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
         return result
 
     captured = {}
-    y, iterations, status, fail_step, fail_res, D, V, A = _march_in_chunks(
+    y, iterations, status, fail_step, fail_res, D, V, A, Z = march_in_chunks(
         _engine.Batch([case]), d0[None], v0[None], n_steps, tol, history,
         None if progress is None else (lambda done: progress(done, n_steps)), stops=stops, captured=captured,
         G0=None if g0 is None else g0[None])
-    y, iterations = y[0], iterations[0].astype(np.int32)
+    y, iterations, Z = y[0], iterations[0].astype(np.int32), Z[0]
     if history:
         D, V, A = D[0], V[0], A[0]
     t = dt * np.arange(n_steps + 1)
-    kin = _kinematics.case_state(case, t)
-    nodes = reference.full_nodal(D, kin) if store_nodes else None
-    result = SimulationResult(t=t, theta=kin.theta, outputs=engine_columns(y),
-                              iterations=iterations, settings=dict(info, history=history), nodes=nodes,
-                              case=case, states=D, rates=V, accelerations=A, scales=scales)
+    result = _result(reference, case, t, y, iterations, dict(info, history=history), D, V, A, Z, store_nodes, scales)
     if status[0] != _engine.OK:
         raise _failure(status[0], fail_step[0], fail_res[0], dt, result)
     if landing is not None:
@@ -252,43 +266,40 @@ def simulate(mech=None, omega=None, *, model=None, case=None, crank=None, revolu
     return result
 
 
-def _simulate_driven(case, revolutions, times, history, store_nodes, tol, progress, initial, engine, scales):
-    """simulate of a motor-driven crank (crankgen.analyses.motor_simulation)."""
-    from .motor_simulation import simulate_motor
-    if not isinstance(history, (bool, np.bool_)):
-        raise ParameterError(f"history must be True or False, got {history!r}")
-    t_req = None if times is None else _requested_times(times, 1.0 if scales is None else scales.factor("1/omega_b"))
-    d0, v0, g0 = initial_state(case, initial, scales)
-    if g0 is not None:
-        raise ParameterError("a motor-driven run starts from (d0, v0): give no algorithmic accelerations")
-    info = dict(case.as_dict(), tol=tol, engine=engine)
-    result = simulate_motor(SimulationResult, case, revolutions, t_req, bool(history), store_nodes, tol, progress, d0,
-                            v0, engine, info, scales)
-    warn_beyond([result], "run")
-    return result
+def _result(model, case, t, y, iterations, info, D, V, A, Z, store_nodes, scales):
+    """The SimulationResult of a run's steps on the DOF map: y the engine's outputs, D, V, A the
+    states (None: not kept; their nodal part is kept, the co-ordinates go to `coordinates`), Z the
+    declared co-ordinates per step (MarchResult.Z)."""
+    coordinates = coordinate_histories(case, Z) if case.motion_record.coordinates else None
+    crank = None if coordinates is None else crank_of(case, coordinates)
+    kin = run_kinematics(case, t, crank)
+    n_rod = model.n_rod
+    nodal = [None if x is None else x[..., :n_rod] for x in (D, V, A)]
+    return SimulationResult(t=np.asarray(t, dtype=float), theta=kin.theta, outputs=engine_columns(y),
+                            iterations=np.asarray(iterations, dtype=np.int32), settings=info,
+                            nodes=model.full_nodal(nodal[0], kin) if store_nodes else None, case=case,
+                            states=nodal[0], rates=nodal[1], accelerations=nodal[2], scales=scales, crank=crank,
+                            coordinates=coordinates)
 
 
 def _numpy_result(model, case, hist, info, store_nodes, scales):
-    history = StateHistory(case, hist.t, hist.d, hist.v, hist.a)
-    kin = history.kinematics()
-    return SimulationResult(
-        t=hist.t, theta=kin.theta, outputs=engine_columns(history.engine_outputs()),
-        iterations=hist.iterations, settings=info,
-        nodes=model.full_nodal(hist.d, kin) if store_nodes else None, case=case, states=hist.d,
-        rates=hist.v, accelerations=hist.a, scales=scales)
+    n_rod = model.n_rod
+    m = hist.d.shape[1] - n_rod
+    Z = np.concatenate([hist.d[:, n_rod:], hist.v[:, n_rod:], hist.a[:, n_rod:]], axis=1)
+    crank = crank_of(case, coordinate_histories(case, Z)) if m else None
+    y = StateHistory(case, hist.t, hist.d[:, :n_rod], hist.v[:, :n_rod], hist.a[:, :n_rod], crank).engine_outputs()
+    return _result(model, case, hist.t, y, hist.iterations, info, hist.d, hist.v, hist.a, Z, store_nodes, scales)
 
 
 def _at_times_result(model, case, t_req, rows, info, store_nodes, scales):
     """The SimulationResult at the requested times from rows (the engine's outputs y, iterations,
-    d, v, a, ...) each."""
+    d, v, a, ...) each (states on the DOF map: the co-ordinates after the nodal unknowns)."""
     y = np.array([r[0] for r in rows], dtype=float).reshape(len(rows), len(schema.ENGINE_OUTPUTS))
     D, V, A = (np.array([r[k] for r in rows], dtype=float) for k in (2, 3, 4))
-    kin = _kinematics.case_state(case, t_req)
-    return SimulationResult(
-        t=np.array(t_req, dtype=float), theta=kin.theta, outputs=engine_columns(y),
-        iterations=np.array([r[1] for r in rows], dtype=np.int32), settings=dict(info, times=True),
-        nodes=model.full_nodal(D, kin) if store_nodes else None, case=case, states=D, rates=V,
-        accelerations=A, scales=scales)
+    n_rod = model.n_rod
+    Z = np.concatenate([D[:, n_rod:], V[:, n_rod:], A[:, n_rod:]], axis=1)
+    return _result(model, case, t_req, y, [r[1] for r in rows], dict(info, times=True), D, V, A, Z, store_nodes,
+                   scales)
 
 
 def _engine_row(result, k):
@@ -345,76 +356,6 @@ def _compiled_at_times(model, case, result, states, landing, t_req, tol, store_n
     return _at_times_result(model, case, t_req, rows, info, store_nodes, scales)
 
 
-# the most memory a chunk's states may take while the states at requested times are picked from it
-CHUNK_BYTES = 64 * 2**20
-
-
-def _march_in_chunks(batch, D0, V0, n_steps, tol=1e-10, keep_states=False, progress=None,
-                     chunks=20, stops=(), captured=None, G0=None):
-    """Run the compiled engine from (D0, V0) in a few chunks, so that progress(done_steps) can be
-    shown; a case that fails stops alone.  Returns (y, iterations, status, fail_step,
-    fail_residual, D, V, A) with y (B, n_steps + 1, the engine's outputs) and the histories of the reduced
-    displacements, velocities and accelerations (None unless keep_states).  stops: step indices
-    whose states (D, V, A), each (B, N), are put in the dict `captured`: taken from the states of
-    the chunk that holds them (a chunk with stops keeps its states, and is at most CHUNK_BYTES of
-    them long), so the work grows linearly with the stops; the marching is the same as without
-    them (chunks continue from the state and history where the last one ended).  G0: generalized-
-    alpha's algorithmic accelerations (None: the run starts, its first step the starter); the
-    captured states hold them as a fourth entry (None at step 0 of a start)."""
-    B = len(batch)
-    D, V, A, G, previous = np.array(D0, dtype=float), np.array(V0, dtype=float), None, G0, None
-    status = np.zeros(B, dtype=np.int64)
-    fail_step, fail_res = np.zeros(B, dtype=np.int64), np.zeros(B)
-    ys, its, hist = [], [], ([], [], [])
-    size = max(1, -(-n_steps // chunks)) if progress is not None else n_steps
-    stops = np.unique(np.asarray([k for k in stops if 0 <= k <= n_steps], dtype=np.int64))
-    if not keep_states and stops.size:
-        size = min(size, max(1, CHUNK_BYTES // (3 * 8 * B * max(1, batch.N))))
-    if stops.size and stops[0] == 0:
-        first = _engine.march(batch, 0, D0=D, V0=V, G0=G, tol=tol, status=status)
-        A, status = first.A, first.status
-        captured[0] = (D.copy(), V.copy(), A.copy(), None if G is None else G.copy())
-    done, next_stop = 0, int(np.searchsorted(stops, 1))
-    while done < n_steps:
-        k = min(size, n_steps - done)
-        last_stop = int(np.searchsorted(stops, done + k, side="right"))
-        holds = last_stop > next_stop                          # stops in (done, done + k]
-        res = _engine.march(batch, k, D0=D, V0=V, A0=A, G0=G, step0=done, keep_history=bool(keep_states or holds),
-                            tol=tol, status=status, previous=previous)
-        new_fail = (res.status != _engine.OK) & (status == _engine.OK)
-        fail_step[new_fail], fail_res[new_fail] = res.fail_step[new_fail], res.fail_residual[new_fail]
-        status = res.status
-        ys.append(res.y if done == 0 else res.y[:, 1:])
-        its.append(res.iterations)
-        for stop in stops[next_stop:last_stop]:
-            j = int(stop) - done
-            captured[int(stop)] = (res.D_history[:, j].copy(), res.V_history[:, j].copy(),
-                                   res.A_history[:, j].copy(),
-                                   (res.A_history if res.G_history is None else res.G_history)[:, j].copy())
-        next_stop = last_stop
-        if keep_states:
-            for store, h in zip(hist, (res.D_history, res.V_history, res.A_history)):
-                store.append(h if done == 0 else h[:, 1:])
-        D, V, A, G, previous = res.D, res.V, res.A, res.G, res.previous
-        done += k
-        if not np.any(status == _engine.OK):
-            # every case has stopped: the rest would be NaN rows (what the engine writes for a
-            # case that does not advance), and progress must not count steps never computed
-            if progress is not None:
-                progress(int(np.max(fail_step)) - 1)
-            rest = n_steps - done
-            ys.append(np.full((B, rest, 3), np.nan))
-            its.append(np.zeros((B, rest), dtype=its[-1].dtype))
-            if keep_states:
-                for store in hist:
-                    store.append(np.full(store[-1].shape[:1] + (rest,) + store[-1].shape[2:], np.nan))
-            break
-        if progress is not None:
-            progress(done)
-    histories = tuple(np.concatenate(h, axis=1) if keep_states else None for h in hist)
-    return (np.concatenate(ys, axis=1), np.concatenate(its, axis=1), status, fail_step, fail_res) + histories
-
-
 def _failure(status, step, residual, dt, result=None):
     """The ConvergenceError of a case that stopped in the compiled engine; its `partial` holds
     result cut to the steps before the failed one (the states computed before the failure)."""
@@ -442,83 +383,59 @@ def _truncated(result, n_points):
     cut = {name: getattr(result, name)[:n_points] for name in ("t", "theta")}
     cut["outputs"] = {name: values[:n_points] for name, values in result.outputs.items()}
     cut["iterations"] = result.iterations[:max(0, n_points - 1)]
-    for name in ("nodes", "states", "rates", "accelerations"):
+    for name in ("nodes", "states", "rates", "accelerations", "crank"):
         value = getattr(result, name)
         cut[name] = None if value is None else value[:n_points]
+    cut["coordinates"] = None if result.coordinates is None else {
+        name: values[:n_points] for name, values in result.coordinates.items()}
     return SimulationResult(settings=dict(result.settings, failed_at_step=n_points), case=result.case,
                             scales=result.scales, **cut)
 
 
-def _many_with_driven(cases, driven, revolutions, progress, chunks, keep_states):
-    """simulate_many of a list holding motor-driven cases: the prescribed ones in their batches, each
-    driven one by simulate (its bordered step runs one case at a time), in input order; a driven
-    case whose integration fails gives its ConvergenceError like the others."""
-    others = [i for i in range(len(cases)) if i not in driven]
-    out = [None] * len(cases)
-    total = len(cases)
-    if others:
-        for i, r in zip(others, simulate_many([cases[i] for i in others], revolutions, chunks=chunks,
-                                              keep_states=keep_states)):
-            out[i] = r
-        if progress is not None:
-            progress(len(others), total)
-    time_scheme.warn_steps([cases[i] for i in driven])
-    for k, i in enumerate(driven):
-        try:
-            with notices.quiet():                      # warned once, for every driven case
-                out[i] = simulate(case=cases[i], revolutions=revolutions, history=True)
-        except ConvergenceError as exc:
-            out[i] = exc
-        if progress is not None:
-            progress(len(others) + k + 1, total)
-    warn_beyond([out[i] for i in driven if isinstance(out[i], SimulationResult)], "run")
-    return out
-
-
 def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=False):
-    """Transient runs of many cases from zero initial conditions, in lock-step compiled batches
-    (cases sharing n_elements and steps_per_rev run together).
+    """Transient runs of many cases from zero initial conditions (a driven crank's co-ordinates at
+    their start), in lock-step compiled batches (cases sharing n_elements, steps_per_rev and the
+    co-ordinates of their motion run together: one state layout).
 
     Returns, in input order, a SimulationResult per case, or the ConvergenceError of a case whose
     integration failed (its `partial` holds the run up to the failure; the others are not
-    affected).  progress(done, total) counts case-steps (cases, when motor-driven cases are among
-    them: each of those runs alone, by simulate).  keep_states: store the reduced states
+    affected).  progress(done, total) counts case-steps.  keep_states: store the reduced states
     (needed for the field outputs, e.g. axial_force)."""
     cases = [c if isinstance(c, Case) else Case.from_dict(c) for c in cases]
     revolutions = in_range("revolutions", revolutions, 0, None, True)
-    driven = [i for i, c in enumerate(cases) if c.motion_record.driven]
-    if driven:
-        return _many_with_driven(cases, driven, revolutions, progress, chunks, keep_states)
-    time_scheme.warn_steps(cases)
+    for c in cases:
+        if c.motion_record.coordinates:
+            check_coordinates(c)
+    time_scheme.warn_steps([c for c in cases if not c.motion_record.coordinates])
     groups = {}
-    for i, c in enumerate(cases):
-        groups.setdefault((c.n_elements, c.steps_per_rev, run_length(c, revolutions)[1]), []).append(i)
-    total = sum(n_steps * len(idx) for (_, _, n_steps), idx in groups.items())
-    for (n, _, n_steps), idx in groups.items():
+    for i, c in enumerate(cases):          # one state layout a batch: the mesh and the motion's co-ordinates
+        groups.setdefault((c.n_elements, c.steps_per_rev, run_length(c, revolutions)[1],
+                           tuple(x.name for x in c.motion_record.coordinates)), []).append(i)
+    total = sum(key[2] * len(idx) for key, idx in groups.items())
+    for (n, _, n_steps, _), idx in groups.items():
         check_run_size(n, n_steps, n_cases=len(idx), stored="states" if keep_states else "outputs",
                        names={"n_steps": "revolutions", "n_cases": "cases"})
     for i, c in enumerate(cases):
         dt, n_steps = run_length(c, revolutions)
-        check_crank_steps(c, dt, n_steps * dt, f"cases[{i}]: " if len(cases) > 1 else "")
+        if not c.motion_record.coordinates:
+            check_crank_steps(c, dt, n_steps * dt, f"cases[{i}]: " if len(cases) > 1 else "")
     out = [None] * len(cases)
     done_total = 0
-    for (n, spr, n_steps), idx in sorted(groups.items()):
+    for (n, spr, n_steps, _), idx in sorted(groups.items()):
         batch = _engine.Batch([cases[i] for i in idx])
-        B, N = len(idx), batch.N
+        B, n_rod = len(idx), batch.mesh.n_rod
+        starts = [start_state(cases[i], np.zeros(n_rod), np.zeros(n_rod)) for i in idx]
         report = None if progress is None else (lambda done, o=done_total, b=B: progress(o + done * b, total))
-        y, iterations, status, fail_step, fail_res, D, V, A = _march_in_chunks(
-            batch, np.zeros((B, N)), np.zeros((B, N)), n_steps, keep_states=keep_states,
-            progress=report, chunks=chunks)
+        y, iterations, status, fail_step, fail_res, D, V, A, Z = march_in_chunks(
+            batch, np.array([d for d, _ in starts]), np.array([v for _, v in starts]), n_steps,
+            keep_states=keep_states, progress=report, chunks=chunks)
         done_total += n_steps * B
         for j, i in enumerate(idx):
             c, dt = cases[i], float(batch.dt[j])
             t = dt * np.arange(n_steps + 1)
-            result = SimulationResult(
-                t=t, theta=_kinematics.case_state(c, t).theta, outputs=engine_columns(y[j]),
-                iterations=iterations[j].astype(np.int32),
-                settings=dict(c.as_dict(), revolutions=revolutions, engine="compiled"), case=c,
-                states=None if D is None else D[j], rates=None if V is None else V[j],
-                accelerations=None if A is None else A[j])
+            result = _result(Model(c), c, t, y[j], iterations[j], dict(c.as_dict(), revolutions=revolutions,
+                                                                         engine="compiled"),
+                             *(None if X is None else X[j] for X in (D, V, A)), Z[j], False, None)
             if status[j] != _engine.OK:
                 result = _failure(status[j], fail_step[j], fail_res[j], dt, result)
             out[i] = result

@@ -48,6 +48,8 @@ from ..discrete import kinematics as _kinematics
 from ..declaration.cases import Case, run_case
 from ..errors import ParameterError
 from .limits import check_run_size
+from .section import WARMUP, CrankSection, TimeSection
+from ..discrete.system import check_coordinates
 from ..results.outputs import DeclaredOutputs, engine_columns, takes_engine_outputs
 from ..declaration.si import si_input
 from .theory import warn_beyond
@@ -90,14 +92,17 @@ class SteadyState(DeclaredOutputs):
     rates: np.ndarray = field(default=None, repr=False)   # reduced velocities over the revolution
     accelerations: np.ndarray = field(default=None, repr=False)
     scales: Optional[Scales] = field(default=None, repr=False)    # crankgen's units in SI (units="si")
-    # a motor-driven crank's steady motion (crankgen.analyses.motor_steady): its crank's (theta, thetad,
-    # thetadd) over the revolution, the revolution time, the state on the section theta = theta0
-    # (d, v, thetad[, a, a_theta]) and every multiplier of the section map (by modulus; the trivial
-    # multiplier of the autonomous flow is not among them)
+    # every multiplier of the map (by modulus; None where not computed)
+    multipliers: Optional[np.ndarray] = field(default=None, repr=False)
+    # a driven crank's steady motion (crankgen.analyses.section, CrankSection): its crank's (theta,
+    # thetad, thetadd) over the revolution, every declared co-ordinate's (name -> (steps, 3)), the
+    # revolution time, the state on the section of the crank angle (the DOF map's without it: for a
+    # motor (d, v, thetad[, a, a_theta])); the trivial multiplier of the autonomous flow is not
+    # among its multipliers
     crank: Optional[np.ndarray] = field(default=None, repr=False)
+    coordinates: Optional[dict] = field(default=None, repr=False)
     period: Optional[float] = None
     section_state: Optional[np.ndarray] = field(default=None, repr=False)
-    multipliers: Optional[np.ndarray] = field(default=None, repr=False)
 
     @property
     def mean_speed(self):
@@ -106,7 +111,7 @@ class SteadyState(DeclaredOutputs):
 
     @property
     def speed_fluctuation(self):
-        """A motor-driven crank's speed fluctuation (max - min thetad) / mean speed over the steady
+        """A driven crank's speed fluctuation (max - min thetad) / mean speed over the steady
         revolution (None otherwise)."""
         if self.crank is None:
             return None
@@ -115,12 +120,22 @@ class SteadyState(DeclaredOutputs):
 
     @property
     def motor_duty(self):
-        """A motor-driven crank's {peak_motor_torque, rms_motor_torque, mean_motor_power} over the
-        steady revolution (crankgen.torque_curve.duty; None otherwise)."""
-        if self.crank is None or self.t is None:
+        """A motor's {peak_motor_torque, rms_motor_torque, mean_motor_power} over the steady
+        revolution, at the speed of the co-ordinate it drives (crankgen.results.motor_duty.duty;
+        None otherwise)."""
+        if not self.coordinates or self.t is None:
             return None
-        from ..declaration.torque_curve import duty
-        return duty(self.case, self.t, self.crank[:, 1])
+        from ..results.motor_duty import duty
+        motor = next(c.name for c in self.case.motion_record.coordinates if c.motor)
+        return duty(self.case, self.t, self.coordinates[motor][:, 1])
+
+    @property
+    def reductions(self):
+        """{name: value} of every declared reduction over time (schema.REDUCTIONS: a peak, RMS, mean
+        or range of an output) over the steady revolution (crankgen.results.reductions; None
+        without an orbit)."""
+        from ..results import reductions
+        return reductions.values(self)
 
     @property
     def ok(self):
@@ -157,60 +172,53 @@ def _shooting_failure(history, status, J):
     return "; ".join(parts) or "no iterate"
 
 
-def _failure_text(res, b, dt, before=0, steps_per_rev=None):
-    """The failure of case b in a march that started `before` steps into the run: the step counted
-    from the start of the run (and its revolution)."""
-    code = int(res.status[b])
-    step = before + int(res.fail_step[b])
-    where = f", revolution {(step - 1) // steps_per_rev + 1}" if steps_per_rev else ""
-    return (f"{engine.STATUS_TEXT[code]} in step {step} of the run{where} (t* = {step * dt:.6g}), "
-            f"residual norm {res.fail_residual[b]:.3e}")
-
-
 class _BatchSolver:
-    """Steady states of one engine.Batch (cases sharing mesh and steps per revolution)."""
+    """Steady states of cases that share one section map (crankgen.analyses.section): a batch of
+    prescribed periodic cranks on the time section (mesh and steps per revolution shared), or one
+    driven crank on the section of its crank angle.  The same shooting, marching and verdicts for
+    both; only the map differs."""
 
     def __init__(self, cases, tol, max_revolutions, warmup, max_shooting, method, parallel=None):
-        self.batch = engine.Batch(cases, entries=("march", "revolution"))
-        self.parallel = parallel
         self.cases = list(cases)
+        autonomous = bool(self.cases[0].motion_record.coordinates)
+        self.map = CrankSection(self.cases[0]) if autonomous else TimeSection(self.cases, parallel)
         self.tol, self.max_revolutions = tol, max_revolutions
         self.warmup, self.max_shooting, self.method = warmup, max_shooting, method
-        B, N = len(self.cases), self.batch.N
-        self.size = self.batch.state_size            # (d, v), or (d, v, a) for generalized-alpha
-        self.generalized = self.size == 3 * N
-        self.S = np.concatenate([self.batch.scales] * (self.size // N), axis=1)   # d, v (and a) alike
+        B = len(self.cases)
+        self.size = self.map.size
+        self.S = self.map.scales if autonomous else self.map.scales      # (B, size): d, v (and a) alike
         self.status = np.array(["pending"] * B, dtype=object)
         self.message = [""] * B
         self.periods = np.zeros(B, dtype=int)
         self.iterations = np.zeros(B, dtype=int)
         self.residual = [None] * B
         self.multiplier = [None] * B
+        self.multipliers = [None] * B
         self.X = np.zeros((B, self.size))
 
-    def _march(self, revs, active, start=False):
-        """March the active cases revs revolutions from their current X (theta = 0); start: from
-        (d, v) alone (a run's start: generalized-alpha's first step is its starter)."""
-        b, spr = self.batch, self.batch.steps_per_rev
-        pre = np.where(active, engine.OK, engine.NOT_CONVERGED)
-        X = self.X[:, :2 * b.N] if start else self.X
-        res = engine.march_state(b, revs * spr, X, status=pre, parallel=self.parallel)
-        X1 = engine.join_state(res, self.generalized)
-        for i in np.flatnonzero(active & (res.status != engine.OK)):
+    def _march(self, revs, active):
+        """March the active cases revs revolutions of their map from their current X."""
+        X1, status, why = self.map.march(self.X, revs, active, before=self.periods)
+        for i in np.flatnonzero(active & (status != engine.OK)):
             self.status[i] = "failed"
-            self._note(i, _failure_text(res, i, float(b.dt[i]), int(self.periods[i]) * spr, spr))
-        return X1, res
+            self._note(i, why[i])
+        return X1
 
     def run(self):
         B = len(self.cases)
         active = np.ones(B, dtype=bool)
-        # warm-up from the paper's zero initial conditions
-        X1, _ = self._march(self.warmup, active, start=True)
-        self.periods[:] = self.warmup
-        can_shoot = np.array([c.integrator == "newton" for c in self.cases]) & (self.method == "shooting")
+        X1, status, why, periods = self.map.start(self.warmup, self.max_revolutions, active)
+        self.periods[:] = periods
+        for i in np.flatnonzero(status != engine.OK):
+            self.status[i] = "failed"
+            self._note(i, why[i])
+        # shooting needs the converged step map (newton; the time section's exact Jacobian its reuse too)
+        newton = np.array([c.integrator == "newton" or (self.map.autonomous and c.integrator == "full-newton")
+                           for c in self.cases])
+        can_shoot = newton & (self.method == "shooting")
         # a warm-up that diverged still leaves its last state before the failure: a periodic orbit
         # (stable or not) may be found by shooting from there; the message keeps the failure
-        rescued = (self.status == "failed") & can_shoot
+        rescued = (self.status == "failed") & can_shoot & np.all(np.isfinite(X1), axis=1)
         for i in np.flatnonzero(rescued):
             self.status[i] = "pending"
             self.message[i] = (f"the transient from rest failed ({self.message[i]}); shooting from its "
@@ -236,17 +244,21 @@ class _BatchSolver:
         found = found & newton
         if not found.any():
             return
-        _, J, st = engine.revolution(self.batch, self.X, active=found, parallel=self.parallel)
+        _, J, st = self.map.revolution(self.X, found)
         for i in np.flatnonzero(found):
             if st[i] != engine.OK or not np.all(np.isfinite(J[i])):
                 self._note(i, f"multiplier not computed: the linearized revolution failed "
                               f"({engine.STATUS_TEXT.get(int(st[i]), 'non-finite Jacobian')})")
                 continue
-            rho = float(np.max(np.abs(np.linalg.eigvals(J[i]))))
-            self.multiplier[i] = rho
-            if rho >= 1.0:
+            self._multipliers(i, J[i])
+            if self.multiplier[i] >= 1.0:
                 self._note(i, f"marching settled although the largest Floquet multiplier is "
-                              f"{rho:.4f}")
+                              f"{self.multiplier[i]:.4f}")
+
+    def _multipliers(self, i, J):
+        mu = np.linalg.eigvals(J)
+        self.multipliers[i] = mu[np.argsort(-np.abs(mu))]
+        self.multiplier[i] = float(np.max(np.abs(mu)))
 
     def _note(self, i, text):
         self.message[i] = f"{self.message[i]}; {text}" if self.message[i] else text
@@ -256,7 +268,7 @@ class _BatchSolver:
         start = self.X.copy()
         history = [[] for _ in self.cases]           # the scaled change of every iterate, per case
         for it in range(1, self.max_shooting + 1):
-            X1, J, st = engine.revolution(self.batch, self.X, active=active, parallel=self.parallel)
+            X1, J, st = self.map.revolution(self.X, active)
             change = _scaled_change(self.X, X1, self.S)
             for i in np.flatnonzero(active):
                 if st[i] == engine.OK and np.isfinite(change[i]):
@@ -272,8 +284,8 @@ class _BatchSolver:
                 if change[i] < self.tol:
                     self.X[i] = X1[i]
                     self.residual[i] = float(change[i])
-                    rho = float(np.max(np.abs(np.linalg.eigvals(J[i]))))
-                    self.multiplier[i] = rho
+                    self._multipliers(i, J[i])
+                    rho = self.multiplier[i]
                     if rho < 1.0:
                         self.status[i] = "periodic"
                     else:
@@ -308,7 +320,7 @@ class _BatchSolver:
         prev = self.X.copy()
         changes = [[] for _ in self.cases]
         while active.any():
-            X1, _ = self._march(1, active)
+            X1 = self._march(1, active)
             for i in np.flatnonzero(active):
                 if self.status[i] == "failed":
                     active[i] = False
@@ -340,31 +352,36 @@ class _BatchSolver:
             prev2, prev = prev, X1
 
     def _results(self):
-        b, spr, N = self.batch, self.batch.steps_per_rev, self.batch.N
         show = np.array([s in ("periodic", "unstable") for s in self.status])
-        pre = np.where(show, engine.OK, engine.NOT_CONVERGED)
-        res = engine.march_state(b, spr, self.X, status=pre, parallel=self.parallel, keep_history=True)
+        orbits, failure = self.map.orbit(self.X, show)
         out = []
         for i, case in enumerate(self.cases):
-            if show[i] and res.status[i] == engine.OK:
-                outputs = engine_columns(res.y[i])
+            o = orbits[i]
+            if show[i] and o is not None:
+                outputs = engine_columns(o["y"])
                 v = outputs["v_mid"]
-                t = float(b.dt[i]) * np.arange(spr + 1)
+                extra = {}
+                if self.map.autonomous:          # the section state, the revolution time, the co-ordinates
+                    X, V, G = self.map.full(self.X[i:i + 1])
+                    n_rod = self.map.n_rod
+                    state = np.concatenate([X[0, :n_rod], V[0, :n_rod]] + ([G[0, :n_rod]] if G is not None else []))
+                    extra = dict(crank=o["crank"], coordinates=o["coordinates"], period=o["period"],
+                                 section_state=self.X[i].copy())
+                else:
+                    state = self.X[i].copy()
                 out.append(SteadyState(
                     case, self.status[i], float(np.max(np.abs(v))), float((v.max() - v.min()) / 2),
                     int(self.periods[i]), int(self.iterations[i]), self.residual[i],
-                    self.message[i], multiplier=self.multiplier[i],
-                    theta=_kinematics.case_state(case, t).theta, t=t, outputs=outputs,
-                    state=self.X[i].copy(), states=res.D_history[i],
-                    rates=res.V_history[i], accelerations=res.A_history[i]))
+                    self.message[i], multiplier=self.multiplier[i], theta=o["theta"], t=o["t"], outputs=outputs,
+                    state=state, states=o["states"], rates=o["rates"], accelerations=o["accelerations"],
+                    multipliers=self.multipliers[i], **extra))
             else:
                 status = self.status[i] if self.status[i] != "pending" else "failed"
                 message = self.message[i]
                 if show[i]:                   # the orbit was found but its revolution failed
                     status = "failed"
                     message = f"{message}; " if message else ""
-                    message += "the revolution at the periodic state failed: " + _failure_text(
-                        res, i, float(b.dt[i]))
+                    message += "the revolution at the periodic state failed: " + failure(i)
                 out.append(SteadyState(case, status, None, None, int(self.periods[i]),
                                        int(self.iterations[i]), self.residual[i],
                                        message or "no result", multiplier=self.multiplier[i]))
@@ -373,11 +390,13 @@ class _BatchSolver:
 
 def _check_resolved(case, where=""):
     """Refuse a crank motion that is not periodic in the crank angle (a run-up), and a time step
-    longer than the rod's first bending period (see the module docstring).  A motor-driven crank
-    (steady_states takes it by its own path, shooting on a section) is checked by that path's rules."""
-    if case.motion_record.driven:
-        from .motor_steady import check_steady
-        return check_steady(case, where)
+    longer than the rod's first bending period (see the module docstring).  A driven crank (its
+    steady motion is shot on the section of its crank angle) is checked by the bordered step's rules."""
+    if case.motion_record.coordinates:
+        try:
+            return check_coordinates(case)
+        except ParameterError as exc:
+            raise ParameterError(f"{where}{exc}") from None
     if not case.periodic:
         raise ParameterError(
             f"{where}a steady state needs a crank motion periodic in the crank angle; the "
@@ -398,36 +417,7 @@ def _check_resolved(case, where=""):
     _kinematics.check_crank_steps(case, dt, T, where)
 
 
-def _driven_states(cases, driven, tol, max_revolutions, progress, warmup, max_shooting, method, stacklevel):
-    """steady_states of a list holding motor-driven cases (crankgen.analyses.motor_steady; by shooting on the
-    section theta = theta0): each in turn, the prescribed ones as usual."""
-    from .motor_steady import check_steady, steady_motor
-    where = (lambda i: f"cases[{i}]: ") if len(cases) > 1 else (lambda i: "")
-    for i in driven:
-        check_steady(cases[i], where(i))
-    if method != "shooting":
-        raise ParameterError("a motor-driven crank's steady motion is found by shooting (method='shooting')")
-    tol = in_range("tol", tol, 0, None, True)
-    max_revolutions = integer("max_revolutions", max_revolutions, 1)
-    warmup = integer("warmup", warmup, 1)
-    others = [i for i in range(len(cases)) if i not in driven]
-    results = [None] * len(cases)
-    if others:
-        for i, r in zip(others, steady_states([cases[i] for i in others], tol, max_revolutions, None, method,
-                                              warmup, max_shooting, _stacklevel=stacklevel + 1)):
-            results[i] = r
-    for k, i in enumerate(driven):
-        start = time.perf_counter()
-        results[i] = replace(steady_motor(cases[i], tol, max_revolutions, max(warmup, MOTOR_WARMUP), max_shooting),
-                             wall_time=time.perf_counter() - start)
-        if progress is not None:
-            progress(len(others) + k + 1, len(cases))
-    warn_beyond([results[i] for i in driven], "steady motion", stacklevel=stacklevel)
-    return results
-
-
-# the no-load revolutions a motor-driven crank runs up before shooting
-MOTOR_WARMUP = 30
+MOTOR_WARMUP = WARMUP   # the revolutions of its step period (no-load revolutions) a driven crank runs up first
 
 
 def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="shooting",
@@ -441,13 +431,10 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
     A StepWarning (once) says when a case's step leaves the rod's first bending or axial mode
     unresolved and undamped (crankgen.discrete.time_scheme.step_warning)."""
     cases = [c if isinstance(c, Case) else Case.from_dict(c) for c in cases]
-    driven = [i for i, c in enumerate(cases) if c.motion_record.driven]
-    if driven:
-        return _driven_states(cases, driven, tol, max_revolutions, progress, warmup, max_shooting, method,
-                              _stacklevel)
     for i, c in enumerate(cases):
         _check_resolved(c, f"cases[{i}]: " if len(cases) > 1 else "")
-    time_scheme.warn_steps(cases, stacklevel=_stacklevel, omega_b=_omega_b)   # _omega_b: rad/s too (SI)
+    time_scheme.warn_steps([c for c in cases if not c.motion_record.coordinates], stacklevel=_stacklevel,
+                           omega_b=_omega_b)   # _omega_b: rad/s too (SI)
     tol = in_range("tol", tol, 0, None, True)
     max_revolutions = integer("max_revolutions", max_revolutions, 1)
     warmup = integer("warmup", warmup, 1)
@@ -455,7 +442,8 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
     groups = {}
     for i, c in enumerate(cases):
         generalized = time_scheme.coefficients(c.rho_inf).generalized    # shooting's state size
-        groups.setdefault((c.n_elements, c.steps_per_rev, generalized), []).append(i)
+        alone = i if c.motion_record.coordinates else -1                # a driven crank: its own section map
+        groups.setdefault((c.n_elements, c.steps_per_rev, generalized, alone), []).append(i)
     results = [None] * len(cases)
     done = 0
     for key in sorted(groups):
@@ -463,8 +451,10 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
         check_run_size(key[0], key[1], n_cases=len(idx), stored="steady", batch=len(idx),
                        names={"n_steps": "steps_per_rev", "n_cases": "cases"})
         start = time.perf_counter()
+        driven = key[3] >= 0
         solver = _BatchSolver([cases[i] for i in idx], tol, max_revolutions,
-                              min(warmup, max_revolutions), max_shooting, method, parallel)
+                              max(warmup, MOTOR_WARMUP) if driven else min(warmup, max_revolutions), max_shooting,
+                              method, parallel)
         group_results = solver.run()
         share = (time.perf_counter() - start) / len(idx)
         for i, r in zip(idx, group_results):
@@ -472,8 +462,8 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
         done += len(idx)
         if progress is not None:
             progress(done, len(cases))
-    warn_beyond(results, "periodic response" if len(results) == 1 else "periodic response of a case",
-                stacklevel=_stacklevel)
+    what = "steady motion" if all(c.motion_record.coordinates for c in cases) else "periodic response"
+    warn_beyond(results, what if len(results) == 1 else f"{what} of a case", stacklevel=_stacklevel)
     return results
 
 

@@ -28,7 +28,8 @@ import numpy as np
 from ..errors import ParameterError
 from ..declaration.si import SIMechanism
 from ..declaration.sections import Section
-from ..declaration.units import Scales, in_L, scales_of
+from ..declaration.si import scales_of
+from ..declaration.units import Scales, in_L
 
 MATCH = 1e-3          # relative agreement asked of a section and the mechanism's rod (0.1 %)
 
@@ -228,9 +229,10 @@ def peak_loads(result, scales: Optional[Scales] = None):
     """The driving torque of largest magnitude, and the largest joint forces |F| over a result (the
     pins at A and B, the guide or the rocker), with when: crankgen's units, or SI with `scales`."""
     from ..declaration import schema
-    from ..results.outputs import SIView
-    view = result if scales is None else SIView(result, scales)
-    t = np.asarray(view.t, dtype=float)
+
+    def factor(units):                    # a declared unit in SI (as the result's SI view converts it)
+        return 1.0 if scales is None else scales.factor(units)
+    t = np.asarray(result.t, dtype=float) * factor("1/omega_b")
     out = []
     here = result.case.guide_record.name
 
@@ -242,7 +244,7 @@ def peak_loads(result, scales: Optional[Scales] = None):
     guide = declared(("guide force (on slider)", "guide_on_slider"), ("rocker force (on its tip)", "rocker_on_tip"))
     for name, parts in (("torque", ("torque",)), ("pin force at A (crank on rod)", ("crank_on_rod_x", "crank_on_rod_y")),
                         (at_b[0], (at_b[1] + "_x", at_b[1] + "_y")), (guide[0], (guide[1] + "_x", guide[1] + "_y"))):
-        values = [np.asarray(view.quantity(p), dtype=float) for p in parts]
+        values = [np.asarray(result.quantity(p), dtype=float) * factor(schema.OUTPUTS[p].units) for p in parts]
         magnitude = np.sqrt(sum(v ** 2 for v in values))
         k = int(np.argmax(magnitude))
         value = float(values[0][k]) if len(parts) == 1 else float(magnitude[k])

@@ -65,7 +65,7 @@ def _cmd_animate(args):
         result = _run(args, case, revolutions)
         from ..plots.animation import Frames, animate
         from ..progress import Progress
-        from ..declaration.units import scales_of
+        from ..declaration.si import scales_of
         scales = None if si is None else scales_of(si)
         movie = Frames(result, args.magnify, args.frames, scales=scales)
         with Progress("animate (frames)", len(movie), enabled=not args.quiet) as progress:

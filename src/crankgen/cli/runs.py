@@ -80,7 +80,7 @@ def _loads_and_stress(result, section, si, stress=True):
     """The summary lines of the peak loads and (stress=True) the outer-fibre stresses of a result."""
     from ..analyses.stresses import peak_loads
     from ..analyses.stresses import stress as stress_of
-    from ..declaration.units import scales_of
+    from ..declaration.si import scales_of
     scales = None if si is None else scales_of(si)
     from ..analyses.stresses import crank_degrees
     loads = "; ".join(f"{p.name} {p.value:.4g} {p.units}"
@@ -102,7 +102,7 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
     from ..progress import Progress
     from ..analyses.simulation import simulate
 
-    kind = "no-load revolutions" if case.motion_record.driven else "revolutions"     # a motor's run: crankgen.analyses.motor_simulation
+    kind = "no-load revolutions" if case.motion_record.driven else "revolutions"     # a driven crank's run
     _say(args, f"simulate: {_describe(case)}, {revolutions:g} {kind} ({steps} steps)")
     transient = case.motion_record.transient
     if transient and revolutions < getattr(case, transient):
@@ -131,9 +131,9 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
                 "status": f"failed: {_failure_text(failure, case.approach)}"}
         rows = itertools.chain(rows, [last])
     out.wrote(write_csv(out.path("simulation.csv"), columns, rows))
-    from ..analyses.rod_loads import summary, summary_line
+    from ..analyses.rod_loads import summary_line
     from ..results.tables import flat_table
-    peaks = summary(res, section, si) if len(res.t) > 1 else {}
+    peaks = _load_summary(res, section, si) if len(res.t) > 1 else {}
     if peaks:
         out.wrote(write_csv(out.path("summary.csv"), *flat_table(list(peaks), [peaks])))
     if args.nodes and res.nodes is not None:
@@ -190,16 +190,35 @@ def _theta_at(case, t):
 STEADY_NAMES = ["steady.csv", "orbit.csv", "orbit.png"]
 
 
+def _load_summary(result, section=None, si=None):
+    """simulate's summary.csv, one row of what sizes the rod and its bearings over a result: the
+    peaks in crankgen's units (crankgen.analyses.rod_loads.peaks), the model's verdict (model_error,
+    verdict: crankgen.analyses.model_error), and with si (the crankgen.SIMechanism of the run) their
+    SI columns (crankgen.results.si_row.row_in_si), with a section the stress peaks (in Pa with si)."""
+    from ..analyses.rod_loads import peaks, stress_peaks
+    out = dict(peaks(result))
+    judged = result.verdict
+    out.update(model_error=judged.error, verdict=judged.words or None)
+    if si is not None:
+        from ..results.si_row import row_in_si
+        extra = row_in_si(out, si)
+        out.update({k: v for k, v in extra.items() if k not in out})
+    if section is not None:
+        out.update(stress_peaks(result, section, si))
+    return out
+
+
 def _resolved(case, where="", speed=None):
     """Steady states need a crank motion periodic in the crank angle, a turning crank and
     Omega* * steps_per_rev >= 1 (crankgen.steady_states refuses coarser steps); checked here,
-    before any output or progress line, and said in one line.  A motor-driven crank's motion is
-    autonomous: shot on the section theta = theta0 (crankgen.motor_steady).  speed: how the user gave
-    the crank speed when not by its flag (an --si file's field, --rpm), named in the messages."""
+    before any output or progress line, and said in one line.  A driven crank's motion is
+    autonomous: shot on the section of its crank angle (crankgen.analyses.section).  speed: how the
+    user gave the crank speed when not by its flag (an --si file's field, --rpm), named in the
+    messages."""
     if case.motion_record.driven:
-        from ..analyses.motor_steady import check_steady
+        from ..discrete.system import check_coordinates
         try:
-            check_steady(case, where)
+            check_coordinates(case)
         except ParameterError as exc:
             raise UsageError(str(exc)) from None
         return
@@ -274,7 +293,7 @@ def _steady(args, case, out, section=None, si=None):
     if st.status == "failed":
         row["message"] = _failure_text(st.message, case.approach)
     if si is not None:
-        from ..declaration.si import row_in_si
+        from ..results.si_row import row_in_si
         row.update(row_in_si(row, si))
     if section is not None and st.states is not None:        # the peak stresses, where and when
         from ..analyses.rod_loads import stress_peaks

@@ -1,6 +1,7 @@
 """`crankgen reproduce`, `crankgen audit`, `crankgen continue`, `crankgen poincare`: studies."""
 
 import argparse
+import difflib
 import sys
 
 from ..declaration import schema
@@ -51,12 +52,14 @@ def _cmd_audit(args):
 # --- crankgen continue / crankgen poincare ----------------------------------------------------
 
 def _continuable(text):
-    """A continued parameter's name, or its flag's name; refused in one line naming the parameters
-    (not every flag alias: the line stays readable)."""
+    """A continued parameter's name, or its flag's name; refused in one readable line with the
+    closest names (the declaration grows: --help lists them all)."""
     if text in schema.CONTINUABLE or text in PARAMETER_FLAGS:
         return text
-    raise argparse.ArgumentTypeError(f"invalid choice: {text!r} (choose from {', '.join(schema.CONTINUABLE)}, "
-                                     "or a parameter's flag name)")
+    close = difflib.get_close_matches(text, list(schema.CONTINUABLE) + list(PARAMETER_FLAGS), n=3)
+    hint = f"did you mean {' or '.join(close)}? " if close else ""
+    raise argparse.ArgumentTypeError(f"invalid choice: {text!r} ({hint}one of the {len(schema.CONTINUABLE)} "
+                                     "continuable parameters, such as omega, eps or mu, listed by --help)")
 
 
 def _add_branch_model_options(p):

@@ -197,3 +197,13 @@ def run_case(mech=None, case=None, *, model=None, omega=None, crank=None, **fiel
     if omega is not None:
         fields[schema.CRANK_SPEED] = omega
     return Case.from_mechanism(mech, model=model, **fields)
+
+
+def exact_case(case):
+    """The geometrically exact rod's case with the parameters and mesh of `case` (its model options
+    dropped: the exact rod has none)."""
+    values = case.as_dict()
+    for option in ("formulation", "approach", "membrane", "damping", "groups_off"):
+        values.pop(option, None)
+    values["gravity"] = tuple(values["gravity"])
+    return Case(**values, model="exact")

@@ -161,32 +161,7 @@ class MechanismRules:
     def EI(self):
         return self.section["EI"]
 
-    @classmethod
-    def from_si(cls, **fields):
-        """(Mechanism, crank) from SI quantities: the fields of a crankgen.SIMechanism (the rod: L
-        in m, E in Pa, rho in kg/m^3, A in m^2, I in m^4; every parameter of the mechanism, its
-        guide and its crank motion by its SI name in the SI unit of its declared units: a in m,
-        slider_mass in kg, damping mu in s (the time constant of the model's damping: Kelvin-Voigt
-        strain-rate damping D = (mu/2) int [EA (de/dt)^2 + EI (dv_xx/dt)^2] dx in the default model;
-        eq. 24, C = mu (K_lin + K_non), with damping="paper"), gravity in m/s^2, offset, c, d in m,
-        crank_speed and omega0 in rad/s, ramp in revolutions, ...; crankgen.declaration.si).  crank: Omega* (a
-        number) for a constant crank speed, else the crank motion's record in crankgen's units
-        (crankgen.RunUp(...): pass it as simulate's crank=)."""
-        from .si import SIMechanism
-        si = SIMechanism(**fields)
-        crank = si.crank
-        steady = schema.PARAMETERS[schema.SELECTOR["motion"]].default
-        return si.mechanism, (si.omega if crank.name == steady and len(crank.values) <= 1 else crank)
-
 
 @dataclass(frozen=True)
 class Mechanism(MechanismRules, _classes.MechanismFields):
     __doc__ = MechanismRules.__doc__
-
-
-def __getattr__(name):
-    """crankgen.declaration.parameters.SIMechanism: defined in crankgen.declaration.si (kept here for older imports)."""
-    if name == "SIMechanism":
-        from .si import SIMechanism
-        return SIMechanism
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -11,11 +11,14 @@ generated code.
     Option, Preset        a model option (its choices) and a named set of option values
     Exclusion             option values that have no meaning together (a case choosing them is refused)
     Parameter             a parameter of a case: kind, default, range, units, flag, owner
-    Guide, Motion         the curve the rod's end travels on; the crank's prescribed motion
+    Guide, Motion         the curve the rod's end travels on; the crank's motion (prescribed or driven)
+    Coordinate            a co-ordinate of the state with its own equation (a driven crank's angle, a rotor's)
     Family, Variant       a term family of the equations of motion and its option-selected variants
     Output                a quantity a result can give, with its kernels by option values
+    Reduction             a peak, RMS, mean or range over time of a declared output (a revolution's)
     Primitive             what the engine accumulates for its outputs (a field at a point, an integral)
-    Constraint            a constraint of a node condensed out of the equations (the DOF map)
+    Body                  a body of the mechanism: flexible (its elements and node layout) or rigid
+    Constraint            a constraint of a node condensed out of the equations: a joint between bodies
     Layout                the entries of a vector a kernel reads (parameters, coefficients, ...)
     Spec                  a guide or motion with values of its parameters (crankgen.Line(...), ...)
 """
@@ -134,16 +137,35 @@ class Guide:
 
 
 @dataclass(frozen=True)
+class Coordinate:
+    """A co-ordinate of the state besides the rods' nodal co-ordinates, with its own equation (a
+    driven crank's angle, a motor rotor's angle): a declared unknown of the DOF map.  units: its
+    natural size's unit (Newton's scale: 1 of it); crank: its value is the crank angle, from which
+    the kinematics of every rod follow, and its passage through its start value plus one turn is
+    the section of the autonomous motion's map (a steady motion is periodic on it); motor: a motor's
+    torque-speed curve drives it (its equation holds -T_m(its rate); a per-unit curve replaces the
+    derivation's linear law at run time, crankgen.declaration.torque_curve)."""
+
+    name: str
+    doc: str
+    units: str = "rad"
+    crank: bool = False
+    motor: bool = False
+
+
+@dataclass(frozen=True)
 class Motion:
-    """A prescribed crank motion.  title: the class name of its record (crankgen.Constant, ...);
+    """A crank motion.  title: the class name of its record (crankgen.Constant, ...);
     parameters: those it reads; periodic: periodic in the crank angle (a period, steady states);
     transient: the parameter that is the number of revolutions over which its speed changes before
-    it settles (a run-up's ramp; None: none); driven: the crank angle is a degree of freedom driven
-    by a motor law (crankgen.discrete.motor), not a prescribed motion: its theta(t) is only the crank's
-    start (theta0 at the initial speed) and its step period the fastest revolution it may make.
+    it settles (a run-up's ramp; None: none); coordinates: the co-ordinates it adds to the state,
+    each with its equation (Coordinate; none for a prescribed motion): with them the crank angle is
+    a degree of freedom (`driven`), its theta(t) is only the crank's start (theta0 at the initial
+    speed) and its step period the fastest revolution it may make.
     characteristic: a driven crank's motor law as data, the names of its parameters (the per-unit
-    torque-speed curve, its torque scale, its speed scale, the crank's inertia): the curve replaces
-    the drive's linear law at run time (crankgen.torque_curve); () for a prescribed motion."""
+    torque-speed curve, its torque scale, its speed scale, the inertia the motor accelerates): the
+    curve replaces the derivation's linear law at run time (crankgen.declaration.torque_curve); ()
+    for a prescribed motion."""
 
     name: str
     title: str
@@ -152,9 +174,10 @@ class Motion:
     aliases: tuple = ()
     periodic: bool = True
     transient: str = None
-    label: str = None            # how titles name it        # the parameter giving the revolutions over which its speed changes
+    label: str = None            # how titles name it
     driven: bool = False
     characteristic: tuple = ()
+    coordinates: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -211,6 +234,25 @@ class Output:
 
 
 @dataclass(frozen=True)
+class Reduction:
+    """A reduction over time of a declared output, along a steady revolution, a branch point's orbit
+    or a run's last revolution: kind "peak" (the value of largest magnitude, signed), "max", "min",
+    "range" (max - min), "mean" or "rms" (time means by the trapezoidal rule on the stored steps).
+    output: the declared output; at: its x* for a field, with its other `arguments` ((name, value),
+    ...); units: the output's (the representation fills them in); guides: those it exists for
+    (the output's)."""
+
+    name: str
+    output: str
+    kind: str
+    doc: str
+    at: float = None
+    arguments: tuple = ()
+    units: str = None
+    guides: tuple = None
+
+
+@dataclass(frozen=True)
 class Primitive:
     """A quantity of the nodal state the engine accumulates at every step for the outputs it
     computes: kind "point", the interpolated `field` (u, v or psi) at x* = `at` (the shape
@@ -223,6 +265,23 @@ class Primitive:
     field: str = None
     at: float = None
     kernel: str = None
+
+
+@dataclass(frozen=True)
+class Body:
+    """A body of the mechanism: kind "flexible" (a beam of finite elements, its nodes' components
+    `node` in its own moving frame, its element count the parameter `elements`) or "rigid" (its
+    motion the rigid closure's, or a declared co-ordinate's); `frame`: what its moving frame follows
+    (the crank angle, the chord of the rigid linkage, the guide).  The DOF map numbers the flexible
+    bodies' nodal unknowns in the declared order, then the motion's co-ordinates; the joints between
+    bodies are the constraints (Constraint.body, .joint)."""
+
+    name: str
+    kind: str
+    doc: str
+    frame: str
+    node: tuple = ()
+    elements: str = None
 
 
 @dataclass(frozen=True)
@@ -243,6 +302,8 @@ class Constraint:
     doc: str = ""
     reduced: tuple = ()
     map: str = None
+    body: str = None             # the flexible body whose node it holds
+    joint: str = None            # the body it joins that node to (a pin)
 
 
 @dataclass(frozen=True)
@@ -334,5 +395,5 @@ def project(obj, cls, **changes):
     return cls(**values)
 
 
-__all__ = ["Option", "Preset", "Exclusion", "Parameter", "Guide", "Motion", "Variant", "Family", "Output", "Primitive",
+__all__ = ["Option", "Preset", "Exclusion", "Parameter", "Guide", "Coordinate", "Motion", "Body", "Variant", "Family", "Output", "Reduction", "Primitive",
            "Constraint", "Layout", "Spec", "project"]

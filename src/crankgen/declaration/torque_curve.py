@@ -12,7 +12,7 @@ table's shape (a monotone stretch stays monotone, no overshoot past a peak torqu
 first and last pairs f continues linearly with the end slopes.  The default, the two pairs (0, 1)
 and (1, 0), is the linear law f = 1 - s of a DC motor that the generated crank equation holds
 (derive/motions.py); any other curve enters the crank equation g at run time as its departure
-from that law (motor.py, engine/motor.py):
+from that law (crankgen.discrete.system.coordinate_equations, crankgen.engine.coordinates):
 
     g  +=  T_stall [(1 - s) - f(s)],     dg/dthetad  +=  -(T_stall / Omega_nl) [1 + f'(s)].
 
@@ -142,42 +142,10 @@ def of(case):
     return tuple(getattr(case, n) for n in names) if names else None
 
 
-def motor_torque(case, thetad):
-    """T_m(thetad) of a motor-driven case at crank speeds thetad: T_stall f(thetad / Omega_nl) on its
-    curve (`of`)."""
-    curve, stall, no_load, _ = of(case)
-    return stall * evaluate(curve, np.asarray(thetad, dtype=float) / no_load)[0]
-
-
-def _time_mean(t, values):
-    """The time mean of values at the times t by the trapezoidal rule."""
-    return float(np.sum(0.5 * (values[1:] + values[:-1]) * np.diff(t)) / (t[-1] - t[0]))
-
-
-def duty_units():
-    """{quantity of `duty`: its units}: the output torque's, and a torque times a crank speed."""
-    from . import schema
-    torque = schema.OUTPUTS["torque"].units
-    return {"peak_motor_torque": torque, "rms_motor_torque": torque, "mean_motor_power": "rhoA L^3 omega_b^3"}
-
-
-def duty(case, t, thetad):
-    """What sizes a motor over a run of a motor-driven case, its crank speeds thetad at the times t:
-    {peak_motor_torque: T_m of largest magnitude, signed; rms_motor_torque: sqrt(<T_m^2>), what a
-    thermal rating is sized by; mean_motor_power: <T_m thetad>}, <.> the time mean by the
-    trapezoidal rule on the steps."""
-    t = np.asarray(t, dtype=float)
-    speed = np.asarray(thetad, dtype=float)
-    torque = motor_torque(case, speed)
-    k = int(np.argmax(np.abs(torque)))
-    return {"peak_motor_torque": float(torque[k]), "rms_motor_torque": math.sqrt(_time_mean(t, torque ** 2)),
-            "mean_motor_power": _time_mean(t, torque * speed)}
-
-
 def departure_table(case):
     """(n, 3) rows (thetad_k, D_k, D'_k) of the case's departure from the linear law in crankgen's
     units, D(thetad) = T_stall [f(s) - (1 - s)] at s = thetad / Omega_nl and D' = dD/dthetad at the
-    knots: the engine's (engine/motor.py `hermite`: the cubic Hermite pieces of these rows are the
+    knots: the engine's (engine/coordinates.py `hermite`: the cubic Hermite pieces of these rows are the
     curve's departure exactly, 1 - s being linear; linear beyond the ends).  (0, 3) for a
     prescribed crank or the linear law (the generated drive alone)."""
     law = of(case)
@@ -186,6 +154,21 @@ def departure_table(case):
     curve, stall, no_load, _ = law
     s, f, m = knot_slopes(curve)
     return np.column_stack([no_load * s, stall * (f - (1 - s)), stall / no_load * (m + 1)])
+
+
+def step_hint(case, dt):
+    """A sentence for a step of a motor-driven run that failed: when the motor's time constant
+    J Omega_nl / (T_stall max |f'|) (the inertia it accelerates alone; the linkage adds more) is
+    shorter than the step dt, the step cannot follow the motor; else ""."""
+    law = of(case)
+    if law is None:
+        return ""
+    curve, stall, no_load, inertia = law
+    tau = inertia * no_load / (stall * steepest(curve))
+    if tau >= dt:
+        return ""
+    return (f"; the motor's time constant J Omega_nl / (T_stall max|f'|) = {tau:.3g} is shorter than the step "
+            f"{dt:.3g}: raise steps_per_rev above {math.ceil(case.steps_per_rev * dt / tau)}")
 
 
 def batch_tables(cases):

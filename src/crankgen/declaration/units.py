@@ -145,14 +145,6 @@ class Scales:
         return " ".join(f"{n}^{p}" if p != 1 else n for n, p in zip(("m", "kg", "s"), dims) if p)
 
 
-def scales_of(si_mechanism):
-    """Scales of a crankgen.SIMechanism."""
-    from .si import SIMechanism
-    if not isinstance(si_mechanism, SIMechanism):
-        raise ParameterError(f"expected a crankgen.SIMechanism, got {type(si_mechanism).__name__}")
-    return si_mechanism.scales
-
-
 def in_L(units, values):
     """The value in crankgen's length L of one unit `units` made of lengths ("r", "r^2/L", "L"),
     for a case's parameter values (a mapping; absent ones at their default): a unit that is a

@@ -2,7 +2,8 @@
 
 Scatter indices are computed once per mesh; each assembly is one np.bincount over the element
 entries (COO triplets summed in place), giving the residual vector and the LAPACK band storage
-used by dgbsv.
+used by dgbsv.  The band holds the rod's nodal DOFs (mesh.n_rod); the declared co-ordinates of a
+driven motion, which follow them in the state, border it (crankgen.discrete.newmark).
 """
 
 from dataclasses import dataclass, field
@@ -24,12 +25,12 @@ class BandedAssembler:
 
     def __post_init__(self):
         dofs = self.mesh.element_dofs
-        valid = dofs != self.mesh.dummy
+        valid = dofs < self.mesh.n_rod
         rows = np.broadcast_to(dofs[:, :, None], dofs.shape + (NDOF,))
         cols = np.broadcast_to(dofs[:, None, :], dofs.shape + (NDOF,))
         mvalid = valid[:, :, None] & valid[:, None, :]
         kb = int(np.max(np.abs(rows[mvalid] - cols[mvalid])))
-        n = self.mesh.n_dofs
+        n = self.mesh.n_rod
         # LAPACK gbsv band storage: ab[2 kb + i - j, j] = A[i, j], shape (3 kb + 1, n).
         flat = (2 * kb + rows - cols) * n + cols
         object.__setattr__(self, "bandwidth", kb)
@@ -40,12 +41,12 @@ class BandedAssembler:
 
     @property
     def band_shape(self):
-        return (3 * self.bandwidth + 1, self.mesh.n_dofs)
+        return (3 * self.bandwidth + 1, self.mesh.n_rod)
 
     def vector(self, element_vectors):
-        """Sum (n, NDOF) element vectors into the reduced vector (N,)."""
+        """Sum (n, NDOF) element vectors into the reduced nodal vector (n_rod,)."""
         w = element_vectors.reshape(-1)[self._vec_valid]
-        return np.bincount(self._vec_index, weights=w, minlength=self.mesh.n_dofs)
+        return np.bincount(self._vec_index, weights=w, minlength=self.mesh.n_rod)
 
     def banded(self, element_matrices):
         """Sum (n, NDOF, NDOF) element matrices into LAPACK band storage."""
@@ -56,7 +57,7 @@ class BandedAssembler:
     def dense(self, element_matrices):
         """The same matrix as a dense (N, N) array (tests and diagnostics)."""
         ab = self.banded(element_matrices)
-        kb, n = self.bandwidth, self.mesh.n_dofs
+        kb, n = self.bandwidth, self.mesh.n_rod
         A = np.zeros((n, n))
         for j in range(n):
             for i in range(max(0, j - kb), min(n, j + kb + 1)):

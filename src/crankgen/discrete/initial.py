@@ -246,7 +246,7 @@ def reduced_state(case, initial, scales=None):
             if idx is not None:
                 d0[idx] = values[disp][k]
                 v0[idx] = values[rate][k]
-    d0[mesh.slider_dof], v0[mesh.slider_dof] = s, sd
+    d0[mesh.reduced_coordinates()[0]], v0[mesh.reduced_coordinates()[0]] = s, sd
     return d0, v0
 
 
@@ -254,7 +254,9 @@ def initial_state(case, initial, scales=None):
     """(d0, v0, g0) of simulate's `initial`: None (zero: the rigid mechanism at rest), an InitialState
     (or a dict of its fields), a pair (d0, v0) of reduced vectors, or a triple (d0, v0, g0) with
     generalized-alpha's algorithmic accelerations (the three thirds of a SteadyState.state); g0 is
-    None unless given (the run then starts from g0 = the accelerations of eq. 34)."""
+    None unless given (the run then starts from g0 = the accelerations of eq. 34).  The vectors are
+    the rod's nodal ones (3 n_elements), or, for a driven motion, the DOF map's whole state (its
+    co-ordinates after them)."""
     mesh = Mesh(case.n_elements)
     N = mesh.n_dofs
     if initial is None:
@@ -276,9 +278,13 @@ def initial_state(case, initial, scales=None):
     except (TypeError, ValueError):
         raise ParameterError("initial must be None, a crankgen.InitialState (or a dict of its fields), "
                              f"two reduced vectors (d0, v0) or three (d0, v0, a0), got {initial!r}") from None
-    if len(vectors) not in (2, 3) or any(x.shape != (N,) or not np.all(np.isfinite(x)) for x in vectors):
+    full = Mesh.of_case(case).n_dofs            # with a driven motion's co-ordinates: the DOF map's whole state
+    lengths = {N} | {full}
+    if len(vectors) not in (2, 3) or any(x.shape[0] not in lengths or x.ndim != 1 or not np.all(np.isfinite(x))
+                                         for x in vectors) or len({x.shape for x in vectors}) > 1:
+        also = f" (or {full}, with the motion's co-ordinates)" if full != N else ""
         raise ParameterError(f"initial must be two (d0, v0) or three (d0, v0, a0) finite vectors of "
-                             f"length {N} (3 n_elements)")
+                             f"length {N} (3 n_elements){also}")
     if len(vectors) == 3 and case.rho_inf == 1.0:
         raise ParameterError("initial's third vector, algorithmic accelerations, belongs to generalized-alpha "
                              "(rho_inf < 1); Newmark (rho_inf = 1) starts from (d0, v0)")

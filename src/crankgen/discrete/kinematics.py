@@ -51,6 +51,33 @@ def case_state(case, t):
     return _state(getattr(_kinematics, f"guide_{case.guide_record.name}")(crank, params))
 
 
+def crank_state(case, crank):
+    """CrankState of the case's guide for crank (..., 3) = (theta, thetad, thetadd) given (a driven
+    crank's, from the state's crank co-ordinate)."""
+    crank = np.asarray(crank, dtype=float)
+    params = np.broadcast_to(case.kinematic_parameters, crank.shape[:-1] + (len(schema.KINEMATIC_PARAMETERS),))
+    return _state(getattr(_kinematics, f"guide_{case.guide_record.name}")(crank, params))
+
+
+def coordinates_start(case):
+    """(values, rates) (m,) each of the declared co-ordinates of the case's motion at t = 0 (the
+    generated start_<motion>; empty for a prescribed motion)."""
+    m = len(case.motion_record.coordinates)
+    if not m:
+        return np.zeros(0), np.zeros(0)
+    z0 = np.asarray(getattr(_kinematics, f"start_{case.motion_record.name}")(case.kinematic_parameters),
+                    dtype=float).reshape(2, m)
+    return z0[0].copy(), z0[1].copy()
+
+
+def state_crank(case, x, v, a):
+    """(..., 3) (theta, thetad, thetadd) of states (x, v, a) (..., N) of a driven motion: its crank
+    co-ordinate's, the last m entries of the DOF map's state holding the co-ordinates."""
+    coords = case.motion_record.coordinates
+    j = next(k for k, c in enumerate(coords) if c.crank) - len(coords)
+    return np.stack([np.asarray(x)[..., j], np.asarray(v)[..., j], np.asarray(a)[..., j]], axis=-1)
+
+
 def frozen_state(case, theta):
     """Kinematics of a case's guide with the crank at angle(s) theta turning at the constant speed
     of the case's crank speed parameter (thetadd = 0): the mechanism frozen at those angles

@@ -7,7 +7,11 @@ in order.  The crank pin eliminates u_0, v_0; the guide replaces (u_n, v_n) by t
 co-ordinate s of its end map, (u_n, v_n) = g(s, t) (a slider: s (cos phi, sin phi), eq. 26; see
 constraints.py).  The reduced vector is
 
-    [psi_0,  u_1, v_1, psi_1,  ...,  u_{n-1}, v_{n-1}, psi_{n-1},  s, psi_n]     (3 n entries).
+    [psi_0,  u_1, v_1, psi_1,  ...,  u_{n-1}, v_{n-1}, psi_{n-1},  s, psi_n]     (3 n entries),
+
+followed by the co-ordinates the case's motion declares (records.Coordinate: a driven crank's
+angle, a motor rotor's angle; none for a prescribed crank), each with its own equation: the DOF
+map owns the whole state, `n_dofs` of them, the first `n_rod` the nodal ones (the band).
 """
 
 from dataclasses import dataclass, field
@@ -18,10 +22,17 @@ from ..declaration import schema
 from ..declaration.validation import integer
 
 NDOF = schema.ELEMENT_DOFS
-COMPONENTS = schema.NODE                      # (u, v, psi)
+# the flexible body (schema.BODIES: the rod; one runs today) and its node's components (u, v, psi)
+BODY = next(b for b in schema.BODIES.values() if b.kind == "flexible")
+COMPONENTS = BODY.node
 NODE_DOFS = len(COMPONENTS)                   # per node; an element holds two nodes' (NDOF)
 U, V, PSI = range(NODE_DOFS)
-MAPPED = next(c for c in schema.CONSTRAINTS if c.map is not None)   # the constraint with reduced co-ordinates
+MAPPED = next(c for c in schema.CONSTRAINTS if c.body == BODY.name and c.map is not None)   # reduced co-ordinates
+
+
+def joints(body=BODY):
+    """The constraints of the body's nodes: the joints that hold them (schema.CONSTRAINTS)."""
+    return tuple(c for c in schema.CONSTRAINTS if c.body == body.name)
 
 
 def element_slots(node_in_element, components):
@@ -32,14 +43,22 @@ def element_slots(node_in_element, components):
 @dataclass(frozen=True)
 class Mesh:
     """n equal elements of length l = 1/n on 0 <= x <= 1 (units of L), with the DOF map of the
-    schema's constraints."""
+    schema's constraints, and the declared co-ordinates after the nodal ones (`coordinates`:
+    records.Coordinate, a driven motion's)."""
 
     n_elements: int
+    coordinates: tuple = ()
     element_dofs: np.ndarray = field(init=False, repr=False)
+
+    @classmethod
+    def of_case(cls, case):
+        """The DOF map of a case: its rod's mesh and its motion's co-ordinates."""
+        return cls(case.n_elements, tuple(case.motion_record.coordinates))
 
     def __post_init__(self):
         n = integer("n_elements", self.n_elements, 1)
         object.__setattr__(self, "n_elements", n)
+        object.__setattr__(self, "coordinates", tuple(self.coordinates))
         object.__setattr__(self, "_index", self._numbering())
         object.__setattr__(self, "element_dofs", self._element_dofs())
 
@@ -51,7 +70,7 @@ class Mesh:
         """{(node, component): reduced index or None} and {(constraint, j): reduced index} of the
         DOF map: nodes in order, components in order; an eliminated component gives its place to
         the constraint's j-th reduced co-ordinate (j its rank among the eliminated), or none."""
-        held = {self.node_of(c): c for c in schema.CONSTRAINTS}
+        held = {self.node_of(c): c for c in joints()}
         index, k = {}, 0
         for node in range(self.n_elements + 1):
             c = held.get(node)
@@ -70,9 +89,28 @@ class Mesh:
         return index
 
     @property
-    def n_dofs(self):
-        """Number of reduced DOFs (3 n with the pin and the guide)."""
+    def n_rod(self):
+        """Number of the rod's reduced nodal DOFs (3 n with the pin and the guide): the band."""
         return self._index["size"]
+
+    @property
+    def n_dofs(self):
+        """Number of unknowns of the state: the nodal ones, then the declared co-ordinates."""
+        return self._index["size"] + len(self.coordinates)
+
+    def coordinate_index(self, name):
+        """The state's index of a declared co-ordinate."""
+        return self.n_rod + [c.name for c in self.coordinates].index(name)
+
+    @property
+    def crank_coordinate(self):
+        """The index among the declared co-ordinates of the crank angle, -1 if none is."""
+        return next((j for j, c in enumerate(self.coordinates) if c.crank), -1)
+
+    @property
+    def motor_coordinate(self):
+        """The index among the declared co-ordinates of the one a motor's torque curve drives, -1."""
+        return next((j for j, c in enumerate(self.coordinates) if c.motor), -1)
 
     @property
     def dummy(self):
@@ -91,11 +129,6 @@ class Mesh:
     def reduced_coordinates(self, constraint=MAPPED):
         """The reduced indices of a constraint's reduced co-ordinates."""
         return tuple(self._index[(constraint.name, j)] for j in range(len(constraint.reduced)))
-
-    @property
-    def slider_dof(self):
-        """The reduced index of the end map's reduced co-ordinate s (the end's deviation along its guide)."""
-        return self.reduced_coordinates()[0]
 
     def holders(self, constraint=MAPPED):
         """[(element, slots of the eliminated components there, slots of the reduced co-ordinates)]
@@ -116,7 +149,7 @@ class Mesh:
     def _element_dofs(self):
         """(n, NDOF) reduced index of each element DOF; an eliminated slot holding a reduced
         co-ordinate holds its index (the end element's u_n slot holds s)."""
-        held = {self.node_of(c): c for c in schema.CONSTRAINTS}
+        held = {self.node_of(c): c for c in joints()}
         dofs = np.empty((self.n_elements, NDOF), dtype=np.intp)
         for e in range(self.n_elements):
             for k in range(NDOF):
@@ -130,17 +163,19 @@ class Mesh:
         return dofs
 
     def gather(self, reduced):
-        """Element view (..., n, NDOF) of reduced vectors (..., N); constrained slots are 0 (a slot
-        holding a reduced co-ordinate holds it, mapped by constraints.py)."""
-        reduced = np.asarray(reduced)
-        padded = np.concatenate([reduced, np.zeros(reduced.shape[:-1] + (1,))], axis=-1)
+        """Element view (..., n, NDOF) of reduced vectors (..., N; or their nodal part, n_rod);
+        constrained slots are 0 (a slot holding a reduced co-ordinate holds it, mapped by
+        constraints.py)."""
+        reduced = np.asarray(reduced)[..., :self.n_rod]
+        padded = np.concatenate([reduced, np.zeros(reduced.shape[:-1] + (self.n_dofs + 1 - self.n_rod,))], axis=-1)
         return padded[..., self.element_dofs]
 
     def dof_scales(self, sizes, end=None):
         """Natural size of each reduced DOF in units of L: the size of its component (sizes: one per
         component of a node, schema.NODE order, from schema.natural_sizes; a number: the slenderness
         eps, whose declared sizes are taken: u* = u / eps^2, v* = v / eps), and `end` for the end
-        map's reduced co-ordinate (its guide's natural size; default: the axial size, a slider)."""
+        map's reduced co-ordinate (its guide's natural size; default: the axial size, a slider); a
+        declared co-ordinate's is 1 of its unit (an angle: 1 rad)."""
         if np.ndim(sizes) == 0:
             sizes = schema.natural_sizes({schema.UNIT_PARAMETERS["r"]: float(sizes)})
         scales = np.empty(self.n_dofs)
@@ -149,6 +184,7 @@ class Mesh:
             scales[self._index[(node, comp)]] = sizes[comp]
         for key in (k for k in keys if isinstance(k[0], str)):      # the reduced co-ordinates
             scales[self._index[key]] = sizes[U] if end is None else end
+        scales[self.n_rod:] = 1.0
         return scales
 
     def locate(self, x):

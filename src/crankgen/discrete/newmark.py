@@ -26,6 +26,10 @@ compiled engine):
   the switch from a fresh to a reused factorization the ratio measures Newton's contraction, not
   the slower one of the reused iterations.  The converged state agrees with "full-newton" far
   within the tolerance (tests check it).
+The state is the DOF map's: the rod's nodal co-ordinates, then the co-ordinates a driven motion
+declares (a motor's crank angle, ...), whose equations border the band (`_Border`: the same
+bordered iteration as the compiled engine, crankgen.engine.coordinates); the scaled increments of
+every unknown count in Newton's test, the divergence test reads the nodal ones alone.
 Newton starts from the acceleration that puts d_{m+1} on the quartic extrapolation of the last
 five displacements (lower order over the first steps, a_m at the first): the displacements are
 smooth even where the stiff axial modes make the accelerations oscillate from step to step, and
@@ -42,8 +46,10 @@ import numpy as np
 from . import kinematics as _kinematics
 from . import newton, time_scheme
 from ..declaration import schema
-from ..errors import ConvergenceError
+from ..errors import ConvergenceError, ParameterError
 from .newton import ESTIMATE_FRACTION, HISTORY, REFRESH_RATE, SCHEMES  # noqa: F401  (re-exported)
+
+_PIN = next(c for c in schema.CONSTRAINTS if c.map is None and c.node == 0)     # the crank pin (its reaction)
 from ..declaration.validation import choice, in_range, integer
 
 
@@ -110,11 +116,87 @@ def extrapolate(D):
     return out
 
 
+# the crank's column of the border is differenced with this step relative to max(1, |zdd_c|)
+COLUMN_STEP = 1e-7
+
+
+class _Border:
+    """The bordered Newton system of a state with declared co-ordinates (crankgen.engine.coordinates
+    gives the equations): the band S of the nodal unknowns, the co-ordinates' rows C^T (their pin
+    forces' dependence on the first element's rows of S), the crank's column differenced, the other
+    co-ordinates' columns from their equations' derivatives; solved by the Schur complement."""
+
+    def __init__(self, model):
+        self.model, self.mesh = model, model.mesh
+        self.n_rod, self.m = model.mesh.n_rod, len(model.mesh.coordinates)
+        self.pin_slots = list(model.mesh.holders(_PIN)[0][1])
+        self.dofs0 = model.mesh.element_dofs[0]
+        self.crank = model.mesh.crank_coordinate
+
+    def residual(self, t, d, v, a, matrices=False, cv=0.0, cd=0.0, secant=False):
+        """(R (n_rod,), g rows (m, 3 m + 3), kin[, S band, S0 the first element's iteration matrix])."""
+        model = self.model
+        kin = model.state_kinematics(t, d, v, a)
+        terms = model.element_terms(kin, d, v, a, secant=secant)     # (n >= 2: element 0 holds no mapped node)
+        geq = model.coordinate_equations(kin, d, v, a, terms.r)
+        R = model.assembler.vector(terms.r)
+        if not matrices:
+            return R, geq, kin
+        S = terms.M + cv * terms.C + cd * terms.K
+        return R, geq, kin, model.assembler.banded(S), S[0]
+
+    def linearize(self, t, d, v, a, cv, cd):
+        """(R, g, factors of S, Y = S^-1 B, C^T, Schur complement): the system at the state."""
+        model, n_rod, m = self.model, self.n_rod, self.m
+        R, geq, _, S, S0 = self.residual(t, d, v, a, True, cv, cd)
+        factors = model.assembler.factorize(S)
+        if factors is None:
+            return R, geq, None, None, None, None
+        C = np.zeros((m, n_rod))
+        for i in range(m):
+            row = geq[i, 1 + 3 * m] * S0[self.pin_slots[0]] + geq[i, 2 + 3 * m] * S0[self.pin_slots[1]]
+            for k, idx in enumerate(self.dofs0):
+                if idx < n_rod:
+                    C[i, idx] += row[k]
+        Y = np.zeros((m, n_rod))
+        E = np.zeros((m, m))
+        for j in range(m):
+            if j == self.crank:
+                c = n_rod + j
+                h = COLUMN_STEP * max(1.0, abs(a[c]))
+                d1, v1, a1 = np.array(d, dtype=float), np.array(v, dtype=float), np.array(a, dtype=float)
+                d1[c], v1[c], a1[c] = d[c] + cd * h, v[c] + cv * h, a[c] + h
+                R1, g1, _ = self.residual(t, d1, v1, a1)
+                Y[j] = model.assembler.solve_factorized(factors, (R1 - R) / h)
+                E[:, j] = (g1[:, 0] - geq[:, 0]) / h
+            else:
+                E[:, j] = geq[:, 1 + 2 * m + j] + cv * geq[:, 1 + m + j] + cd * geq[:, 1 + j]
+        return R, geq, factors, Y, C, E - C @ Y.T
+
+    def solve(self, factors, Y, C, Sm, R, geq):
+        """(dqdd (n_rod,), dzdd (m,)) of the bordered system (the Schur complement's solve)."""
+        x = self.model.assembler.solve_factorized(factors, -R)
+        dz = np.linalg.solve(Sm, -geq[:, 0] - C @ x)
+        return x - Y.T @ dz, dz
+
+
 def initial_acceleration(model, t0, d0, v0):
-    """a_0 from eq. (34): M a_0 = F - C v_0 - K d_0, i.e. R(t0, d0, v0, a0) = 0."""
+    """a_0 from eq. (34): M a_0 = F - C v_0 - K d_0, i.e. R(t0, d0, v0, a0) = 0; with declared
+    co-ordinates their equations g = 0 too (both linear in the accelerations: a bordered solve,
+    a second to round-off, the crank's column being differenced)."""
     zero = np.zeros_like(d0)
-    R, S = model.linearize(model.kinematics(t0), d0, v0, zero, 0.0, 0.0)
-    return _solve(model, S, -R, 0, t0)
+    if not model.mesh.coordinates:
+        R, S = model.linearize(model.kinematics(t0), d0, v0, zero, 0.0, 0.0)
+        return _solve(model, S, -R, 0, t0)
+    border = _Border(model)
+    a = np.zeros(model.n_dofs)
+    for _ in range(2):
+        R, geq, factors, Y, C, Sm = border.linearize(t0, d0, v0, a, 0.0, 0.0)
+        if factors is None:
+            raise _singular(0, t0, R)
+        da, dz = border.solve(factors, Y, C, Sm, R, geq)
+        a = a + np.concatenate([da, dz])
+    return a
 
 
 def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progress=None, a0=None, g0=None):
@@ -131,8 +213,13 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
     scheme = SCHEMES.index(settings.scheme)
     secant = scheme == newton.ONE_PASS and model.selection.printed_iteration
     one_pass = scheme == newton.ONE_PASS
+    border = _Border(model) if model.mesh.coordinates else None
+    if border is not None and one_pass:
+        raise ParameterError("declared co-ordinates (a driven crank) need integrator 'newton' or 'full-newton' "
+                             "(the one-pass scheme has no bordered form)")
 
     N = model.n_dofs
+    n_rod = model.n_rod
     t = t0 + dt * np.arange(n_steps + 1)
     D, V, A = (np.empty((n_steps + 1, N)) for _ in range(3))
     G = np.empty((n_steps + 1, N)) if generalized else A
@@ -161,7 +248,7 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
             abar = (af * a - am * g) / (1.0 - am)
             d_pred = d_pred + dt**2 * beta * abar
             v_pred = v_pred + dt * gamma * abar
-        kin = model.kinematics(t[m + 1])
+        kin = model.kinematics(t[m + 1]) if border is None else None
         if one_pass:
             a_new = np.zeros(N)
         elif m == 0:
@@ -171,25 +258,39 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
         refresh, previous, reused_before, full = True, 0.0, False, False
         d_new, v_new = d_pred + c_d * a_new, v_pred + c_v * a_new          # eqs. (38)-(39)
         for it in range(1, settings.max_iterations + 1):
-            if refresh:
+            if border is not None:
+                if refresh:
+                    R, geq, factors, Y, C, Sm = border.linearize(t[m + 1], d_new, v_new, a_new, c_v, c_d)
+                    if factors is None:
+                        raise _singular(m + 1, t[m + 1], R)
+                else:
+                    R, geq, _ = border.residual(t[m + 1], d_new, v_new, a_new)
+            elif refresh:
                 R, S = model.linearize(kin, d_new, v_new, a_new, c_v, c_d, secant=secant)
             else:
                 R = model.assembler.vector(model.element_terms(kin, d_new, v_new, a_new).r)
-            if not np.all(np.isfinite(R)):
+            if not np.all(np.isfinite(R)) or (border is not None and not np.all(np.isfinite(geq[:, 0]))):
                 raise ConvergenceError(
                     f"non-finite residual in step {m + 1} (t* = {t[m + 1]:.6g})",
                     step=m + 1, time=t[m + 1], residual=float("nan"))
-            if refresh:
-                factors = model.assembler.factorize(S)
-                if factors is None:
-                    raise _singular(m + 1, t[m + 1], R)
-            delta = model.assembler.solve_factorized(factors, -R)
+            if border is not None:
+                try:
+                    da, dz = border.solve(factors, Y, C, Sm, R, geq)
+                except np.linalg.LinAlgError:
+                    raise _singular(m + 1, t[m + 1], R) from None
+                delta = np.concatenate([da, dz])
+            else:
+                if refresh:
+                    factors = model.assembler.factorize(S)
+                    if factors is None:
+                        raise _singular(m + 1, t[m + 1], R)
+                delta = model.assembler.solve_factorized(factors, -R)
             if not np.all(np.isfinite(delta)):
                 raise _singular(m + 1, t[m + 1], R)
             a_new += delta
             d_new, v_new = d_pred + c_d * a_new, v_pred + c_v * a_new
             increment = np.max(np.abs(c_d * delta) / scales)
-            size = np.max(np.abs(d_new) / scales)
+            size = np.max(np.abs(d_new[:n_rod]) / scales[:n_rod])
             done, reject, refresh, reused_before, full = newton.next_iteration(
                 scheme, it, increment, previous, size, settings.tol, refresh, reused_before, full)
             if done:
@@ -214,7 +315,7 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
         if not (np.all(np.isfinite(D[m + 1])) and np.all(np.isfinite(V[m + 1]))):
             raise ConvergenceError(f"non-finite state in step {m + 1} (t* = {t[m + 1]:.6g})",
                                    step=m + 1, time=t[m + 1], residual=float("nan"))
-        if not np.max(np.abs(D[m + 1])) < newton.DIVERGED:
+        if not np.max(np.abs(D[m + 1, :n_rod])) < newton.DIVERGED:
             raise ConvergenceError(f"{newton.DIVERGED_TEXT} in step {m + 1} (t* = {t[m + 1]:.6g})",
                                    step=m + 1, time=t[m + 1], residual=float(np.linalg.norm(R)))
         if progress is not None:

@@ -3,7 +3,10 @@ the generated element kernels of the selected term families + the guide's end ma
 
 For reduced displacements d, velocities v and accelerations a at time t the model gives the
 reduced residual R(t, d, v, a) of eq. (30) (exact Lagrange or printed form) and the Newmark
-iteration matrix  S = dR/da + c_v dR/dv + c_d dR/dd  in band storage.  Everything that depends on
+iteration matrix  S = dR/da + c_v dR/dv + c_d dR/dd  in band storage.  The state is the DOF map's
+(crankgen.discrete.mesh): the rod's nodal co-ordinates (the band), then the co-ordinates a driven
+motion declares, whose equations (`coordinate_equations`) the integrator borders the band with
+(crankgen.discrete.newmark); the crank's kinematics then follow from the state.  Everything that depends on
 the case (families, kernels, coefficients, guide, crank motion) comes from the Case and the
 declared model (crankgen.declaration.ingredients, crankgen.discrete.kinematics); this module loops over them and never
 names one.
@@ -20,6 +23,21 @@ from ..declaration import schema
 from .constraints import ROWS, expand, project
 from .mesh import COMPONENTS, MAPPED, NODE_DOFS, Mesh
 from ..declaration.schema import ELEMENT_DOFS as NDOF
+
+_PIN = next(c for c in schema.CONSTRAINTS if c.map is None and c.node == 0)     # the crank pin
+
+def check_coordinates(case):
+    """Refuse a case with declared co-ordinates (a driven crank) that the bordered step cannot take:
+    one element (the crank pin's and the guide's rows in the same element), or the one-pass scheme
+    (no bordered form)."""
+    from ..errors import ParameterError
+    if case.n_elements < 2:
+        raise ParameterError("a driven crank needs n_elements >= 2 (the crank pin's element must not hold the "
+                             "guide's node)")
+    if case.integrator == "one-pass":
+        raise ParameterError("a driven crank needs integrator 'newton' or 'full-newton' (the one-pass scheme has "
+                             "no bordered form)")
+
 
 # positional model options of Model.build, in the order its callers pass them
 _BUILD_POSITIONAL = ("formulation", "approach", "damping", "membrane")
@@ -42,7 +60,7 @@ class Model:
     mesh: Mesh = field(init=False, repr=False)
 
     def __post_init__(self):
-        mesh = Mesh(self.case.n_elements)
+        mesh = Mesh.of_case(self.case)
         object.__setattr__(self, "mesh", mesh)
         object.__setattr__(self, "assembler", BandedAssembler(mesh))
         object.__setattr__(self, "_selection", self.case.selection)
@@ -84,10 +102,47 @@ class Model:
 
     @property
     def n_dofs(self):
+        """The unknowns of the state: the nodal ones, then the declared co-ordinates."""
         return self.mesh.n_dofs
 
+    @property
+    def n_rod(self):
+        """The rod's nodal unknowns (the band)."""
+        return self.mesh.n_rod
+
     def kinematics(self, t):
+        """The prescribed crank motion's kinematics at time(s) t."""
         return _kinematics.case_state(self.case, t)
+
+    def state_kinematics(self, t, d, v, a):
+        """The kinematics of states (d, v, a) at time(s) t: the prescribed motion's, or a driven
+        motion's from the state's crank co-ordinate."""
+        if not self.mesh.coordinates:
+            return self.kinematics(t)
+        return _kinematics.crank_state(self.case, _kinematics.state_crank(self.case, d, v, a))
+
+    def coordinate_equations(self, kin, d, v, a, r):
+        """The declared co-ordinates' equations and derivatives (m, 3 m + 3) (generated
+        coordinates_<motion>: row i (g_i, dg_i/dz, dg_i/dzd, dg_i/dzdd, dg_i/dpin)) at the state,
+        the crank pin's force from the unprojected element residuals r (its eliminated rows of the
+        first element), a motor's torque curve's departure from the linear law on the motor's row
+        (crankgen.declaration.torque_curve)."""
+        from .._generated import kinematics as _generated
+        from ..declaration import torque_curve
+        n_rod, coords = self.mesh.n_rod, self.mesh.coordinates
+        m = len(coords)
+        z = np.concatenate([np.asarray(x, dtype=float)[n_rod:] for x in (d, v, a)])
+        pin = r[0, list(self.mesh.holders(_PIN)[0][1])]
+        geq = np.array(getattr(_generated, f"coordinates_{self.case.motion_record.name}")(
+            kin.vector, z, pin, self.case.kinematic_parameters), dtype=float).reshape(m, 3 * m + 3)
+        motor = self.mesh.motor_coordinate
+        law = torque_curve.of(self.case)
+        if motor >= 0 and law is not None and tuple(law[0]) != torque_curve.LINEAR:
+            curve, stall, no_load, _ = law
+            extra, slope = torque_curve.departure(curve, float(np.asarray(v)[n_rod + motor]) / no_load)
+            geq[motor, 0] -= stall * extra
+            geq[motor, 1 + m + motor] -= stall / no_load * slope
+        return geq
 
     @property
     def geometry(self):
@@ -100,7 +155,7 @@ class Model:
         constraint's map (the guide's end map) in every element holding it, and the map's values
         E (..., rows, k)."""
         p, pd, pdd = self.mesh.gather(d), self.mesh.gather(v), self.mesh.gather(a)
-        S = self.mesh.slider_dof
+        S = self.mesh.reduced_coordinates()[0]
         E = _kinematics.end_map(self.case, kin.vector, np.asarray(d)[..., S], np.asarray(v)[..., S],
                                 np.asarray(a)[..., S])
         for e, slots, _ in self.mesh.holders():
@@ -158,7 +213,7 @@ class Model:
         crank pin, the reaction itself (no end mass there).  kin: the kinematics (a CrankState) in
         place of the prescribed motion's at t (a motor-driven crank's, crankgen.discrete.motor)."""
         rod = []
-        kin = self.kinematics(t) if kin is None else kin
+        kin = self.state_kinematics(t, d, v, a) if kin is None else kin
         _, _, r, _, _, _ = self.unprojected_terms(kin, d, v, a, rod_only=rod)
 
         def at_constraints(x):
@@ -167,8 +222,8 @@ class Model:
         return at_constraints(r), at_constraints(rod[0] if rod else r)
 
     def residual(self, t, d, v, a):
-        """Reduced residual R(t, d, v, a)."""
-        terms = self.element_terms(self.kinematics(t), d, v, a)
+        """Reduced nodal residual R(t, d, v, a) (n_rod,)."""
+        terms = self.element_terms(self.state_kinematics(t, d, v, a), d, v, a)
         return self.assembler.vector(terms.r)
 
     def linearize(self, kin, d, v, a, c_v, c_d, secant=False):
@@ -207,7 +262,7 @@ class Model:
                 idx = mesh.reduced_index(node, comp)
                 if idx is not None:
                     out[..., NODE_DOFS * node + comp] = d[..., idx]
-        E = _kinematics.end_map(self.case, kin.vector, d[..., mesh.slider_dof])
+        E = _kinematics.end_map(self.case, kin.vector, d[..., mesh.reduced_coordinates()[0]])
         node = mesh.node_of(MAPPED)
         for a, name in enumerate(MAPPED.eliminated):
             out[..., NODE_DOFS * node + COMPONENTS.index(name)] = E[..., ROWS["q"], a]

@@ -12,43 +12,24 @@ Split by concern:
 - step.py: one Newton step of Newmark or generalized-alpha (decisions shared with newmark.py
   through newton.py; the schemes' coefficients: crankgen.discrete.time_scheme);
 - batch.py: Batch (cases packed as records) and march, lock-step batches on every core;
-- motor.py: the motor-driven crank (its angle a DOF): the bordered step and its march;
+- coordinates.py: the declared co-ordinates of a driven motion (a motor's crank angle, ...): their
+  equations, the kinematics from the state, the border of the step's iteration matrix;
 - shooting.py: the revolution map and its exact linearization (in the state and, optionally, a parameter);
 - borrow.py: arrays without a memory owner for the hot loops (no atomic reference counting);
 - build.py: compile ahead (entries and kernels, under file locks, with a helper process: helper.py).
-The names below load their module on first use (PEP 562): `crankgen.engine.cache` needs no numba.
+Importing any module of the engine imports them all (the entry points register themselves with build.py).
 The NumPy implementation (crankgen.discrete: system.py, newmark.py) stays the reference: tests check that both give
 the same numbers and the same iteration counts.
 """
 
-from importlib import import_module
 
-# public name -> the engine module that defines it
-_NAMES = {
-    "banded": ("KB_FIXED", "assemble_band", "assemble_band_newmark", "assemble_fixed", "assemble_vector",
-               "band_factor", "band_lu_solve", "band_matmul", "band_solve", "factor_fixed", "solve_fixed"),
-    "compiled": ("CACHE", "CODE_HASH", "KERNELS_HASH", "is_warm"),
-    "elements": ("FULL", "NEWMARK", "RESIDUAL", "element_terms"),
-    "motor": ("march_motor",),
-    "batch": ("Batch", "MarchResult", "join_state", "march", "march_state", "split_state"),
-    "records": ("Work", "make_work"),
-    "shooting": ("Revolution", "revolution", "shoot"),
-    "step": ("DIVERGED", "NOT_CONVERGED", "NOT_FINITE", "OK", "SINGULAR", "STATUS_TEXT", "TOO_LARGE",
-             "initial_acceleration", "newmark_step"),
-}
-_WHERE = {name: module for module, names in _NAMES.items() for name in names}
-_ALIASES = {"make_work": "new_work"}          # engine.make_work: records.new_work (Python-side)
-__all__ = sorted(_WHERE)
-
-
-def __getattr__(name):
-    module = _WHERE.get(name)
-    if module is None:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(import_module(f".{module}", __name__), _ALIASES.get(name, name))
-    globals()[name] = value
-    return value
-
-
-def __dir__():
-    return sorted(set(globals()) | set(__all__))
+from .banded import (KB_FIXED, assemble_band, assemble_band_newmark, assemble_fixed, assemble_vector,  # noqa: F401
+                     band_factor, band_lu_solve, band_matmul, band_solve, factor_fixed, solve_fixed)
+from .compiled import CACHE, CODE_HASH, KERNELS_HASH, is_warm  # noqa: F401
+from .coordinates import hermite  # noqa: F401
+from .elements import FULL, NEWMARK, RESIDUAL, element_terms  # noqa: F401
+from .batch import Batch, MarchResult, join_state, march, march_state, split_state  # noqa: F401  (entry `march`)
+from .records import Work, new_work as make_work  # noqa: F401
+from .shooting import Revolution, revolution, shoot  # noqa: F401  (registers the entry point `revolution`)
+from .step import (DIVERGED, NOT_CONVERGED, NOT_FINITE, OK, SINGULAR, STATUS_TEXT, TOO_LARGE,  # noqa: F401
+                   initial_acceleration, newmark_step)

@@ -19,12 +19,14 @@ from ..results.outputs import primitive_data
 from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
 from .build import entry_point, prepare
 from .compiled import call, jit
-from .elements import kinematics, step_outputs
+from .coordinates import state_kinematics
+from .elements import step_outputs
 from .kernels import build_items, noop_tables, select_rows, tables
 from .records import N_OUTPUTS, NDOF, Cases, MeshData, Scheme, make_work
 from .step import NOT_FINITE, OK, SINGULAR, initial_acceleration, newmark_step
 
 HISTORY = newton.HISTORY
+PIN = next(c for c in schema.CONSTRAINTS if c.map is None and c.node == 0)     # the crank pin (its reaction)
 
 
 class Batch:
@@ -45,16 +47,19 @@ class Batch:
         n, spr = cases[0].n_elements, cases[0].steps_per_rev
         if any(c.n_elements != n or c.steps_per_rev != spr for c in cases):
             raise ValueError("all cases of a batch must share n_elements and steps_per_rev")
+        coordinates = tuple(cases[0].motion_record.coordinates)
+        if any(tuple(c.motion_record.coordinates) != coordinates for c in cases):
+            raise ValueError("all cases of a batch must share the co-ordinates of their motion (one state layout)")
         self.cases, self.n_elements, self.steps_per_rev = cases, n, spr
         select = select_rows(cases)
         self.entries = frozenset(entries)
         if (like is not None and kernels_table is None and like.n_elements == n and like.steps_per_rev == spr
                 and len(like.runs) == 1 and (select == like.records.select[0]).all()
-                and self.entries <= like.entries):
+                and self.entries <= like.entries and like.mesh.coordinates == coordinates):
             self.mesh, self.N, self.meshdata = like.mesh, like.N, like.meshdata
             self.runs = [(like.runs[0][0], 0, len(cases))]
         else:
-            self._new_mesh(n)
+            self._new_mesh(n, coordinates)
             if kernels_table is None:
                 prepare([f"entry:{e}" for e in entries] + build_items(select))
             # runs of consecutive cases of one model, each with its model's kernel table
@@ -77,11 +82,11 @@ class Batch:
             *torque_curve.batch_tables(cases))
         self.generalized = np.array([time_scheme.coefficients(c.rho_inf).generalized for c in cases])
 
-    def _new_mesh(self, n):
+    def _new_mesh(self, n, coordinates):
         from ..discrete.assembly import BandedAssembler
         from ..discrete.mesh import Mesh
 
-        self.mesh = Mesh(n)
+        self.mesh = Mesh(n, coordinates)
         self.N = self.mesh.n_dofs
         points, grams = primitive_data(self.mesh)
         self.meshdata = MeshData(
@@ -90,7 +95,9 @@ class Batch:
             np.array([e for _, e, _ in points], dtype=np.int64),
             np.ascontiguousarray(np.array([w for _, _, w in points], dtype=float).reshape(len(points), NDOF)),
             np.array([k for k, _ in grams], dtype=np.int64),
-            np.ascontiguousarray(np.array([G for _, G in grams], dtype=float).reshape(len(grams), NDOF, NDOF)))
+            np.ascontiguousarray(np.array([G for _, G in grams], dtype=float).reshape(len(grams), NDOF, NDOF)),
+            self.mesh.n_rod, self.mesh.crank_coordinate, self.mesh.motor_coordinate,
+            np.array(self.mesh.holders(PIN)[0][1], dtype=np.int64))
 
     @property
     def dt(self):
@@ -117,33 +124,45 @@ class Batch:
 
 
 class MarchResult:
-    """Outputs of march: y[b, m] = the engine's outputs (schema.ENGINE_OUTPUTS) at step m, final
-    states, statuses."""
+    """Outputs of march: y[b, m] = the engine's outputs (schema.ENGINE_OUTPUTS) at step m, Z[b, m] =
+    the declared co-ordinates' values, rates and accelerations at step m (3 m numbers; none for a
+    prescribed crank), final states, statuses."""
 
     def __init__(self, **kw):
         self.__dict__.update(kw)
 
 
+@jit(python=False)
+def _coordinates_out(n_rod, d, v, acc, out):
+    """out (3 m,) = the declared co-ordinates' values, rates and accelerations (m = N - n_rod)."""
+    m = d.shape[0] - n_rod
+    for j in range(m):
+        out[j] = d[n_rod + j]
+        out[m + j] = v[n_rod + j]
+        out[2 * m + j] = acc[n_rod + j]
+
+
 @jit
 def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, A0, G0, start, P, n_prev,
-                 keep_history, keep_rates, keep_alg, out_y, out_iter, status, fail_step, fail_res, Dh, Vh, Ah, Gh,
-                 D1, V1, A1, G1):
+                 keep_history, keep_rates, keep_alg, out_y, out_z, out_iter, status, fail_step, fail_res, Dh, Vh, Ah,
+                 Gh, D1, V1, A1, G1):
     """Advance cases lo..hi-1 of the batch n_steps in lock step (see march)."""
     n = mesh.dofs.shape[0]
     N = D0.shape[1]
     kern, cases, mesh = borrowed_kernels(kern), borrowed_cases(cases), borrowed_mesh(mesh)    # the caller's
     for b in range(lo, hi):
-        owned = make_work(n, N, mesh.kb)
+        owned = make_work(n, N, mesh.kb, mesh.n_rod)
         w = borrowed_work(owned)
         sel, params = cases.select[b], cases.params[b]
         dt = cases.dt[b]
         d, v, acc, alg = D0[b].copy(), V0[b].copy(), A0[b].copy(), G0[b].copy()
         dn, vn, an, gn = np.zeros(N), np.zeros(N), np.zeros(N), np.zeros(N)
         y = np.zeros(N_OUTPUTS)
-        kinematics(kern, sel, params, t0[b] + step0 * dt, w)
+        state_kinematics(kern, params, mesh, t0[b] + step0 * dt, d, v, acc, w)
         step_outputs(kern, sel, params, cases.p[b], mesh, d, w, y)
         for k in range(N_OUTPUTS):
             out_y[b, 0, k] = y[k]
+        _coordinates_out(mesh.n_rod, d, v, acc, out_z[b, 0])
         if keep_history:
             for i in range(N):
                 Dh[b, 0, i] = d[i]
@@ -181,9 +200,12 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, 
                 acc[i] = an[i]
                 alg[i] = gn[i]
             n_prev[b] = min(n_prev[b] + 1, HISTORY)
+            if mesh.crank_index >= 0:         # the kinematics of the converged state (the step's last is a trial's)
+                state_kinematics(kern, params, mesh, t_new, d, v, acc, w)
             step_outputs(kern, sel, params, cases.p[b], mesh, d, w, y)
             for k in range(N_OUTPUTS):
                 out_y[b, m + 1, k] = y[k]
+            _coordinates_out(mesh.n_rod, d, v, acc, out_z[b, m + 1])
             if keep_history:
                 for i in range(N):
                     Dh[b, m + 1, i] = d[i]
@@ -205,7 +227,7 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, 
 @jit
 def _initial_accelerations(kern, cases, mesh, lo, hi, t0, step0, D0, V0, A0, status):
     n, N = mesh.dofs.shape[0], D0.shape[1]
-    w = make_work(n, N, mesh.kb)
+    w = make_work(n, N, mesh.kb, mesh.n_rod)
     for b in range(lo, hi):
         if not initial_acceleration(kern, cases, b, mesh, t0[b] + step0 * cases.dt[b], D0[b], V0[b], A0[b], w):
             status[b] = SINGULAR
@@ -293,6 +315,7 @@ def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False
     else:
         P, n_prev = np.array(previous[0], dtype=float), np.array(previous[1], dtype=np.int64)
     out_y = np.full((B, n_steps + 1, N_OUTPUTS), np.nan)
+    out_z = np.full((B, n_steps + 1, 3 * (N - batch.mesh.n_rod)), np.nan)
     out_iter = np.zeros((B, n_steps), dtype=np.int64)
     fail_step = np.zeros(B, dtype=np.int64)
     fail_res = np.zeros(B)
@@ -307,8 +330,8 @@ def march(batch, n_steps, D0=None, V0=None, A0=None, step0=0, keep_history=False
     scheme = Scheme(float(tol), int(max_iter))
     parallel_slices(_march_cases, batch, parallel, (cases, mesh, scheme),
                     (t0, step0, n_steps, D0, V0, A0, G0, start, P, n_prev, keep_history, keep_rates, keep_alg, out_y,
-                     out_iter, status, fail_step, fail_res, Dh, Vh, Ah, Gh, D1, V1, A1, G1), active=status == OK)
-    return MarchResult(y=out_y, iterations=out_iter, status=status, fail_step=fail_step,
+                     out_z, out_iter, status, fail_step, fail_res, Dh, Vh, Ah, Gh, D1, V1, A1, G1), active=status == OK)
+    return MarchResult(y=out_y, Z=out_z, iterations=out_iter, status=status, fail_step=fail_step,
                        fail_residual=fail_res, D=D1, V=V1, A=A1, G=G1, previous=(P, n_prev),
                        D_history=Dh if keep_history else None, V_history=Vh if keep_rates else None,
                        A_history=Ah if keep_rates else None, G_history=Gh if keep_alg else None)

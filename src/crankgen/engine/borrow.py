@@ -55,7 +55,8 @@ def borrowed_work(w):
         borrowed(w.M1), borrowed(w.lanes), borrowed(w.prims), borrowed(w.q_end), borrowed(w.mapped),
         borrowed(w.held), borrowed(w.held_slots), borrowed(w.held_reduced), borrowed(w.qc), borrowed(w.qdc),
         borrowed(w.qddc), borrowed(w.Ec), borrowed(w.px), borrowed(w.pr),
-        borrowed(w.dp), borrowed(w.vp))
+        borrowed(w.dp), borrowed(w.vp), borrowed(w.zin), borrowed(w.pin), borrowed(w.geq), borrowed(w.geq1),
+        borrowed(w.R0), borrowed(w.Yb), borrowed(w.Cb), borrowed(w.Sm), borrowed(w.gz))
 
 
 @jit(python=False)
@@ -68,13 +69,14 @@ def borrowed_cases(c):
 @jit(python=False)
 def borrowed_mesh(m):
     return MeshData(borrowed(m.dofs), m.kb, m.l, borrowed(m.point_slots), borrowed(m.point_elements),
-                    borrowed(m.point_weights), borrowed(m.gram_slots), borrowed(m.grams))
+                    borrowed(m.point_weights), borrowed(m.gram_slots), borrowed(m.grams), m.n_rod, m.crank_index, m.motor_index,
+                    borrowed(m.pin_slots))
 
 
 @jit(python=False)
 def borrowed_kernels(k):
     return Kernels(borrowed(k.rod), borrowed(k.end), borrowed(k.end_map), borrowed(k.guide), borrowed(k.motion),
-                   borrowed(k.drive))
+                   borrowed(k.coords))
 
 
 @jit(python=False)

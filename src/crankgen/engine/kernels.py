@@ -42,8 +42,8 @@ SIGNATURES = {
     "end_map": types.void(_V, _V, _V, _M),
     "guide": types.void(_V, _V, _V),
     "motion": types.void(_F, _V, _V),
-    # drive_<m>_into(kin, pin, params, g): a driven crank's equation and its derivatives
-    "drive": types.void(_V, _V, _V, _V),
+    # coordinates_<m>_into(kin, z, pin, params, g): a driven motion's co-ordinate equations and derivatives
+    "coordinates": types.void(_V, _V, _V, _V, _M),
 }
 
 PARTS = ("rod", "end")
@@ -54,7 +54,7 @@ VARIANTS = {part: [(f.name, k, v.kernel) for f in FAMILY_SLOTS[part] for k, v in
             for part in PARTS}
 GUIDE_NAMES = tuple(schema.GUIDES)
 MOTION_NAMES = tuple(schema.MOTIONS)
-DRIVEN = tuple(name for name, m in schema.MOTIONS.items() if m.driven)     # motions with a drive_ kernel
+DRIVEN = tuple(name for name, m in schema.MOTIONS.items() if m.driven)     # motions with a coordinates_ kernel
 N_ROD, N_END = len(FAMILY_SLOTS["rod"]), len(FAMILY_SLOTS["end"])
 GUIDE_SLOT, MOTION_SLOT = N_ROD + N_END, N_ROD + N_END + 1
 SELECT_SIZE = N_ROD + N_END + 2
@@ -93,12 +93,12 @@ def _noop_motion(t, params, crank):
     pass
 
 
-def _noop_drive(kin, pin, params, g):
+def _noop_coordinates(kin, z, pin, params, g):
     pass
 
 
 _NOOP_SOURCE = {"element": _noop_element, "lanes": _noop_lanes, "end_map": _noop_end_map, "guide": _noop3,
-                "motion": _noop_motion, "drive": _noop_drive}
+                "motion": _noop_motion, "coordinates": _noop_coordinates}
 _COMPILED = {}
 
 
@@ -154,7 +154,7 @@ def needed(rows):
         out.add(("guide", GUIDE_NAMES[row[GUIDE_SLOT]]))
         out.add(("motion", MOTION_NAMES[row[MOTION_SLOT]]))
         if MOTION_NAMES[row[MOTION_SLOT]] in DRIVEN:
-            out.add(("drive", MOTION_NAMES[row[MOTION_SLOT]]))
+            out.add(("coordinates", MOTION_NAMES[row[MOTION_SLOT]]))
     return out
 
 
@@ -170,14 +170,15 @@ def tables(row):
     return Kernels(slots("rod", 0, N_ROD), slots("end", N_ROD, N_END),
                    _addresses("end_map", [compiled("end_map", guide)]), _addresses("guide", [compiled("guide", guide)]),
                    _addresses("motion", [compiled("motion", motion)]),
-                   _addresses("drive", [compiled("drive", motion) if motion in DRIVEN else _noop("drive")]))
+                   _addresses("coordinates", [compiled("coordinates", motion) if motion in DRIVEN
+                                              else _noop("coordinates")]))
 
 
 def noop_tables():
     """records.Kernels with a no-op in every entry (the engine's types, nothing compiled)."""
     return Kernels(_addresses("lanes", [_noop("lanes")] * N_ROD), _addresses("element", [_noop("element")] * N_END),
                    _addresses("end_map", [_noop("end_map")]), _addresses("guide", [_noop("guide")]),
-                   _addresses("motion", [_noop("motion")]), _addresses("drive", [_noop("drive")]))
+                   _addresses("motion", [_noop("motion")]), _addresses("coordinates", [_noop("coordinates")]))
 
 
 def build_items(rows):
@@ -191,7 +192,7 @@ def all_build_items():
     items.update(("end_map", g) for g in GUIDE_NAMES)
     items.update(("guide", g) for g in GUIDE_NAMES)
     items.update(("motion", m) for m in MOTION_NAMES)
-    items.update(("drive", m) for m in DRIVEN)
+    items.update(("coordinates", m) for m in DRIVEN)
     return [f"kernel:{kind}:{name}" for kind, name in sorted(items)]
 
 

@@ -4,7 +4,8 @@
   engine/calls.py): per family slot the selected variant's lane function ("rod" families, acting
   on every element: schema.LANES elements a call) or one-element function ("end" families, acting
   on the rod's end node); a mode argument says what they add; a no-op for an absent family; and
-  the guide's end map and kinematics and the crank motion (one-entry tables).
+  the guide's end map and kinematics and the crank motion (one-entry tables); a driven motion's
+  co-ordinate equations (`coords`, coordinates_<motion>: a no-op for a prescribed motion).
 - Cases: one row per case of a batch: `select` (the table index of each family's variant, -1 when
   absent, then the guide and the motion), `coef` (the element kernels' coefficients), `params`
   (the kinematic parameters), the time step, `p` (the parameter vector, for the engine's
@@ -13,9 +14,13 @@
   scheme's (beta, gamma, alpha_m, alpha_f) (`integ`: crankgen.discrete.time_scheme; alpha_m = alpha_f = 0
   is Newmark), and a motor's torque curve (`curve`: its departure from the drive kernel's linear
   law at its first `curve_n` knots, rows (thetad, D, D'); count 0: none; crankgen.torque_curve).
-- MeshData: the mesh as the engine reads it: the element DOF map, bandwidth, element length, and
+- MeshData: the DOF map as the engine reads it: the element DOF map, bandwidth, element length,
   what the engine's outputs accumulate (schema.PRIMITIVES): for each point primitive its place in
-  prims, its element and its shape functions there; for each integral its place and Gram matrix.
+  prims, its element and its shape functions there; for each integral its place and Gram matrix;
+  and the state's layout: `n_rod` nodal co-ordinates (the band), then the motion's declared
+  co-ordinates (records.Coordinate: `crank_index`, the index among them of the crank angle, -1
+  none; `motor_index`, of the one a torque curve drives), and the crank pin's eliminated slots of element 0
+  (`pin_slots`: its reaction, which the co-ordinates' equations read).
 - Scheme: the Newton tolerance and iteration limit.
 - Work: the scratch arrays of one case's Newmark steps (allocated once per case and reused).
 Every record is a namedtuple of arrays and numbers: numba compiles them as such, and with
@@ -49,14 +54,14 @@ Kernels = namedtuple("Kernels", [
     "rod", "end",                       # per family slot acting on every element (its lane function) /
                                         # on the end node (its one-element function)
     "end_map", "guide", "motion",       # (one entry each)
-    "drive",                            # a driven crank's equation (drive_<motion>; a no-op for a prescribed one)
+    "coords",                           # a driven motion's co-ordinate equations (coordinates_<motion>; a no-op)
 ])
 
 Cases = namedtuple("Cases", ["select", "coef", "params", "dt", "p", "scheme", "printed", "scales", "integ", "curve",
                              "curve_n"])
 
 MeshData = namedtuple("MeshData", ["dofs", "kb", "l", "point_slots", "point_elements", "point_weights",
-                                   "gram_slots", "grams"])
+                                   "gram_slots", "grams", "n_rod", "crank_index", "motor_index", "pin_slots"])
 
 Scheme = namedtuple("Scheme", ["tol", "max_iter"])
 
@@ -75,6 +80,9 @@ Work = namedtuple("Work", [
     "qc", "qdc", "qddc", "Ec",          # per holding element: its mapped nodal state and map values
     "px", "pr",                         # the projection's scratch: eliminated entries (3, K_ELIM), reduced (3, M_RED)
     "dp", "vp",                         # a step's predictors (N)
+    # the border of the declared co-ordinates (m of them; the state is the n_rod nodal co-ordinates, then them)
+    "zin", "pin", "geq", "geq1",        # the co-ordinate kernel's z (3 m) and pin force (2); its rows (m, 3 m + 3)
+    "R0", "Yb", "Cb", "Sm", "gz",       # residual (n_rod); S^-1 B (m, n_rod); C^T (m, n_rod); Schur complement (m, m); dz
 ])
 
 
@@ -106,21 +114,25 @@ def _condensation(n):
 condensation = jit(_condensation)                # called by make_work, compiled or not
 
 
-def _make_work(n, N, kb):
-    """Work arrays for n elements, N reduced DOFs, bandwidth kb."""
+def _make_work(n, N, kb, n_rod):
+    """Work arrays for n elements, N reduced DOFs of which n_rod nodal ones (the rest the declared
+    co-ordinates), bandwidth kb."""
     mapped, held, held_slots, held_reduced = condensation(n)
+    m = N - n_rod
     h = held.shape[0]
     return Work(np.zeros((n, NDOF)), np.zeros((n, NDOF, NDOF)), np.zeros((n, NDOF, NDOF)),
-                np.zeros((n, NDOF, NDOF)), np.zeros((n, NDOF, NDOF)), np.zeros(N), np.zeros((N + KB_FIXED, 1)),
-                np.zeros((N, 3 * kb + 1)), np.zeros(N, dtype=np.int64), np.zeros(N, dtype=np.int64),
-                np.zeros((N + KB_FIXED, 2 * KB_FIXED + 1)), np.zeros(N), np.zeros(N_KIN), np.zeros(3),
+                np.zeros((n, NDOF, NDOF)), np.zeros((n, NDOF, NDOF)), np.zeros(n_rod), np.zeros((n_rod + KB_FIXED, 1)),
+                np.zeros((n_rod, 3 * kb + 1)), np.zeros(n_rod, dtype=np.int64), np.zeros(n_rod, dtype=np.int64),
+                np.zeros((n_rod + KB_FIXED, 2 * KB_FIXED + 1)), np.zeros(n_rod), np.zeros(N_KIN), np.zeros(3),
                 np.zeros(NDOF), np.zeros(NDOF), np.zeros(NDOF), np.zeros(2), np.zeros(3 * M_RED),
                 np.zeros((END_ROWS, K_ELIM)),
                 np.zeros(NDOF), np.zeros((NDOF, NDOF)), np.zeros((NDOF, NDOF)), np.zeros((NDOF, NDOF)),
                 np.zeros((NDOF, NDOF)), np.zeros(((n + LANES - 1) // LANES, LANE_SIZE)), np.zeros(N_PRIMITIVES),
                 np.zeros(K_ELIM), mapped, held, held_slots, held_reduced, np.zeros((h, NDOF)), np.zeros((h, NDOF)),
                 np.zeros((h, NDOF)), np.zeros((h, END_ROWS, K_ELIM)), np.zeros((3, K_ELIM)), np.zeros((3, M_RED)),
-                np.zeros(N), np.zeros(N))
+                np.zeros(N), np.zeros(N),
+                np.zeros(3 * m), np.zeros(2), np.zeros((m, 3 * m + 3)), np.zeros((m, 3 * m + 3)),
+                np.zeros(n_rod), np.zeros((m, n_rod)), np.zeros((m, n_rod)), np.zeros((m, m)), np.zeros(m))
 
 
 make_work = jit(_make_work, python=False)       # inside compiled code

@@ -116,7 +116,7 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
         width = (ncol + PAD - 1) // PAD * PAD if with_j else 0
         P = S                                       # the parameter column
         ratio = (1.0 - af) / (1.0 - am)
-        owned = make_work(n, N, kb)
+        owned = make_work(n, N, kb, mesh.n_rod)
         w = borrowed_work(owned)
         sel, coef, params = cases.select[b], cases.coef[b], cases.params[b]
         dt = cases.dt[b]
@@ -294,6 +294,9 @@ def shoot(batch, X0, step0=0, active=None, parallel=None, tol=1e-10, max_iter=30
     mesh and steps per revolution) for the exact derivative dX1/dp (docstring of
     _revolution_cases)."""
     B, N, S = len(batch), batch.N, batch.state_size
+    if batch.mesh.coordinates:
+        raise ValueError("the revolution map of a time-periodic crank: a driven motion's co-ordinates make the "
+                         "motion autonomous (its map is on a section of the crank angle: crankgen.analyses.section)")
     X0 = np.ascontiguousarray(X0, dtype=float)
     if X0.shape != (B, S):
         raise ValueError(f"the states must be ({B}, {S}) (the batch's state size), got {X0.shape}")

@@ -40,11 +40,20 @@ def inertial_nodes(result, magnification=1.0):
         raise ParameterError("the mechanism's motion needs a result that stores its states "
                              "(simulate with history, a steady state with an orbit)")
     case = result.case
-    kin = _kinematics.case_state(case, np.asarray(result.t, dtype=float))
+    kin = _run_kinematics(result)
     nodal = Model(case).full_nodal(result.states, kin)              # (steps, 3 (n + 1))
     u, v = nodal[:, U::NODE_DOFS], nodal[:, V::NODE_DOFS]
     x = np.linspace(0.0, 1.0, u.shape[1])
     return _place(case, kin, x + magnification * u, magnification * v)
+
+
+def _run_kinematics(result, steps=slice(None)):
+    """The kinematics of a result's stored steps (those at `steps`): the prescribed motion's at their
+    times, or a driven crank's from its history."""
+    crank = getattr(result, "crank", None)
+    if crank is not None:
+        return _kinematics.crank_state(result.case, np.asarray(crank)[steps])
+    return _kinematics.case_state(result.case, np.asarray(result.t, dtype=float)[steps])
 
 
 def _place(case, kin, along, across):
@@ -95,7 +104,7 @@ class Frames:
         if frames is None:
             count = min(len(t), MAX_FRAMES, max(2, int(math.ceil(turns * FRAMES_PER_REVOLUTION)) + 1))
         self.steps = np.unique(np.round(np.linspace(0, len(t) - 1, min(count, len(t)))).astype(int))
-        kin = _kinematics.case_state(case, t[self.steps])
+        kin = _run_kinematics(result, self.steps)
         nodal = Model(case).full_nodal(np.asarray(result.states)[self.steps], kin)
         largest = float(np.max(np.abs(nodal[:, V::NODE_DOFS]))) if nodal.size else 0.0
         self.magnification = (_nice(TARGET / largest) if largest > 0 else 1.0) if magnification is None \
@@ -159,8 +168,7 @@ class Frames:
         if self.title:
             head = self.title
         elif self.scales is not None:                 # a run in SI: its mechanism in SI
-            from ..results.outputs import SIView
-            head = _si_title(self.result, SIView(self.result, self.scales))
+            head = _si_title(self.result, self.scales)
         else:
             head = _title(self.result.settings if hasattr(self.result, "settings") else dict(self.case.as_dict()))
         ax.set_title(f"{head}\ndeflections magnified {self.magnification:g}x", fontsize=8)
@@ -220,35 +228,3 @@ def animate(result, path, magnification=None, frames=None, fps=20, title=None, s
     finally:
         tmp.unlink(missing_ok=True)
     return path
-
-
-def orbit(diagram, branch, point):
-    """The orbit of point `point` of branch `branch` of a mechanism's BifurcationDiagram
-    (crankgen.continuation), marched for its period from its stored state: a SimulationResult
-    whose `animate` shows it.  A motor-driven crank's point starts on its section with its crank
-    speed and runs for its period's revolution times (to the nearest step)."""
-    from dataclasses import replace
-
-    from ..declaration.cases import Case
-    from ..discrete.kinematics import step_period
-    from ..discrete.motor import driven
-    from ..analyses.motor_steady import SectionMap
-    from ..analyses.simulation import simulate
-    branch = integer("branch", branch, 0)
-    if branch >= len(diagram.branches):
-        raise ParameterError(f"branch must be below {len(diagram.branches)}, got {branch}")
-    br = diagram.branches[branch]
-    point = integer("point", point, 0)
-    if point >= len(br):
-        raise ParameterError(f"point must be below {len(br)} (the branch's points), got {point}")
-    info = {k: v for k, v in diagram.info.items() if k in Case.__dataclass_fields__}
-    case = replace(Case.from_dict(info), **{diagram.parameter_name: float(br.parameter[point])})
-    state = np.asarray(br.states[point], dtype=float)     # (d, v), or (d, v, a) for generalized-alpha,
-    if driven(case):                                      # (d, v, thetad[, g]) on the section of a motor
-        X, V, _ = SectionMap(case).full(state)
-        N = X.shape[1] - 1
-        case = replace(case, initial_speed=float(V[0, N]), theta0=float(X[0, N]))
-        period = br.period * float(br.quantities["revolution_time"][point])
-        return simulate(case=case, initial=(X[0, :N], V[0, :N]), revolutions=period / step_period(case))
-    parts = np.split(state, len(state) // (3 * case.n_elements))   # at theta0, crankgen's units
-    return simulate(case=case, initial=parts, revolutions=br.period)

@@ -259,9 +259,10 @@ def _crank_speed_axis(ax, x, speed, si):
 
 
 def _si_title(result, si):
-    """The model, the rod and the case's parameters in SI (crankgen.declaration.si.describe_si), for a title."""
+    """The model, the rod and the case's parameters in SI (crankgen.declaration.si.describe_si), for a
+    title.  si: the result's SI view, or the crankgen.Scales it converts by."""
     from ..declaration.si import describe_si
-    s, sc = result.case.as_dict(), si.scales
+    s, sc = result.case.as_dict(), getattr(si, "scales", si)
     return (f"approach {s['approach']}, {s['formulation']} formulation, {s['damping']} damping, "
             f"{s.get('membrane', 'pointwise')} membrane, n = {s['n_elements']}\n"
             f"L = {sc.L:g} m, omega_b = {sc.omega_b:.5g} rad/s, rho A = {sc.rhoA:.4g} kg/m, r = {sc.base['r']:.4g} m\n"

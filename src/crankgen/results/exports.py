@@ -85,6 +85,15 @@ def per_step(result, si=None, x=(0.5,), fiber=None, theory=True, along=False, se
     for name in output_names(result):
         columns.append(column(name, schema.OUTPUTS[name].units, si is not None))
         values.append(np.asarray(view.quantity(name), dtype=float))
+    coordinates = getattr(result, "coordinates", None) or {}
+    for c in result.case.motion_record.coordinates if coordinates else ():
+        if c.crank:                             # the crank's angle and speed are outputs already
+            continue
+        # another declared co-ordinate (a rotor's angle): its value and rate (an angle's: rad, omega_b)
+        for k, (label, units) in enumerate(((c.name, c.units), (c.name + "_rate", "omega_b"))):
+            factor = 1.0 if si is None else si.scales.factor(units)
+            columns.append(column(label, units, si is not None))
+            values.append(np.asarray(coordinates[c.name][:, k], dtype=float) * factor)
     motor = getattr(result, "motor_torque", None)
     if motor is not None:                      # a motor-driven crank: the motor's torque on its curve
         units = schema.OUTPUTS["torque"].units
@@ -93,9 +102,9 @@ def per_step(result, si=None, x=(0.5,), fiber=None, theory=True, along=False, se
     stored = getattr(result, "states", None) is not None
     if stored:                                 # the bearing loads as magnitude and direction too
         from ..analyses.rod_loads import joint_columns
-        more = joint_columns(result, si)
-        columns += more[0]
-        values += more[1]
+        for name, units, value in joint_columns(result, si):
+            columns.append(name if units is None else column(name, units, si is not None))
+            values.append(value)
     for name in field_names(result, fiber):
         spec = schema.OUTPUTS[name]
         arguments = {"fiber": fiber} if "fiber" in spec.arguments else {}
@@ -106,7 +115,8 @@ def per_step(result, si=None, x=(0.5,), fiber=None, theory=True, along=False, se
             values.append(np.asarray(view.quantity(name, float(xj), **arguments), dtype=float))
     if stored and (along or section is not None):       # the axial force and stresses along the rod
         from ..analyses.rod_loads import along_rod
-        for name, value in zip(*along_rod(result, si, section)):
+        for name, units, value in along_rod(result, si, section):
+            name = name if units is None else column(name, units, si is not None)
             if name not in columns:            # the mid-span field, when x* = 1/2 is a node, once
                 columns.append(name)
                 values.append(value)

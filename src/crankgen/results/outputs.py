@@ -124,7 +124,8 @@ class StateHistory:
     (velocities and accelerations too for the reactions and the rates)."""
 
     def __init__(self, case, t, states, rates=None, accelerations=None, crank=None):
-        self.case, self.t, self.states = case, np.asarray(t, dtype=float), np.asarray(states)
+        self.case, self.t = case, np.asarray(t, dtype=float)
+        self.states = None if states is None else np.asarray(states)   # None: the kinematics' outputs alone
         self.crank = None if crank is None else np.asarray(crank, dtype=float)     # a driven crank's (theta, thetad, thetadd)
         self.rates, self.accelerations = rates, accelerations
         self.mesh = Mesh(case.n_elements)
@@ -134,18 +135,24 @@ class StateHistory:
 
     def kinematics(self):
         if self._kin is None:
-            if self.crank is not None:          # a motor-driven crank: its kinematics from its states
-                from ..discrete.motor import crank_state
-                self._kin = crank_state(self.case, self.crank)
+            if self.crank is not None:          # a driven crank: its kinematics from its states
+                self._kin = _kinematics.crank_state(self.case, self.crank)
             else:
                 self._kin = _kinematics.case_state(self.case, self.t)
         return self._kin
 
+    def _need_states(self):
+        if self.states is None:
+            raise ParameterError("this result holds no states (a failed or state-less result): only the "
+                                 "outputs of the crank's and the guide's kinematics are available")
+        return self.states
+
     def _mapped(self, reduced, row, rates=None):
         """(steps, n, 6) element vectors of reduced vectors, the end node's (u, v) from the end map's
         row ("q": positions; "qd": rates, from the states and `rates`)."""
+        self._need_states()
         q = self.mesh.gather(reduced)
-        S = self.mesh.slider_dof
+        S = self.mesh.reduced_coordinates()[0]
         E = _kinematics.end_map(self.case, self.kinematics().vector, self.states[:, S],
                                 0.0 if rates is None else rates[:, S])
         for e, slots, _ in self.mesh.holders():
@@ -167,6 +174,7 @@ class StateHistory:
         return self.rates
 
     def _reactions(self):
+        self._need_states()
         if self.rates is None or self.accelerations is None:
             raise ParameterError("the reactions need the stored velocities and accelerations, which "
                                  "this result does not hold")
@@ -194,7 +202,7 @@ class StateHistory:
                 values = self.element_vectors() if name == "q_end" else self.element_rates()
                 out[name] = values[:, e, list(slots)]
             elif name == "s":
-                out[name] = self.states[:, self.mesh.slider_dof]
+                out[name] = self._need_states()[:, self.mesh.reduced_coordinates()[0]]
             elif name in self._constraints:          # the force a constraint applies (pin, end)
                 out.update(zip(self._constraints, self._reactions()[0]))
             elif name == "rod_end":                  # the force the end mass applies to the rod at B
@@ -281,8 +289,6 @@ class DeclaredOutputs:
     def _history(self):
         """The result's StateHistory, made once: its kinematics and reactions serve every output
         asked of the result (kept beside the frozen dataclass's fields, never pickled)."""
-        if getattr(self, "states", None) is None:
-            raise ParameterError("this result holds no states (a failed or state-less result)")
         history = self.__dict__.get("_state_history")
         if history is None:
             history = StateHistory(self.case, self.t, self.states, getattr(self, "rates", None),
@@ -376,7 +382,7 @@ class DeclaredOutputs:
 
     def si_view(self, si_mechanism):
         """The result in SI for the SIMechanism whose dimensionless form it was computed for."""
-        from ..declaration.units import scales_of
+        from ..declaration.si import scales_of
         return SIView(self, scales_of(si_mechanism))
 
     def __dir__(self):

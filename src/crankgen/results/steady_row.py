@@ -7,7 +7,8 @@ fluctuation, order), the model (the preset its options match, empty for none), t
 and the audit's switched-off groups, then the results (RESULTS: status, amplitude, half
 peak-to-peak, the range of the theory, ...) with, after range_note, the peak over the orbit of
 every load the case's guide declares (`peak_<output>`: the largest |value| of each declared step
-output whose unit is a force or a moment: the driving torque, the joint forces' components).
+output whose unit is a force or a moment: the driving torque, the joint forces' components), and
+every declared reduction over the revolution (schema.REDUCTIONS: crankgen.results.reductions).
 A number that does not exist is None (an empty CSV field).  The units of a column are crankgen's
 declared units strings (crankgen.declaration.units); `in_si` turns a row into SI, each column then named with
 its SI unit.
@@ -18,8 +19,9 @@ import math
 import numpy as np
 
 from ..declaration import schema
-from ..declaration.torque_curve import duty_units
+from .motor_duty import duty_units
 from ..declaration.units import Scales
+from . import reductions
 
 AMPLITUDE_UNITS = schema.OUTPUTS["v_mid"].units        # the amplitude is of v*(1/2), in its units
 
@@ -62,7 +64,7 @@ RESULTS = (
     ("message", None, "why a case is not periodic, failed or is marked; empty otherwise"),
 )
 # a motor-driven crank's steady motion (crankgen.analyses.motor_steady) adds, before `periods`:
-_DUTY = duty_units()                   # what sizes its motor (crankgen.torque_curve.duty)
+_DUTY = duty_units()                   # what sizes its motor (results/motor_duty.py)
 MOTOR_RESULTS = (
     ("revolution_time", "1/omega_b", "a motor-driven crank's steady revolution time T (its period)"),
     ("mean_speed", "omega_b", "a motor-driven crank's mean speed 2 pi / T over the steady revolution"),
@@ -133,6 +135,8 @@ def row(state):
     for name in load_outputs(guide):
         results[PEAK + name] = (_number(np.max(np.abs(np.asarray(state.quantity(name), dtype=float))))
                                 if has_orbit else None)
+    for r in reductions.declared(case):              # the declared reductions over the revolution
+        results[r.name] = _number(reductions.value(state, r)) if has_orbit else None
     from ..analyses import rod_loads                    # the rod's axial force, buckling margin, bearing loads
     peaks = rod_loads.peaks(state) if has_orbit else {}
     results.update({name: _number(peaks.get(name)) for name in rod_loads.peak_columns(guide)})
@@ -158,7 +162,7 @@ def units_of(column):
         return design
     if column.startswith(PEAK) and column[len(PEAK):] in schema.OUTPUTS:
         return schema.OUTPUTS[column[len(PEAK):]].units
-    return None
+    return reductions.units(column)
 
 
 def meaning(column):
@@ -184,7 +188,7 @@ def meaning(column):
         return design
     if column.startswith(PEAK) and column[len(PEAK):] in schema.OUTPUTS:
         return "the largest |value| over the orbit of: " + schema.OUTPUTS[column[len(PEAK):]].doc
-    return ""
+    return reductions.meaning(column)
 
 
 def describe(columns, si=False):

@@ -98,11 +98,12 @@ class SweepTable:
         return Path(path)
 
     def si_view(self, si):
-        """The table with every row's SI columns added (crankgen.declaration.si.row_in_si: the rod, each
+        """The table with every row's SI columns added (crankgen.results.si_row.row_in_si: the rod, each
         parameter with a unit by its SI name, the amplitude in m, the peak loads in N and N m; each
         column named with its SI unit): si is the crankgen.SIMechanism whose rod (L, E, rho, A, I)
         every row is of, or a sequence of them, one per row."""
-        from ..declaration.si import SIMechanism, row_in_si
+        from ..declaration.si import SIMechanism
+        from .si_row import row_in_si
         mechs = [si] * len(self.rows) if isinstance(si, SIMechanism) else list(si)
         if len(mechs) != len(self.rows) or not all(isinstance(m, SIMechanism) for m in mechs):
             raise ParameterError(f"si must be a crankgen.SIMechanism or {len(self.rows)} of them (one per row)")
@@ -125,7 +126,7 @@ class SweepTable:
         out = {d["column"]: d for d in describe(columns)}
         mechs = getattr(self, "_si", None)
         if mechs and self.rows:
-            from ..declaration.si import describe_row_in_si
+            from .si_row import describe_row_in_si
             for d in describe_row_in_si(self.rows[0], mechs[0]):
                 out[d["column"]] = d
         return [out[c] for c in columns]

@@ -15,7 +15,7 @@ from ...errors import NoResultError, ParameterError
 from ...declaration.parameters import check_full_turn
 from ...declaration.validation import choice, in_range, integer
 from .core import CORRECTORS, PREDICTORS, Continuer, Settings
-from .mechanism import PARAMETERS, MechanismMap
+from .mechanism import PARAMETERS, MechanismMap, mechanism_map
 
 
 def make_case(mech, parameter, value, case, **fields):
@@ -83,18 +83,18 @@ def si_parameter(mech, parameter, units, fields, case, values):
 
 
 def _add_quantities(diagram, case, parameter, section, progress, fmap=None):
-    """Every branch point's physical quantities (quantities.py); fmap: a motor-driven crank's
-    MotorMap, whose section map marches its points' orbits."""
+    """Every branch point's physical quantities (quantities.py); fmap: a driven crank's
+    AutonomousMap, whose section map marches its points' orbits."""
     from .quantities import branch_quantities, motor_branch_quantities, motor_units, units
     for k, br in enumerate(diagram.branches):
         if progress is not None:
             progress(f"branch {k}: the physical quantities of its {len(br)} orbits")
         if fmap is None:
             br.quantities, br.quantity_notes = branch_quantities(case, parameter, br, section)
-            br.quantity_units = units(section)
+            br.quantity_units = units(section, case=case)
         else:
             br.quantities, br.quantity_notes = motor_branch_quantities(fmap, br, section)
-            br.quantity_units = motor_units(section)
+            br.quantity_units = motor_units(section, case=case)
 
 
 def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *, model=None, max_period=4, ds=0.05,
@@ -151,12 +151,8 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
                         corrector=choice("corrector", corrector, CORRECTORS),
                         predictor=choice("predictor", predictor, PREDICTORS)).check()
     t0 = time.perf_counter()
-    driven = c0.motion_record.driven
-    if driven:                       # the autonomous motion's section map (bifurcation/motor_map.py)
-        from .motor_map import MotorMap
-        fmap = MotorMap(c0, parameter)
-    else:
-        fmap = MechanismMap(c0, parameter, derivative=choice("derivative", derivative, ("exact", "central")))
+    driven = bool(c0.motion_record.coordinates)
+    fmap = mechanism_map(c0, parameter, derivative)    # the map on the section the declaration gives
     from ..steady import steady_states
     with notices.quiet(BeyondTheoryWarning):            # the continuation warns once, for every point
         first = steady_states([c0], _omega_b=None if scales is None else scales.omega_b)[0]
@@ -166,7 +162,7 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
         raise NoResultError(f"no periodic response to start from at {parameter} = {start:g}: "
                             f"{first.status}, {first.message}{other}")
     cont = Continuer(fmap, start, stop, settings, log=progress)
-    diagram = cont.diagram((first.section_state if driven else first.state) / fmap.s, start,
+    diagram = cont.diagram(fmap.from_steady(first), start,
                            1.0 if stop > start else -1.0)
     lock = locking_limit(c0, parameter, start, stop)
     if lock is not None:
@@ -177,9 +173,9 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
                                    f"cannot turn a full revolution ({why})")
     for sp in diagram.special_points:
         sp.case = fmap.case_at(sp.parameter)
-    if driven and quantities:        # a motor's branches: its orbits' quantities, the crank's speeds among them
+    if driven and quantities:        # a driven crank's branches: its orbits' quantities, the crank's speeds among them
         _add_quantities(diagram, c0, parameter, section, progress, fmap)
-    elif driven:                     # a motor's branches: the mean crank speed and revolution time of each orbit
+    elif driven:                     # a driven crank's branches: the mean crank speed and revolution time of each orbit
         for br in diagram.branches:
             speed, period = fmap.speeds(br.states, br.parameter, br.period)
             br.quantities = {"mean_speed": speed, "revolution_time": period}
@@ -206,19 +202,6 @@ def continuation(mech=None, parameter=schema.CRANK_SPEED, start=0.2, stop=1.6, *
 continuation.__doc__ = continuation.__doc__.replace("{continuable}", ", ".join(
     f"{n} ({' and '.join(p.readers)} {p.owner})" if p.owner in ("guide", "motion") and len(p.readers) == 1 else n
     for n, p in schema.PARAMETERS.items() if p.continuable))
-
-
-def _motor_start(case, parameter):
-    """(the section map of a motor-driven case, its scaled section state after the run-up from the
-    case's start: MOTOR_WARMUP no-load revolutions, longer while the mean speed still changes by 1 %)."""
-    from ..motor_steady import SectionMap, warm_start
-    from ..steady import MOTOR_WARMUP
-    from .motor_map import MotorMap
-    fmap = MotorMap(case, parameter)
-    Y0, why, _ = warm_start(SectionMap(case), MOTOR_WARMUP, 20 * MOTOR_WARMUP)
-    if Y0 is None:
-        raise NoResultError(f"poincare of a motor-driven crank at {parameter} = {getattr(case, parameter):g}: {why}")
-    return fmap, Y0 / fmap.s
 
 
 def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up", *, model=None, transient=100,
@@ -254,11 +237,8 @@ def poincare(mech=None, parameter=schema.CRANK_SPEED, values=None, direction="up
     time_scheme.warn_steps([c0], omega_b=None if scales is None else scales.omega_b)
     max_period = integer("max_period", max_period, 1)
     t0 = time.perf_counter()
-    if c0.motion_record.driven:      # the autonomous motion's section map, from the run-up from rest
-        fmap, x0 = _motor_start(c0, parameter)
-    else:
-        fmap = MechanismMap(c0, parameter)
-        x0 = fmap.rest()
+    fmap = mechanism_map(c0, parameter)      # from rest (a driven crank: after its run-up)
+    x0 = fmap.rest()
     result = sweep_map(fmap, values, x0, direction, transient, samples, max_period,
                        in_range("tol", tol, 0, None, True),
                        in_range("lyapunov_tol", lyapunov_tol, 0, None, True), progress)

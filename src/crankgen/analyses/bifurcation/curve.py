@@ -13,8 +13,7 @@ from ...declaration import schema
 from ...errors import ParameterError
 from ...results.io import atomic_file, read_regular
 from .codim2 import CODIM2
-from .diagram import _num
-from .diagram_files import jsonable
+from .diagram_files import cell, jsonable
 
 FORMAT = "crankgen-curve-1"
 LABELS = {"fold": "F", "period-doubling": "PD", "neimark-sacker": "NS"}
@@ -150,13 +149,13 @@ class Curve:
         out = []
         for i in range(len(self)):
             row = {} if curve is None else {"curve": curve}
-            row.update(kind=self.kind, period=self.period, point=i, **{a: _num(self[a][i]), b: _num(self[b][i])},
-                       amplitude=_num(self["amplitude"][i]),
-                       theta=_num(self.values["theta"][i]) if "theta" in self.values else "",
-                       critical_re=_num(crit[i].real), critical_im=_num(crit[i].imag),
-                       max_abs_other_multiplier=_num(largest[i]) if math.isfinite(largest[i]) else "")
+            row.update(kind=self.kind, period=self.period, point=i, **{a: cell(self[a][i]), b: cell(self[b][i])},
+                       amplitude=cell(self["amplitude"][i]),
+                       theta=cell(self.values["theta"][i]) if "theta" in self.values else "",
+                       critical_re=cell(crit[i].real), critical_im=cell(crit[i].imag),
+                       max_abs_other_multiplier=cell(largest[i]) if math.isfinite(largest[i]) else "")
             if defl is not None:
-                row.update(deflection_over_L=_num(defl[i]), beyond_theory=beyond(deflection=float(defl[i])))
+                row.update(deflection_over_L=cell(defl[i]), beyond_theory=beyond(deflection=float(defl[i])))
             out.append(row)
         return out
 
@@ -166,7 +165,7 @@ class Curve:
         for p in self.codim2:
             row = {} if curve is None else {"curve": curve}
             row.update(kind=p.kind, label=p.label, curve_kind=p.curve_kind, period=p.period, point=p.index,
-                       **{a: _num(p[a]), b: _num(p[b])}, amplitude=_num(p.amplitude),
+                       **{a: cell(p[a]), b: cell(p[b])}, amplitude=cell(p.amplitude),
                        multipliers=" ".join(f"{z.real:.10g}{z.imag:+.10g}j" for z in p.multipliers[:6]),
                        description=p.description)
             out.append(row)
@@ -183,8 +182,8 @@ class Curve:
         write_rows(paths[1], self.codim2_rows(), ["kind", "label", "curve_kind", "period", "point",
                                                   *self.names, "amplitude", "multipliers", "description"])
         a, b = self.names
-        write_rows(paths[2], [dict(point=i, **{a: _num(self[a][i]), b: _num(self[b][i])}, index=j,
-                                   re=_num(m.real), im=_num(m.imag), abs=_num(abs(m)))
+        write_rows(paths[2], [dict(point=i, **{a: cell(self[a][i]), b: cell(self[b][i])}, index=j,
+                                   re=cell(m.real), im=cell(m.imag), abs=cell(abs(m)))
                               for i in range(len(self)) for j, m in enumerate(self.multipliers[i])],
                    ["point", a, b, "index", "re", "im", "abs"])
         return paths

@@ -11,6 +11,9 @@ import numpy as np
 from ...declaration import schema
 from ...results.io import atomic_file, save_figure
 from ...declaration.units import in_L
+from ...errors import ParameterError
+from . import diagram_files
+from .diagram_files import cell
 
 LABELS = {"fold": "F", "period-doubling": "PD", "neimark-sacker": "NS"}
 
@@ -47,14 +50,6 @@ def describe(info, what, parameter, width=None):
     from ...plots.figures import listed
     lines = textwrap.fill(listed(main + other), width, break_on_hyphens=False)
     return head + "\n" + lines.replace("\u00a0", " ")         # broken between items only
-
-
-def _num(x):
-    """CSV cell of a number: full precision, empty when it does not exist (NaN, inf, None)."""
-    if x is None:
-        return ""
-    x = float(x)
-    return repr(x) if np.isfinite(x) else ""
 
 
 @dataclass
@@ -166,34 +161,58 @@ class BifurcationDiagram:
         values = dict(self.info, **{self.parameter_name: float(p)})
         return in_L("r", values) if schema.UNIT_PARAMETERS["r"] in values else None
 
+    def orbit(self, branch, point):
+        """The orbit of point `point` of branch `branch` of a mechanism's diagram, marched for its
+        period from its stored state: a SimulationResult whose `animate` shows it.  A driven crank's
+        point starts on the section of its crank angle (the DOF map's state there) and runs for its
+        period's revolution times (to the nearest step)."""
+        from dataclasses import replace
+
+        from ...declaration.cases import Case
+        from ...declaration.validation import integer
+        from ...discrete.kinematics import step_period
+        from ..section import CrankSection
+        from ..simulation import simulate
+        branch = integer("branch", branch, 0)
+        if branch >= len(self.branches):
+            raise ParameterError(f"branch must be below {len(self.branches)}, got {branch}")
+        br = self.branches[branch]
+        point = integer("point", point, 0)
+        if point >= len(br):
+            raise ParameterError(f"point must be below {len(br)} (the branch's points), got {point}")
+        info = {k: v for k, v in self.info.items() if k in Case.__dataclass_fields__}
+        case = replace(Case.from_dict(info), **{self.parameter_name: float(br.parameter[point])})
+        state = np.asarray(br.states[point], dtype=float)     # (d, v), or (d, v, a) for generalized-alpha,
+        if case.motion_record.coordinates:                    # a driven crank: its state on the section
+            X, V, _ = CrankSection(case).full(state)
+            period = br.period * float(br.quantities["revolution_time"][point])
+            return simulate(case=case, initial=(X[0], V[0]), revolutions=period / step_period(case))
+        parts = np.split(state, len(state) // (3 * case.n_elements))   # at theta0, crankgen's units
+        return simulate(case=case, initial=parts, revolutions=br.period)
+
     def as_dict(self):
         """Everything the diagram holds, as JSON-ready data (diagram_files.py)."""
-        from .diagram_files import as_dict
-        return as_dict(self)
+        return diagram_files.as_dict(self)
 
     @classmethod
     def from_dict(cls, data):
-        from .diagram_files import from_dict
-        return from_dict(data)
+        return diagram_files.from_dict(data, (cls, Branch, SpecialPoint))
 
     def to_json(self, path):
         """The whole diagram (every point's parameter, amplitude, stability, multipliers, state,
         section samples and physical quantities; the special points; the model) as JSON;
         BifurcationDiagram.from_json reads it back."""
-        from .diagram_files import write_json
-        return write_json(self, path)
+        return diagram_files.write_json(self, path)
 
     @classmethod
     def from_json(cls, path):
-        from .diagram_files import read_json
-        return read_json(path)
+        return diagram_files.read_json(path, (cls, Branch, SpecialPoint))
 
     @classmethod
     def read_csv(cls, folder, info=None):
         """The diagram of the CSV files to_csv wrote in folder (info: the model, for the special
         points' Case; the CSV files do not hold it)."""
-        from .diagram_files import read_csv
-        return read_csv(folder, info)
+        return diagram_files.read_csv(folder, info, (cls, Branch, SpecialPoint))
 
     def to_csv(self, folder):
         """branches.csv (one row per point, with its branch's origin and stop_reason, why the
@@ -204,7 +223,6 @@ class BifurcationDiagram:
         returns the paths.  A number that does not exist is an empty field.
         BifurcationDiagram.read_csv reads them back."""
         from ..theory import beyond
-        from .diagram_files import write_states
 
         folder = Path(folder)
         folder.mkdir(parents=True, exist_ok=True)
@@ -216,8 +234,8 @@ class BifurcationDiagram:
         def theory(p, amplitude, flag=None):
             x = abs(self.eps_at(p) * float(amplitude))
             if self.exact:                  # the exact rod's own limits (flag_range)
-                return [_num(x), "" if flag is None else ("yes" if flag else "no")]
-            return [_num(x), beyond(deflection=x)]
+                return [cell(x), "" if flag is None else ("yes" if flag else "no")]
+            return [cell(x), beyond(deflection=x)]
         with atomic_file(paths[0]) as fh:
             w = csv.writer(fh)
             w.writerow(["branch", "period", "point", name, "amplitude", "stable",
@@ -225,21 +243,21 @@ class BifurcationDiagram:
                        + (["deflection_over_L", "beyond_theory"] if flags else []) + quantities)
             for b, br in enumerate(self.branches):
                 for i in range(len(br)):
-                    w.writerow([b, br.period, i, _num(br.parameter[i]), _num(br.amplitude[i]),
-                                int(br.stable[i]), _num(np.abs(br.multipliers[i]).max()), br.origin,
+                    w.writerow([b, br.period, i, cell(br.parameter[i]), cell(br.amplitude[i]),
+                                int(br.stable[i]), cell(np.abs(br.multipliers[i]).max()), br.origin,
                                 br.stop_reason]
                                + (theory(br.parameter[i], br.amplitude[i],
                                          None if br.beyond_theory is None else br.beyond_theory[i])
                                   if flags else [])
-                               + [_num(br.quantities[q][i]) if q in br.quantities else "" for q in quantities])
+                               + [cell(br.quantities[q][i]) if q in br.quantities else "" for q in quantities])
         with atomic_file(paths[1]) as fh:
             w = csv.writer(fh)
             w.writerow(["kind", name, "amplitude", "period", "branch", "multiplier_re",
                         "multiplier_im", "multiplier_abs"]
                        + (["deflection_over_L", "beyond_theory"] if flags else []))
             for s in self.special_points:
-                w.writerow([s.kind, _num(s.parameter), _num(s.amplitude), s.period, s.branch,
-                            _num(s.multiplier.real), _num(s.multiplier.imag), _num(abs(s.multiplier))]
+                w.writerow([s.kind, cell(s.parameter), cell(s.amplitude), s.period, s.branch,
+                            cell(s.multiplier.real), cell(s.multiplier.imag), cell(abs(s.multiplier))]
                            + (theory(s.parameter, s.amplitude) if flags else []))
         with atomic_file(paths[2]) as fh:
             w = csv.writer(fh)
@@ -247,9 +265,9 @@ class BifurcationDiagram:
             for b, br in enumerate(self.branches):
                 for i in range(len(br)):
                     for j, m in enumerate(br.multipliers[i]):
-                        w.writerow([b, i, _num(br.parameter[i]), j, _num(m.real), _num(m.imag),
-                                    _num(abs(m))])
-        paths.append(write_states(self, folder / "states.csv"))
+                        w.writerow([b, i, cell(br.parameter[i]), j, cell(m.real), cell(m.imag),
+                                    cell(abs(m))])
+        paths.append(diagram_files.write_states(self, folder / "states.csv"))
         return paths
 
     def plot(self, path, ax=None, title=None, ylabel=None, xlabel=None, sweep=None):

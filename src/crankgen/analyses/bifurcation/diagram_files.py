@@ -19,6 +19,14 @@ import numpy as np
 from ...errors import ParameterError
 from ...results.io import atomic_file, read_regular
 
+
+def cell(x):
+    """CSV cell of a number: full precision, empty when it does not exist (NaN, inf, None)."""
+    if x is None:
+        return ""
+    x = float(x)
+    return repr(x) if np.isfinite(x) else ""
+
 FORMAT = "crankgen-diagram-1"
 
 
@@ -88,8 +96,10 @@ def as_dict(d):
                 info=jsonable(d.info))
 
 
-def from_dict(x):
-    from .diagram import BifurcationDiagram, Branch, SpecialPoint
+def from_dict(x, classes):
+    """The diagram of as_dict's data; classes: (BifurcationDiagram, Branch, SpecialPoint), which
+    diagram.py passes (this module does not import it back)."""
+    BifurcationDiagram, Branch, SpecialPoint = classes
     name = x["parameter_name"]
     branches = []
     for b in x["branches"]:
@@ -124,17 +134,16 @@ def write_json(d, path):
     return Path(path)
 
 
-def read_json(path):
+def read_json(path, classes):
     x = json.loads(read_regular(path))
     if x.get("format") != FORMAT:
         raise ParameterError(f"{path} is not a crankgen bifurcation diagram file (format {x.get('format')!r})")
-    return from_dict(x["diagram"])
+    return from_dict(x["diagram"], classes)
 
 
 def write_states(d, path):
     """states.csv: per branch point its section samples (one per revolution of the orbit) and its
     state, full precision."""
-    from .diagram import _num
     dim = max((np.shape(br.states)[1] for br in d.branches), default=0)
     periods = max((br.period for br in d.branches), default=1)
     with atomic_file(path) as fh:
@@ -144,8 +153,8 @@ def write_states(d, path):
         for b, br in enumerate(d.branches):
             for i in range(len(br)):
                 sec = [] if br.section is None else list(br.section[i])
-                w.writerow([b, i, _num(br.parameter[i])] + [_num(v) for v in sec] + [""] * (periods - len(sec))
-                           + [_num(v) for v in br.states[i]])
+                w.writerow([b, i, cell(br.parameter[i])] + [cell(v) for v in sec] + [""] * (periods - len(sec))
+                           + [cell(v) for v in br.states[i]])
     return Path(path)
 
 
@@ -158,11 +167,11 @@ def _value(text):
     return math.nan if text == "" else float(text)
 
 
-def read_csv(folder, info=None):
+def read_csv(folder, info, classes):
     """The BifurcationDiagram of the CSV files BifurcationDiagram.to_csv wrote in folder (info: the
     model it was computed for, which the CSV files do not hold; the mechanism's special points need
-    it to carry their Case)."""
-    from .diagram import BifurcationDiagram, Branch, SpecialPoint
+    it to carry their Case); classes as from_dict's."""
+    BifurcationDiagram, Branch, SpecialPoint = classes
     folder = Path(folder)
     rows = _rows(folder / "branches.csv")
     if not rows:
@@ -173,8 +182,10 @@ def read_csv(folder, info=None):
         mults.setdefault((int(r["branch"]), int(r["point"])), []).append(complex(_value(r["re"]), _value(r["im"])))
     for r in _rows(folder / "states.csv"):
         states[(int(r["branch"]), int(r["point"]))] = r
+    from ...declaration import schema
     from .quantities import MOTOR_QUANTITIES
-    quantities = [k for k in rows[0] if k.startswith("peak_") or k in MOTOR_QUANTITIES]
+    declared = {r.name for r in schema.REDUCTIONS}
+    quantities = [k for k in rows[0] if k.startswith("peak_") or k in MOTOR_QUANTITIES or k in declared]
     groups = {}
     for r in rows:
         groups.setdefault(int(r["branch"]), []).append(r)

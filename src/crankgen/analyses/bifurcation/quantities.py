@@ -44,9 +44,11 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ... import engine
-from ...declaration import schema, torque_curve
+from ...declaration import schema
 from ...discrete import kinematics as _kinematics
+from ...results import motor_duty, reductions
 from ...results.outputs import DeclaredOutputs
+from ..marching import coordinate_histories, crank_of
 from .maps import MapError
 from .mechanism import V_MID
 
@@ -62,8 +64,9 @@ MOTOR_QUANTITIES = ("mean_speed", "revolution_time", "min_crank_speed", "max_cra
                     "rms_motor_torque", "mean_motor_power")
 
 
-def units(section=None, si=None):
-    """{quantity: units text} (crankgen's units, or SI with si)."""
+def units(section=None, si=None, case=None):
+    """{quantity: units text} (crankgen's units, or SI with si); with the case, its declared
+    reductions over the orbit too (crankgen.results.reductions)."""
     out = {"peak_v": "r (v* = v/r)", "peak_torque": schema.OUTPUTS["torque"].units,
            "peak_pin_force_A": schema.OUTPUTS["crank_on_rod_x"].units,
            "peak_pin_force_B": schema.OUTPUTS["rod_on_slider_x"].units,
@@ -71,16 +74,18 @@ def units(section=None, si=None):
            "peak_axial_force": schema.OUTPUTS["axial_force"].units, "peak_strain": "1"}
     if section is not None:
         out["peak_stress"] = "Pa" if si is not None else "E"
+    for r in ([] if case is None else reductions.declared(case)):
+        out[r.name] = r.units
     return out
 
 
-def motor_units(section=None, si=None):
+def motor_units(section=None, si=None, case=None):
     """{quantity: units text} of a motor-driven crank's branch point (crankgen's units, or SI with si):
     MOTOR_QUANTITIES, then units()'s."""
     speed = schema.OUTPUTS["crank_speed"].units
     out = {"mean_speed": speed, "revolution_time": f"1/{speed}", "min_crank_speed": speed,
-           "max_crank_speed": speed, **torque_curve.duty_units()}
-    return dict(out, **units(section, si))
+           "max_crank_speed": speed, **motor_duty.duty_units()}
+    return dict(out, **units(section, si, case))
 
 
 @dataclass(frozen=True)
@@ -94,7 +99,8 @@ class Orbit(DeclaredOutputs):
     states: np.ndarray = field(repr=False)
     rates: np.ndarray = field(repr=False)
     accelerations: np.ndarray = field(repr=False)
-    crank: np.ndarray = field(default=None, repr=False)    # a motor-driven crank's (theta, thetad, thetadd) per step
+    crank: np.ndarray = field(default=None, repr=False)    # a driven crank's (theta, thetad, thetadd) per step
+    coordinates: dict = field(default=None, repr=False)    # a driven motion's co-ordinates: name -> (steps, 3)
 
 
 def _peak_signed(values):
@@ -129,13 +135,16 @@ def orbit_quantities(orbit, section=None, si=None):
         from ..stresses import stress
         hist = stress(orbit, section, si=si)
         out["peak_stress"] = hist.largest.value
+    for r in reductions.declared(orbit.case):       # the declared reductions over the orbit
+        x = reductions.value(orbit, r)
+        out[r.name] = math.nan if x is None else x
     return out
 
 
 def branch_quantities(case, parameter, branch, section=None, si=None):
     """({quantity: (points,) array}, notes): the quantities of every point of a Branch whose states
     are the revolution map's at theta0 ((d, v), or (d, v, a) for generalized-alpha), `parameter` the diagram's, case the diagram's case."""
-    names = list(units(section, si))
+    names = list(units(section, si, case))
     values = {k: np.full(len(branch), math.nan) for k in names}
     notes = []
     period = int(branch.period)
@@ -162,44 +171,49 @@ def branch_quantities(case, parameter, branch, section=None, si=None):
 
 
 def motor_orbit(fmap, state, p, period):
-    """(Orbit, T): the orbit of a motor-driven crank's branch point (module docstring): its section
-    state (physical, as a Branch holds it) marched `period` revolutions by the MotorMap fmap at
-    parameter p, T their time; the crank angle runs on over the revolutions.  MapError if a
-    revolution fails."""
+    """(Orbit, T): the orbit of a driven crank's branch point (module docstring): its section state
+    (physical, as a Branch holds it) marched `period` revolutions by the AutonomousMap fmap at
+    parameter p, T their time; the crank angle (and every angle that turns with it) runs on over
+    the revolutions.  MapError if a revolution fails."""
     _, T, revolutions = fmap.revolutions(state, p, period)
-    N = fmap.N
-    X, V, A, y, t = [], [], [], [], []
+    case = fmap.case_at(p)
+    n_rod = fmap.n_rod
+    turning = [j for j, c in enumerate(case.motion_record.coordinates) if c.units == "rad"]
+    X, V, A, y, Z, t = [], [], [], [], [], []
     start = 0.0
     for k, rev in enumerate(revolutions):
         skip = 0 if k == 0 else 1                 # a revolution starts where the last one landed
-        x = rev["X"][skip:].copy()
-        x[:, N] += 2.0 * math.pi * k
-        X.append(x)
-        V.append(rev["V"][skip:])
-        A.append(rev["A"][skip:])
+        z = rev["Z"][skip:].copy()
+        z[:, turning] += 2.0 * math.pi * k
+        X.append(rev["X"][skip:, :n_rod])
+        V.append(rev["V"][skip:, :n_rod])
+        A.append(rev["A"][skip:, :n_rod])
         y.append(rev["y"][skip:])
+        Z.append(z)
         t.append(rev["t"][skip:] + start)
         start += rev["t"][-1]
-    X, V, A, y, t = (np.concatenate(a) for a in (X, V, A, y, t))
-    crank = np.stack([X[:, N], V[:, N], A[:, N]], axis=-1)
-    orbit = Orbit(fmap.case_at(p), t, crank[:, 0], y[:, V_MID], X[:, :N], V[:, :N], A[:, :N], crank=crank)
+    X, V, A, y, Z, t = (np.concatenate(a) for a in (X, V, A, y, Z, t))
+    coordinates = coordinate_histories(case, Z)
+    crank = crank_of(case, coordinates)
+    orbit = Orbit(case, t, crank[:, 0], y[:, V_MID], X, V, A, crank=crank, coordinates=coordinates)
     return orbit, T
 
 
 def motor_orbit_quantities(orbit, T, period, section=None, si=None):
-    """{quantity: value} of one motor-driven Orbit of `period` revolutions in the time T (module
-    docstring)."""
+    """{quantity: value} of one driven Orbit of `period` revolutions in the time T (module
+    docstring); the motor's duty at the speed of the co-ordinate it drives."""
     speed = orbit.crank[:, 1]
+    motor = next(c.name for c in orbit.case.motion_record.coordinates if c.motor)
     out = {"mean_speed": 2.0 * math.pi * period / T, "revolution_time": T / period,
            "min_crank_speed": float(np.min(speed)), "max_crank_speed": float(np.max(speed)),
-           **torque_curve.duty(orbit.case, orbit.t, speed)}
+           **motor_duty.duty(orbit.case, orbit.t, orbit.coordinates[motor][:, 1])}
     return dict(out, **orbit_quantities(orbit, section, si))
 
 
 def motor_branch_quantities(fmap, branch, section=None, si=None):
     """({quantity: (points,) array}, notes): the quantities of every point of a motor-driven
-    crank's Branch (its states the section states of the MotorMap fmap), one orbit at a time."""
-    values = {k: np.full(len(branch), math.nan) for k in motor_units(section, si)}
+    crank's Branch (its states the section states of the AutonomousMap fmap), one orbit at a time."""
+    values = {k: np.full(len(branch), math.nan) for k in motor_units(section, si, fmap.case)}
     notes = []
     period = int(branch.period)
     for i, (state, p) in enumerate(zip(branch.states, branch.parameter)):

@@ -33,7 +33,7 @@ from ._blas import single_thread
 from .maps import MapError
 
 from ...results.io import atomic_file, save_figure
-from .diagram import _num
+from .diagram_files import cell
 
 DIRECTIONS = ("up", "down", "both")
 AMPLITUDE_REVOLUTIONS = 8      # applications over which a response that does not repeat is measured
@@ -85,15 +85,15 @@ class PoincareDiagram:
             w.writerow(["direction", name, "classification", "period", "repeat_residual",
                         "lyapunov", "distinct", "amplitude", "message"])
             for q in self.points:
-                w.writerow([q.direction, _num(q.parameter), q.classification, q.period,
-                            _num(q.repeat_residual), _num(q.lyapunov), q.distinct, _num(q.amplitude),
+                w.writerow([q.direction, cell(q.parameter), q.classification, q.period,
+                            cell(q.repeat_residual), cell(q.lyapunov), q.distinct, cell(q.amplitude),
                             q.message])
         with atomic_file(paths[1]) as fh:
             w = csv.writer(fh)
             w.writerow(["direction", name, "sample", "value"])
             for q in self.points:
                 for j, v in enumerate(q.samples):
-                    w.writerow([q.direction, _num(q.parameter), j, _num(v)])
+                    w.writerow([q.direction, cell(q.parameter), j, cell(v)])
         return paths
 
     def plot(self, path, diagram=None, title=None, ylabel=None, xlabel=None):

@@ -8,8 +8,8 @@ from pathlib import Path
 import numpy as np
 
 from ..bifurcation.curve import Curve, write_rows
-from ..bifurcation.diagram_files import jsonable
-from ..bifurcation.diagram import BifurcationDiagram, _num
+from ..bifurcation.diagram_files import cell, jsonable
+from ..bifurcation.diagram import BifurcationDiagram
 from ...errors import ParameterError
 from ...results.io import atomic_file, read_regular
 from .regions import Raster
@@ -122,24 +122,24 @@ class StabilityChart:
             pts += c.codim2_rows(curve=k)
         write_rows(paths[1], pts, ["curve", "kind", "label", "curve_kind", "period", "point", xn, yn, "amplitude",
                                    "multipliers", "description"])
-        write_rows(paths[2], [dict(region=g.index, words=g.words, area=_num(g.area), agreement=_num(g.agreement),
-                                   cells=sum(g.votes.values()), **{xn: _num(g.x), yn: _num(g.y)},
+        write_rows(paths[2], [dict(region=g.index, words=g.words, area=cell(g.area), agreement=cell(g.agreement),
+                                   cells=sum(g.votes.values()), **{xn: cell(g.x), yn: cell(g.y)},
                                    votes="; ".join(f"{k}: {v}" for k, v in g.votes.items()))
                               for g in self.regions],
                    ["region", "words", "area", "agreement", "cells", xn, yn, "votes"])
         line_rows = []
         for ln in self.lines:
             if ln.diagram is None:
-                line_rows.append({yn: _num(ln.level), "kind": "failed", "message": ln.message})
+                line_rows.append({yn: cell(ln.level), "kind": "failed", "message": ln.message})
                 continue
             for s in ln.diagram.special_points:
-                line_rows.append({yn: _num(ln.level), "kind": s.kind, "period": s.period, xn: _num(s.parameter),
-                                  "amplitude": _num(s.amplitude), "multiplier_re": _num(s.multiplier.real),
-                                  "multiplier_im": _num(s.multiplier.imag), "message": ""})
+                line_rows.append({yn: cell(ln.level), "kind": s.kind, "period": s.period, xn: cell(s.parameter),
+                                  "amplitude": cell(s.amplitude), "multiplier_re": cell(s.multiplier.real),
+                                  "multiplier_im": cell(s.multiplier.imag), "message": ""})
         write_rows(paths[3], line_rows, [yn, "kind", "period", xn, "amplitude", "multiplier_re", "multiplier_im",
                                          "message"])
-        write_rows(paths[4], [dict(curve=k, point=i, **{xn: _num(c[xn][i]), yn: _num(c[yn][i])}, index=j,
-                                   re=_num(m.real), im=_num(m.imag), abs=_num(abs(m)))
+        write_rows(paths[4], [dict(curve=k, point=i, **{xn: cell(c[xn][i]), yn: cell(c[yn][i])}, index=j,
+                                   re=cell(m.real), im=cell(m.imag), abs=cell(abs(m)))
                               for k, c in enumerate(self.curves) for i in range(len(c))
                               for j, m in enumerate(c.multipliers[i])],
                    ["curve", "point", xn, yn, "index", "re", "im", "abs"])
