@@ -66,7 +66,7 @@ def joint_columns(result, si=None):
     out = []
     for base, x, y in joints(result.case.guide_record.name):
         fx, fy = (np.asarray(view.quantity(name), dtype=float) for name in (x, y))
-        angle = np.arctan2(fy, fx)
+        angle = np.arctan2(fy + 0.0, fx)        # + 0.0: a Y of -0 points at 180 deg, not -180
         out += [(f"{base}_magnitude", schema.OUTPUTS[x].units, np.hypot(fx, fy)),
                 (f"{base}_angle_" + ("rad" if si is not None else "deg"), None,
                  angle if si is not None else np.degrees(angle))]
@@ -123,7 +123,7 @@ def peaks(result):
         magnitude = np.hypot(fx, fy)
         k = int(np.nanargmax(magnitude))
         out[f"peak_{base}"] = float(magnitude[k])
-        out[f"peak_{base}_angle_deg"] = float(math.degrees(math.atan2(fy[k], fx[k])))
+        out[f"peak_{base}_angle_deg"] = float(math.degrees(math.atan2(fy[k] + 0.0, fx[k])))
         out[f"peak_{base}_crank_angle_deg"] = _crank_degrees(theta[k])
     return out
 

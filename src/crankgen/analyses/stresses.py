@@ -248,7 +248,8 @@ def peak_loads(result, scales: Optional[Scales] = None):
         magnitude = np.sqrt(sum(v ** 2 for v in values))
         k = int(np.argmax(magnitude))
         value = float(values[0][k]) if len(parts) == 1 else float(magnitude[k])
-        direction = None if len(parts) == 1 else math.degrees(math.atan2(values[1][k], values[0][k]))
+        # the direction (+ 0.0: a Y component of -0 reads 180 degrees, not -180)
+        direction = None if len(parts) == 1 else math.degrees(math.atan2(values[1][k] + 0.0, values[0][k]))
         declared = schema.OUTPUTS[parts[0]].units
         units = declared if scales is None else scales.si_name(declared)
         out.append(PeakLoad(name, value, units, float(t[k]), float(result.theta[k]), k, direction))
