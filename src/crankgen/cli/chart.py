@@ -74,7 +74,9 @@ def add_command(sub):
     p.set_defaults(func=_cmd_chart)
 
 
-QUICK_X, QUICK_Y = (schema.CRANK_SPEED, 0.4, 1.4), ("a", 0.02, 0.1)
+# the crank length: the mechanism's own length (units L; the guides' lengths are the guides')
+CRANK_LENGTH = next(n for n, p in schema.PARAMETERS.items() if p.owner == "mechanism" and p.units == "L")
+QUICK_X, QUICK_Y = (schema.CRANK_SPEED, 0.4, 1.4), (CRANK_LENGTH, 0.02, 0.1)
 QUICK = {"n_elements": 4, "steps_per_rev": 50}                   # and lines 3, max-lines 4, period 1
 
 

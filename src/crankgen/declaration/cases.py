@@ -205,5 +205,5 @@ def exact_case(case):
     values = case.as_dict()
     for option in ("formulation", "approach", "membrane", "damping", "groups_off"):
         values.pop(option, None)
-    values["gravity"] = tuple(values["gravity"])
+    values = {k: tuple(v) if isinstance(v, list) else v for k, v in values.items()}   # pairs as tuples
     return Case(**values, model="exact")

@@ -179,7 +179,9 @@ class SIRules:
                                  f"{', '.join(plausibility.CHECKS)}")
         object.__setattr__(self, "unchecked", tuple(sorted(set(unchecked))))
         plausibility.check_rod(self.L, self.E, self.rho, self.A, self.I, self.unchecked)
-        mass = SI_NAME.get("ms")
+        # the end mass: the mechanism's mass, in rod masses rhoA L
+        mass = next((SI_NAME.get(n) for n, p in schema.PARAMETERS.items()
+                     if p.owner == "mechanism" and p.units == "rhoA L"), None)
         if mass is not None:
             plausibility.check_mass(getattr(self, mass), self.rho * self.A * self.L, self.unchecked)
         omega_b = self.omega_b
