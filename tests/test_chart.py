@@ -144,3 +144,32 @@ def test_the_chart_command(tmp_path):
     r = subprocess.run([sys.executable, "-m", "crankgen", "chart", "--eps", "0.02", "--out", str(tmp_path / "d")],
                        capture_output=True, text=True)
     assert r.returncode == 2 and "--eps is an axis of the chart" in r.stderr
+
+
+def test_the_chart_in_si(chart, tmp_path):
+    """--si: an axis given in SI (a crank speed in rad/s or rpm) is Omega* = speed / omega_b in the
+    computation; the figure's ticks are round SI values at their places; curves_si.csv holds the
+    curves in SI."""
+    import math
+
+    from crankgen.analyses.charts import si_view
+    from crankgen.plots.figures import layout_problems
+    si = crankgen.SIMechanism(L=0.25, E=2.1e11, rho=7850, A=1e-4, I=1e-8 / 12, a=0.025, slider_mass=0.1,
+                              crank_speed=300.0)
+    wb = si.omega_b
+    name, lo, hi = si_view.to_model(("omega", 3000.0, 6000.0), si.scales, rpm=True)
+    assert (lo, hi) == pytest.approx((3000 * 2 * math.pi / 60 / wb, 6000 * 2 * math.pi / 60 / wb), rel=1e-14)
+    assert si_view.from_model("omega", 1.0, si.scales, rpm=True) == pytest.approx(wb * 60 / (2 * math.pi), rel=1e-14)
+    assert si_view.to_model(("a", 0.01, 0.02), si.scales)[1:] == pytest.approx((0.04, 0.08), rel=1e-14)
+    with pytest.raises(crankgen.ParameterError, match="rod's section"):
+        si_view.to_model(("eps", 0.01, 0.02), si.scales)
+    fig = si_view.figure(chart, si.scales, rpm=True)
+    ax = fig.axes[0]
+    assert layout_problems(fig) == [] and ax.get_xlabel() == "crank speed (rpm)"
+    for tick, text in zip(ax.get_xticks(), ax.get_xticklabels()):       # each label at its place
+        assert float(text.get_text()) == pytest.approx(tick * wb * 60 / (2 * math.pi), rel=1e-9)
+    assert "Omega*" not in ax.get_title() and "L = 0.25 m" in ax.get_title()
+    rows = list(csv.DictReader(open(si_view.to_csv(chart, tmp_path / "curves_si.csv", si.scales, rpm=True))))
+    first = chart.curves[0]
+    assert float(rows[0]["crank_speed_rpm"]) == pytest.approx(first["omega"][0] * wb * 60 / (2 * math.pi), rel=1e-12)
+    assert float(rows[0]["amplitude_m"]) == pytest.approx(first["amplitude"][0] * si.scales.base["r"], rel=1e-12)

@@ -34,8 +34,12 @@ def test_simulate_writes_units_a_time_column_and_the_theory_flags(tmp_path):
                   "strain_energy": "strain_energy_rhoA_L3_omega_b2"}
     fields = {"axial_force": "axial_force_at_0.5_EI_per_L2", "bending_moment": "bending_moment_at_0.5_EI_per_L",
               "chord_deflection": "chord_deflection_at_0.5_L"}
+    joints = [f"{j}_{q}" for j in ("crank_on_rod", "rod_on_slider", "guide_on_slider")     # the bearing loads
+              for q in ("magnitude_rhoA_L2_omega_b2", "angle_deg")]
+    along = [f"axial_force_at_{x:g}_EI_per_L2" for x in (0, 1)]     # at every node (2 elements; 1/2 above)
     assert list(sim.columns) == (["t_per_omega_b", "theta_deg", "v_mid_r", "u_end_r2_per_L", "extension"]
-                                 + list(step_outputs.values()) + list(reductions.values()) + list(fields.values())
+                                 + list(step_outputs.values()) + list(reductions.values()) + joints
+                                 + list(fields.values()) + along
                                  + ["deflection_over_L", "axial_strain", "beyond_theory", "status"])
     ref = crankgen.simulate(crankgen.Mechanism(), n_elements=2, steps_per_rev=20, revolutions=1,
                             formulation="lagrange", damping="kelvin-voigt", membrane="averaged")
@@ -44,6 +48,8 @@ def test_simulate_writes_units_a_time_column_and_the_theory_flags(tmp_path):
         np.testing.assert_allclose(sim[col], getattr(ref, name), rtol=1e-14, atol=1e-15, err_msg=name)
     for name, col in fields.items():              # the fields at mid-span
         np.testing.assert_allclose(sim[col], getattr(ref, name)(0.5), rtol=1e-14, atol=1e-15, err_msg=name)
+    for x, col in zip((0, 1), along):             # the axial force along the rod
+        np.testing.assert_allclose(sim[col], ref.axial_force(x), rtol=1e-14, atol=1e-15, err_msg=col)
     np.testing.assert_allclose(sim["deflection_over_L"], 0.01 * np.abs(ref.v_mid), rtol=1e-15)
     nodes = check_csv(out / "nodes.csv")
     assert list(nodes.columns[:5]) == ["t_per_omega_b", "theta_deg", "u0_L", "v0_L", "psi0_rad"]

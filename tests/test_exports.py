@@ -32,7 +32,15 @@ def test_a_four_bars_csv_holds_every_declared_output_of_its_guide(tmp_path):
         np.testing.assert_allclose(table[col], values, rtol=1e-15, atol=0, err_msg=col)
     steps = [n for n, o in schema.OUTPUTS.items() if o.kind in ("step", "reduction") and "circle" in o.guides]
     fields = [n for n, o in schema.OUTPUTS.items() if o.kind == "field" and "circle" in o.guides]
-    assert len(table.columns) == 2 + len(steps) + 2 * len(fields) + 3       # t, theta, ..., the range
+    pairs = [n[:-2] for n in steps if n.endswith("_x") and n[:-2] + "_y" in steps]     # the joint forces
+    assert pairs == ["crank_on_rod", "rod_on_tip", "rocker_on_tip"]
+    for p in pairs:                          # each also as magnitude and direction (degrees)
+        np.testing.assert_allclose(table[f"{p}_magnitude_rhoA_L2_omega_b2"],
+                                   np.hypot(getattr(run, p + "_x"), getattr(run, p + "_y")), rtol=1e-14)
+        np.testing.assert_allclose(np.radians(table[f"{p}_angle_deg"]),
+                                   np.arctan2(getattr(run, p + "_y"), getattr(run, p + "_x")), rtol=1e-14)
+    # t, theta, the outputs, each field at both x, the magnitude and direction of each joint force, the range
+    assert len(table.columns) == 2 + len(steps) + 2 * len(fields) + 2 * len(pairs) + 3
     assert {"torque", "rocker_on_tip_y", "rocker_angle", "chord_deflection"} <= set(dir(run))
     assert "rocker_angle" not in dir(crankgen.simulate(crankgen.Mechanism(), n_elements=2, steps_per_rev=20,
                                                        revolutions=0.1))       # not a slider's

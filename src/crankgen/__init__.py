@@ -21,6 +21,7 @@ _LAZY = {
     "continuation": "analyses.bifurcation", "poincare": "analyses.bifurcation", "follow": "analyses.bifurcation", "Curve": "analyses.bifurcation",
     "stability_chart": "analyses.charts", "StabilityChart": "analyses.charts",
     "Modes": "analyses.modes", "modes": "analyses.modes", "campbell": "analyses.campbell", "CampbellDiagram": "analyses.campbell",
+    "compare": "analyses.rigid", "Comparison": "analyses.rigid", "Verdict": "analyses.model_error",
     "animate": "plots.animation", "Section": "declaration.sections", "stress": "analyses.stresses", "peak_loads": "analyses.stresses", "StressHistory": "analyses.stresses",
 }
 # the choices of the model options (declared in derive/declaration.py), read from the generated table

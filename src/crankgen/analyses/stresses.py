@@ -132,11 +132,17 @@ class StressHistory:
             value = f"{p.value / 1e6:.4g} MPa" if si else f"{p.value:.4g} E"
             where = f"x = {p.x:.4g} m" if si else f"x* = {p.x:.4g}"
             when = f"t = {p.t:.4g} s" if si else f"t* = {p.t:.4g}"
-            return f"{value} at {where}, {p.fibre} fibre, {when}, crank angle {math.degrees(p.theta) % 360:.1f} deg"
+            return f"{value} at {where}, {p.fibre} fibre, {when}, crank angle {crank_degrees(p.theta):.1f} deg"
         r = self.range
         span = ("" if r is None else
                 f"; largest range per revolution {r / 1e6:.4g} MPa" if si else f"; largest range per revolution {r:.4g} E")
         return f"stress: max {show(self.maximum)}; min {show(self.minimum)}{span}"
+
+
+def crank_degrees(theta):
+    """A crank angle (rad, unwrapped) in degrees within [0, 360), rounded to 1e-9 degree first (so
+    that a full turn reads 0, not 360)."""
+    return round(math.degrees(theta), 9) % 360.0
 
 
 def _whole(turns):
@@ -170,19 +176,21 @@ def check_section(section, si=None, scales=None):
     return scales
 
 
-def stress(result, section, si=None, x=None):
+def stress(result, section, si=None, x=None, scales=None):
     """The outer-fibre stresses of a result that stores its states (a SimulationResult, a
     SteadyState), for the rod's crankgen.sections.Section (module docstring).  si: the
     crankgen.SIMechanism of a run made in crankgen's units from its .mechanism and .omega
     (stresses in Pa); a run made in SI needs none.  x: the positions (x* in [0, 1], or m in SI;
-    default the nodes and the element midpoints).  Returns a StressHistory."""
+    default the nodes and the element midpoints).  scales: the crankgen.units.Scales to give them in
+    SI by (a result's SI view's), in place of si.  Returns a StressHistory."""
     if not isinstance(section, Section):
         raise ParameterError(f"section must be a crankgen.sections.Section (rectangle, circle, tube or "
                              f"Section(A=, I=, c_top=, c_bottom=)), got {type(section).__name__}")
     if getattr(result, "states", None) is None:
         raise ParameterError("stresses need a result that stores its states (simulate with history, "
                              "steady_state with an orbit)")
-    scales = _scales(result, section, si)
+    scales = check_section(section, None, scales) if scales is not None and si is None else \
+        _scales(result, section, si)
     n = result.case.n_elements
     length = 1.0 if scales is None else scales.L
     xs = (np.arange(2 * n + 1) / (2 * n) if x is None
@@ -205,7 +213,8 @@ def stress(result, section, si=None, x=None):
 @dataclass(frozen=True)
 class PeakLoad:
     """The largest magnitude of a load over a result: value (its magnitude; for the torque signed),
-    units, and when (t, theta, step)."""
+    units, when (t, theta, step) and, for a force, its direction then (degrees from the inertial X
+    axis, counter-clockwise; None for the torque)."""
 
     name: str
     value: float
@@ -213,15 +222,17 @@ class PeakLoad:
     t: float
     theta: float
     step: int
+    direction: Optional[float] = None
 
 
 def peak_loads(result, scales: Optional[Scales] = None):
     """The driving torque of largest magnitude, and the largest joint forces |F| over a result (the
     pins at A and B, the guide or the rocker), with when: crankgen's units, or SI with `scales`."""
     from ..declaration import schema
-    from ..results.outputs import SIView
-    view = result if scales is None else SIView(result, scales)
-    t = np.asarray(view.t, dtype=float)
+
+    def factor(units):                    # a declared unit in SI (as the result's SI view converts it)
+        return 1.0 if scales is None else scales.factor(units)
+    t = np.asarray(result.t, dtype=float) * factor("1/omega_b")
     out = []
     here = result.case.guide_record.name
 
@@ -233,11 +244,13 @@ def peak_loads(result, scales: Optional[Scales] = None):
     guide = declared(("guide force (on slider)", "guide_on_slider"), ("rocker force (on its tip)", "rocker_on_tip"))
     for name, parts in (("torque", ("torque",)), ("pin force at A (crank on rod)", ("crank_on_rod_x", "crank_on_rod_y")),
                         (at_b[0], (at_b[1] + "_x", at_b[1] + "_y")), (guide[0], (guide[1] + "_x", guide[1] + "_y"))):
-        values = [np.asarray(view.quantity(p), dtype=float) for p in parts]
+        values = [np.asarray(result.quantity(p), dtype=float) * factor(schema.OUTPUTS[p].units) for p in parts]
         magnitude = np.sqrt(sum(v ** 2 for v in values))
         k = int(np.argmax(magnitude))
         value = float(values[0][k]) if len(parts) == 1 else float(magnitude[k])
+        # the direction (+ 0.0: a Y component of -0 reads 180 degrees, not -180)
+        direction = None if len(parts) == 1 else math.degrees(math.atan2(values[1][k] + 0.0, values[0][k]))
         declared = schema.OUTPUTS[parts[0]].units
         units = declared if scales is None else scales.si_name(declared)
-        out.append(PeakLoad(name, value, units, float(t[k]), float(result.theta[k]), k))
+        out.append(PeakLoad(name, value, units, float(t[k]), float(result.theta[k]), k, direction))
     return out

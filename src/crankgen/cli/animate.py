@@ -33,6 +33,8 @@ def add_command(sub):
     p.add_argument("--si", metavar="FILE", default=None,
                    help="the mechanism in SI from a JSON file (as `crankgen simulate --si`), drawn in "
                         "metres and seconds")
+    from . import si_file
+    si_file.add_rpm_option(p)
     _add_output_options(p, "animation", "mechanism.gif (or mechanism.mp4)")
     p.set_defaults(func=_cmd_animate)
 
@@ -45,7 +47,7 @@ def _cmd_animate(args):
     from ..declaration.validation import in_range
 
     from . import si_file
-    si = None if args.si is None else si_file.read(args.si)
+    si = si_file.mechanism(args)
     case = _case(args) if si is None else si_file.case(args, si)
     revolutions = in_range("revolutions", args.revolutions, 0, None, True)
     if args.magnify is not None:
@@ -57,7 +59,7 @@ def _cmd_animate(args):
         raise ParameterError("--format mp4 needs ffmpeg, which is not installed here; write a gif")
     if args.steady:
         from .runs import _resolved
-        _resolved(case)
+        _resolved(case, speed=si_file.speed_words(args, None))
     name = f"mechanism.{args.format}"
     out = _Outputs(args.out, [name], args.force)
     try:

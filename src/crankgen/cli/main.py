@@ -1,5 +1,5 @@
 """Command-line interface: `crankgen simulate | steady | sweep | reproduce | audit | continue | poincare |
-chart | modes | campbell | animate | compile`.
+chart | modes | campbell | animate | compare | compile`.
 
 Exit codes: 0 success; 1 a run that failed (simulate: the integration stopped, and what was
 computed up to the failure is written; steady: status "failed"; continue: no periodic state to
@@ -17,11 +17,12 @@ from ..audit import SECTIONS as AUDIT_SECTIONS
 from ..errors import ConvergenceError, CrankgenError, NoResultError
 from ..results.provenance import VERSION
 from .options import (_Parser, _add_mechanism_options, _add_model_options, _add_output_options,
-                      _figure_list, _number_list)
+                      _figure_list, _float_grid, _number_list)
 from . import si_file
 from .compile import _cmd_compile
 from .animate import add_command as add_animate_command
 from .chart import add_command as add_chart_command
+from .compare import add_command as add_compare_command
 from .modes import add_commands as add_modes_commands
 from .runs import _cmd_simulate, _cmd_steady, _cmd_sweep
 from .studies import (CONTINUE_NAMES, POINCARE_NAMES, _add_branch_model_options, _cmd_audit,
@@ -66,6 +67,7 @@ def build_parser():
     si_file.add_option(p, "simulation.csv is written in SI, every column named with its SI unit (t_s, "
                           "theta_rad, v_mid_m, ..., torque_N_m, crank_on_rod_x_N, ...; nodes.csv: u, v in m), "
                           "v_mid.png in mm against s")
+    si_file.add_rpm_option(p)
     _add_section_option(p)
     _add_output_options(p, "out", "simulation.csv, v_mid.png (and nodes.csv with --nodes)")
     p.set_defaults(func=_cmd_simulate)
@@ -91,6 +93,7 @@ def build_parser():
                    help="shooting: Newton on the revolution map; march: revolution by revolution (default shooting)")
     si_file.add_option(p, "steady.csv adds the case and the results in SI, orbit.csv and orbit.png are in SI "
                           "(t_s, theta_rad, v_mid_m, ..., torque_N_m, ...)")
+    si_file.add_rpm_option(p)
     _add_section_option(p)
     _add_output_options(p, "out", "steady.csv, orbit.csv and orbit.png")
     p.set_defaults(func=_cmd_steady)
@@ -129,6 +132,9 @@ def build_parser():
     si_file.add_option(p, "every value of a parameter the file holds (--omega, --a, --ms, ...) is then in the "
                           "file's SI unit for it and replaces the file's field, and sweep.csv adds every row's "
                           "columns in SI (crank_speed_rad_per_s, amplitude_m, peak_torque_N_m, ...)")
+    p.add_argument("--rpm", type=_float_grid, default=None, metavar="VALUES",
+                   help="with --si: crank speeds in rpm, a value, a list or START:STOP:STEP (in place of "
+                        "--omega in rad/s and of the file's crank speed)")
     _add_output_options(p, "out", "sweep.csv (one row per case), sweep_columns.csv (every column's units "
                         "and meaning), sweep.png (the amplitude and the peak driving torque against the "
                         "parameter swept with the most values) and the checkpoint sweep.jsonl (--force "
@@ -222,6 +228,7 @@ def build_parser():
     si_file.add_option(p, f"--from and --to are then in the parameter's SI unit ({si_file.range_text()}), the "
                           "CSV files and the figure in SI (the parameter with its unit, amplitudes and the "
                           "quantities in m, N, N m, Pa, the figure in mm)")
+    si_file.add_rpm_option(p, single=False)
     _add_output_options(p, "continuation", ", ".join(CONTINUE_NAMES + ("continuation.json",)))
     p.set_defaults(func=_cmd_continue)
 
@@ -245,12 +252,14 @@ def build_parser():
                    help="with --with-continuation: follow period doublings up to this period (default 4)")
     si_file.add_option(p, f"--from and --to are then in the parameter's SI unit ({si_file.range_text()}), the "
                           "CSV files and the figure in SI (samples in m, the figure in mm)")
+    si_file.add_rpm_option(p, single=False)
     _add_output_options(p, "poincare", ", ".join(POINCARE_NAMES) + " (and, with --with-continuation, "
                         + ", ".join(CONTINUE_NAMES[:4]) + ")")
     p.set_defaults(func=_cmd_poincare)
     add_modes_commands(sub)
     add_animate_command(sub)
     add_chart_command(sub)
+    add_compare_command(sub)
     return parser
 
 

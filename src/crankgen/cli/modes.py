@@ -5,6 +5,7 @@ import math
 import sys
 
 from ..declaration import schema
+from . import si_file
 from .options import (UsageError, _Outputs, _add_mechanism_options, _add_model_options,
                       _add_output_options, _explicit, _int_list, _say)
 
@@ -31,6 +32,7 @@ def add_commands(sub):
     p.add_argument("--si", metavar="FILE", default=None,
                    help="the mechanism in SI from a JSON file (as `crankgen simulate --si`); its "
                         "crank_speed is the frozen speed; frequencies in rad/s and Hz")
+    si_file.add_rpm_option(p)
     _add_output_options(p, "modes", ", ".join(MODES_NAMES))
     p.set_defaults(func=_cmd_modes)
 
@@ -61,6 +63,7 @@ def add_commands(sub):
     p.add_argument("--si", metavar="FILE", default=None,
                    help="the mechanism in SI from a JSON file (as `crankgen simulate --si`; its "
                         "crank_speed is not used); speeds in rad/s, frequencies in Hz")
+    si_file.add_rpm_option(p, single=False)
     _add_output_options(p, "campbell", ", ".join(CAMPBELL_NAMES))
     p.set_defaults(func=_cmd_campbell)
 
@@ -72,11 +75,11 @@ def _mechanism(args):
     from ..declaration.parameters import Mechanism
     from . import si_file
 
-    if args.si is None:
+    si = si_file.mechanism(args)
+    if si is None:
         given = _explicit(args)
         mech = Mechanism(**{n: given.pop(n) for n in schema.MECHANISM_PARAMETERS if n in given})
         return mech, given, "crankgen"
-    si = si_file.read(args.si)
     return si, si_file.run_fields(args, si), "si"
 
 
@@ -134,9 +137,13 @@ def _cmd_campbell(args):
     count("angles", args.angles, "--angles")
     integer("--modes", args.count, 1)
     mech, fields, units = _mechanism(args)
+    if args.rpm and units != "si":
+        raise UsageError("--rpm (--from and --to in rpm) needs the rod in SI: --si FILE")
     unit = 1.0 if units == "crankgen" else mech.omega_b
-    start = 0.0 if args.start is None else in_range("--from", args.start, 0.0)
-    stop = 1.6 * unit if args.stop is None else in_range("--to", args.stop, 0.0)
+    from ..declaration.si import rad_per_s
+    per = rad_per_s if args.rpm else float                   # --from, --to in rpm: into rad/s
+    start = 0.0 if args.start is None else per(in_range("--from", args.start, 0.0))
+    stop = 1.6 * unit if args.stop is None else per(in_range("--to", args.stop, 0.0))
     if stop <= start:
         raise UsageError(f"--to must exceed --from, got --from {start:g} --to {stop:g}")
     from ..analyses.modes import frozen_case

@@ -240,7 +240,7 @@ def _flag(name):
     """The command-line flag (without --) of a case field."""
     from ..declaration import schema
     spec = schema.PARAMETERS.get(name) or schema.OPTIONS.get(name)
-    return spec.cli
+    return name if spec is None else spec.cli          # a flag of its own name (--rpm)
 
 
 def _explicit(args):

@@ -45,7 +45,7 @@ def _theory_note(deflection, strain, result=None):
 def _cmd_simulate(args):
     from ..declaration.validation import in_range
 
-    si = None if args.si is None else si_file.read(args.si)
+    si = si_file.mechanism(args)
     case = _case(args) if si is None else si_file.case(args, si)    # validates every parameter ...
     section = _section(args, si)
     revolutions = in_range("revolutions", args.revolutions, 0, None, True)
@@ -57,7 +57,7 @@ def _cmd_simulate(args):
     check_crank_steps(case, dt, steps * dt)
     check_run_size(case.n_elements, steps, stored="nodes" if args.nodes else "states",
                    names={"n_steps": "--revolutions", "n_elements": "--elements"})
-    names = ["simulation.csv", "v_mid.png"] + (["nodes.csv"] if args.nodes else [])
+    names = ["simulation.csv", "summary.csv", "v_mid.png"] + (["nodes.csv"] if args.nodes else [])
     out = _Outputs(args.out, names, args.force)             # ... and the output folder, first
     try:
         return _simulate(args, case, revolutions, steps, out, si, section)
@@ -82,8 +82,11 @@ def _loads_and_stress(result, section, si, stress=True):
     from ..analyses.stresses import stress as stress_of
     from ..declaration.si import scales_of
     scales = None if si is None else scales_of(si)
-    loads = "; ".join(f"{p.name} {p.value:.4g} {p.units} (t{'' if scales else '*'} = {p.t:.4g}"
-                      f"{' s' if scales else ''}, crank angle {math.degrees(p.theta) % 360:.1f} deg)"
+    from ..analyses.stresses import crank_degrees
+    loads = "; ".join(f"{p.name} {p.value:.4g} {p.units}"
+                      + ("" if p.direction is None else f" towards {p.direction:.1f} deg")
+                      + f" (t{'' if scales else '*'} = {p.t:.4g}"
+                      f"{' s' if scales else ''}, crank angle {crank_degrees(p.theta):.1f} deg)"
                       for p in peak_loads(result, scales))
     if not stress:
         return [f"peak loads: {loads}"]
@@ -117,7 +120,7 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
                 raise
             failure, res = exc, exc.partial
     view = None if si is None else res.si_view(si)
-    columns, values = (res if view is None else view).table()      # every output, the range per step
+    columns, values = (res if view is None else view).table(along=True, section=section)  # every output, per step
     strain, defl = values[columns.index("axial_strain")], values[columns.index("deflection_over_L")]
     rows = (dict(zip(columns, row), status="ok") for row in zip(*values))                 # streamed
     columns = columns + ["status"]
@@ -128,6 +131,11 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
                 "status": f"failed: {_failure_text(failure, case.approach)}"}
         rows = itertools.chain(rows, [last])
     out.wrote(write_csv(out.path("simulation.csv"), columns, rows))
+    from ..analyses.rod_loads import summary_line
+    from ..results.tables import flat_table
+    peaks = _load_summary(res, section, si) if len(res.t) > 1 else {}
+    if peaks:
+        out.wrote(write_csv(out.path("summary.csv"), *flat_table(list(peaks), [peaks])))
     if args.nodes and res.nodes is not None:
         nodes = res.nodes if view is None else view.nodes
         from ..discrete.mesh import NODE_DOFS
@@ -167,6 +175,9 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
           f"over the last revolution {np.max(np.abs(last)):.6g}{'' if view is None else ' m'}{note}")
     if section is not None:
         print("\n".join(_loads_and_stress(res, section, si)))
+    if peaks:
+        print(summary_line(peaks, si is not None))
+        print(f"model: {res.verdict}")
     return 0
 
 
@@ -179,11 +190,31 @@ def _theta_at(case, t):
 STEADY_NAMES = ["steady.csv", "orbit.csv", "orbit.png"]
 
 
-def _resolved(case, where=""):
+def _load_summary(result, section=None, si=None):
+    """simulate's summary.csv, one row of what sizes the rod and its bearings over a result: the
+    peaks in crankgen's units (crankgen.analyses.rod_loads.peaks), the model's verdict (model_error,
+    verdict: crankgen.analyses.model_error), and with si (the crankgen.SIMechanism of the run) their
+    SI columns (crankgen.results.si_row.row_in_si), with a section the stress peaks (in Pa with si)."""
+    from ..analyses.rod_loads import peaks, stress_peaks
+    out = dict(peaks(result))
+    judged = result.verdict
+    out.update(model_error=judged.error, verdict=judged.words or None)
+    if si is not None:
+        from ..results.si_row import row_in_si
+        extra = row_in_si(out, si)
+        out.update({k: v for k, v in extra.items() if k not in out})
+    if section is not None:
+        out.update(stress_peaks(result, section, si))
+    return out
+
+
+def _resolved(case, where="", speed=None):
     """Steady states need a crank motion periodic in the crank angle, a turning crank and
     Omega* * steps_per_rev >= 1 (crankgen.steady_states refuses coarser steps); checked here,
     before any output or progress line, and said in one line.  A driven crank's motion is
-    autonomous: shot on the section of its crank angle (crankgen.analyses.section)."""
+    autonomous: shot on the section of its crank angle (crankgen.analyses.section).  speed: how the
+    user gave the crank speed when not by its flag (an --si file's field, --rpm), named in the
+    messages."""
     if case.motion_record.driven:
         from ..discrete.system import check_coordinates
         try:
@@ -195,16 +226,17 @@ def _resolved(case, where=""):
         raise UsageError(
             f"{where}a steady state needs a crank motion periodic in the crank angle; --crank "
             f"{case.motion_record.name} is not (a transient: `crankgen simulate` runs it)")
-    speed = schema.PARAMETERS[schema.CRANK_SPEED]
+    given_speed, speed = speed, schema.PARAMETERS[schema.CRANK_SPEED]
     omega = getattr(case, speed.name)
+    given = f"--{speed.cli} {omega:g}" if given_speed is None else given_speed
     if omega == 0:
         raise UsageError(
-            f"{where}a steady state needs a turning crank: --{speed.cli} 0 is a crank at rest, which has "
-            f"no revolution to repeat; give --{speed.cli} > 0 (`crankgen modes --{speed.cli} 0` gives the "
+            f"{where}a steady state needs a turning crank: {given} is a crank at rest, which has "
+            f"no revolution to repeat; give a crank speed > 0 (`crankgen modes` at speed 0 gives the "
             "natural frequencies of the mechanism at rest)")
     if omega * case.steps_per_rev < 1.0:
         raise UsageError(
-            f"{where}a steady state at --{speed.cli} {omega:g} needs --steps-per-rev >= "
+            f"{where}a steady state at {given} (Omega* = {omega:g}) needs --steps-per-rev >= "
             f"{math.ceil(1 / omega)} (got {case.steps_per_rev}): a time step longer than the "
             "rod's first bending period would make the stability verdict depend on the step; "
             "`crankgen simulate` marches such slow runs")
@@ -213,14 +245,14 @@ def _resolved(case, where=""):
 def _cmd_steady(args):
     from ..declaration.validation import in_range
 
-    si = None if args.si is None else si_file.read(args.si)
+    si = si_file.mechanism(args)
     case = _case(args) if si is None else si_file.case(args, si)
     section = _section(args, si)
     in_range("tol", args.tol, 0, None, True)
     count("max_revolutions", args.max_revolutions, "--max-revolutions")
     check_run_size(case.n_elements, case.steps_per_rev, stored="steady",
                    names={"n_elements": "--elements", "n_steps": "--steps-per-rev"})
-    _resolved(case)
+    _resolved(case, speed=si_file.speed_words(args, None if si is None else si.crank_speed))
     out = _Outputs(args.out, STEADY_NAMES, args.force)
     try:
         return _steady(args, case, out, section, si)
@@ -263,9 +295,12 @@ def _steady(args, case, out, section=None, si=None):
     if si is not None:
         from ..results.si_row import row_in_si
         row.update(row_in_si(row, si))
+    if section is not None and st.states is not None:        # the peak stresses, where and when
+        from ..analyses.rod_loads import stress_peaks
+        row.update(stress_peaks(st, section, si))
     out.wrote(write_csv(out.path("steady.csv"), *flat_table(list(row), [row])))
     if st.v_mid is not None:
-        columns, values = (st if si is None else st.si).table()
+        columns, values = (st if si is None else st.si).table(along=True, section=section)
         steps = values[columns.index("axial_strain")]
         out.wrote(write_csv(out.path("orbit.csv"), columns, (dict(zip(columns, r)) for r in zip(*values))))
         out.wrote(plot_orbit(st, out.path("orbit.png"), strain=steps, si=None if si is None else st.si))
@@ -281,7 +316,7 @@ def _steady(args, case, out, section=None, si=None):
                  f"{num(row.get('half_peak_to_peak_m'), '{:.6g}')} m")
     nan = math.nan
     print(f"status {st.status}; amplitude {amplitude}; largest |Floquet multiplier| "
-          f"{num(st.multiplier, '{:.4f}')}; {st.iterations} shooting iterations, {st.periods} "
+          f"{num(st.multiplier, '{:.4g}')}; {st.iterations} shooting iterations, {st.periods} "
           f"revolutions marched, residual {num(st.residual, '{:.2e}')}"
           + (f"; {row['message']}" if row["message"] else "")
           + _theory_note(nan if row["deflection_over_L"] is None else row["deflection_over_L"],
@@ -300,12 +335,16 @@ def _steady(args, case, out, section=None, si=None):
             if si is not None:
                 names, units = ("peak_motor_torque_N_m", "rms_motor_torque_N_m", "mean_motor_power_W"), ("N m", "W")
             peak, rms, power = (row[n] for n in names)
-            print(f"the motor: peak torque {peak:.4g}, RMS torque {rms:.4g} {units[0]}, mean power {power:.4g} "
-                  f"{units[1]} over the revolution")
+            print(f"the motor: peak torque {peak:.4g} {units[0]}, RMS torque {rms:.4g} {units[0]}, mean power "
+                  f"{power:.4g} {units[1]} over the revolution")
     if section is not None and st.states is not None:
         print("\n".join(_loads_and_stress(st, section, si)))
     elif st.states is not None:                  # the loads a motor and its bearings are sized from
         print(_loads_and_stress(st, None, si, stress=False)[0])
+    if st.states is not None:
+        from ..analyses.rod_loads import summary_line
+        print(summary_line(row, si is not None))
+        print(f"model: {st.verdict}")
     print(f"wrote {', '.join(str(p) for p in out.written)}")
     if st.status == "failed":
         print(f"crankgen steady: run failed: {row['message']}", file=sys.stderr)
@@ -324,7 +363,12 @@ def _sweep_grid(args):
     models = _listed(args.model) if args.model else [None]
     axes = [[(name, v) for v in _listed(getattr(args, name))] for name in CASE_FIELDS
             if getattr(args, name, None) is not None]
+    if getattr(args, "rpm", None) is not None:             # crank speeds in rpm (with --si: _si_grid)
+        axes.append([(RPM_AXIS, v) for v in args.rpm])
     return models, axes
+
+
+RPM_AXIS = "rpm"        # the sweep's grid of crank speeds in rpm (--rpm, with --si)
 
 
 def _sweep_cases(args, models, axes, si=None):
@@ -346,6 +390,9 @@ def _sweep_cases(args, models, axes, si=None):
                     cases.append(make_case(model=model, **values))
                 else:
                     fields = {SI_NAME[n]: values.pop(n) for n in list(values) if n in SI_NAME}
+                    if RPM_AXIS in values:               # the crank speed in rpm, in place of the file's
+                        speed = SI_NAME[schema.CRANK_SPEED]
+                        fields.update({speed: None, f"{speed}_rpm": values.pop(RPM_AXIS)})
                     cases.append(replace(si, **fields).case(model=model, **values))
             except ParameterError as exc:
                 where = dict(combo, model=model) if model else dict(combo)
@@ -358,8 +405,13 @@ def _si_grid(args):
     SI (the file's unit for it), a unit that is a parameter (the slenderness: the section's) is
     refused."""
     if args.si is None:
+        if args.rpm is not None:
+            raise UsageError("--rpm is a crank speed in SI: it needs the rod in SI, --si FILE (without it "
+                             f"--{schema.PARAMETERS[schema.CRANK_SPEED].cli} takes Omega*)")
         return None
-    si = si_file.read(args.si)
+    if args.rpm is not None and getattr(args, schema.CRANK_SPEED, None) is not None:
+        raise UsageError(f"--rpm and --{schema.PARAMETERS[schema.CRANK_SPEED].cli} are both crank speeds: give one")
+    si = si_file.read(args.si, None if args.rpm is None else args.rpm[0], replace_speed=True)
     for name in schema.UNIT_PARAMETERS.values():
         if getattr(args, name, None) is not None:
             raise UsageError(f"with --si, {schema.PARAMETERS[name].label} is the rod's section (sqrt(I/A)/L): "

@@ -32,6 +32,10 @@ def fields_text():
         unit = Scales.si_name(p.units)
         return ("number" if unit == "1" else unit) + (" (two)" if p.kind == "pair" else "")
     parts = [f'"{n}": {u}' for n, u, _ in ROD] + [f'"{si}": {what(p)}' for si, p in schema.SI_FIELDS.items()]
+    from ..declaration.plausibility import CHECKS
+    from ..declaration.si import RPM_FIELDS
+    parts += [f'"{name}": rpm' for name in RPM_FIELDS]
+    parts.append('"unchecked": [the plausibility checks to skip, of ' + ", ".join(CHECKS) + "]")
     return "{" + ", ".join(parts) + "}"
 
 
@@ -60,8 +64,60 @@ def range_text():
     return ", ".join(out)
 
 
-def read(path):
-    """The crankgen.SIMechanism of a JSON file (UsageError naming what is wrong)."""
+def add_rpm_option(p, single=True):
+    """--rpm: the crank speed in rpm (single: a value, with --si in place of the file's crank speed),
+    or (single=False) a switch: --from and --to are crank speeds in rpm."""
+    if single:
+        p.add_argument("--rpm", type=float, default=None, metavar="RPM",
+                       help="the crank speed in rpm (rpm = rad/s x 60 / (2 pi)), with --si: the file then "
+                            "gives no crank speed (one file for the rod, the speed here)")
+    else:
+        p.add_argument("--rpm", action="store_true",
+                       help="with --si and the crank speed varied: --from and --to in rpm (rpm = rad/s x 60 "
+                            "/ (2 pi)); the files stay in rad/s")
+
+
+def _crank_field():
+    from ..declaration.si import SI_NAME
+    return SI_NAME[schema.CRANK_SPEED]
+
+
+def mechanism(args):
+    """The crankgen.SIMechanism of --si (None without it), with --rpm VALUE as its crank speed;
+    --rpm without --si is refused (a speed in rpm needs the rod in SI)."""
+    rpm = getattr(args, "rpm", None)
+    rpm = None if isinstance(rpm, bool) else rpm
+    if args.si is None:
+        if rpm is not None:
+            raise UsageError(f"--rpm is a crank speed in SI: it needs the rod in SI, --si FILE (without it "
+                             f"--{schema.PARAMETERS[schema.CRANK_SPEED].cli} takes Omega*, the crank speed over "
+                             "the rod's first bending frequency)")
+        return None
+    return read(args.si, rpm)
+
+
+def speed_words(args, value):
+    """How the user gave the crank speed whose value (rad/s) is `value`: '--rpm 0', '"crank_speed": 0
+    in FILE' (or its _rpm field), or None without --si."""
+    if args.si is None:
+        return None
+    rpm = getattr(args, "rpm", None)
+    if rpm is not None and not isinstance(rpm, bool):
+        return f"--rpm {rpm:g}"
+    field = _crank_field()
+    try:
+        data = json.loads(open(args.si, encoding="utf-8").read())
+    except (OSError, ValueError):
+        data = {}
+    if f"{field}_rpm" in data:
+        return f'"{field}_rpm": {data[f"{field}_rpm"]!r} in {args.si}'
+    return f'"{field}": {data.get(field, value)!r} in {args.si}'
+
+
+def read(path, rpm=None, replace_speed=False):
+    """The crankgen.SIMechanism of a JSON file (UsageError naming what is wrong); rpm: the crank
+    speed in rpm from the command line (the file must then give none, unless replace_speed: a
+    sweep's grid replaces the file's)."""
     from ..results.io import read_regular
     from ..declaration.si import SIMechanism
     names = SIMechanism.field_names()
@@ -83,7 +139,19 @@ def read(path):
         raise UsageError(f"--si {path}: expected a JSON object with the fields {', '.join(names)}")
     unknown = sorted(set(data) - set(names))
     if unknown:
-        raise UsageError(f"--si {path}: unknown field {unknown[0]!r}; the fields are {', '.join(names)}")
+        import difflib
+        near = difflib.get_close_matches(unknown[0], names, n=1)
+        hint = f"; did you mean {near[0]!r}?" if near else ""
+        raise UsageError(f"--si {path}: unknown field {unknown[0]!r}{hint} (the fields are {', '.join(names)})")
+    if rpm is not None:
+        field = _crank_field()
+        given = [k for k in (field, f"{field}_rpm") if k in data]
+        if replace_speed:
+            for k in given:
+                data.pop(k)
+        elif given:
+            raise UsageError(f"--rpm {rpm:g} and {path}'s \"{given[0]}\" are the same crank speed: give one")
+        data[f"{field}_rpm"] = rpm
     return SIMechanism(**data)
 
 

@@ -120,6 +120,8 @@ def _si_range(args, values=None):
     the slenderness, the rod's section, cannot be varied in SI.  Returns the values (converted)."""
     args.si_mechanism = None
     if args.si is None:
+        if getattr(args, "rpm", False):
+            raise UsageError("--rpm (--from and --to in rpm) needs the rod in SI: --si FILE")
         return values
     from ..declaration.si import to_crankgen
     from ..declaration.validation import in_range
@@ -129,6 +131,12 @@ def _si_range(args, values=None):
                          "vary it without --si, or give the file's I and A")
     si = si_file.read(args.si)
     start, stop = in_range("--from", args.start), in_range("--to", args.stop)
+    if getattr(args, "rpm", False):                 # --from, --to in rpm: into rad/s
+        if args.parameter != schema.CRANK_SPEED:
+            raise UsageError(f"--rpm says --from and --to are crank speeds in rpm; --parameter is {args.parameter}")
+        from ..declaration.si import rad_per_s
+        start, stop = rad_per_s(start), rad_per_s(stop)
+        values = None if values is None else [rad_per_s(v) for v in values]
     args.si_range = (start, stop)
     args.start, args.stop = (to_crankgen(args.parameter, v, si.scales) for v in (start, stop))
     args.si_mechanism = si

@@ -18,6 +18,7 @@ from . import ingredients, schema
 from .._generated import classes as _classes
 from ..errors import ParameterError
 from .parameters import Mechanism, check_full_turn, kinematic_parameters, settle
+from .plausibility import check_speeds
 from . import values as _values
 
 PARAMETER_FIELDS = tuple(schema.PARAMETERS)
@@ -36,6 +37,7 @@ class CaseRules:
     def __post_init__(self):
         given = {n for n in PARAMETER_FIELDS if getattr(self, n) is not None}
         settle(self, PARAMETER_FIELDS)
+        check_speeds(self.parameters())
         check_full_turn(self.parameters())
         options = schema.resolve_options(self.model, **{n: getattr(self, n) for n in OPTION_FIELDS})
         for name, value in options.items():
@@ -195,3 +197,13 @@ def run_case(mech=None, case=None, *, model=None, omega=None, crank=None, **fiel
     if omega is not None:
         fields[schema.CRANK_SPEED] = omega
     return Case.from_mechanism(mech, model=model, **fields)
+
+
+def exact_case(case):
+    """The geometrically exact rod's case with the parameters and mesh of `case` (its model options
+    dropped: the exact rod has none)."""
+    values = case.as_dict()
+    for option in ("formulation", "approach", "membrane", "damping", "groups_off"):
+        values.pop(option, None)
+    values = {k: tuple(v) if isinstance(v, list) else v for k, v in values.items()}   # pairs as tuples
+    return Case(**values, model="exact")

@@ -22,7 +22,7 @@ Every analysis takes an SIMechanism with units="si" (`resolve`) and its result g
 """
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields, make_dataclass
 
 from . import schema, specs
 from .._generated import classes as _classes
@@ -94,12 +94,28 @@ class RodFields:
 
 assert tuple(f.name for f in fields(RodFields)) == tuple(ROD_UNITS)
 
+def rad_per_s(rpm):
+    """A speed in rpm in rad/s: rpm x 2 pi / 60."""
+    return rpm * 2.0 * math.pi / 60.0
+# every SI speed field (rad/s) also taken in rpm: crank_speed_rpm, omega0_rpm, ...
+RPM_FIELDS = {f"{si}_rpm": si for si, p in FIELDS.items()
+              if p.kind == "real" and dimensioned(p) and si_unit(p.name) == "rad/s"}
+
+# the speeds in rpm (converted into their rad/s field when the SIMechanism is made, then None) and
+# the plausibility checks a user switches off (crankgen.declaration.plausibility)
+ExtraFields = make_dataclass(
+    "ExtraFields", [(name, object, field(default=None)) for name in RPM_FIELDS]
+    + [("unchecked", object, field(default=()))], frozen=True)
+ExtraFields.__doc__ = ("An SIMechanism's speeds in rpm (" + ", ".join(RPM_FIELDS) + "), and `unchecked`: the "
+                       "plausibility checks to skip (crankgen.declaration.plausibility.CHECKS).")
+
 
 class SIRules:
     """The checks and views of an SIMechanism (its fields: the rod's, RodFields, and the declared
     parameters', generated/classes.py SIFields)."""
 
     def __post_init__(self):
+        self._from_rpm()
         for name, unit in ROD_UNITS.items():
             value = getattr(self, name)
             if value is None:
@@ -134,6 +150,43 @@ class SIRules:
             self.mechanism
         except ParameterError as exc:
             raise ParameterError(f"SIMechanism (in units of L = {self.L:g} m): {exc}") from None
+        self._check_plausible()
+
+    def _from_rpm(self):
+        """A speed given in rpm (crank_speed_rpm, ...) into its field in rad/s (rad/s = rpm 2 pi / 60);
+        both given is refused."""
+        for rpm, si in RPM_FIELDS.items():
+            value = getattr(self, rpm)
+            if value is None:
+                continue
+            value = finite_number(f"{rpm} (rpm)", value)
+            if getattr(self, si) is not None:
+                raise ParameterError(f"SIMechanism: {si} ({getattr(self, si)!r} rad/s) and {rpm} ({value:g} rpm) "
+                                     f"are the same speed: give one")
+            object.__setattr__(self, si, rad_per_s(value))
+            object.__setattr__(self, rpm, None)
+
+    def _check_plausible(self):
+        """The unit mistakes the numbers give away (crankgen.declaration.plausibility), after the checks above."""
+        from . import plausibility
+        unchecked = self.unchecked
+        if isinstance(unchecked, str) or not all(isinstance(x, str) for x in (unchecked or ())):
+            raise ParameterError(f"SIMechanism: unchecked must be a list of the checks to skip, of "
+                                 f"{', '.join(plausibility.CHECKS)}; got {unchecked!r}")
+        unknown = sorted(set(unchecked) - set(plausibility.CHECKS))
+        if unknown:
+            raise ParameterError(f"SIMechanism: unchecked names no check {unknown[0]!r}; the checks are "
+                                 f"{', '.join(plausibility.CHECKS)}")
+        object.__setattr__(self, "unchecked", tuple(sorted(set(unchecked))))
+        plausibility.check_rod(self.L, self.E, self.rho, self.A, self.I, self.unchecked)
+        # the end mass: the mechanism's mass, in rod masses rhoA L
+        mass = next((SI_NAME.get(n) for n, p in schema.PARAMETERS.items()
+                     if p.owner == "mechanism" and p.units == "rhoA L"), None)
+        if mass is not None:
+            plausibility.check_mass(getattr(self, mass), self.rho * self.A * self.L, self.unchecked)
+        omega_b = self.omega_b
+        for si in RPM_FIELDS.values():
+            plausibility.check_si_speed(si, getattr(self, si), omega_b)
 
     def _expand(self, kind, si):
         """A guide or motion record given as the value of its selecting field: its name there, its
@@ -298,12 +351,15 @@ class SIRules:
 
 
 @dataclass(frozen=True, kw_only=True)
-class SIMechanism(SIRules, _classes.SIFields, RodFields):
+class SIMechanism(SIRules, ExtraFields, _classes.SIFields, RodFields):
     __doc__ = ("A mechanism and its crank motion in SI units (module crankgen.declaration.si): the rod, "
                + ", ".join(f"{n} ({u})" for n, u in ROD_UNITS.items()) + ", and "
                + ", ".join(f"{si} ({si_unit(p.name)})" if dimensioned(p) else si for si, p in FIELDS.items())
-               + ".  `.mechanism`, `.omega` (Omega*), `.crank` and `.case(**settings)` give the "
-                 "dimensionless form, `.scales` the units.")
+               + "; a speed in rpm by its name with _rpm (" + ", ".join(RPM_FIELDS) + "; rpm = rad/s 60 / "
+                 "(2 pi)), converted into its field in rad/s; `unchecked`: the plausibility checks to "
+                 "skip (crankgen.declaration.plausibility: a field's, E, rho, L, A, I, slider_mass, or slenderness), "
+                 "for numbers meant as given.  `.mechanism`, `.omega` (Omega*), `.crank` and "
+                 "`.case(**settings)` give the dimensionless form, `.scales` the units.")
 
 
 def si_input(mech, units, fields, *, what="this analysis", crank=None, **given):

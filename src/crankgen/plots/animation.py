@@ -113,6 +113,7 @@ class Frames:
             else in_range("magnification", magnification, 0, None, True)
         if scales is None:
             scales = getattr(result, "scales", None)           # a run made in SI: metres and seconds
+        self.scales = scales
         self.length = 1.0 if scales is None else scales.L
         self.unit = ("L", "t*") if scales is None else ("m", "t")
         self.kin = kin
@@ -165,9 +166,13 @@ class Frames:
         ax.set_ylabel("Y / L" if ell == 1.0 and self.unit[0] == "L" else "Y (m)")
         ax.grid(alpha=0.25)
         ax.legend(fontsize=7, loc="lower right", ncol=2)
-        from .figures import _title
-        head = self.title or _title(self.result.settings if hasattr(self.result, "settings")
-                                    else dict(self.case.as_dict()))
+        from .figures import _si_title, _title
+        if self.title:
+            head = self.title
+        elif self.scales is not None:                 # a run in SI: its mechanism in SI
+            head = _si_title(self.result, self.scales)
+        else:
+            head = _title(self.result.settings if hasattr(self.result, "settings") else dict(self.case.as_dict()))
         ax.set_title(f"{head}\ndeflections magnified {self.magnification:g}x", fontsize=8)
         self.ax, self.art = ax, art
         self.draw(0)
@@ -182,7 +187,8 @@ class Frames:
         if "rocker" in art:
             art["rocker"].set_data([self.pivot[0], self.end[k, 0]], [self.pivot[1], self.end[k, 1]])
         when = f"t* = {self.t[k]:.3f}" if self.unit[1] == "t*" else f"t = {self.t[k]:.4g} s"
-        art["clock"].set_text(f"{when}, crank angle {math.degrees(self.theta[k]) % 360:.0f} deg")
+        from ..analyses.stresses import crank_degrees
+        art["clock"].set_text(f"{when}, crank angle {crank_degrees(self.theta[k]):.0f} deg")
         return list(art.values())
 
 
@@ -225,6 +231,8 @@ def animate(result, path, magnification=None, frames=None, fps=20, title=None, s
         raise ParameterError(f"progress must be None or a function, got {progress!r}")
     movie = Frames(result, magnification, frames, title, scales)
     fig, _ = movie.figure()
+    fig.canvas.draw()                    # the layout once, at frame 0, then kept for every frame: laid
+    fig.set_layout_engine("none")        # out again at each grab, the first frame sat 4 px off the rest
     writer = (mpl_animation.PillowWriter(fps=fps) if fmt == ".gif"
               else mpl_animation.FFMpegWriter(fps=fps))
     with atomic_path(path) as tmp:

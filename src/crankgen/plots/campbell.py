@@ -11,13 +11,23 @@ def _describe(info, scales):
     from ..declaration import schema
     model = (f"approach {info['approach']}, {info['formulation']} / {info['damping']} / "
              f"{info['membrane']}, n = {info['n_elements']}")
-    main, other = schema.describe({k: v for k, v in info.items() if k in schema.PARAMETERS})
-    parts = main + other + ([] if info.get("rotary_inertia", True) else ["no rotary inertia"])
+    import textwrap
+    values = {k: v for k, v in info.items() if k in schema.PARAMETERS}
+    skip = (schema.CRANK_SPEED, schema.CRANK_ANGLE)        # the abscissa, and a frozen angle of each
+    if scales is None:
+        main, other = schema.describe(values, skip=skip)
+        parts = main + other
+    else:                                                  # the mechanism in SI
+        from ..declaration.si import describe_si
+        parts = describe_si(values, scales, skip=skip)
+    parts += [] if info.get("rotary_inertia", True) else ["no rotary inertia"]
     si = ("" if scales is None else
-          f"\nin SI: L = {scales.L:.4g} m, omega_b = {scales.omega_b:.4g} rad/s "
-          f"({scales.omega_b / (2 * np.pi):.4g} Hz), the first pinned-pinned bending frequency")
+          f"\nin SI: L = {scales.L:.4g} m, rho A = {scales.rhoA:.4g} kg/m, r = {scales.base['r']:.4g} m, omega_b = "
+          f"{scales.omega_b:.4g} rad/s ({scales.omega_b / (2 * np.pi):.4g} Hz), the first pinned-pinned bending "
+          f"frequency")
     return (f"Campbell diagram: the frozen mechanism's natural frequencies over a revolution "
-            f"({info['angles']} crank angles)\n{model}; " + ", ".join(parts) + si)
+            f"({info['angles']} crank angles)\n" + textwrap.fill(f"{model}; " + ", ".join(parts), 110,
+                                                                    break_on_hyphens=False) + si)
 
 
 def campbell_figure(diagram, title=None):

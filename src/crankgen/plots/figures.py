@@ -231,11 +231,17 @@ def orbit_figure(state, strain=None, si=None):
     for ax in (a1, a2, a3):
         ax.grid(alpha=0.3)
     s = dict(state.case.as_dict())
-    mult = (f", largest |multiplier| {state.multiplier:.4f}"
+    mult = (f", largest |multiplier| {state.multiplier:.4g}"
             if state.multiplier is not None and np.isfinite(state.multiplier) else "")
     if getattr(state, "period", None) is not None:          # a motor-driven crank's steady motion
-        mult += (f"\nrevolution time T* = {state.period:.5g}, mean crank speed {state.mean_speed:.5g}, "
-                 f"fluctuation {state.speed_fluctuation:.3g}")
+        if si is None:
+            mult += (f"\nrevolution time T* = {state.period:.5g}, mean crank speed Omega* = {state.mean_speed:.5g}, "
+                     f"fluctuation {state.speed_fluctuation:.3g}")
+        else:
+            mult += (f"\nrevolution time {state.period / si.scales.omega_b:.5g} s, mean speed "
+                     f"{state.mean_speed * si.scales.omega_b:.5g} rad/s "
+                     f"({state.mean_speed * si.scales.omega_b * 30 / np.pi:.5g} rpm), fluctuation "
+                     f"{100 * state.speed_fluctuation:.2g} %")
     if strain is None:
         strain = theory.axial_strain(state, per_step=True)
     eps = in_L(schema.OUTPUTS["v_mid"].units, state.case.parameters()) if si is None else 1e-3 / si.scales.L
@@ -256,9 +262,10 @@ def _crank_speed_axis(ax, x, speed, si):
 
 
 def _si_title(result, si):
-    """The model, the rod and the case's parameters in SI (crankgen.declaration.si.describe_si), for a title."""
+    """The model, the rod and the case's parameters in SI (crankgen.declaration.si.describe_si), for a
+    title.  si: the result's SI view, or the crankgen.Scales it converts by."""
     from ..declaration.si import describe_si
-    s, sc = result.case.as_dict(), si.scales
+    s, sc = result.case.as_dict(), getattr(si, "scales", si)
     return (f"approach {s['approach']}, {s['formulation']} formulation, {s['damping']} damping, "
             f"{s.get('membrane', 'pointwise')} membrane, n = {s['n_elements']}\n"
             f"L = {sc.L:g} m, omega_b = {sc.omega_b:.5g} rad/s, rho A = {sc.rhoA:.4g} kg/m, r = {sc.base['r']:.4g} m\n"

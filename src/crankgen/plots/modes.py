@@ -3,6 +3,7 @@ displacement along the rod (in the moving frame of the rigid rod), one panel per
 kind and frequency."""
 
 import math
+import textwrap
 
 import numpy as np
 
@@ -48,12 +49,24 @@ def modes_figure(m):
         if j == 0:
             leg = ax.legend(fontsize=7, loc="upper center", ncol=2, bbox_to_anchor=(0.5, -0.32), frameon=False)
             leg._crankgen_outside = True
-    speed = (f"crank speed {m.omega * m.scales.omega_b:g} rad/s" if si else f"Omega* = {m.omega:g}")
+    speed = (f"crank speed {m.omega * m.scales.omega_b:g} rad/s ({m.omega * m.scales.omega_b * 30 / math.pi:.5g} "
+             f"rpm)" if si else f"Omega* = {m.omega:g}")
     c = m.case
-    main, other = schema.describe(c.parameters(), skip=(schema.CRANK_SPEED, schema.CRANK_ANGLE))
-    fig.suptitle(f"mode shapes of the mechanism frozen at crank angle {math.degrees(m.theta):g} degrees, "
-                 f"{speed}\napproach {c.approach}, {c.formulation} / {c.damping} / {c.membrane}, "
-                 f"n = {c.n_elements}, " + ", ".join(main + other), fontsize=9)
+    skip = (schema.CRANK_SPEED, schema.CRANK_ANGLE)
+    if si:                                   # the mechanism in SI: the rod and the case's fields
+        from ..declaration.si import describe_si
+        sc = m.scales
+        parts = [f"L = {sc.L:g} m", f"omega_b = {sc.omega_b:.5g} rad/s", f"rho A = {sc.rhoA:.4g} kg/m",
+                 f"r = {sc.base['r']:.4g} m"] + describe_si(c.parameters(), sc, skip=skip)
+    else:
+        main, other = schema.describe(c.parameters(), skip=skip)
+        parts = main + other
+    # wrapped to the width of the panels, so that no line runs past the figure's edges
+    width = int(cols * 4.4 / 0.078)
+    text = textwrap.fill(f"approach {c.approach}, {c.formulation} / {c.damping} / {c.membrane}, n = "
+                         f"{c.n_elements}, " + ", ".join(parts), width, break_on_hyphens=False)
+    fig.suptitle(textwrap.fill(f"mode shapes of the mechanism frozen at crank angle {math.degrees(m.theta):g} "
+                               f"degrees, {speed}", width) + "\n" + text, fontsize=9)
     return fit_panels(fig)
 
 

@@ -67,10 +67,13 @@ def field_names(result, fiber=None):
             and all(a == "fiber" and fiber is not None for a in spec.arguments)]
 
 
-def per_step(result, si=None, x=(0.5,), fiber=None, theory=True):
-    """(columns, arrays) of a result's per-step table: t, theta, every output of output_names, the
-    fields at x (x* in [0, 1]; metres in SI) with `fiber` where a field takes it, and (theory) the
-    range of the theory per step.  si: the result's SI view (crankgen.results.outputs.SIView), or None."""
+def per_step(result, si=None, x=(0.5,), fiber=None, theory=True, along=False, section=None):
+    """(columns, arrays) of a result's per-step table: t, theta, every output of output_names, each
+    joint force's magnitude and direction (crankgen.analyses.rod_loads.joint_columns), the fields at x (x* in
+    [0, 1]; metres in SI) with `fiber` where a field takes it, (along, or a section) the axial force
+    at every node and with a crankgen.sections.Section the outer-fibre stresses there
+    (crankgen.analyses.rod_loads.along_rod), and (theory) the range of the theory per step.  si: the
+    result's SI view (crankgen.outputs.SIView), or None."""
     view = result if si is None else si
     x = tuple(np.atleast_1d(np.asarray(x, dtype=float))) if x is not None else ()
     if si is None:
@@ -96,6 +99,12 @@ def per_step(result, si=None, x=(0.5,), fiber=None, theory=True):
         units = schema.OUTPUTS["torque"].units
         columns.append(column("motor_torque", units, si is not None))
         values.append(np.asarray(motor, dtype=float) * (1.0 if si is None else si.scales.factor(units)))
+    stored = getattr(result, "states", None) is not None
+    if stored:                                 # the bearing loads as magnitude and direction too
+        from ..analyses.rod_loads import joint_columns
+        for name, units, value in joint_columns(result, si):
+            columns.append(name if units is None else column(name, units, si is not None))
+            values.append(value)
     for name in field_names(result, fiber):
         spec = schema.OUTPUTS[name]
         arguments = {"fiber": fiber} if "fiber" in spec.arguments else {}
@@ -104,6 +113,13 @@ def per_step(result, si=None, x=(0.5,), fiber=None, theory=True):
             label = name + (f"_fiber_{fiber:g}" if arguments else "")
             columns.append(column(f"{label}_at_{where}", spec.units, si is not None))
             values.append(np.asarray(view.quantity(name, float(xj), **arguments), dtype=float))
+    if stored and (along or section is not None):       # the axial force and stresses along the rod
+        from ..analyses.rod_loads import along_rod
+        for name, units, value in along_rod(result, si, section):
+            name = name if units is None else column(name, units, si is not None)
+            if name not in columns:            # the mid-span field, when x* = 1/2 is a node, once
+                columns.append(name)
+                values.append(value)
     if theory and getattr(result, "case", None) is not None:      # the range needs the case's eps
         from ..analyses import theory as _theory
         from ..declaration.units import in_L

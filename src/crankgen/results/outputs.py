@@ -300,6 +300,7 @@ class DeclaredOutputs:
         state = dict(self.__dict__)
         state.pop("_state_history", None)
         state.pop("_beyond_theory", None)
+        state.pop("_verdict", None)
         return state
 
     @property
@@ -313,6 +314,18 @@ class DeclaredOutputs:
             flag = flag_of(self)
             object.__setattr__(self, "_beyond_theory", flag)
         return flag
+
+    @property
+    def verdict(self):
+        """Which model to trust for this response (crankgen.analyses.model_error.Verdict: "trust this model
+        here", "use the exact rod" or "beyond both", with the estimated relative difference from the
+        exact rod's response behind it and the exact rod's limits on these states)."""
+        value = self.__dict__.get("_verdict")
+        if value is None:
+            from ..analyses.model_error import verdict
+            value = verdict(self)
+            object.__setattr__(self, "_verdict", value)
+        return value
 
     def quantity(self, name, x=None, **arguments):
         spec = schema.OUTPUTS.get(name)
@@ -340,14 +353,16 @@ class DeclaredOutputs:
         from .exports import output_names
         return output_names(self)
 
-    def table(self, x=(0.5,), fiber=None):
-        """(columns, arrays): t, the crank angle in degrees, every output of output_names, the field
-        outputs at x* in x (default the mid-span; surface_strain with `fiber`), the range of the
-        theory per step; each column named with its unit (crankgen.results.exports)."""
+    def table(self, x=(0.5,), fiber=None, along=False, section=None):
+        """(columns, arrays): t, the crank angle in degrees, every output of output_names, each joint
+        force's magnitude and direction, the field outputs at x* in x (default the mid-span;
+        surface_strain with `fiber`), with `along` the axial force at every node and with a
+        crankgen.sections.Section (`section`) also the outer-fibre stresses there (units of E), the
+        range of the theory per step; each column named with its unit (crankgen.exports)."""
         from .exports import per_step
-        return per_step(self, None, x, fiber)
+        return per_step(self, None, x, fiber, along=along, section=section)
 
-    def to_csv(self, path, x=(0.5,), fiber=None):
+    def to_csv(self, path, x=(0.5,), fiber=None, along=False, section=None):
         """Write the table (crankgen's units, each column named with its unit: t_per_omega_b,
         theta_deg, v_mid_r, torque_rhoA_L3_omega_b2, ..., bending_moment_at_0.5_EI_per_L, ...,
         deflection_over_L, axial_strain, beyond_theory) as CSV in full precision, atomically;
@@ -355,7 +370,7 @@ class DeclaredOutputs:
         from .exports import write
         from .io import output_path
         path = output_path(path)                   # named before the table is computed
-        return write(path, *self.table(x, fiber))
+        return write(path, *self.table(x, fiber, along, section))
 
     @property
     def si(self):
@@ -456,20 +471,23 @@ class SIView:
         inner = getattr(self.result, "at_times", None)
         return None if inner is None else SIView(inner, self.scales)
 
-    def table(self, x=None, fiber=None):
-        """(columns, arrays) of the result's table in SI (crankgen.results.exports): t_s, theta_rad, every
-        output of the result's output_names, the fields at x in metres (default the mid-span;
-        surface_strain with `fiber`), the range of the theory per step."""
+    def table(self, x=None, fiber=None, along=False, section=None):
+        """(columns, arrays) of the result's table in SI (crankgen.exports): t_s, theta_rad, every
+        output of the result's output_names, each joint force's magnitude (N) and direction (rad),
+        the fields at x in metres (default the mid-span; surface_strain with `fiber`), with `along`
+        the axial force at every node and with a Section (`section`, in m) the outer-fibre stresses
+        there (Pa), the range of the theory per step."""
         from .exports import per_step
-        return per_step(self.result, self, (self.scales.L / 2,) if x is None else x, fiber)
+        return per_step(self.result, self, (self.scales.L / 2,) if x is None else x, fiber, along=along,
+                        section=section)
 
-    def to_csv(self, path, x=None, fiber=None):
+    def to_csv(self, path, x=None, fiber=None, along=False, section=None):
         """Write the table in SI (t_s, theta_rad, v_mid_m, ..., torque_N_m, crank_on_rod_x_N, ...) as
         CSV in full precision, atomically."""
         from .exports import write
         from .io import output_path
         path = output_path(path)                   # named before the table is computed
-        return write(path, *self.table(x, fiber))
+        return write(path, *self.table(x, fiber, along, section))
 
     def __dir__(self):
         names = set(super().__dir__()) | set(self.BASE)

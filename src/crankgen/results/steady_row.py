@@ -48,6 +48,13 @@ RESULTS = (
                             "section_rotation_deg"),
     ("range_note", None, "when beyond: the limits exceeded and what to use (model=\"exact\" beyond the "
                          "paper's range; for the exact model what its limits leave out); empty otherwise"),
+    ("model_error", "1", "the estimated relative difference of the orbit from the exact rod's (largest |v| of "
+                         "the first-order correction over the largest |v|: crankgen.analyses.model_error; 0 for the "
+                         "exact model; empty for a motor-driven crank); accurate near 1 %, an overestimate "
+                         "where large"),
+    ("verdict", None, "which model to trust here: 'trust this model here' (model_error <= 1 % within the exact "
+                      "rod's limits), 'use the exact rod' (model_error > 1 %), 'beyond both' (beyond the exact "
+                      "rod's own limits: slenderness, outer-fibre strain, section rotation)"),
     ("periods", "rev", "crank revolutions marched: the warm-up from rest and any marching fallback"),
     ("iterations", "1", "Newton iterations of shooting"),
     ("residual", "1", "the scaled change |P(x) - x| of the returned state over one revolution"),
@@ -122,11 +129,17 @@ def row(state):
     results = dict(status=state.status, amplitude=state.amplitude, half_peak_to_peak=state.half_peak_to_peak,
                    deflection_over_L=deflection, axial_strain=strain, fibre_strain=fibre,
                    section_rotation_deg=rotation, beyond_theory=flag or None, range_note=note or None)
+    judged = state.verdict if has_orbit else None
+    results.update(model_error=None if judged is None else _number(judged.error),
+                   verdict=(judged.words or None) if judged is not None else None)
     for name in load_outputs(guide):
         results[PEAK + name] = (_number(np.max(np.abs(np.asarray(state.quantity(name), dtype=float))))
                                 if has_orbit else None)
     for r in reductions.declared(case):              # the declared reductions over the revolution
         results[r.name] = _number(reductions.value(state, r)) if has_orbit else None
+    from ..analyses import rod_loads                    # the rod's axial force, buckling margin, bearing loads
+    peaks = rod_loads.peaks(state) if has_orbit else {}
+    results.update({name: _number(peaks.get(name)) for name in rod_loads.peak_columns(guide)})
     if getattr(state, "period", None) is not None:
         results.update(revolution_time=state.period, mean_speed=state.mean_speed,
                        speed_fluctuation=state.speed_fluctuation, **(state.motor_duty or {}))
@@ -138,11 +151,15 @@ def row(state):
 
 def units_of(column):
     """The declared units of a row's column (None for words: status, the choices, the options)."""
+    from ..analyses import rod_loads
     if column in schema.PARAMETERS:
         p = schema.PARAMETERS[column]
         return p.units if p.kind in ("real", "pair") else None
     if column in _RESULT_UNITS:
         return _RESULT_UNITS[column]
+    design = rod_loads.units_of(column)
+    if design is not False:
+        return design
     if column.startswith(PEAK) and column[len(PEAK):] in schema.OUTPUTS:
         return schema.OUTPUTS[column[len(PEAK):]].units
     return reductions.units(column)
@@ -165,6 +182,10 @@ def meaning(column):
     for name, _, text in RESULTS + MOTOR_RESULTS:
         if name == column:
             return text
+    from ..analyses import rod_loads
+    design = rod_loads.meaning(column)
+    if design:
+        return design
     if column.startswith(PEAK) and column[len(PEAK):] in schema.OUTPUTS:
         return "the largest |value| over the orbit of: " + schema.OUTPUTS[column[len(PEAK):]].doc
     return reductions.meaning(column)
