@@ -261,20 +261,10 @@ def atomic_path(path):
         os.close(fd)
     except OSError as exc:
         raise _named(exc, path, f"cannot create a file in {target.parent}") from None
-    try:
+    with _moved_into_place(tmp, target, path):
         yield tmp
         with open(tmp, "rb+") as fh:
             os.fsync(fh.fileno())
-        os.replace(tmp, target)
-    except BaseException as exc:
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
-        if isinstance(exc, OSError):
-            raise _named(exc, path) from None
-        raise
-    fsync_dir(target.parent)
 
 
 def atomic_write(path, write, mode="w", overwrite=True):
@@ -301,12 +291,21 @@ def atomic_file(path, mode="w"):
         fd, tmp = _temporary(target)
     except OSError as exc:
         raise _named(exc, path, f"cannot create a file in {target.parent}") from None
-    try:
+    with _moved_into_place(tmp, target, path):
         kwargs = {"newline": ""} if "b" not in mode else {}
         with os.fdopen(fd, mode, **kwargs) as fh:
             yield fh
             fh.flush()
             os.fsync(fh.fileno())
+
+
+@contextlib.contextmanager
+def _moved_into_place(tmp, target, path):
+    """The temporary file tmp becomes target when the block ends (and the folder is synced); on any
+    exception (KeyboardInterrupt included) tmp is removed, target left as it was, and an OSError
+    names path, not the temporary file."""
+    try:
+        yield
         os.replace(tmp, target)
     except BaseException as exc:
         try:

@@ -48,14 +48,9 @@ def locking_limit(case, parameter, start, stop, samples=400):
             return None
         except ParameterError as exc:
             return str(exc)
-    values = np.linspace(start, stop, samples + 1)
-    bad = next((k for k, p in enumerate(values) if fails(p)), None)
-    if bad is None or bad == 0:
+    hi = _boundary(fails, start, stop, samples)
+    if hi is None:
         return None
-    lo, hi = float(values[bad - 1]), float(values[bad])
-    while abs(hi - lo) > 1e-12 * abs(stop - start):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (lo, mid) if fails(mid) else (mid, hi)
     why = fails(hi)
     needs = why.split("needs ", 1)[-1].split("; got", 1)[0]
     return hi, f"the {case.guide_record.name} guide needs {needs}"
@@ -106,17 +101,24 @@ def stall_limit(case, parameter, start, stop, samples=400):
         c = _replace(case, **{parameter: float(p)})
         return bool(np.all(_motor_shortfall(c, s * torque_curve.of(c)[2]) >= 0))   # speeds up to 1.2 Omega_nl
     try:
-        values = np.linspace(start, stop, samples + 1)
-        bad = next((k for k, p in enumerate(values) if stalls(p)), None)
+        hi = _boundary(stalls, start, stop, samples)
     except (ParameterError, ValueError, ZeroDivisionError, FloatingPointError):
         return None
-    if bad is None or bad == 0:
+    return None if hi is None else (hi, "the motor's torque T_m no longer exceeds the load torque at any speed")
+
+
+def _boundary(bad, start, stop, samples):
+    """The first parameter value from start towards stop where bad(value) holds, to 1e-12 of the
+    range: samples + 1 values, then bisection; None where it holds at none of them or at start."""
+    values = np.linspace(start, stop, samples + 1)
+    k = next((k for k, p in enumerate(values) if bad(p)), None)
+    if k is None or k == 0:
         return None
-    lo, hi = float(values[bad - 1]), float(values[bad])
+    lo, hi = float(values[k - 1]), float(values[k])
     while abs(hi - lo) > 1e-12 * abs(stop - start):
         mid = 0.5 * (lo + hi)
-        lo, hi = (lo, mid) if stalls(mid) else (mid, hi)
-    return hi, "the motor's torque T_m no longer exceeds the load torque at any speed"
+        lo, hi = (lo, mid) if bad(mid) else (mid, hi)
+    return hi
 
 
 def _check_progress(progress):
