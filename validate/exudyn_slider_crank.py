@@ -130,15 +130,13 @@ def build(eps, omega, a=0.1, ms=0.5, mu=0.5, n_elements=16, reduced_integration=
     return SC, mbs, nodes
 
 
-def run(eps, omega, a=0.1, ms=0.5, mu=0.5, n_elements=16, steps_per_rev=400, revolutions=30,
-        spectral_radius=0.9, reduced_integration=0, newton_rtol=1e-8):
-    """Integrate `revolutions` crank revolutions; returns an ExudynRun (steady = last revolution)."""
-    start = time.perf_counter()
-    SC, mbs, nodes = build(eps, omega, a, ms, mu, n_elements, reduced_integration)
-    T = 2.0 * math.pi / omega
-    n_steps = steps_per_rev * revolutions
-    dt = T / steps_per_rev
-
+def settings(omega, steps_per_rev, n_steps, spectral_radius=0.9, newton_rtol=1e-8,
+             linear_solver="dense"):
+    """Exudyn's simulation settings of these runs: generalized-alpha (index 3) with a fixed step
+    dt* = 2 pi / (steps_per_rev Omega*), full Newton (Jacobian computed and factorized at every
+    iteration), no solution file, no printed statistics.  linear_solver: "dense" (Exudyn's
+    default, EXUdense) or "sparse" (EigenSparse)."""
+    dt = 2.0 * math.pi / omega / steps_per_rev
     ss = exu.SimulationSettings()
     ti = ss.timeIntegration
     ti.endTime = n_steps * dt
@@ -152,10 +150,58 @@ def run(eps, omega, a=0.1, ms=0.5, mu=0.5, n_elements=16, steps_per_rev=400, rev
     ti.newton.relativeTolerance = newton_rtol
     ti.newton.absoluteTolerance = 1e-11
     ti.newton.maxIterations = 30
+    ss.linearSolver.solverType = {"dense": exu.LinearSolverType.EXUdense,
+                                  "sparse": exu.LinearSolverType.EigenSparse}[linear_solver]
     ss.solution.file.write = False
     ss.solution.sensors.writePeriod = dt
     ss.show.statistics = False
     ss.show.computationTime = False
+    return ss, dt
+
+
+def midspan_vstar(position_mid, a, eps, omega, t):
+    """v* at the midpoint from its position (x, y) at time t (see the module's Output)."""
+    ax, ay = _crank_pin(a, omega, t)
+    sphi = a * np.sin(omega * t)
+    return ((position_mid[0] - ax) * sphi + (position_mid[1] - ay) * np.sqrt(1.0 - sphi**2)) / eps
+
+
+def timed_solve(eps, omega, a=0.1, ms=0.5, mu=0.5, n_elements=16, steps_per_rev=400, revolutions=20,
+                spectral_radius=0.9, linear_solver="dense", profile=False):
+    """Wall seconds of Exudyn's dynamic solve alone (the model is built before the clock starts),
+    with no sensors and no solution file (nothing is written while it runs).  Returns a dict:
+    seconds, steps, newton_iterations and jacobians (counts over the run, from Exudyn's solver),
+    vstar_end (v* at the midpoint at the last step) and, with profile=True, Exudyn's own timer
+    (seconds per part of the solve; the timer adds a little to `seconds`)."""
+    SC, mbs, nodes = build(eps, omega, a, ms, mu, n_elements)
+    n_steps = steps_per_rev * revolutions
+    ss, dt = settings(omega, steps_per_rev, n_steps, spectral_radius, linear_solver=linear_solver)
+    ss.displayComputationTime = bool(profile)
+    start = time.perf_counter()
+    exu.SolveDynamic(mbs, ss, solverType=exu.DynamicSolverType.GeneralizedAlpha)
+    seconds = time.perf_counter() - start
+    solver = mbs.sys["dynamicSolver"]
+    it = solver.it
+    if it.currentStepIndex - 1 != n_steps or abs(it.currentTime - n_steps * dt) > 1e-9 * n_steps * dt:
+        raise RuntimeError(f"Exudyn stopped early at t* = {it.currentTime:.6g} (expected {n_steps * dt:.6g})")
+    mid = mbs.GetNodeOutput(nodes[n_elements // 2], exu.OutputVariableType.Position)
+    out = dict(seconds=seconds, steps=n_steps, newton_iterations=int(it.newtonStepsCount),
+               jacobians=int(it.newtonJacobiCount),
+               vstar_end=float(midspan_vstar(mid, a, eps, omega, n_steps * dt)))
+    if profile:
+        timer = solver.timer
+        out["timer"] = {k: float(getattr(timer, k)) for k in dir(timer)
+                        if not k.startswith("_") and isinstance(getattr(timer, k), float)}
+    return out
+
+
+def run(eps, omega, a=0.1, ms=0.5, mu=0.5, n_elements=16, steps_per_rev=400, revolutions=30,
+        spectral_radius=0.9, reduced_integration=0, newton_rtol=1e-8):
+    """Integrate `revolutions` crank revolutions; returns an ExudynRun (steady = last revolution)."""
+    start = time.perf_counter()
+    SC, mbs, nodes = build(eps, omega, a, ms, mu, n_elements, reduced_integration)
+    n_steps = steps_per_rev * revolutions
+    ss, dt = settings(omega, steps_per_rev, n_steps, spectral_radius, newton_rtol)
 
     # node positions (reference + displacement), stored by the solver at every step
     P = exu.OutputVariableType.Position
