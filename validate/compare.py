@@ -12,7 +12,11 @@ Diagnostics that explain the differences:
 - crankgen without rotary inertia (rho I = 0; ANCF cable elements have none) for eps = 0.1;
 - smaller cranks (a* = 0.01, 0.03) at Omega* = 0.8: the differences vanish with the amplitude.
 
-Writes validate/results.md and validate/results.csv.  `python validate/compare.py --help`.
+Then the time per step of both codes on one case, measured in the same run (validate/peer_timing.py):
+`--timing` runs that part alone (about a minute) and updates its section of results.md.
+
+Writes validate/results.md, validate/results.csv and validate/timing.json.
+`python validate/compare.py --help`.
 """
 
 import argparse
@@ -31,6 +35,7 @@ sys.path.insert(0, HERE)
 
 import crankgen                                # noqa: E402
 import exudyn_slider_crank as exs              # noqa: E402
+import peer_timing                             # noqa: E402
 
 EPS = (0.01, 0.1)
 SPEEDS = (0.2, 0.4, 0.6, 0.8, 1.0, 1.2)
@@ -140,10 +145,24 @@ def exu_cell(r):
 # ---------------------------------------------------------------------------------------------
 
 def main():
-    p = argparse.ArgumentParser(description="Exudyn vs crankgen steady midspan amplitude")
-    p.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="worker processes")
-    p.add_argument("--out", default=HERE, help="directory for results.md / results.csv")
+    p = argparse.ArgumentParser(
+        description="Exudyn vs crankgen: steady midspan amplitude (about 4 minutes on 2 cores), then "
+                    "the time per step of both codes on one case, in the same run")
+    p.add_argument("--jobs", type=int, default=os.cpu_count() or 1,
+                   help="worker processes for the amplitude runs (default: all cores)")
+    p.add_argument("--out", default=HERE, help="directory for results.md, results.csv and timing.json")
+    which = p.add_mutually_exclusive_group()
+    which.add_argument("--timing", action="store_true",
+                       help="only the time per step (about a minute): writes timing.json and replaces "
+                            "the timing section of an existing results.md")
+    which.add_argument("--no-timing", action="store_true", help="only the amplitudes")
     args = p.parse_args()
+    if args.jobs < 1:
+        p.error(f"--jobs must be at least 1, got {args.jobs}")
+    os.makedirs(args.out, exist_ok=True)
+    if args.timing:
+        write_timing(args.out)
+        return
     t_start = time.perf_counter()
     import exudyn
 
@@ -209,6 +228,64 @@ def main():
     with open(os.path.join(args.out, "results.md"), "w") as fh:
         fh.write(md)
     print(md)
+    if not args.no_timing:          # after the pool has closed: nothing else runs meanwhile
+        write_timing(args.out)
+
+
+TIMING_BEGIN, TIMING_END = "<!-- timing: written by compare.py --timing -->", "<!-- end of timing -->"
+
+
+def write_timing(out):
+    """Measure the time per step (peer_timing.measure), write timing.json and the timing section of
+    results.md (replaced where it is, appended otherwise; results.md is created if missing)."""
+    import json
+    result = peer_timing.measure()
+    with open(os.path.join(out, "timing.json"), "w") as fh:
+        fh.write(json.dumps(result, indent=2) + "\n")
+    section = timing_section(result)
+    path = os.path.join(out, "results.md")
+    md = open(path).read() if os.path.exists(path) else ""
+    if TIMING_BEGIN in md and TIMING_END in md:
+        head, rest = md.split(TIMING_BEGIN, 1)
+        md = head + section + rest.split(TIMING_END, 1)[1]
+    else:
+        md = md + ("\n" if md and not md.endswith("\n\n") else "") + section + "\n"
+    with open(path, "w") as fh:
+        fh.write(md)
+    print(section)
+
+
+def timing_section(result):
+    """The markdown section of results.md with the time per step of both codes."""
+    c, rows = result["case"], result["rows"]
+    ex = rows[0]
+    load = result["machine"].get("load_average")
+    L = [TIMING_BEGIN, "## Time per step, both codes on the same march\n",
+         f"Measured {result['date']} by `validate/compare.py --timing` (Exudyn {result['exudyn']}, "
+         f"crankgen {result['crankgen']}) on {result['machine']['cpus']} cores"
+         + (f", load average {load[0]:.1f} at the end" if load else "") + ". "
+         f"Case: eps = {c['eps']:g}, Omega* = {c['omega']:g}, a* = {c['a']:g}, ms* = {c['ms']:g}, "
+         f"mu* = {c['mu']:g}, {c['n_elements']} elements in both codes, {c['steps_per_rev']} steps "
+         f"per revolution, {c['revolutions']} revolutions from the rigid mechanism's state "
+         f"({c['steps_per_rev'] * c['revolutions']} steps), each code loaded by a short run first; "
+         f"best of {c['repeats']} interleaved repeats. Exudyn: `SolveDynamic` alone (model built "
+         "before the clock starts), no sensors and no solution file, the solver settings above "
+         "(generalized-alpha, full Newton: the Jacobian computed and factorized at every "
+         "iteration, Exudyn's default dense LU, relative tolerance 1e-8). crankgen: its defaults "
+         "for each model, through `simulate(..., history=False)` and through its engine alone "
+         "(`engine.march`, one thread). *v\\* at the end*: the midspan deflection at the last "
+         "step, to show that the codes march the same problem (the exact rod and the ANCF cable "
+         "agree; the consistent model differs as in the table above).\n",
+         peer_timing.table(result), ""]
+    share = ex.get("profile_share")
+    if share:
+        L.append("Exudyn's own timer on one more run: " + ", ".join(
+            f"{k} {100 * v:.0f} %" for k, v in share.items()) + f"; {ex['jacobians_per_step']:.2f} "
+            "Jacobians per step.\n")
+    L.append("Wall times on a shared machine: the ratios, measured in the same run, are the result; "
+             "the absolute times depend on the machine and its load.")
+    L.append(TIMING_END)
+    return "\n".join(L)
 
 
 def findings(rows, res, cg, cg_small):
