@@ -344,6 +344,19 @@ def start_times(repeats=3):
     return out
 
 
+def peer_step_times():
+    """Time per step of Exudyn's ANCF cable model and of crankgen on the same march, in one run
+    (validate/peer_timing.py, the figures of `python validate/compare.py --timing`), when exudyn is
+    installed (`make validate` installs it)."""
+    try:
+        import exudyn  # noqa: F401
+    except ImportError:
+        return {"status": "exudyn not installed"}
+    sys.path.insert(0, str(ROOT / "validate"))
+    import peer_timing
+    return dict(peer_timing.measure(progress=lambda _: None), status="measured")
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--out", type=Path, default=ROOT / "bench" / "results.json")
@@ -369,6 +382,8 @@ def main(argv=None):
     results["continuation"] = continuation_time()
     print("timing simulate at many requested times ...", flush=True)
     results["times"] = times_linear()
+    print("timing Exudyn against crankgen on the same march (if exudyn is installed) ...", flush=True)
+    results["peer"] = peer_step_times()
     if not args.skip_reproduce:
         print("timing crankgen reproduce ...", flush=True)
         results["reproduce"] = reproduce_times()
@@ -479,6 +494,14 @@ def main(argv=None):
               f"crankgen --version {st['version_s']:.2f} s; reproduce --quick compiles for "
               f"{st['reproduce_compile_s']:.1f} s (cold {st['reproduce_quick_cold_s']:.1f} s, warm "
               f"{st['reproduce_quick_warm_s']:.1f} s)")
+    peer = results["peer"]
+    if peer["status"] != "measured":
+        print(f"peer (Exudyn): {peer['status']}")
+    else:
+        print("peer, same march (eps 0.01, Omega* 0.8, 16 elements): Exudyn ANCF cable "
+              f"{peer['rows'][0]['us_per_step']:.0f} us/step; crankgen " + ", ".join(
+                  f"{r['model']} {r['path'].split('(')[0]} {r['us_per_step']:.1f} us "
+                  f"(Exudyn / this {r['exudyn_over_this']:.1f})" for r in peer["rows"][1:]))
     print("targets:", ", ".join(f"{k}={'met' if v else 'MISSED'}" for k, v in targets.items()))
     print(f"wrote {args.out}")
 
