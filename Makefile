@@ -22,7 +22,7 @@ bench:             ## benchmark: writes bench/results.json and prints a table
 audit:             ## symbolic audit report: audit/report.md
 	$(PYTHON) -m crankgen.cli audit --out audit
 
-validate:          ## optional: compare with Exudyn's ANCF cable model (installs exudyn)
+validate:          ## optional: compare with Exudyn's ANCF cable model, amplitudes and time per step (installs exudyn)
 	$(PYTHON) -m pip install exudyn && $(PYTHON) validate/compare.py
 
 docs:              ## the documentation site: docs/_build/html (warnings are errors; runs the gallery)
