@@ -15,6 +15,7 @@ import math
 import numpy as np
 
 from ..errors import CrankgenError
+from .threads import map_in_threads
 from .config import MODELS
 
 BRANCH_COLUMNS = ["model", "formulation", "damping", "membrane", "eps", "n_elements",
@@ -39,8 +40,8 @@ def settings_of(cfg, counts):
 def bifurcations(ctx, counts):
     """dict(range, runs): one record per model and eps (see _run)."""
     cfg = ctx.config
-    runs = [_run(ctx, next(m for m in MODELS if m.key == key), eps, n, spr)
-            for key, eps, n, spr in settings_of(cfg, counts)]
+    runs = map_in_threads(lambda s: _run(ctx, next(m for m in MODELS if m.key == s[0]), *s[1:]),
+                          settings_of(cfg, counts), stop=ctx.stop)
     return dict(range=tuple(float(x) for x in cfg.bif_range), max_period=cfg.bif_max_period,
                 runs=runs)
 

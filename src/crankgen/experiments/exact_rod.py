@@ -21,6 +21,7 @@ import numpy as np
 from ..errors import CrankgenError
 from .bifurcations import branch_record
 from .config import CONSISTENT, EXACT
+from .threads import map_in_threads
 
 MODELS = (CONSISTENT, EXACT)
 MOVED = 0.005            # |Delta Omega*| below this: the point survives where it was
@@ -49,7 +50,8 @@ def settings_of(cfg):
 def exact_rod(ctx):
     """dict(settings, runs, snaps, comparisons)."""
     cfg = ctx.config
-    runs = [_run(ctx, name, m) for name in cfg.exact_mechanisms for m in MODELS]
+    runs = map_in_threads(lambda pair: _run(ctx, *pair), [(name, m) for name in cfg.exact_mechanisms for m in MODELS],
+                          stop=ctx.stop)
     snaps = [_snap(ctx, m) for m in MODELS] if cfg.exact_snap_revolutions > 0 else []
     comparisons = {name: compare(*[r for r in runs if r["mechanism"] == name], cfg.exact_match)
                    for name in cfg.exact_mechanisms}

@@ -6,6 +6,7 @@ import inspect
 import math
 import os
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -22,6 +23,7 @@ from . import exact_rod as XR
 from . import figures as F
 from . import plots, report
 from .config import FIGURES, ReproduceConfig
+from .threads import stopping
 from ..results.provenance import code_version
 from .io import (OutputExistsError, atomic_write_text, read_json, remove_temporaries, save_figure,
                  write_csv, write_json)
@@ -114,6 +116,7 @@ class Context:
         self.steady_calls = 0
         self.steady_cases = 0
         self.engine = None          # (seconds, compiled) of the engine's start-up in this run
+        self.stop = threading.Event()   # set when a step run in pieces is interrupted (threads.py)
 
     def start_engine(self):
         """Load the compiled engine (compile it, on a machine's first run) before the first step
@@ -136,6 +139,7 @@ class Context:
         self.engine = (time.perf_counter() - t0, compiled)
 
     def log(self, message):
+        stopping(self.stop)         # a piece of an interrupted step ends here (threads.py)
         if not self.quiet:
             print(f"reproduce: {message}", file=self.stream, flush=True)
 
