@@ -64,7 +64,6 @@ def _run(ctx, m, eps, n, spr):
     (period, origin, stop_reason, omega, amplitude, stable, max_abs_multiplier arrays), special
     points (kind, omega, amplitude, period, branch, multiplier) and beyond (None when there is
     nothing beyond: no special point and the crank-period branch reached the end of the range)."""
-    from ..analyses.bifurcation import continuation
     from ..declaration.parameters import Mechanism
 
     cfg = ctx.config
@@ -77,7 +76,7 @@ def _run(ctx, m, eps, n, spr):
     ctx.log(f"{label}: continuation of approach A from Omega* = {lo:g} to {hi:g} "
             f"(n = {n}, {spr} steps/rev, periods up to {cfg.bif_max_period})")
     try:
-        d = continuation(mech, "omega", lo, hi, n_elements=n, steps_per_rev=spr,
+        d = ctx.continuation(mech, "omega", lo, hi, n_elements=n, steps_per_rev=spr,
                          max_period=cfg.bif_max_period, dp_max=cfg.bif_dp_max, tol=cfg.bif_tol, quantities=False,
                          progress=lambda text: ctx.log(f"{label}: {text}"), **_model_options(m))
     except _FAILURES as exc:
