@@ -62,16 +62,14 @@ class CaseRules:
 
     def _derived(self, name, build):
         """A view of the case computed once: a case never changes after it is built (frozen), and
-        a continuation or a sweep asks for the same views of one case many times.  Arrays are
-        returned read-only (a caller that would change one gets an error, not another case's
-        numbers)."""
+        a continuation or a sweep asks for the same views of one case many times.  An array is
+        handed out as a copy (a caller may change its own; compiled code gets the writable
+        contiguous array it was compiled for)."""
         memo = self.__dict__.setdefault(_MEMO, {})
         if name not in memo:
-            value = build()
-            if isinstance(value, np.ndarray):
-                value.flags.writeable = False
-            memo[name] = value
-        return memo[name]
+            memo[name] = build()
+        value = memo[name]
+        return value.copy() if isinstance(value, np.ndarray) else value
 
     def __getstate__(self):
         """The fields alone (a pickled case carries no computed views)."""
