@@ -10,6 +10,7 @@ from crankgen.errors import CrankgenError
 from crankgen.experiments import ReproduceConfig
 from crankgen.experiments import bifurcations as BF
 from crankgen.experiments import report_bifurcations as RB
+from crankgen.experiments.runner import Context
 
 
 def _branch(period, omega, stable, amp=None, origin="start", reason="reached omega = 1.6"):
@@ -88,12 +89,15 @@ def test_tables_keep_every_run():
     assert len(t["bifurcation_branches.csv"][1]) == 2 and t["bifurcation_beyond.csv"][1] == []
 
 
-class _Ctx:
+class _Ctx(Context):
+    """The runner's context, its log lines kept."""
+
     def __init__(self, cfg):
-        self.config = cfg
+        super().__init__(cfg, quiet=True)
         self.lines = []
 
     def log(self, text):
+        super().log(text)
         self.lines.append(text)
 
 

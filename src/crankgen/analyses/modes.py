@@ -112,7 +112,7 @@ class FrozenModel:
         self.mesh = self.model.mesh
         self.N = self.mesh.n_dofs
         self.axial = _axial_dofs(self.mesh)
-        self.scales = self.mesh.dof_scales(schema.natural_sizes(case.parameters()), _kinematics.end_scale(case))
+        self.scales = self.mesh.dof_scales(case.natural_sizes, _kinematics.end_scale(case))
 
     def _assemble(self, kin, d):
         """(r (T, N), K (T, N, N), M (T, N, N)) at the states d (T, N), at rest in the moving frame."""

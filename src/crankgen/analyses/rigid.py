@@ -62,7 +62,7 @@ def kineto_static(case, t):
     model = Model(case)
     kin = model.kinematics(t)
     N = model.mesh.n_dofs
-    scales = model.mesh.dof_scales(schema.natural_sizes(case.parameters()), _kinematics.end_scale(case))
+    scales = model.mesh.dof_scales(case.natural_sizes, _kinematics.end_scale(case))
     d = np.zeros((t.size, N))
     zero = np.zeros_like(d)
     for _ in range(NEWTON_ITERATIONS):

@@ -14,16 +14,19 @@ range, raises ParameterError naming it when the case is built.
 
 from dataclasses import asdict, dataclass, fields
 
+import numpy as np
+
 from . import ingredients, schema
 from .._generated import classes as _classes
 from ..errors import ParameterError
-from .parameters import Mechanism, check_full_turn, kinematic_parameters, settle
+from .parameters import Mechanism, check_full_turn, settle
 from .plausibility import check_speeds
 from . import values as _values
 
 PARAMETER_FIELDS = tuple(schema.PARAMETERS)
 OPTION_FIELDS = tuple(schema.OPTIONS)
 _NOT_KEYED = ("model",)
+_MEMO = "_views"          # the instance's dictionary entry holding its computed views (CaseRules._derived)
 
 
 def _plain(value):
@@ -54,6 +57,25 @@ class CaseRules:
             raise ParameterError(f"groups_off must be a string, got {self.groups_off!r}")
         off = ingredients.check_switched_off(self.groups_off, self.selection)
         object.__setattr__(self, "groups_off", ",".join(sorted(off)))
+        for view in ("selection", "coefficients"):    # read groups_off before it was normalised
+            self.__dict__.get(_MEMO, {}).pop(view, None)
+
+    def _derived(self, name, build):
+        """A view of the case computed once: a case never changes after it is built (frozen), and
+        a continuation or a sweep asks for the same views of one case many times.  Arrays are
+        returned read-only (a caller that would change one gets an error, not another case's
+        numbers)."""
+        memo = self.__dict__.setdefault(_MEMO, {})
+        if name not in memo:
+            value = build()
+            if isinstance(value, np.ndarray):
+                value.flags.writeable = False
+            memo[name] = value
+        return memo[name]
+
+    def __getstate__(self):
+        """The fields alone (a pickled case carries no computed views)."""
+        return {k: v for k, v in self.__dict__.items() if k != _MEMO}
 
     @classmethod
     def from_mechanism(cls, mech, **settings):
@@ -73,22 +95,28 @@ class CaseRules:
     @property
     def parameter_vector(self):
         """The parameter vector (schema.PARAMETER_VECTOR order): every parameter entering an equation."""
-        return schema.parameter_vector(self.parameters())
+        return self._derived("parameter_vector", lambda: schema.parameter_vector(self.parameters()))
 
     @property
     def kinematic_parameters(self):
         """The kinematic parameter vector (schema.KINEMATIC_PARAMETERS order)."""
-        return kinematic_parameters(self.parameters())
+        return self._derived("kinematic_parameters", lambda: self.parameter_vector[list(schema.KINEMATIC_SLOTS)])
+
+    @property
+    def natural_sizes(self):
+        """The natural size of each component of a node (schema.NODE order, units of L):
+        schema.natural_sizes of the case's parameters."""
+        return self._derived("natural_sizes", lambda: np.asarray(schema.natural_sizes_of(self.parameter_vector), dtype=float))
 
     @property
     def guide_record(self):
         """The schema's record of the case's guide (crankgen.declaration.records.Guide)."""
-        return schema.GUIDES[schema.selected(self.parameters(), "guide")]
+        return self._derived("guide", lambda: schema.GUIDES[schema.selected(self.parameters(), "guide")])
 
     @property
     def motion_record(self):
         """The schema's record of the case's crank motion (crankgen.declaration.records.Motion)."""
-        return schema.MOTIONS[schema.selected(self.parameters(), "motion")]
+        return self._derived("motion", lambda: schema.MOTIONS[schema.selected(self.parameters(), "motion")])
 
     @property
     def options(self):
@@ -104,13 +132,13 @@ class CaseRules:
     def selection(self):
         """The term-family variants the options select (ingredients.Selection); families whose
         coefficients vanish for this case (gravity without gravity) are left out."""
-        return ingredients.select(self.options, self.coefficients)
+        return self._derived("selection", lambda: ingredients.select(self.options, self.coefficients))
 
     @property
     def coefficients(self):
         """Coefficient vector of the element kernels (ingredients.COEFFICIENTS order)."""
         off = tuple(g for g in self.groups_off.split(",") if g)
-        return ingredients.coefficients(self.parameter_vector, self.options, off)
+        return self._derived("coefficients", lambda: ingredients.coefficients(self.parameter_vector, self.options, off))
 
     def as_dict(self):
         """The fields as plain JSON-able values (pairs as lists, a torque curve as a list of them)."""

@@ -7,6 +7,7 @@ NumPy reference, and the field kernels of the declared outputs.  No module of th
 family, a kernel or an option value beyond what this table holds.
 """
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -72,12 +73,31 @@ class Selection:
 def select(options, coefficients=None):
     """Selection of checked options (see check_options).  With the case's coefficient vector, a
     family whose scaling coefficients all vanish (gravity without gravity) is left out: it would
-    add zeros at the cost of a kernel call per element and iteration."""
+    add zeros at the cost of a kernel call per element and iteration.  One Selection per options
+    and vanishing families (a continuation builds a case per parameter value)."""
+    vanished = None
+    if coefficients is not None:
+        vanished = tuple(f.name for f in schema.FAMILIES if f.vanishes_with and all(
+            coefficients[COEFFICIENTS.index(c)] == 0.0 for c in f.vanishes_with))
+    try:
+        key = tuple(sorted(options.items()))
+        hash(key)
+    except TypeError:                   # an unhashable option value: no sharing
+        return _select(dict(options), vanished)
+    return _select_shared(key, vanished)
+
+
+@functools.lru_cache(maxsize=256)
+def _select_shared(key, vanished):
+    return _select(dict(key), vanished)
+
+
+def _select(options, vanished):
+    """The Selection of options, leaving out the families named in `vanished` (None: none)."""
     families, kernels, energies, groups = [], [], [], set()
     for family in schema.FAMILIES:
         hits = [(k, v) for k, v in enumerate(family.variants) if _matches(v.when, options)]
-        if hits and coefficients is not None and family.vanishes_with and all(
-                coefficients[COEFFICIENTS.index(c)] == 0.0 for c in family.vanishes_with):
+        if hits and vanished is not None and family.name in vanished:
             hits = []
         if len(hits) > 1:
             raise ParameterError(f"options {options} select several variants of {family.name}")

@@ -94,21 +94,29 @@ def selected(values, kind):
     return values.get(p.name, p.default)
 
 
+_IN_VECTOR = tuple(p for p in PARAMETERS.values() if p.slots)     # the parameters entering an equation
+
+
 def parameter_vector(values):
     """The parameter vector (PARAMETER_VECTOR order) of a mapping of canonical parameter values;
     absent ones take their default."""
     import numpy as np
-    out = np.empty(len(PARAMETER_VECTOR))
-    for p in PARAMETERS.values():
-        if p.slots:
-            out[list(p.slots)] = p.entries(values.get(p.name, p.default))
-    return out
+    out = [0.0] * len(PARAMETER_VECTOR)
+    for p in _IN_VECTOR:
+        for slot, x in zip(p.slots, p.entries(values.get(p.name, p.default)), strict=True):
+            out[slot] = x
+    return np.array(out)
 
 
 def natural_sizes(values):
     """The natural size of each component of a node (NODE order, units of L) for a mapping of
     parameter values (absent ones at their default): the declared formulas (u: eps^2, v, psi: eps)."""
-    return _table.natural_sizes(parameter_vector(values))
+    return natural_sizes_of(parameter_vector(values))
+
+
+def natural_sizes_of(vector):
+    """natural_sizes of a parameter vector (PARAMETER_VECTOR order)."""
+    return _table.natural_sizes(vector)
 
 
 def describe(values, skip=()):

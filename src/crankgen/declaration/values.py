@@ -73,9 +73,29 @@ def range_text(p):
     return "two finite numbers"
 
 
+_CANONICAL = {}            # (parameter, type, value) -> canonical value, of values seen before
+_CANONICAL_SIZE = 4096
+
+
 def canonical(p, value):
     """value checked and in canonical form (a Python float, int, str or a tuple of floats; -0.0
-    is 0.0), or ParameterError naming the parameter and its allowed values."""
+    is 0.0), or ParameterError naming the parameter and its allowed values.  A value seen before
+    (of the same type: 1, 1.0 and True differ) is looked up: a case is rebuilt for every point of
+    a continuation, with all but one of its values unchanged."""
+    try:
+        key = (p.name, type(value), value)
+        known = _CANONICAL.get(key)
+    except TypeError:                   # unhashable (a list, an array): checked every time
+        return _canonical(p, value)
+    if known is None:
+        known = _canonical(p, value)
+        if len(_CANONICAL) >= _CANONICAL_SIZE:
+            _CANONICAL.clear()
+        _CANONICAL[key] = known
+    return known
+
+
+def _canonical(p, value):
     label = p.label
     if p.kind == "real":
         x = real(label, value)

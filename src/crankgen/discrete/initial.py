@@ -208,7 +208,7 @@ def reduced_state(case, initial, scales=None):
         values[name] = _slope(name, initial, x_user, n, length) / factor(name)
 
     tol = float(initial.tol)
-    sizes = dict(zip(schema.NODE, schema.natural_sizes(case.parameters())))    # u: eps^2, v: eps
+    sizes = dict(zip(schema.NODE, case.natural_sizes))    # u: eps^2, v: eps
     natural = {"u": sizes["u"], "u_t": sizes["u"], "v": sizes["v"], "v_t": sizes["v"]}
     for name in ("u", "v", "u_t", "v_t"):
         at_pin = values[name][0]

@@ -7,6 +7,8 @@ circle: the four-bar's closure (derive/guides.py).
 
 from dataclasses import dataclass
 
+import functools
+
 import numpy as np
 
 from ..declaration import schema
@@ -164,15 +166,21 @@ def end_scale(case):
     return float(call(f"end_scale_{case.guide_record.name}", case))
 
 
+@functools.lru_cache(maxsize=None)
+def _arguments(name):
+    """The argument names of the kinematics kernel `name`."""
+    import inspect
+    return tuple(inspect.signature(getattr(_kinematics, name)).parameters)
+
+
 def call(name, case, **inputs):
     """The kinematics kernel `name` of a case: its arguments by name, the kinematic parameter vector
     for `params`, a parameter's value for an argument named after it (the end scale's eps), the
     given `inputs` for the others."""
-    import inspect
     kernel = getattr(_kinematics, name)
     vector = case.parameter_vector
     args = []
-    for arg in inspect.signature(kernel).parameters:
+    for arg in _arguments(name):
         if arg == "params":
             args.append(case.kinematic_parameters)
         elif arg in inputs:

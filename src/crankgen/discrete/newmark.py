@@ -209,7 +209,7 @@ def integrate(model, d0, v0, t0, dt, n_steps, settings=NewmarkSettings(), progre
     generalized = settings.generalized
     am, af = settings.alpha_m, settings.alpha_f
     ratio = (1.0 - af) / (1.0 - am)
-    scales = model.mesh.dof_scales(schema.natural_sizes(model.case.parameters()), _kinematics.end_scale(model.case))
+    scales = model.mesh.dof_scales(model.case.natural_sizes, _kinematics.end_scale(model.case))
     scheme = SCHEMES.index(settings.scheme)
     secant = scheme == newton.ONE_PASS and model.selection.printed_iteration
     one_pass = scheme == newton.ONE_PASS

@@ -76,7 +76,7 @@ class Batch:
             np.array([c.parameter_vector for c in cases], dtype=float),
             np.array([newton.SCHEMES.index(c.integrator) for c in cases], dtype=np.int64),
             printed.astype(np.bool_),
-            np.array([self.mesh.dof_scales(schema.natural_sizes(c.parameters()), _kinematics.end_scale(c))
+            np.array([self.mesh.dof_scales(c.natural_sizes, _kinematics.end_scale(c))
                       for c in cases]),
             np.array([time_scheme.coefficients(c.rho_inf).as_array() for c in cases], dtype=float),
             *torque_curve.batch_tables(cases))

@@ -19,6 +19,8 @@ motion; a family slot holds the flat index of its selected variant in the part's
 family is absent).
 """
 
+import functools
+
 import numpy as np
 from numba import types
 from numba.core import config
@@ -62,13 +64,18 @@ SELECT_SIZE = N_ROD + N_END + 2
 
 def select_row(case):
     """The case's `select` row (module docstring)."""
-    by_family = dict(zip((f.name for f in schema.FAMILIES), case.selection.families))
+    return list(_select_row(case.selection.families, case.guide_record.name, case.motion_record.name))
+
+
+@functools.lru_cache(maxsize=256)
+def _select_row(families, guide, motion):
+    by_family = dict(zip((f.name for f in schema.FAMILIES), families))
     row = []
     for part in PARTS:
         for f in FAMILY_SLOTS[part]:
             k = by_family[f.name]
             row.append(-1 if k < 0 else VARIANTS[part].index((f.name, k, f.variants[k].kernel)))
-    return row + [GUIDE_NAMES.index(case.guide_record.name), MOTION_NAMES.index(case.motion_record.name)]
+    return tuple(row + [GUIDE_NAMES.index(guide), MOTION_NAMES.index(motion)])
 
 
 # ---- no-ops: the entries of kernels no case needs ---------------------------------------------------

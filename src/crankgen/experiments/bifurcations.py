@@ -15,6 +15,7 @@ import math
 import numpy as np
 
 from ..errors import CrankgenError
+from .threads import map_in_threads
 from .config import MODELS
 
 BRANCH_COLUMNS = ["model", "formulation", "damping", "membrane", "eps", "n_elements",
@@ -39,8 +40,8 @@ def settings_of(cfg, counts):
 def bifurcations(ctx, counts):
     """dict(range, runs): one record per model and eps (see _run)."""
     cfg = ctx.config
-    runs = [_run(ctx, next(m for m in MODELS if m.key == key), eps, n, spr)
-            for key, eps, n, spr in settings_of(cfg, counts)]
+    runs = map_in_threads(lambda s: _run(ctx, next(m for m in MODELS if m.key == s[0]), *s[1:]),
+                          settings_of(cfg, counts), stop=ctx.stop)
     return dict(range=tuple(float(x) for x in cfg.bif_range), max_period=cfg.bif_max_period,
                 runs=runs)
 
@@ -63,7 +64,6 @@ def _run(ctx, m, eps, n, spr):
     (period, origin, stop_reason, omega, amplitude, stable, max_abs_multiplier arrays), special
     points (kind, omega, amplitude, period, branch, multiplier) and beyond (None when there is
     nothing beyond: no special point and the crank-period branch reached the end of the range)."""
-    from ..analyses.bifurcation import continuation
     from ..declaration.parameters import Mechanism
 
     cfg = ctx.config
@@ -76,7 +76,7 @@ def _run(ctx, m, eps, n, spr):
     ctx.log(f"{label}: continuation of approach A from Omega* = {lo:g} to {hi:g} "
             f"(n = {n}, {spr} steps/rev, periods up to {cfg.bif_max_period})")
     try:
-        d = continuation(mech, "omega", lo, hi, n_elements=n, steps_per_rev=spr,
+        d = ctx.continuation(mech, "omega", lo, hi, n_elements=n, steps_per_rev=spr,
                          max_period=cfg.bif_max_period, dp_max=cfg.bif_dp_max, tol=cfg.bif_tol, quantities=False,
                          progress=lambda text: ctx.log(f"{label}: {text}"), **_model_options(m))
     except _FAILURES as exc:

@@ -123,13 +123,15 @@ class ReproduceConfig:
     # the continuation of the exact rod and of the consistent model (exact_rod.py): the
     # slider-crank and the four-bar (a rocker of radius exact_rocker pivoted at (1, 0)) at eps =
     # exact_eps over Omega* in exact_range, exact_elements elements, exact_steps steps per
-    # revolution, period doublings followed up to exact_max_period (exact_mechanisms: which)
+    # revolution, period doublings followed up to exact_max_period, steps of at most exact_dp_max in
+    # Omega* (exact_mechanisms: which)
     exact_mechanisms: tuple = ("slider-crank", "four-bar")
     exact_eps: float = 0.01
     exact_range: tuple = (0.2, 1.6)
     exact_elements: int = 16
     exact_steps: int = 100
     exact_max_period: int = 2
+    exact_dp_max: object = None          # no step longer than this in Omega* (None: the range / 50)
     exact_rocker: float = 0.5
     exact_tol: float = 1e-9
     # a consistent special point and an exact one of the same kind and period within exact_match
@@ -170,6 +172,7 @@ class ReproduceConfig:
             bif_elements=4, bif_steps_per_rev=50, bif_max_period=2, bif_tol=1e-7,
             bif_beyond_values=2, bif_transient=60, bif_samples=16,
             exact_row_elements=8, exact_elements=4, exact_steps=50, exact_tol=1e-7, exact_snap_revolutions=12,
+            exact_range=(0.1, 1.6), exact_dp_max=0.1,
             steady_options={"max_revolutions": 50, "tol": 1e-6})
 
     @classmethod

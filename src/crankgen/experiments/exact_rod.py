@@ -21,6 +21,7 @@ import numpy as np
 from ..errors import CrankgenError
 from .bifurcations import branch_record
 from .config import CONSISTENT, EXACT
+from .threads import map_in_threads
 
 MODELS = (CONSISTENT, EXACT)
 MOVED = 0.005            # |Delta Omega*| below this: the point survives where it was
@@ -42,14 +43,15 @@ def mechanism(cfg, name):
 def settings_of(cfg):
     return dict(mechanisms=list(cfg.exact_mechanisms), eps=cfg.exact_eps, range=list(cfg.exact_range),
                 n_elements=cfg.exact_elements, steps_per_rev=cfg.exact_steps, max_period=cfg.exact_max_period,
-                rocker=cfg.exact_rocker, tol=cfg.exact_tol, snap_omega=cfg.exact_snap_omega,
+                dp_max=cfg.exact_dp_max, rocker=cfg.exact_rocker, tol=cfg.exact_tol, snap_omega=cfg.exact_snap_omega,
                 snap_revolutions=cfg.exact_snap_revolutions, match=cfg.exact_match)
 
 
 def exact_rod(ctx):
     """dict(settings, runs, snaps, comparisons)."""
     cfg = ctx.config
-    runs = [_run(ctx, name, m) for name in cfg.exact_mechanisms for m in MODELS]
+    runs = map_in_threads(lambda pair: _run(ctx, *pair), [(name, m) for name in cfg.exact_mechanisms for m in MODELS],
+                          stop=ctx.stop)
     snaps = [_snap(ctx, m) for m in MODELS] if cfg.exact_snap_revolutions > 0 else []
     comparisons = {name: compare(*[r for r in runs if r["mechanism"] == name], cfg.exact_match)
                    for name in cfg.exact_mechanisms}
@@ -57,7 +59,6 @@ def exact_rod(ctx):
 
 
 def _run(ctx, name, m):
-    from ..analyses.bifurcation import continuation
     cfg = ctx.config
     lo, hi = cfg.exact_range
     label = f"exact rod, {name}, {m.key} model"
@@ -67,9 +68,10 @@ def _run(ctx, name, m):
             f"{cfg.exact_steps} steps/rev, periods up to {cfg.exact_max_period})")
     mech = mechanism(cfg, name)
     try:
-        d = continuation(mech, "omega", lo, hi, model=m.key, n_elements=cfg.exact_elements,
-                         steps_per_rev=cfg.exact_steps, max_period=cfg.exact_max_period, tol=cfg.exact_tol,
-                         quantities=False, progress=lambda text: ctx.log(f"{label}: {text}"))
+        d = ctx.continuation(mech, "omega", lo, hi, model=m.key, n_elements=cfg.exact_elements,
+                             steps_per_rev=cfg.exact_steps, max_period=cfg.exact_max_period, tol=cfg.exact_tol,
+                             dp_max=cfg.exact_dp_max, quantities=False,
+                             progress=lambda text: ctx.log(f"{label}: {text}"))
     except _FAILURES as exc:
         rec.update(status="failed", message=f"{type(exc).__name__}: {exc}")
         ctx.log(f"{label}: continuation FAILED: {exc}")

@@ -6,6 +6,7 @@ import inspect
 import math
 import os
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -22,6 +23,7 @@ from . import exact_rod as XR
 from . import figures as F
 from . import plots, report
 from .config import FIGURES, ReproduceConfig
+from .threads import stopping
 from ..results.provenance import code_version
 from .io import (OutputExistsError, atomic_write_text, read_json, remove_temporaries, save_figure,
                  write_csv, write_json)
@@ -83,7 +85,7 @@ _FIGURE_KEYS = {2: ("fig2_omega", "fig2_elements", "fig2_revolutions"),
 _BIFURCATION_KEYS = ("fig6_eps", "bif_range", "bif_elements", "bif_steps_per_rev", "bif_max_period",
                      "bif_dp_max", "bif_tol", "bif_beyond_values", "bif_transient", "bif_samples")
 _EXACT_KEYS = ("exact_mechanisms", "exact_eps", "exact_range", "exact_elements", "exact_steps",
-               "exact_max_period", "exact_rocker", "exact_tol", "exact_match", "exact_snap_omega",
+               "exact_max_period", "exact_dp_max", "exact_rocker", "exact_tol", "exact_match", "exact_snap_omega",
                "exact_snap_revolutions", "dpi")
 
 
@@ -114,6 +116,8 @@ class Context:
         self.steady_calls = 0
         self.steady_cases = 0
         self.engine = None          # (seconds, compiled) of the engine's start-up in this run
+        self.stop = threading.Event()   # set when a step run in pieces is interrupted (threads.py)
+        self._continuations = {}        # Context.continuation's diagrams of this run
 
     def start_engine(self):
         """Load the compiled engine (compile it, on a machine's first run) before the first step
@@ -135,7 +139,34 @@ class Context:
         fmap.evaluate(np.zeros(fmap.dim), 0.8)
         self.engine = (time.perf_counter() - t0, compiled)
 
+    def continuation(self, mech, parameter, start, stop, progress=None, **settings):
+        """crankgen.continuation(mech, parameter, start, stop, progress=progress, **settings), computed
+        once per run: a step that asks for the very continuation an earlier step computed (the same
+        case, range and settings: the quick preset's consistent slider-crank in the bifurcations and
+        exact-rod steps) gets that one's diagram."""
+        from ..analyses.bifurcation import continuation
+
+        model = {k: settings[k] for k in ("model", "approach", "n_elements", "steps_per_rev") if k in settings}
+        try:
+            case = Case.from_mechanism(mech, **model, **{parameter: start})
+            dp_max = settings.get("dp_max")
+            key = (case, parameter, float(start), float(stop),
+                   abs(stop - start) / 50 if dp_max is None else float(dp_max),
+                   tuple(sorted((k, v) for k, v in settings.items() if k not in model and k != "dp_max")))
+            hash(key)
+        except (TypeError, CrankgenError):
+            key = None
+        if key is not None and key in self._continuations:
+            if progress is not None:
+                progress("the same continuation as an earlier step's: its diagram is reused")
+            return self._continuations[key]
+        d = continuation(mech, parameter, start, stop, progress=progress, **settings)
+        if key is not None:
+            self._continuations[key] = d
+        return d
+
     def log(self, message):
+        stopping(self.stop)         # a piece of an interrupted step ends here (threads.py)
         if not self.quiet:
             print(f"reproduce: {message}", file=self.stream, flush=True)
 

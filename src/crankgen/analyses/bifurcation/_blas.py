@@ -8,6 +8,7 @@ import contextlib
 import ctypes
 import glob
 import os
+import threading
 
 _LIB = None
 
@@ -37,16 +38,28 @@ def _lib():
     return _LIB
 
 
+_LOCK = threading.Lock()
+_HELD = [0, None]            # how many single_thread blocks are open (in any thread), the count before
+
+
 @contextlib.contextmanager
 def single_thread():
+    """One BLAS thread while any such block is open in any thread (continuations run side by side
+    on threads: crankgen.experiments.threads), the previous count restored when the last closes."""
     lib = _lib()
     if not lib:
         yield
         return
     getter, setter = lib
-    before = getter()
-    setter(1)
+    with _LOCK:
+        if _HELD[0] == 0:
+            _HELD[1] = getter()
+            setter(1)
+        _HELD[0] += 1
     try:
         yield
     finally:
-        setter(before)
+        with _LOCK:
+            _HELD[0] -= 1
+            if _HELD[0] == 0:
+                setter(_HELD[1])
