@@ -153,7 +153,12 @@ def _cse(kernel):
         flat.extend(e for _, e in _entries(out.expr))
     if not getattr(kernel, "cse", True):
         return (), tuple(flat), set().union(*(e.free_symbols for e in flat))
-    return _staged_cse(tuple(flat), tuple(getattr(kernel, "definitions", ())))
+    # the zeros take no part in the elimination: without them, an element kernel's shares the
+    # cached one of its accumulating function's "full" branch (_reduced)
+    assignments, reduced, used = _staged_cse(tuple(e for e in flat if e != 0),
+                                             tuple(getattr(kernel, "definitions", ())))
+    values = iter(reduced)
+    return assignments, tuple(e if e == 0 else next(values) for e in flat), used
 
 
 @lru_cache(maxsize=64)

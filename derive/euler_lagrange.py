@@ -6,6 +6,8 @@ each part of which is a separate residual vector here.  The time derivative is t
 through q, qd and the rigid-body kinematics (theta, thetad, phi, phid).
 """
 
+from functools import lru_cache
+
 import sympy as sp
 
 from . import symbols as s
@@ -38,5 +40,18 @@ def gradient(expr, variables):
 
 
 def jacobian(vector, variables):
-    """Matrix d vector_i / d variable_j, entries expanded."""
-    return vector.jacobian(list(variables)).applyfunc(sp.expand)
+    """Matrix d vector_i / d variable_j, entries expanded.  An entry that is expanded and polynomial
+    in the variables differentiates term by term into expanded terms (a power of a variable loses
+    one degree, the other factors untouched): it is expanded once, not each of its derivatives."""
+    variables = list(variables)
+    rows = []
+    for entry in vector:
+        termwise = entry.is_polynomial(*variables) and _is_expanded(entry)
+        rows.append([entry.diff(v) if termwise else sp.expand(entry.diff(v)) for v in variables])
+    return sp.Matrix(rows)
+
+
+@lru_cache(maxsize=None)
+def _is_expanded(expr):
+    """expr is its own expansion (asked once per residual entry, for its three tangents)."""
+    return sp.expand(expr) == expr

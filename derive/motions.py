@@ -223,15 +223,16 @@ def check(motion, samples=((0.3, 0.2, 1.1, 3.0, 0.4, 2, 0.0), (1.7, 1.2, 0.3, 2.
     AssertionError."""
     theta, thetad, thetadd = rates(motion)
     for t0, om0, om, ramp, k, j, start in samples:
-        values = {s.omega0: om0, s.omega: om, s.ramp: ramp, s.k_fl: k, s.j_fl: j, theta0: start,
-                  initial_speed: om0, no_load_speed: om}
-        f = [sp.lambdify(s.t, e.subs(values), "mpmath") for e in (theta, thetad, thetadd)]
+        values = {sym: sp.sympify(v) for sym, v in ((s.omega0, om0), (s.omega, om), (s.ramp, ramp), (s.k_fl, k),
+                                                      (s.j_fl, j), (theta0, start), (initial_speed, om0),
+                                                      (no_load_speed, om))}
+        f = [sp.lambdify(s.t, e.xreplace(values), "mpmath") for e in (theta, thetad, thetadd)]
         h = 1e-6
         for lower, upper in ((0, 1), (1, 2)):
             fd = (f[lower](t0 + h) - f[lower](t0 - h)) / (2 * h)
             assert abs(fd - f[upper](t0)) < 1e-5 * (1 + abs(f[upper](t0))), (motion.name, t0, lower)
         assert abs(float(f[0](0.0)) - start) < 1e-12 * (1 + abs(start)), (motion.name, "theta(0)")
         if motion.period is not None:
-            T = float(motion.period.subs(values))
+            T = float(motion.period.xreplace(values))
             assert abs(float(f[0](T)) - start - 2 * float(sp.pi)) < 1e-9, (motion.name, "period")
     return True

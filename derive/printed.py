@@ -7,6 +7,8 @@ The `paper` formulation of crankgen is the corrected form; the audit compares bo
 Lagrange equations of `energies.py`.
 """
 
+from functools import lru_cache
+
 import sympy as sp
 
 from . import symbols as s
@@ -25,7 +27,14 @@ def _integrate(matrix):
 
 
 def printed_matrices(corrected=True, q=s.q):
-    """Matrices and vectors of Appendix B (B1-B9, B13-B16) for one element."""
+    """Matrices and vectors of Appendix B (B1-B9, B13-B16) for one element (a fresh copy of the
+    ones derived once per process: every printed variant reads them)."""
+    return {k: v.copy() for k, v in _printed_matrices(corrected, tuple(q)).items()}
+
+
+@lru_cache(maxsize=None)
+def _printed_matrices(corrected, q):
+    q = sp.Matrix(q)
     x = s.l * s.zeta                      # local co-ordinate inside the element
     sin_tp, cos_tp = sp.sin(s.theta + s.phi), sp.cos(s.theta + s.phi)
     crank = s.a * s.thetad

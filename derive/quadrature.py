@@ -33,7 +33,7 @@ closed-form kernels to round-off (tests/test_quadrature_path.py).
 """
 
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 import sympy as sp
 from sympy.integrals.quadrature import gauss_legendre
@@ -97,6 +97,7 @@ class PointSpace:
         self.rate = {}           # point symbol -> the symbol of its time derivative
         self._fields = []        # per point: {energies.fields key: symbol or 0, "x": abscissa}
         self._x_derivative = {}  # point symbol -> symbol (or 0) of its x-derivative
+        self._totals = {}        # (element field, symbol) -> total(its definition, symbol)
         shared = {}
         for g, zeta in enumerate(rule.points):
             values = {}
@@ -168,12 +169,19 @@ class PointSpace:
     def total(self, expr, symbol):
         """d expr / d symbol through the element fields' dependence on it (chain rule)."""
         out = sp.diff(expr, symbol)
-        for field, definition in self.derived.items():
+        for field in self.derived:
             if expr.has(field):
-                inner = self.total(definition, symbol)
+                inner = self._field_total(field, symbol)
                 if inner != 0:
                     out += sp.diff(expr, field) * inner
         return out
+
+    def _field_total(self, field, symbol):
+        """total(definition of the element field, symbol), computed once per pair."""
+        key = (field, symbol)
+        if key not in self._totals:
+            self._totals[key] = self.total(self.derived[field], symbol)
+        return self._totals[key]
 
     def _new(self, sym, level, column):
         self.column[sym] = (level, column)
@@ -314,7 +322,7 @@ class PointSpace:
         """An opaque quantity's application or partial derivative with its function's definition put
         in (which may use other opaque quantities) and the derivatives taken."""
         call = atom.expr if isinstance(atom, sp.Derivative) else atom
-        return atom.xreplace({call: self.quantities[call.func](*call.args)}).doit()
+        return _revealed(atom, call, self.quantities[call.func])
 
     def reveal(self, expr):
         """expr with the opaque quantities replaced by their definitions (those using others in
@@ -347,6 +355,14 @@ class PointSpace:
             if not any(expr.has(field) for field in self.derived):
                 return self.substitute(expr)
             expr = expr.xreplace(self.derived)
+
+
+@lru_cache(maxsize=None)
+def _revealed(atom, call, definition):
+    """atom (call or a partial derivative of it) with call's function replaced by its definition
+    (a Lambda), derivatives taken: shared by the point spaces of every variant, whose quantities
+    (the same rule's) and their derivatives are the same."""
+    return atom.xreplace({call: definition(*call.args)}).doit()
 
 
 def _settle(expr):
