@@ -125,3 +125,20 @@ def test_the_engine_runs_with_numba_switched_off(tmp_path):
     a, b = plain.stdout.split(), compiled.stdout.split()
     assert a[2] == b[2] == "periodic"
     np.testing.assert_allclose([float(x) for x in a[:2]], [float(x) for x in b[:2]], rtol=1e-10)
+
+
+def test_a_value_seen_before_is_refused_as_before_when_its_items_are_of_other_types():
+    """The canonical values are looked up when seen before (a continuation rebuilds a case per
+    point); True == 1 and (0, True) == (0, 1) as keys must not let a boolean pass as a number."""
+    import crankgen
+    from crankgen.declaration.cases import Case
+    from crankgen.errors import ParameterError
+
+    Case(motion="motor", torque_curve=((0, 1), (1, 0)))
+    for curve in (((0, True), (1, False)), ((0, 1), (True, 0))):
+        with pytest.raises(ParameterError, match="^torque_curve"):
+            Case(motion="motor", torque_curve=curve)
+    Case(n_elements=2)
+    with pytest.raises(ParameterError):
+        Case(n_elements=True)
+    assert crankgen.Mechanism(eps=0.01) == crankgen.Mechanism(eps=0.01)

@@ -82,3 +82,4 @@ def test_one_blas_thread_while_any_block_is_open_in_any_thread():
         assert counts == {"after the first block closed": 1, "after both closed": 2}
     finally:
         setter(before)
+

@@ -80,10 +80,10 @@ _CANONICAL_SIZE = 4096
 def canonical(p, value):
     """value checked and in canonical form (a Python float, int, str or a tuple of floats; -0.0
     is 0.0), or ParameterError naming the parameter and its allowed values.  A value seen before
-    (of the same type: 1, 1.0 and True differ) is looked up: a case is rebuilt for every point of
+    (of the same types, item by item: 1, 1.0 and True differ) is looked up: a case is rebuilt for every point of
     a continuation, with all but one of its values unchanged."""
     try:
-        key = (p.name, type(value), value)
+        key = (p.name, _typed(value))
         known = _CANONICAL.get(key)
     except TypeError:                   # unhashable (a list, an array): checked every time
         return _canonical(p, value)
@@ -93,6 +93,14 @@ def canonical(p, value):
             _CANONICAL.clear()
         _CANONICAL[key] = known
     return known
+
+
+def _typed(value):
+    """value with the type of every item beside it (True == 1 == 1.0 as keys; not as values)."""
+    if type(value) is tuple:
+        return (tuple, tuple(_typed(v) for v in value))
+    hash(value)                         # TypeError for an unhashable value
+    return (type(value), value)
 
 
 def _canonical(p, value):
