@@ -34,7 +34,12 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
 import crankgen                                # noqa: E402
-import exudyn_slider_crank as exs              # noqa: E402
+try:
+    import exudyn_slider_crank as exs          # noqa: E402
+except ModuleNotFoundError as _missing:        # --help works without Exudyn; a run says what to install
+    if _missing.name != "exudyn":
+        raise
+    exs = None
 import peer_timing                             # noqa: E402
 
 EPS = (0.01, 0.1)
@@ -157,6 +162,8 @@ def main():
                             "the timing section of an existing results.md")
     which.add_argument("--no-timing", action="store_true", help="only the amplitudes")
     args = p.parse_args()
+    if exs is None:
+        sys.exit("validate/compare.py needs Exudyn: pip install exudyn (make validate installs it)")
     if args.jobs < 1:
         p.error(f"--jobs must be at least 1, got {args.jobs}")
     os.makedirs(args.out, exist_ok=True)
