@@ -65,3 +65,16 @@ def fake_steady_states(calls):
         calls.extend(cases)
         return [SteadyState(c, "periodic", 2 * c.omega, c.omega, 3, 0, 1e-9, "", 0.01) for c in cases]
     return fake
+
+
+def true_angle(x):
+    """x rad reduced to (-pi, pi] with 2 pi to 50 digits (mpmath): the crank position of x."""
+    import mpmath
+
+    with mpmath.workdps(50):
+        r = mpmath.fmod(mpmath.mpf(x), 2 * mpmath.pi)
+        if r > mpmath.pi:
+            r -= 2 * mpmath.pi
+        elif r <= -mpmath.pi:
+            r += 2 * mpmath.pi
+        return float(r)

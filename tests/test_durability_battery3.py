@@ -11,7 +11,6 @@ import subprocess
 import sys
 from pathlib import Path
 
-import mpmath
 import numpy as np
 import pytest
 
@@ -19,7 +18,7 @@ import crankgen
 from crankgen import Case, Circle, Fluctuation, InitialState, Mechanism, ParameterError, RunUp, SIMechanism
 from crankgen.discrete import kinematics
 from crankgen.cli import main
-from helpers import fake_steady_states
+from helpers import fake_steady_states, true_angle
 
 sweep_mod = importlib.import_module("crankgen.analyses.sweeps")
 SMALL = dict(n_elements=2, steps_per_rev=20)
@@ -32,17 +31,6 @@ def _dt(omega=0.5, steps_per_rev=20):
 
 # ---- 1. no silent wrong numbers --------------------------------------------------------------
 
-def _true_angle(x):
-    """x rad reduced to (-pi, pi] with 2 pi to 50 digits (mpmath): the crank position of x."""
-    with mpmath.workdps(50):
-        r = mpmath.fmod(mpmath.mpf(x), 2 * mpmath.pi)
-        if r > mpmath.pi:
-            r -= 2 * mpmath.pi
-        elif r <= -mpmath.pi:
-            r += 2 * mpmath.pi
-        return float(r)
-
-
 FAR = 9.9e6 + 0.123            # within records.ANGLE_LIMIT (1e7 rad): its float is 1.9e-9 rad from the next
 
 
@@ -54,8 +42,8 @@ def test_a_far_start_angle_gives_the_run_at_its_crank_position(crank):
     test_durability_battery4)."""
     kw = dict(SMALL, revolutions=1, **({"omega": 0.5} if crank is None else {"crank": crank}))
     far = crankgen.simulate(Mechanism(), theta0=FAR, **kw)
-    near = crankgen.simulate(Mechanism(), theta0=_true_angle(FAR), **kw)
-    assert far.case.theta0 == pytest.approx(_true_angle(FAR), abs=1e-12)
+    near = crankgen.simulate(Mechanism(), theta0=true_angle(FAR), **kw)
+    assert far.case.theta0 == pytest.approx(true_angle(FAR), abs=1e-12)
     np.testing.assert_allclose(far.v_mid, near.v_mid, rtol=1e-8, atol=1e-9)
     np.testing.assert_allclose(far.theta - far.theta[0], near.theta - near.theta[0], rtol=1e-12, atol=1e-12)
     assert far.theta[-1] - far.theta[0] > 6.0                                         # the crank turns

@@ -12,7 +12,6 @@ import subprocess
 import sys
 import tracemalloc
 
-import mpmath
 import numpy as np
 import pytest
 
@@ -21,6 +20,7 @@ import crankgen.engine
 from crankgen import Case, InitialState, Mechanism, ParameterError, SIMechanism
 from crankgen.cli import main
 from crankgen.plots import figures, modes as modes_plot
+from helpers import true_angle
 
 SMALL = dict(n_elements=2, steps_per_rev=40)
 STEEL = dict(L=0.3, a=0.15, E=2e11, rho=7870, A=6.4e-5, I=3.41e-10, slider_mass=0.0756, crank_speed=150.0)
@@ -40,17 +40,6 @@ def one_line_refusal(capsys, rc, *words):
     for w in words:
         assert w in err[0], err[0]
     return err[0]
-
-
-def _true_angle(x):
-    """x rad reduced to (-pi, pi] with 2 pi to 50 digits (mpmath): the crank position of x."""
-    with mpmath.workdps(50):
-        r = mpmath.fmod(mpmath.mpf(x), 2 * mpmath.pi)
-        if r > mpmath.pi:
-            r -= 2 * mpmath.pi
-        elif r <= -mpmath.pi:
-            r += 2 * mpmath.pi
-        return float(r)
 
 
 @pytest.fixture
@@ -88,8 +77,8 @@ FAR = 9.9e6 + 0.123      # within the bound: floats there are 1.9e-9 rad apart
 @pytest.mark.parametrize("kind", [float, np.float64, np.array])
 def test_modes_at_a_far_angle_are_the_modes_at_its_crank_position(kind):
     far = crankgen.modes(Mechanism(), theta=kind(FAR), n_elements=4)
-    near = crankgen.modes(Mechanism(), theta=_true_angle(FAR), n_elements=4)
-    assert far.theta == pytest.approx(_true_angle(FAR), abs=1e-12)
+    near = crankgen.modes(Mechanism(), theta=true_angle(FAR), n_elements=4)
+    assert far.theta == pytest.approx(true_angle(FAR), abs=1e-12)
     np.testing.assert_allclose(far.frequencies, near.frequencies, rtol=1e-12)
 
 
