@@ -5,9 +5,8 @@ end's (u, v) from the reduced end co-ordinate s.  Straight guide: sin phi = (a* 
 circle: the four-bar's closure (derive/guides.py).
 """
 
-from dataclasses import dataclass
-
 import functools
+from dataclasses import dataclass
 
 import numpy as np
 
