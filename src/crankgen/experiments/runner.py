@@ -118,6 +118,7 @@ class Context:
         self.engine = None          # (seconds, compiled) of the engine's start-up in this run
         self.stop = threading.Event()   # set when a step run in pieces is interrupted (threads.py)
         self._continuations = {}        # Context.continuation's diagrams of this run
+        self._writing = threading.Lock()
 
     def start_engine(self):
         """Load the compiled engine (compile it, on a machine's first run) before the first step
@@ -146,13 +147,10 @@ class Context:
         exact-rod steps) gets that one's diagram."""
         from ..analyses.bifurcation import continuation
 
-        model = {k: settings[k] for k in ("model", "approach", "n_elements", "steps_per_rev") if k in settings}
-        try:
-            case = Case.from_mechanism(mech, **model, **{parameter: start})
-            dp_max = settings.get("dp_max")
-            key = (case, parameter, float(start), float(stop),
-                   abs(stop - start) / 50 if dp_max is None else float(dp_max),
-                   tuple(sorted((k, v) for k, v in settings.items() if k not in model and k != "dp_max")))
+        fields = {k: settings[k] for k in ("model", "approach", "n_elements", "steps_per_rev") if k in settings}
+        try:                            # the case as built (a model's defaults written out or not)
+            key = (Case.from_mechanism(mech, **fields, **{parameter: start}), parameter, float(start), float(stop),
+                   tuple(sorted((k, v) for k, v in settings.items() if k not in fields)))
             hash(key)
         except (TypeError, CrankgenError):
             key = None
@@ -168,7 +166,9 @@ class Context:
     def log(self, message):
         stopping(self.stop)         # a piece of an interrupted step ends here (threads.py)
         if not self.quiet:
-            print(f"reproduce: {message}", file=self.stream, flush=True)
+            with self._writing:     # one whole line at a time: pieces of a step log from two threads
+                self.stream.write(f"reproduce: {message}\n")
+                self.stream.flush()
 
     def _steady_options(self):
         """config.steady_options restricted to what steady_states accepts."""
