@@ -373,13 +373,13 @@ def _failure(status, step, residual, dt, result=None):
 
 
 def _exact_rod_hint(status, result):
-    """For the geometrically exact rod, what a non-finite state may mean: its element represents
-    section rotations below 90 degrees from the rod's chord (|v_x| < lambda, README)."""
+    """For the geometrically exact rod, what a non-finite state may mean: a section rotation is not
+    a limit of its element, an element folded onto itself (|r'| = 0: compressed to a point) is."""
     case = getattr(result, "case", None)
     if status != _engine.NOT_FINITE or case is None or case.approach != "exact":
         return ""
-    return ("; the exact rod's element represents sections turned less than 90 degrees from the "
-            "rod's chord (|v_x| < its stretch): a section that turns that far ends the run")
+    return ("; the exact rod's element has no rotation limit, but an element compressed to zero length "
+            "(|r'| = 0) has no tangent: try more elements or steps per revolution")
 
 
 def _motor_hint(result, dt):

@@ -22,12 +22,19 @@ from ..declaration import schema
 from ..declaration.validation import integer
 
 NDOF = schema.ELEMENT_DOFS
-# the flexible body (schema.BODIES: the rod; one runs today) and its node's components (u, v, psi)
+# the flexible body (schema.BODIES: the rod; one runs today) and its node's components (u, v, psi,
+# chi; chi only where the case's model has it: records.Body.components)
 BODY = next(b for b in schema.BODIES.values() if b.kind == "flexible")
 COMPONENTS = BODY.node
 NODE_DOFS = len(COMPONENTS)                   # per node; an element holds two nodes' (NDOF)
-U, V, PSI = range(NODE_DOFS)
+U, V, PSI, CHI = range(NODE_DOFS)
 MAPPED = next(c for c in schema.CONSTRAINTS if c.body == BODY.name and c.map is not None)   # reduced co-ordinates
+
+
+def components_of(options):
+    """The rod's node components under a case's model options (records.Body.components: chi only
+    on the exact rod); {} gives the default model's."""
+    return BODY.components(dict(options) or schema.resolve_options())
 
 
 def joints(body=BODY):
@@ -48,17 +55,23 @@ class Mesh:
 
     n_elements: int
     coordinates: tuple = ()
+    components: tuple = None
     element_dofs: np.ndarray = field(init=False, repr=False)
 
     @classmethod
     def of_case(cls, case):
-        """The DOF map of a case: its rod's mesh and its motion's co-ordinates."""
-        return cls(case.n_elements, tuple(case.motion_record.coordinates))
+        """The DOF map of a case: its rod's mesh with the node components of its model, and its
+        motion's co-ordinates."""
+        return cls(case.n_elements, tuple(case.motion_record.coordinates), components_of(case.options))
 
     def __post_init__(self):
         n = integer("n_elements", self.n_elements, 1)
         object.__setattr__(self, "n_elements", n)
         object.__setattr__(self, "coordinates", tuple(self.coordinates))
+        present = components_of({}) if self.components is None else tuple(self.components)
+        if not set(present) <= set(COMPONENTS) or not present:
+            raise ValueError(f"components must be some of {COMPONENTS}, got {present!r}")
+        object.__setattr__(self, "components", tuple(c for c in COMPONENTS if c in present))
         object.__setattr__(self, "_index", self._numbering())
         object.__setattr__(self, "element_dofs", self._element_dofs())
 
@@ -76,6 +89,9 @@ class Mesh:
             c = held.get(node)
             for comp in range(NODE_DOFS):
                 name = COMPONENTS[comp]
+                if name not in self.components:         # not a component of this model's node
+                    index[(node, comp)] = None
+                    continue
                 if c is not None and name in c.eliminated:
                     j = c.eliminated.index(name)
                     if j < len(c.reduced):
@@ -90,7 +106,8 @@ class Mesh:
 
     @property
     def n_rod(self):
-        """Number of the rod's reduced nodal DOFs (3 n with the pin and the guide): the band."""
+        """Number of the rod's reduced nodal DOFs (3 n, 4 n + 2 with chi, with the pin and the guide):
+        the band."""
         return self._index["size"]
 
     @property
@@ -156,7 +173,7 @@ class Mesh:
                 node, comp = e + k // NODE_DOFS, k % NODE_DOFS
                 c = held.get(node)
                 idx = self._index.get((node, comp))
-                if c is not None and COMPONENTS[comp] in c.eliminated:
+                if c is not None and COMPONENTS[comp] in c.eliminated and COMPONENTS[comp] in self.components:
                     j = c.eliminated.index(COMPONENTS[comp])
                     idx = self._index[(c.name, j)] if j < len(c.reduced) else None
                 dofs[e, k] = self.dummy if idx is None else idx
