@@ -115,9 +115,12 @@ def outer(a, b):
     return a[..., :, None] * b[..., None, :]
 
 
-def element_fields(q, qd, l):
-    """Interpolated fields at the Gauss points (each S + (N_GAUSS,)) and the shape functions."""
+def element_fields(q, qd, l, cubic_u=False):
+    """Interpolated fields at the Gauss points (each S + (N_GAUSS,)) and the shape functions; u
+    linear, or (cubic_u) the exact rod's cubic u (cubic_u_at)."""
     n_u, n_v, n_psi, b_u, b_v, b_psi = element_shapes(l)
+    if cubic_u:
+        n_u, b_u, _ = cubic_u_at(ZETA, _q(l))
     q, qd = _qv(q), _qv(qd)
     f = dict(
         u=dot(n_u, q), v=dot(n_v, q), psi=dot(n_psi, q),
@@ -165,8 +168,10 @@ def slider_crank_angles(t, a, omega, L=1.0):
 # energies
 # --------------------------------------------------------------------------------------------
 
-def rod_kinetic_energy(q, qd, l, x0, rhoA, rhoI, a, theta, thetad, phi, phid):
-    f = element_fields(q, qd, l)
+def rod_kinetic_energy(q, qd, l, x0, rhoA, rhoI, a, theta, thetad, phi, phid, cubic_u=False):
+    """rhoA/2 |R'|^2 of the centre line plus the small-rotation director's rhoI part (eq. 4); u
+    linear, or the exact rod's cubic u."""
+    f = element_fields(q, qd, l, cubic_u)
     x = _q(l) * ZETA
     xi = _q(x0) + x + f["u"]
     v_i, v_j = frame_velocity(xi, f["v"], f["ud"], f["vd"], _q(a), _q(theta), _q(thetad),
