@@ -106,7 +106,7 @@ class Mesh:
 
     @property
     def n_rod(self):
-        """Number of the rod's reduced nodal DOFs (3 n, 4 n + 2 with chi, with the pin and the guide):
+        """Number of the rod's reduced nodal DOFs (3 n, 4 n + 1 with chi, with the pin and the guide):
         the band."""
         return self._index["size"]
 
