@@ -3,12 +3,13 @@ section 7; the series are crankgen._derive.audit.exact_strain).
 
 Along one steady revolution of the consistent model (approach A, element-mean membrane strain),
 the same states are read twice: by approach A's declared outputs and by the geometrically exact
-rod's (model="exact": the element's stretch lambda - 1, and kappa = v_xx / sqrt(lambda^2 - v_x^2)),
+rod's (model="exact": the strain |r'| - 1 and kappa = ((1 + u_x) v_xx - v_x u_xx) / |r'|^2; its
+cubic u takes as nodal slopes chi those of A's piecewise-linear u, crankgen.discrete.mesh.transfer),
 and the two elastic forces dU/dq (A's and the exact rod's generated elastic kernels, constraint
 applied, assembled on the reduced DOFs) are compared:
-- membrane: RMS over the revolution and the elements of (lambda - 1) - (u_x + <v_x^2>/2), relative
-  to the RMS of A's membrane strain; curvature: the same for kappa - v_xx at the elements' ends and
-  midpoints, relative to the RMS of v_xx;
+- membrane: RMS over the revolution and the elements of the exact strain less u_x + <v_x^2>/2 at
+  the element midpoints, relative to the RMS of A's membrane strain; curvature: the same for
+  kappa - v_xx at the elements' ends and midpoints, relative to the RMS of v_xx;
 - force: RMS |F_exact - F_A| over RMS |F_A| on the transverse DOFs (v, psi), as section 4 weighs
   the groups (an axial DOF's elastic force is the difference of its two elements' axial forces
   EA e, weighed through the membrane strain above);
@@ -25,7 +26,7 @@ from ..declaration import ingredients
 from ..declaration.cases import exact_case  # noqa: F401  (the exact rod's case; used here and by the tests)
 from .._generated import elements as _elements
 from ..discrete.constraints import project_residual
-from ..discrete.mesh import PSI, U, NODE_DOFS
+from ..discrete.mesh import PSI, U, NODE_DOFS, transfer
 from ..discrete.system import Model
 from ..results.outputs import StateHistory
 
@@ -66,7 +67,9 @@ def _rms(x):
 def weigh(case, t, states, amplitude=np.nan):
     """ExactWeights of the reduced states (steps, N) at times t of a consistent-model case."""
     exact = exact_case(case)
-    a_hist, x_hist = StateHistory(case, t, states), StateHistory(exact, t, states)
+    model_a, model_x = Model.from_case(case), Model.from_case(exact)
+    states_x = transfer(states, model_a.mesh, model_x.mesh)         # chi: the nodal slopes of A's u
+    a_hist, x_hist = StateHistory(case, t, states), StateHistory(exact, t, states_x)
     n = case.n_elements
     mids = (np.arange(n) + 0.5) / n
     e_a = a_hist.field("surface_strain", mids, fiber=0.0)
@@ -76,8 +79,8 @@ def weigh(case, t, states, amplitude=np.nan):
     k_x = x_hist.field("bending_moment", points)
     q = a_hist.element_vectors()
     slope = float(np.max(np.abs(q[..., [PSI, NODE_DOFS + PSI]])))
-    model_a, model_x = Model.from_case(case), Model.from_case(exact)
-    f_a, f_x = _reduced_forces(model_a, t, states), _reduced_forces(model_x, t, states)
+    f_a = _reduced_forces(model_a, t, states)
+    f_x = transfer(_reduced_forces(model_x, t, states_x), model_x.mesh, model_a.mesh)   # A's rows
     mesh = model_a.mesh
     axial = np.zeros(mesh.n_dofs, dtype=bool)
     axial[[mesh.reduced_index(k, U) for k in range(n + 1) if mesh.reduced_index(k, U) is not None]] = True
