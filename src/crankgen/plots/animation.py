@@ -130,6 +130,8 @@ class Frames:
         guide, params = case.guide_record, case.kinematic_parameters
         self.pivot = (getattr(_geometry, f"pivot_{guide.name}")(params) * self.length if guide.pivot else None)
         beta = np.asarray(kin.beta, dtype=float)           # the guide co-ordinate of the rigid end
+        s = np.asarray(result.states, dtype=float)[self.steps][:, Model(case).mesh.reduced_coordinates()[0]]
+        beta = np.concatenate([beta, beta + self.magnification * s])      # and of the drawn end on it
         span = float(beta.max() - beta.min()) if beta.size else 0.0
         reach = np.linspace(beta.min() - 0.5 * span - 0.1, beta.max() + 0.5 * span + 0.1, 181)
         self.guide_curve = getattr(_geometry, f"curve_{guide.name}")(reach, params) * self.length
