@@ -152,3 +152,42 @@ def test_a_run_on_the_large_orbit_turns_sections_past_ninety_degrees():
     rotation = next(m for m in run.beyond_theory.measures if m.name == "section_rotation")
     assert rotation.value > 90.0                                     # measured: 151 degrees
     assert np.max(np.abs(run.v_mid)) > 30                            # the large orbit
+
+
+def _case(model, n=4):
+    from crankgen.declaration.cases import Case
+    return Case.from_mechanism(crankgen.Mechanism(eps=0.01), omega=0.8, n_elements=n, model=model)
+
+
+def test_the_exact_rods_initial_state_takes_u_x_at_the_nodes():
+    """A callable u gives the exact rod's chi its derivative (complex step), a linear u included."""
+    from crankgen.discrete.initial import InitialState, reduced_state
+    from crankgen.discrete.mesh import Mesh, components_of
+    case = _case("exact")
+    mesh = Mesh(4, components=components_of(case.options))
+    d0, _ = reduced_state(case, InitialState(u=lambda x: 1e-5 * np.sin(np.pi * x)))
+    for node, x in enumerate(np.linspace(0, 1, 5)):
+        assert d0[mesh.reduced_index(node, CHI)] == pytest.approx(1e-5 * np.pi * np.cos(np.pi * x), rel=1e-12, abs=1e-20)
+    with pytest.raises(crankgen.ParameterError, match="u_x"):
+        reduced_state(case, InitialState(u=np.zeros(5)))            # nodal u on the exact rod: its slopes too
+
+
+def test_a_state_moves_between_node_layouts():
+    """transfer: the common components copied both ways, chi the nodal slope of a linear u."""
+    from crankgen.discrete.mesh import Mesh, components_of, transfer
+    a, x = Mesh(4), Mesh(4, components=components_of(_case("exact").options))
+    rng = np.random.default_rng(7)
+    d = rng.normal(size=(3, a.n_dofs))
+    for node in range(1, 4):
+        d[:, a.reduced_index(node, U)] = 0.02 * node / 4        # u = 0.02 x at the interior nodes
+    there = transfer(d, a, x)
+    assert np.array_equal(transfer(there, x, a), d)
+    for node in range(5):
+        assert np.allclose(there[:, x.reduced_index(node, CHI)], 0.02, rtol=1e-12)
+    assert np.array_equal(there[:, x.reduced_coordinates()], d[:, a.reduced_coordinates()])
+
+
+def test_a_batch_holds_one_node_layout():
+    from crankgen import engine
+    with pytest.raises(ValueError, match="node components"):
+        engine.Batch([_case("consistent"), _case("exact")])

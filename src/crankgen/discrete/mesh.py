@@ -230,7 +230,7 @@ def transfer(values, source, target):
     for node in range(n + 1):
         for comp in range(NODE_DOFS):
             i, j = source.reduced_index(node, comp), target.reduced_index(node, comp)
-            if comp == U and i is not None:
+            if comp == U and i is not None and i not in set(source.reduced_coordinates()):
                 u[..., node], known[node] = values[..., i], True
             if i is not None and j is not None:
                 out[..., j] = values[..., i]
