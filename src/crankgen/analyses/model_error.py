@@ -79,67 +79,33 @@ class _Linear:
         self.model, self.exact = Model(case), Model(exact_case(case))
 
     def chunks(self):
-        """(K, C, M, f) of consecutive chunks of steps."""
-        axial = _axial_dofs(self.exact.mesh)
-        shared = _shared_rows(self.model.mesh, self.exact.mesh)
+        """(K, C, M, f) of consecutive chunks of steps.  The exact rod reads the states in its own
+        layout (its nodes' chi: the nodal slopes of the model's u, then settled with the other axial
+        unknowns: _membrane_consistent) and its residual is read back on the model's unknowns."""
+        from ..discrete.mesh import transfer
+        mine, exact = self.model.mesh, self.exact.mesh
+        axial = _axial_dofs(exact)
         for start in range(0, len(self.t), CHUNK):
             part = slice(start, start + CHUNK)
             kin = self.model.kinematics(self.t[part])
             d, v, a = self.d[part], self.v[part], self.a[part]
             r_m, K, C, M = _dense(self.model, kin, d, v, a)
-            states = _as_exact(self.model, self.exact, kin, d, v, a, shared)
-            r_x = _membrane_consistent(self.exact, kin, *states, axial)
-            yield K, C, M, r_x[:, shared[1]] - r_m
+            dx, vx, ax = (transfer(x, mine, exact) for x in (d, v, a))
+            yield K, C, M, transfer(_membrane_consistent(self.exact, kin, dx, vx, ax, axial), exact, mine) - r_m
 
 
 def _axial_dofs(mesh):
-    """The reduced indices of the axial unknowns: u (and the exact rod's axial slope chi) of every
-    node that has one, and the end's."""
+    """The reduced indices of the axial unknowns: u (and the exact rod's chi) of every node that has
+    one, and the end's."""
     from ..discrete.mesh import CHI, U
-    idx = {mesh.reduced_index(node, c) for node in range(mesh.n_elements + 1) for c in (U, CHI)}
-    idx |= set(mesh.reduced_coordinates())
+    idx = ({mesh.reduced_index(node, c) for node in range(mesh.n_elements + 1) for c in (U, CHI)}
+           | set(mesh.reduced_coordinates()))
     return np.array(sorted(i for i in idx if i is not None), dtype=np.intp)
 
 
-def _shared_rows(mesh, exact_mesh):
-    """(model indices, exact-rod indices) of the unknowns both DOF maps have: every node's
-    components of the model (u, v, psi) and the motion's co-ordinates (the exact rod adds chi)."""
-    from ..discrete.mesh import NODE_DOFS
-    pairs = [(mesh.reduced_index(node, c), exact_mesh.reduced_index(node, c))
-             for node in range(mesh.n_elements + 1) for c in range(NODE_DOFS)]
-    pairs += list(zip(mesh.reduced_coordinates(), exact_mesh.reduced_coordinates()))
-    pairs = sorted({(i, j) for i, j in pairs if i is not None})      # an end's u is its co-ordinate
-    assert [i for i, _ in pairs] == list(range(mesh.n_dofs)) and all(j is not None for _, j in pairs)
-    return tuple(np.array(x, dtype=np.intp) for x in zip(*pairs))
-
-
-def _as_exact(model, exact, kin, d, v, a, shared):
-    """The model's reduced states (d, v, a) in the exact rod's DOF map: the shared unknowns as they
-    are, a node's axial slope chi (absent from a model with a linear u, whose u_x jumps at the
-    nodes) the mean of the adjacent elements' u_x, the end mapped by the guide (a start that
-    _membrane_consistent settles with the other axial unknowns)."""
-    from ..discrete.mesh import CHI, NODE_DOFS, U
-    if exact.mesh.n_dofs == model.mesh.n_dofs:
-        return d, v, a
-    length = model.mesh.length
-    out = []
-    for x, q in zip((d, v, a), model.nodal_state(kin, d, v, a)[:3]):
-        y = np.zeros(x.shape[:-1] + (exact.mesh.n_dofs,))
-        y[..., shared[1]] = x[..., shared[0]]
-        slopes = (q[..., NODE_DOFS + U] - q[..., U]) / length                  # (..., n)
-        n = slopes.shape[-1]
-        for node in range(n + 1):
-            idx = exact.mesh.reduced_index(node, CHI)
-            if idx is not None:
-                y[..., idx] = slopes[..., max(node - 1, 0):node + 1].mean(axis=-1)
-        out.append(y)
-    return tuple(out)
-
-
 def _membrane_consistent(exact, kin, d, v, a, axial, iterations=8):
-    """The exact rod's residual at the states d (its DOF map's: _as_exact) with their axial unknowns
-    (u, chi, the end's) moved so that its axial rows vanish (Newton on them, the transverse unknowns
-    held).  The two models measure the membrane
+    """The exact rod's residual at the states d with their axial unknowns moved so that its axial
+    rows vanish (Newton on them, the transverse unknowns held).  The two models measure the membrane
     strain differently (u_x + v_x^2/2 against the exact stretch, which differ at fourth order in
     v_x), so the same u gives the exact rod an axial force EA times that difference, large for a
     slender rod, which its own axial unknowns take up at once (the axial modes are the fast ones).

@@ -15,6 +15,7 @@ from ..discrete.kinematics import check_crank_steps
 from ..declaration.cases import Case, run_case
 from ..errors import ConvergenceError, ParameterError
 from .limits import check_run_size
+from ..discrete.mesh import components_of
 from ..discrete.system import Model, check_coordinates
 from ..discrete.initial import initial_state
 from ..discrete.newmark import NewmarkSettings, integrate
@@ -421,11 +422,12 @@ def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=Fals
             check_coordinates(c)
     time_scheme.warn_steps([c for c in cases if not c.motion_record.coordinates])
     groups = {}
-    for i, c in enumerate(cases):          # one state layout a batch: the mesh and the motion's co-ordinates
+    for i, c in enumerate(cases):          # one state layout a batch: the mesh, its nodes and the motion's co-ordinates
         groups.setdefault((c.n_elements, c.steps_per_rev, run_length(c, revolutions)[1],
-                           tuple(x.name for x in c.motion_record.coordinates)), []).append(i)
+                           tuple(x.name for x in c.motion_record.coordinates), components_of(c.options)),
+                          []).append(i)
     total = sum(key[2] * len(idx) for key, idx in groups.items())
-    for (n, _, n_steps, _), idx in groups.items():
+    for (n, _, n_steps, _, _), idx in groups.items():
         check_run_size(n, n_steps, n_cases=len(idx), stored="states" if keep_states else "outputs",
                        names={"n_steps": "revolutions", "n_cases": "cases"})
     for i, c in enumerate(cases):

@@ -1,13 +1,16 @@
 """Mesh of the connecting rod and its DOF map: from element DOFs to the reduced (free) DOFs.
 
-Full nodal vector: the components of each node (schema.NODE: u, v, psi, eq. 14), nodes 0..n along
-the rod.  Each constraint of the DOF map (schema.CONSTRAINTS, declared in derive/declaration.py)
+Full nodal vector: the components of each node (schema.NODE: u, v, psi, eq. 14, and chi = u_x,
+which only the exact rod's nodes have: the DOF map of the other models leaves it out), nodes 0..n
+along the rod.  Each constraint of the DOF map (schema.CONSTRAINTS, declared in derive/declaration.py)
 eliminates components of its node; its reduced co-ordinates take the places of the first of them,
 in order.  The crank pin eliminates u_0, v_0; the guide replaces (u_n, v_n) by the reduced
 co-ordinate s of its end map, (u_n, v_n) = g(s, t) (a slider: s (cos phi, sin phi), eq. 26; see
 constraints.py).  The reduced vector is
 
     [psi_0,  u_1, v_1, psi_1,  ...,  u_{n-1}, v_{n-1}, psi_{n-1},  s, psi_n]     (3 n entries),
+
+with chi after each psi on the exact rod (4 n + 1 entries),
 
 followed by the co-ordinates the case's motion declares (records.Coordinate: a driven crank's
 angle, a motor rotor's angle; none for a prescribed crank), each with its own equation: the DOF
@@ -208,3 +211,46 @@ class Mesh:
         """(element index, zeta) of the point x in [0, 1]."""
         e = min(int(np.floor(x * self.n_elements)), self.n_elements - 1)
         return e, (x - e * self.length) / self.length
+
+
+def transfer(values, source, target):
+    """Reduced vectors (..., source.n_dofs) of one DOF map in the layout of another on the same
+    elements and co-ordinates (a consistent model's states read by the exact rod, whose nodes add
+    chi): every (node, component) both have is copied, and the reduced and declared co-ordinates;
+    a chi that the source lacks is the slope of its u at the node (the mean of the two elements'
+    slopes u_x, the one element's at an end; the end node's u through the reduced co-ordinate is
+    not at hand there, so the last element's slope is its neighbour's).  Returns (..., target.n_dofs)."""
+    values = np.asarray(values, dtype=float)
+    if source.n_elements != target.n_elements or source.coordinates != target.coordinates:
+        raise ValueError("transfer needs two DOF maps of the same elements and co-ordinates")
+    out = np.zeros(values.shape[:-1] + (target.n_dofs,))
+    n = source.n_elements
+    u = np.zeros(values.shape[:-1] + (n + 1,))
+    known = np.zeros(n + 1, dtype=bool)
+    for node in range(n + 1):
+        for comp in range(NODE_DOFS):
+            i, j = source.reduced_index(node, comp), target.reduced_index(node, comp)
+            if comp == U and i is not None and i not in set(source.reduced_coordinates()):
+                u[..., node], known[node] = values[..., i], True
+            if i is not None and j is not None:
+                out[..., j] = values[..., i]
+    known[0] = True                                  # the pin: u_0 = 0
+    for a, b in zip(source.reduced_coordinates(), target.reduced_coordinates()):
+        out[..., b] = values[..., a]
+    out[..., target.n_rod:] = values[..., source.n_rod:]
+    if "chi" in target.components and "chi" not in source.components:
+        h = source.length
+        slopes = np.full(values.shape[:-1] + (n,), np.nan)
+        for e in range(n):
+            if known[e] and known[e + 1]:
+                slopes[..., e] = (u[..., e + 1] - u[..., e]) / h
+        for e in range(n):                           # an element without both ends: its neighbour's slope
+            if not (known[e] and known[e + 1]):
+                slopes[..., e] = slopes[..., e - 1] if e > 0 else 0.0
+        for node in range(n + 1):
+            j = target.reduced_index(node, CHI)
+            if j is None:
+                continue
+            around = [e for e in (node - 1, node) if 0 <= e < n]
+            out[..., j] = np.mean([slopes[..., e] for e in around], axis=0)
+    return out
