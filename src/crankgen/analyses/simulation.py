@@ -436,7 +436,7 @@ def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=Fals
             check_crank_steps(c, dt, n_steps * dt, f"cases[{i}]: " if len(cases) > 1 else "")
     out = [None] * len(cases)
     done_total = 0
-    for (n, spr, n_steps, _), idx in sorted(groups.items()):
+    for (n, spr, n_steps, _, _), idx in sorted(groups.items()):
         batch = _engine.Batch([cases[i] for i in idx])
         B, n_rod = len(idx), batch.mesh.n_rod
         starts = [start_state(cases[i], np.zeros(n_rod), np.zeros(n_rod)) for i in idx]
