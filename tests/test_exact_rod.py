@@ -341,3 +341,29 @@ def test_exact_and_A_strain_energies_differ_at_fourth_order():
     assert np.all(np.abs(order_U - 4) < 0.1), order_U
     assert np.all(np.abs(order_r - 3) < 0.1), order_r
     assert np.all(dU[-1] < 1e-3 * np.abs(U[-1]))          # and small against the energy itself
+
+
+# ---- gravity on the cubic u --------------------------------------------------------------------
+
+def test_gravity_potential_and_load_of_the_cubic_u(states):
+    """rod_gravity_potential_exact = -rho A int g . R dx with the centre line R = a e_r + (x0 + x + u)
+    e_i + v e_j, u the exact rod's cubic (reference.py, 8-point Gauss), e_i = (cos phi, -sin phi),
+    e_j = (sin phi, cos phi); gravity_uniform_exact's force is its gradient (finite differences,
+    constant in q: the potential is linear in it), and differs from the linear-u load where chi
+    is not the element's mean slope."""
+    q, qd, qdd, l, x0 = states
+    rhoA, gX, gY, kin = 1.3, 0.4, -0.9, dict(a=0.2, theta=0.4, phi=-0.3)
+    c, geo, k = coef(rhoA=rhoA, gX=gX, gY=gY), vec(l, x0), _kin(**kin)
+    f = ref.element_fields(q, qd, l, cubic_u=True)
+    xi, eta = x0[:, None] + l[:, None] * ref.ZETA + f["u"], f["v"]
+    a, th, ph = kin["a"], kin["theta"], kin["phi"]
+    X = a * np.cos(th) + xi * np.cos(ph) + eta * np.sin(ph)
+    Y = a * np.sin(th) - xi * np.sin(ph) + eta * np.cos(ph)
+    expected = ref.integrate(-rhoA * (gX * X + gY * Y), l)
+    V = En.rod_gravity_potential_exact(q, qd, geo, c, k)
+    assert_close(V, expected, 1e-12, 0, "gravity potential (cubic u)")
+    r = E.gravity_uniform_exact(q, qd, qdd, geo, c, k)[0]
+    _check(r, ref.fd_jacobian(lambda y: En.rod_gravity_potential_exact(y, qd, geo, c, k), q, 1e-3), 1e-9,
+           "gravity load = dV/dq")
+    r_linear = E.gravity_uniform(q, qd, qdd, geo, c, k)[0]
+    assert np.max(np.abs(r[:, ref.CHIS])) > 1e-3 * np.max(np.abs(r)) and not r_linear[:, ref.CHIS].any()
