@@ -117,7 +117,7 @@ def erratum_eq39():
 def erratum_b15_b16():
     """(B15)/(B16): the slider's (u, v) are the element's end-node values only at zeta = 1."""
     e_u, e_v = sp.zeros(s.ELEMENT_DOFS, 1), sp.zeros(s.ELEMENT_DOFS, 1)
-    e_u[3], e_v[4] = 1, 1
+    e_u[s.element_slots(1, ("u",))[0]], e_v[s.element_slots(1, ("v",))[0]] = 1, 1
     roots = sp.solve(list(N_U - e_u) + list(N_V - e_v), s.zeta, dict=True)
     end_abscissa = (s.x0 + s.l * s.zeta).subs({s.zeta: 1, s.x0: s.L - s.l})
     ok = roots == [{s.zeta: 1}] and end_abscissa == s.L
