@@ -60,9 +60,9 @@ OPTIONS = (
            "exact the geometrically exact rod (stretch |r'| - 1, curvature of the exact section "
            "rotation, exact rotary inertia; lagrange formulation and kelvin-voigt damping only)"),
     Option("membrane", ("pointwise", "averaged"), None,
-           "membrane strain of approaches A, B and exact: pointwise (eq. 1; exact: |r'| - 1) or its "
-           "element mean (u_x + <v_x^2>/2; exact: the element's deformed length over l, less 1; no "
-           "membrane locking); no effect on approach C or on printed matrices"),
+           "membrane strain of approaches A and B: pointwise (eq. 1) or its element mean (u_x + "
+           "<v_x^2>/2; no membrane locking); no effect on approach C, on printed matrices or on the "
+           "exact rod (whose cubic u makes its pointwise strain |r'| - 1 free of membrane locking)"),
     Option("damping", ("paper", "kelvin-voigt"), None,
            "paper: C = mu (K_lin + K_non), eq. (24) as printed; kelvin-voigt: strain-rate damping "
            "from the Rayleigh function of the approach's strain"),
@@ -80,10 +80,9 @@ PRESETS = (
            "printed damping of eq. (24), the element as derived from eq. (2), integrated with the "
            "paper's Newmark rule (rho_inf = 1)", {"rho_inf": 1.0}),
     Preset("exact", {"approach": "exact", "formulation": "lagrange", "damping": "kelvin-voigt",
-                     "membrane": "averaged"},
-           "the geometrically exact rod: exact stretch, curvature and section rotation, the exact "
-           "Lagrange equations, strain-rate (Kelvin-Voigt) damping, the element-mean stretch as "
-           "membrane strain (free of membrane locking)"),
+                     "membrane": "pointwise"},
+           "the geometrically exact rod: exact stretch, curvature and section rotation at any angle, "
+           "the exact Lagrange equations, strain-rate (Kelvin-Voigt) damping"),
 )
 DEFAULT_PRESET = "consistent"
 
@@ -358,8 +357,9 @@ BODIES = (
     records.Body("crank", "rigid", "the crank, from its axis O to the crank pin A (length a*): turned by the "
                  "prescribed motion or a driven motion's crank co-ordinate", "crank angle"),
     records.Body("rod", "flexible", "the connecting rod (a four-bar's coupler): an Euler-Bernoulli beam of "
-                 "n_elements elements, its nodes' (u, v, psi) in the moving frame of the rigid linkage's chord "
-                 "A-B", "chord", node=s.NODE, elements="n_elements"),
+                 "n_elements elements, its nodes' (u, v, psi, chi) in the moving frame of the rigid linkage's "
+                 "chord A-B (chi = u_x only on the exact rod, whose u is cubic)", "chord", node=s.NODE,
+                 elements="n_elements", conditional=(("chi", "approach", (EXACT,)),)),
     records.Body("end", "rigid", "the end mass ms* at B on the guide: a slider on a line, a four-bar's rocker "
                  "tip on its circle", "guide"),
 )
@@ -373,7 +373,7 @@ CONSTRAINTS = (
 END = CONSTRAINTS[1]
 # natural size of each component of a node (units of L) for Newton's scaled increments: the paper's
 # scaled outputs u* = u / eps^2, v* = v / eps
-NATURAL_SIZES = {"u": eps**2, "v": eps, "psi": eps}
+NATURAL_SIZES = {"u": eps**2, "v": eps, "psi": eps, "chi": eps**2}
 
 SLIDER_ROWS = s.element_slots(1, END.eliminated)   # the end node's (u, v) in the last element's vector
 _ON_LAST_ELEMENT = {**dict(zip(s.qs, [s.q[k] for k in SLIDER_ROWS])),
@@ -402,6 +402,8 @@ ROD_KINETIC = Energy("rod_kinetic_energy", "Element kinetic energy T_i of the ro
 SLIDER_KINETIC = Energy("slider_kinetic_energy", "Kinetic energy T_s of the end mass, eqs. (6)-(7), on "
                         "the last element.", _on_last_element(en.slider_kinetic_energy))
 ROD_GRAVITY = Energy("rod_gravity_potential", "Element potential of gravity V_i.", en.rod_gravity_potential)
+ROD_GRAVITY_EXACT = Energy("rod_gravity_potential_exact", "Element potential of gravity V_i on the exact rod's "
+                           "cubic u.", lambda: en.rod_gravity_potential(approach=EXACT))
 SLIDER_GRAVITY = Energy("slider_gravity_potential", "Potential of gravity on the end mass, on the last "
                         "element.", _on_last_element(en.slider_gravity_potential))
 
@@ -475,8 +477,8 @@ def damping_paper(approach):
                         "none")
 
 
-def rod_gravity():
-    return Term(gradient(en.rod_gravity_potential(), s.q))
+def rod_gravity(approach=None):
+    return lambda: Term(gradient(en.rod_gravity_potential(approach=approach), s.q))
 
 
 # ---- the geometrically exact rod: element integrals by quadrature ---------------------------------
@@ -494,7 +496,7 @@ def by_quadrature(kind, element_energy, rule=EXACT_RULE):
     """A build whose residual and tangents derive, at the points of `rule`, from the element energy
     element_energy(space) of kind "potential" (dE/dq), "dissipation" (dE/dqd) or "kinetic"."""
     def build():
-        space = quadrature.PointSpace(rule, en.QUANTITIES, en.ELEMENT_FIELDS, en.POINT_FIELDS)
+        space = _exact_space(rule)
         r, K, C, M, definitions = space.element_terms(space.generalized_forces(kind, element_energy(space)))
         return Term(r, "exact", (K, C, M), definitions)      # never in the printed iteration (EXCLUSIONS)
     return build
@@ -506,11 +508,11 @@ def rod_inertia_exact(rule=EXACT_RULE):
     section rotation's rho I (theta'' - phidd) forces by quadrature, the phidd part weighted as
     the phidd group."""
     def build():
-        f = dict(en.fields(s.q, s.qd), x=s.x0 + s.l * s.zeta)
+        f = dict(en.fields(s.q, s.qd, EXACT), x=s.x0 + s.l * s.zeta)
         T = integrate_centre_line(f)
         r = _weighted(kinetic_residual(T, s.q, s.qd, s.qdd), ELEMENT_VARS, ROD_AXIAL_ROWS, INERTIA_GROUPS)
         closed = (jacobian(r, s.q), jacobian(r, s.qd), jacobian(r, s.qdd))
-        space = quadrature.PointSpace(rule, en.QUANTITIES, en.ELEMENT_FIELDS, en.POINT_FIELDS)
+        space = _exact_space(rule)
         forces = space.generalized_forces("kinetic", en.element_rotary_kinetic_energy(space))
         weighted = {}
         for p, force in forces.items():
@@ -527,20 +529,21 @@ def integrate_centre_line(f):
     return integrate_element(en.centre_line_kinetic_energy_density(f))
 
 
-def _exact_space():
-    return quadrature.PointSpace(EXACT_RULE, en.QUANTITIES, en.ELEMENT_FIELDS, en.POINT_FIELDS)
+def _exact_space(rule=EXACT_RULE):
+    """The exact rod's point space: its cubic u (energies.field_columns), strain, rotation, curvature."""
+    return quadrature.PointSpace(rule, en.QUANTITIES, en.ELEMENT_FIELDS, en.POINT_FIELDS, en.field_columns(EXACT))
 
 
 def _exact_kinetic_energy():
     space = _exact_space()
-    f = dict(en.fields(s.q, s.qd), x=s.x0 + s.l * s.zeta)
+    f = dict(en.fields(s.q, s.qd, EXACT), x=s.x0 + s.l * s.zeta)
     return integrate_centre_line(f) + space.in_nodal(en.element_rotary_kinetic_energy(space))
 
 
-def _exact_energy(element_energy, membrane):
+def _exact_energy(element_energy):
     def build():
         space = _exact_space()
-        return space.in_nodal(element_energy(space, EXACT, membrane))
+        return space.in_nodal(element_energy(space, EXACT))
     return build
 
 
@@ -548,18 +551,10 @@ CLASSICAL = ("A", "B", "C")      # the approaches of the paper's strain measure 
 EXACT_KINETIC = Energy("rod_kinetic_energy_exact", "Element kinetic energy of the geometrically exact rod "
                        f"(centre line and exact section rotation; the rotation by {EXACT_RULE.text} "
                        "quadrature).", _exact_kinetic_energy)
-EXACT_STRAIN_ENERGY = {
-    averaged: Energy(f"strain_energy_exact{'_averaged' if averaged else ''}",
-                     f"Element strain energy of the exact rod, {'element-mean' if averaged else 'pointwise'} "
-                     f"stretch, by {EXACT_RULE.text} quadrature.",
-                     _exact_energy(en.element_strain_energy, "averaged" if averaged else "pointwise"))
-    for averaged in (False, True)}
-EXACT_DISSIPATION = {
-    averaged: Energy(f"dissipation_exact{'_averaged' if averaged else ''}",
-                     "Kelvin-Voigt Rayleigh dissipation function of the exact rod, "
-                     f"{'element-mean' if averaged else 'pointwise'} stretch rate, by {EXACT_RULE.text} quadrature.",
-                     _exact_energy(en.element_dissipation, "averaged" if averaged else "pointwise"))
-    for averaged in (False, True)}
+EXACT_STRAIN_ENERGY = Energy("strain_energy_exact", "Element strain energy of the exact rod, by "
+                             f"{EXACT_RULE.text} quadrature.", _exact_energy(en.element_strain_energy))
+EXACT_DISSIPATION = Energy("dissipation_exact", "Kelvin-Voigt Rayleigh dissipation function of the exact rod, "
+                           f"by {EXACT_RULE.text} quadrature.", _exact_energy(en.element_dissipation))
 
 
 def slider_inertia_lagrange():
@@ -597,13 +592,10 @@ def _elastic_variants():
     out.append(Variant("lagrange_C", {"formulation": "lagrange", "approach": "C"},
                        "dU/dq of approach C (linear strain)", energy=STRAIN_ENERGY["C", False],
                        build=elastic_lagrange("C", False)))
-    for membrane, averaged in (("pointwise", False), ("averaged", True)):
-        out.append(Variant(f"lagrange_exact{'_averaged' if averaged else ''}",
-                           {"formulation": "lagrange", "approach": EXACT, "membrane": membrane},
-                           f"dU/dq of the geometrically exact rod, {membrane} stretch, by {EXACT_RULE.text} "
-                           "quadrature", energy=EXACT_STRAIN_ENERGY[averaged], quadrature=EXACT_RULE,
-                           build=by_quadrature("potential", lambda space, m=membrane: en.element_strain_energy(
-                               space, EXACT, m))))
+    out.append(Variant("lagrange_exact", {"formulation": "lagrange", "approach": EXACT},
+                       f"dU/dq of the geometrically exact rod, by {EXACT_RULE.text} quadrature",
+                       energy=EXACT_STRAIN_ENERGY, quadrature=EXACT_RULE,
+                       build=by_quadrature("potential", lambda space: en.element_strain_energy(space, EXACT))))
     for ap in ("A", "B", "C"):
         out.append(Variant(f"paper_{ap}", {"formulation": "paper", "approach": ap},
                            f"printed (k_uu + k_psipsi + k_pvv + k_non) q of approach {ap}, P_i of "
@@ -625,14 +617,10 @@ def _damping_variants():
     out.append(Variant("kelvin_voigt_C", {"damping": "kelvin-voigt", "approach": "C"},
                        "dD/dqd, strain-rate damping of approach C", energy=DISSIPATION["C", False],
                        build=kelvin_voigt("C", False)))
-    for membrane, averaged in (("pointwise", False), ("averaged", True)):
-        out.append(Variant(f"kelvin_voigt_exact{'_averaged' if averaged else ''}",
-                           {"damping": "kelvin-voigt", "approach": EXACT, "membrane": membrane},
-                           f"dD/dqd, strain-rate damping of the exact strain and curvature, {membrane} "
-                           f"stretch rate, by {EXACT_RULE.text} quadrature", energy=EXACT_DISSIPATION[averaged],
-                           quadrature=EXACT_RULE,
-                           build=by_quadrature("dissipation", lambda space, m=membrane: en.element_dissipation(
-                               space, EXACT, m))))
+    out.append(Variant("kelvin_voigt_exact", {"damping": "kelvin-voigt", "approach": EXACT},
+                       "dD/dqd, strain-rate damping of the exact strain and curvature, by "
+                       f"{EXACT_RULE.text} quadrature", energy=EXACT_DISSIPATION, quadrature=EXACT_RULE,
+                       build=by_quadrature("dissipation", lambda space: en.element_dissipation(space, EXACT))))
     for ap in ("A", "B", "C"):
         out.append(Variant(f"paper_{ap}", {"damping": "paper", "approach": ap},
                            f"printed damping mu (K_lin + K_non) qd of approach {ap}, eq. (24)",
@@ -655,8 +643,10 @@ FAMILIES = (
            _elastic_variants()),
     Family("dissipation", "rod", "damping force of the rod element", "dissipation", _damping_variants()),
     Family("gravity", "rod", "weight of the rod element, dV/dq with V = -int rho A g.R dx", "potential", (
-        Variant("uniform", {}, "consistent load vector of a uniform gravity field", energy=ROD_GRAVITY,
-                build=rod_gravity),
+        Variant("uniform", {"approach": CLASSICAL}, "consistent load vector of a uniform gravity field",
+                energy=ROD_GRAVITY, build=rod_gravity()),
+        Variant("uniform_exact", {"approach": EXACT}, "consistent load vector of a uniform gravity field on "
+                "the exact rod's cubic u", energy=ROD_GRAVITY_EXACT, build=rod_gravity(EXACT)),
     ), vanishes_with=("gX", "gY")),
     Family("slider_inertia", "end", "inertia forces of the slider on (u, v) of the last node, eqs. (6)-(7)", "kinetic", (
         Variant("lagrange", {"formulation": "lagrange"}, "d/dt dT_s/dqd - dT_s/dq, exact", INERTIA_GROUPS,

@@ -8,7 +8,7 @@ sin theta); e_r . e_i = cos(theta + phi), e_theta . e_i = -sin(theta + phi).
 import sympy as sp
 
 from . import symbols as s
-from .shape_functions import B_PSI, B_U, B_V, N_PSI, N_U, N_V, integrate_element
+from .shape_functions import B_PSI, B_U, B_U_CUBIC, B_V, N_PSI, N_U, N_U_CUBIC, N_V, d_dx, integrate_element
 
 APPROACHES = ("A", "B", "C")
 
@@ -17,14 +17,23 @@ def _dot(column, vector):
     return (column.T * vector)[0, 0]
 
 
-def fields(q, qd):
-    """Interpolated fields (eqs. 8-10) and gradients of one element."""
-    return {
-        "u": _dot(N_U, q), "v": _dot(N_V, q), "psi": _dot(N_PSI, q),
-        "ud": _dot(N_U, qd), "vd": _dot(N_V, qd), "psid": _dot(N_PSI, qd),
-        "u_x": _dot(B_U, q), "v_x": _dot(B_V, q), "v_xx": _dot(B_PSI, q),
-        "ud_x": _dot(B_U, qd), "vd_x": _dot(B_V, qd), "vd_xx": _dot(B_PSI, qd),
-    }
+def field_columns(approach=None):
+    """The shape function columns of an element's fields (eqs. 8-13): u linear (approaches A, B, C)
+    or cubic in u and chi (the exact rod), v cubic; "u_xx" vanishes for a linear u."""
+    n_u, b_u = (N_U_CUBIC, B_U_CUBIC) if approach == "exact" else (N_U, B_U)
+    return {"u": n_u, "v": N_V, "psi": N_PSI, "u_x": b_u, "v_x": B_V, "v_xx": B_PSI, "u_xx": d_dx(b_u)}
+
+
+def fields(q, qd, approach=None):
+    """Interpolated fields (eqs. 8-10) and gradients of one element (the approach's u: field_columns)."""
+    cols = field_columns(approach)
+    out = {"u": _dot(cols["u"], q), "v": _dot(N_V, q), "psi": _dot(N_PSI, q),
+           "ud": _dot(cols["u"], qd), "vd": _dot(N_V, qd), "psid": _dot(N_PSI, qd),
+           "u_x": _dot(cols["u_x"], q), "v_x": _dot(B_V, q), "v_xx": _dot(B_PSI, q),
+           "ud_x": _dot(cols["u_x"], qd), "vd_x": _dot(B_V, qd), "vd_xx": _dot(B_PSI, qd)}
+    if approach == "exact":
+        out.update({"u_xx": _dot(cols["u_xx"], q), "ud_xx": _dot(cols["u_xx"], qd)})
+    return out
 
 
 def moving_frame_velocity(xi, eta, xid, etad):
@@ -184,10 +193,10 @@ def inertial_position(xi, eta):
     return X, Y
 
 
-def rod_gravity_potential(q=s.q):
+def rod_gravity_potential(q=s.q, approach=None):
     """Element potential of gravity, V_i = -int rho A g . R dx (the rotary part y(-psi e_i + e_j)
-    of eq. 4 integrates to zero over the section, int y dA = 0)."""
-    f = fields(q, q)
+    of eq. 4 integrates to zero over the section, int y dA = 0); the approach's u (field_columns)."""
+    f = fields(q, q, approach)
     X, Y = inertial_position(s.x0 + s.l * s.zeta + f["u"], f["v"])
     return integrate_element(-s.rhoA * (s.gX * X + s.gY * Y))
 
@@ -205,27 +214,31 @@ def slider_gravity_potential(qs=s.qs):
 #
 # Planar Euler-Bernoulli rod, exact kinematics in the moving frame: the centre line
 # R = a e_r + (x + u) e_i + v e_j (as in eq. 4), its tangent r' = (1 + u_x) e_i + v_x e_j = lambda
-# (cos(theta) e_i + sin(theta) e_j), lambda the stretch and e = lambda - 1 the axial strain; the
-# section stays normal to the centre line (no shear), its director d = -sin(theta) e_i +
+# (cos(theta) e_i + sin(theta) e_j), lambda = |r'| the stretch and e = lambda - 1 the axial strain;
+# the section stays normal to the centre line (no shear), its director d = -sin(theta) e_i +
 # cos(theta) e_j a unit vector turning at |dd/dt| = |theta' - phid| in the inertial frame (the
 # small-rotation director (-psi, 1) of eq. (4) is longer than 1 by sqrt(1 + psi^2)); the curvature
 # kappa = d theta / dx per undeformed length (Reissner's measure: the strain energy
 # 1/2 int (EA e^2 + EI kappa^2) dx makes N = EA e and M = EI kappa work-conjugate to e and kappa,
-# and the fibre at distance y stretches by lambda - y kappa).
+# and the fibre at distance y stretches by lambda - y kappa):
 #
-# The element's u is linear and its v cubic: u_x jumps at the nodes and is constant inside, so the
-# tangent of the interpolated centre line, (1 + u_x, v_x), kinks at every node and its angle
-# atan2(v_x, 1 + u_x) misses the u_xx part of the rotation: its curvature
-# ((1 + u_x) v_xx - v_x u_xx) / |r'|^2 falls short by about cos(theta)^2 whatever the mesh (a
-# converged static buckling load 2.6 % low at 5 degrees of end rotation, 9 % at 11).  Instead each
-# element is taken at a constant stretch lambda (the element field `lam`, element_stretch): its
-# tangent lambda (cos(theta), sin(theta)) has e_j component v_x, the continuous cubic slope, so
-# theta = asin(v_x / lambda) and kappa = v_xx / sqrt(lambda^2 - v_x^2); its membrane strain is
-# lambda - 1 (membrane="averaged", free of membrane locking: a bent element keeps lambda = 1), or the
-# pointwise |r'| - 1 of the interpolated centre line (membrane="pointwise", which locks).  Rigid
-# motions keep lambda = 1, theta the element's angle and kappa = 0.  The price: the rod stays a
-# graph over the moving frame's e_i, |theta| < 90 degrees (|v_x| < lambda), which the slope v_x of
-# crankgen's element cannot tell apart from 180 degrees - theta.
+#     kappa = (r' x r'') / |r'|^2 = ((1 + u_x) v_xx - v_x u_xx) / ((1 + u_x)^2 + v_x^2).
+#
+# Divided by |r'|^2, not |r'|^3 (the centre line's geometric curvature per deformed length): the
+# rotation per undeformed length is what the section's moment does work on, as in Reissner's and
+# Simo's rods; the two differ by a factor lambda, a strain-sized correction.
+#
+# The element interpolates u as it does v, cubic in the nodal values and slopes (u, chi = u_x;
+# v, psi = v_x: the absolute-slope coordinates of an ANCF cable element, in the moving frame), so
+# the tangent r' is continuous at the nodes and nothing limits the section's rotation: theta =
+# atan2(v_x, 1 + u_x) turns through any angle (a section turned by 120 degrees has 1 + u_x < 0).
+# The element never evaluates theta itself, only its rates and its x-derivative, rational in the
+# slopes: no branch of atan2 is ever chosen.  The strain |r'| - 1 is integrated pointwise, at the
+# three points of the rule: there the cubic u's slope (a quadratic, three values per element) can
+# take the values -v_x^2 / 2 of an inextensible bend, so the element does not lock (a linear u, one
+# value per element, does: the former element averaged the strain over the element instead).  The
+# element mean would not do here: it leaves the axial slopes chi without stiffness (a spurious
+# zero-energy mode per element), so the `membrane` option does not apply to the exact rod.
 
 # The exact strain and the rotation are functions of a point's fields.  The derivation keeps them
 # opaque (SymPy functions), so that the Euler-Lagrange terms and their tangents come out as
@@ -233,41 +246,18 @@ def slider_gravity_potential(qs=s.qs):
 # d/dt dT/dtheta' - dT/dtheta collapses to rho I (theta'' - phidd) grad theta); `reveal` puts the
 # definitions in (quadrature.PointSpace computes each partial derivative once per point).
 STRAIN = sp.Function("strain", real=True)          # e(u_x, v_x) = |r'| - 1
-ROTATION = sp.Function("rotation", real=True)      # theta(v_x, lambda) = asin(v_x / lambda)
-_A, _B, _L = sp.symbols("_a _b _l", real=True)
+ROTATION = sp.Function("rotation", real=True)      # theta(u_x, v_x) = atan2(v_x, 1 + u_x)
+_A, _B = sp.symbols("_a _b", real=True)
 QUANTITIES = {
     # ((1 + u_x)^2 + v_x^2 - 1) / (|r'| + 1): |r'| - 1 free of cancellation at small strain
     STRAIN: sp.Lambda((_A, _B), (2 * _A + _A**2 + _B**2) / (sp.sqrt((1 + _A) ** 2 + _B**2) + 1)),
-    ROTATION: sp.Lambda((_B, _L), sp.asin(_B / _L)),
+    ROTATION: sp.Lambda((_A, _B), sp.atan2(_B, 1 + _A)),
 }
 
 
-def _stretch_squared_less_one(space):
-    """lambda^2 - 1 of element_stretch, written without cancellation at small strain."""
-    u_x = space.fields(0)["u_x"]                        # constant in the element
-    m2 = space.integral(lambda f: f["v_x"] ** 2) / s.l
-    m4 = space.integral(lambda f: f["v_x"] ** 4) / s.l
-    return 2 * u_x + u_x**2 + m2 + (m4 - m2**2) / (4 * (1 + u_x) ** 2)
-
-
-def element_stretch(space):
-    """lambda of an element of constant stretch whose tangent lambda (c, v_x), c = cos(theta), has the
-    element's slope v_x and the mean axial component <c> = 1 + u_x (the axial extent of its nodes):
-    lambda^2 = <c^2> + <v_x^2> = <c>^2 + var(c) + <v_x^2>, var(c) = var(v_x^2) / (4 <c>^2) to leading
-    order (c = sqrt(lambda^2 - v_x^2)); the means by the rule of `space`.  Exact to O(l^4) for a smooth
-    rod (a circular arc turning 0.3 rad over the element: 1.2e-5), and to second order in the
-    rotation 1 + u_x + <v_x^2>/2: approach A's element-mean membrane strain."""
-    return sp.sqrt(1 + _stretch_squared_less_one(space))
-
-
-def element_strain(space):
-    """lambda - 1 of element_stretch, as (lambda^2 - 1) / (lambda + 1): no cancellation."""
-    return _stretch_squared_less_one(space) / (element_stretch(space) + 1)
-
-
 # fields constant in an element, built from the rule's points (quadrature.PointSpace gives each a
-# symbol, with its time derivatives)
-ELEMENT_FIELDS = {"lam": element_stretch, "ebar": element_strain}
+# symbol, with its time derivatives): none for the exact rod, whose strain is pointwise
+ELEMENT_FIELDS = {}
 
 MEMBRANES = ("pointwise", "averaged")
 APPROACHES_ALL = APPROACHES + ("exact",)
@@ -302,12 +292,12 @@ def reveal(expr):
     return expr.doit()
 
 
-_SLOPES = {k: sp.Symbol(f"_{k}", real=True) for k in ("u_x", "v_x", "u_xx", "v_xx", "lam")}
+_SLOPES = {k: sp.Symbol(f"_{k}", real=True) for k in ("u_x", "v_x", "u_xx", "v_xx")}
 
 
 def _of_slopes(build, f):
-    """build(slope symbols) at the fields f (with "lam", the element's stretch): kept opaque at the
-    point symbols of a quadrature rule, revealed where the fields are expressions (outputs)."""
+    """build(slope symbols) at the fields f: kept opaque at the point symbols of a quadrature rule,
+    revealed where the fields are expressions (outputs)."""
     expr = build(_SLOPES)
     values = {sym: f.get(k, 0) for k, sym in _SLOPES.items()}
     if all(isinstance(v, sp.Symbol) or v == 0 for v in values.values()):
@@ -321,7 +311,7 @@ def exact_strain(f):
 
 
 def _rotation_of(g):
-    return ROTATION(g["v_x"], g["lam"])
+    return ROTATION(g["u_x"], g["v_x"])
 
 
 def _curvature_of_slopes(g):
@@ -329,19 +319,19 @@ def _curvature_of_slopes(g):
 
 
 def section_rotation(f):
-    """theta = asin(v_x / lambda), lambda the element's stretch: the angle of the section's normal
-    from e_i in an element of constant stretch (a point field "th" of a quadrature rule's points)."""
+    """theta = atan2(v_x, 1 + u_x): the angle of the tangent (and of the section's normal) from e_i
+    (a point field "th" of a quadrature rule's points)."""
     return f["th"] if "th" in f else _of_slopes(_rotation_of, f)
 
 
 def exact_curvature(f):
     """kappa = d theta / dx (per undeformed length), derived from section_rotation (revealed:
-    v_xx / sqrt(lambda^2 - v_x^2); a point field "kap" of a quadrature rule's points)."""
+    ((1 + u_x) v_xx - v_x u_xx) / |r'|^2; a point field "kap" of a quadrature rule's points)."""
     return f["kap"] if "kap" in f else _of_slopes(_curvature_of_slopes, f)
 
 
-# fields of a quadrature point defined from its fields and the element fields (each a symbol with
-# its time derivatives, quadrature.PointSpace): the section rotation and the curvature
+# fields of a quadrature point defined from its fields (each a symbol with its time derivatives,
+# quadrature.PointSpace): the section rotation and the curvature
 POINT_FIELDS = {"th": _rotation_of, "kap": _curvature_of_slopes}
 
 
@@ -375,27 +365,26 @@ def _curvature_of(approach, f):
     return exact_curvature(f) if approach == "exact" else f["v_xx"]
 
 
-def element_strain_energy(space, approach, membrane):
+def element_strain_energy(space, approach, membrane="pointwise"):
     """Element strain energy by the rule of `space`.  pointwise: 1/2 int (EA e^2 + EI kappa^2) dx
-    (eq. 2 for A, B, C; e = |r'| - 1 and the exact kappa for "exact").  averaged: the membrane
-    energy of one strain per element, l EA e_bar^2 / 2 (A and B: u_x + <v_x^2>/2, as
-    strain_energy_averaged; exact: the element's stretch less 1, element_strain)."""
+    (eq. 2 for A, B, C; e = |r'| - 1 and the exact kappa for "exact", always pointwise: its cubic u
+    matches v_x^2 / 2 at the rule's points, so it does not lock).  averaged (A, B): the membrane
+    energy of one strain per element, l EA e_bar^2 / 2 (u_x + <v_x^2>/2, as
+    strain_energy_averaged)."""
     bending = space.integral(lambda f: s.EI * _curvature_of(approach, f) ** 2 / 2)
-    if membrane == "pointwise" or approach == "C":
-        if approach == "exact":
-            return space.integral(lambda f: s.EA * exact_strain(f) ** 2 / 2) + bending
-        return space.integral(lambda f: s.EA * membrane_energy_density(approach, f) / 2) + bending
     if approach == "exact":
-        return s.l * s.EA * space.fields(0)["ebar"] ** 2 / 2 + bending
+        return space.integral(lambda f: s.EA * exact_strain(f) ** 2 / 2) + bending
+    if membrane == "pointwise" or approach == "C":
+        return space.integral(lambda f: s.EA * membrane_energy_density(approach, f) / 2) + bending
     u_x = space.fields(0)["u_x"]                        # constant in the element
     m = space.integral(lambda f: f["v_x"] ** 2) / s.l
     energy = {"A": (u_x + m / 2) ** 2, "B": u_x**2 + u_x * m}[approach]
     return s.l * s.EA * energy / 2 + bending
 
 
-def element_dissipation(space, approach, membrane):
+def element_dissipation(space, approach, membrane="pointwise"):
     """Element Kelvin-Voigt dissipation D = mu/2 int (EA e'^2 + EI kappa'^2) dx by the rule of
-    `space` (' = d/dt); averaged: l EA e_bar'^2 for the membrane part."""
+    `space` (' = d/dt); averaged (A, B): l EA e_bar'^2 for the membrane part."""
     def strain_rate_at(f):
         if approach == "exact":
             return field_rate(exact_strain(f), f)
@@ -405,9 +394,7 @@ def element_dissipation(space, approach, membrane):
         return field_rate(exact_curvature(f), f) if approach == "exact" else f["vd_xx"]
 
     bending = space.integral(lambda f: s.mu * s.EI * curvature_rate_at(f) ** 2 / 2)
-    if membrane == "pointwise" or approach == "C":
+    if membrane == "pointwise" or approach in ("C", "exact"):
         return space.integral(lambda f: s.mu * s.EA * strain_rate_at(f) ** 2 / 2) + bending
-    if approach == "exact":
-        return s.mu * s.l * s.EA * space.fields(0)["ebard"] ** 2 / 2 + bending
     rate = space.integral(strain_rate_at) / s.l
     return s.mu * s.l * s.EA * rate**2 / 2 + bending

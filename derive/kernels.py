@@ -226,10 +226,11 @@ def geometry_kernels():
 def shape_kernels():
     shapes = ir.SHAPES
     return (
-        Kernel("shape_functions", "Shape functions N_u, N_v, N_psi of Appendix A at zeta = x / l.",
+        Kernel("shape_functions", "Shape functions N_u, N_v, N_psi of Appendix A at zeta = x / l, and the exact "
+               "rod's cubic N_u (in u and chi).",
                (scalar(s.zeta), scalar(s.l)),
                (Output("N_u", shapes["N_u"], "eq. (11)"), Output("N_v", shapes["N_v"], "eq. (12)"),
-                Output("N_psi", shapes["N_psi"], "eq. (13)"))),
+                Output("N_psi", shapes["N_psi"], "eq. (13)"), Output("N_u_cubic", shapes["N_u_cubic"], "exact rod"))),
         Kernel("slope_gram", "int_0^l {B_v}{B_v}^T dx, so that int v_x^2 dx = q^T G q (eq. 40).",
                (scalar(s.l),), (Output("G", shapes["slope_gram"], "slope Gram matrix"),)),
     )

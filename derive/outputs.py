@@ -15,7 +15,7 @@ from crankgen.declaration import records
 
 from . import energies as en
 from . import symbols as s
-from .declaration import EXACT, GUIDES, EXACT_KINETIC, EXACT_STRAIN_ENERGY, STRAIN_ENERGY, _exact_space, eps
+from .declaration import EXACT, GUIDES, EXACT_KINETIC, EXACT_STRAIN_ENERGY, STRAIN_ENERGY, eps
 from .euler_lagrange import total_time_derivative
 
 # the guides whose end mass is a slider on the guide's curve (the joint forces at B are the
@@ -89,22 +89,13 @@ rod_end = sp.Matrix(sp.symbols("rodend0:2", real=True))
 s_end = sp.Symbol("s", real=True)
 
 
-def _exact_element():
-    """The exact rod's point space (EXACT_RULE) and the element stretch lambda in q."""
-    space = _exact_space()
-    return space, space.in_nodal(space.fields(0)["lam"])
-
-
 def membrane_strain(options, q=s.q):
     """The membrane strain of the approach in use: u_x + v_x^2/2 for A and B (pointwise or element
-    mean), u_x for C, for exact |r'| - 1 (pointwise) or the element's stretch less 1 (averaged)."""
-    f = en.fields(q, q)
+    mean), u_x for C, |r'| - 1 for exact."""
+    f = en.fields(q, q, options["approach"])
     if options["approach"] == "C":
         return f["u_x"]
     if options["approach"] == EXACT:
-        if options["membrane"] == "averaged":
-            space, _ = _exact_element()
-            return space.in_nodal(space.fields(0)["ebar"])
         return en.exact_strain(f)
     if options["membrane"] == "averaged":
         return f["u_x"] + en.mean_over_element(f["v_x"] ** 2) / 2
@@ -113,16 +104,18 @@ def membrane_strain(options, q=s.q):
 
 def _curvature(options, q=s.q):
     """v_xx (A, B, C); the exact section rotation's d theta / dx (exact)."""
-    f = en.fields(q, q)
+    f = en.fields(q, q, options["approach"])
     if options["approach"] != EXACT:
         return f["v_xx"]
-    return en.exact_curvature(dict(f, lam=_exact_element()[1]))
+    return en.exact_curvature(f)
 
 
 def _strain_energy_of(options):
     """The Energy of the approach and membrane strain in use."""
+    if options["approach"] == EXACT:
+        return EXACT_STRAIN_ENERGY
     averaged = options["approach"] != "C" and options["membrane"] == "averaged"
-    return EXACT_STRAIN_ENERGY[averaged] if options["approach"] == EXACT else STRAIN_ENERGY[options["approach"], averaged]
+    return STRAIN_ENERGY[options["approach"], averaged]
 
 
 def _inertial(vector):
@@ -155,10 +148,10 @@ def chord_elongation():
     return stretch / (sp.sqrt((1 + q_end[0]) ** 2 + q_end[1] ** 2) + 1)
 
 
-def chord_deflection():
+def chord_deflection(approach=None):
     """Signed distance of the rod's point at x (element zeta) from its chord, the line from the pin to
     the end node, positive on the counter-clockwise side (towards e_j for a straight rod)."""
-    f = en.fields(s.q, s.q)
+    f = en.fields(s.q, s.q, approach)
     x = s.x0 + s.l * s.zeta
     length = sp.sqrt((1 + q_end[0]) ** 2 + q_end[1] ** 2)
     return ((1 + q_end[0]) * f["v"] - q_end[1] * (x + f["u"])) / length
@@ -250,7 +243,7 @@ OUTPUTS = (
     Output("chord_deflection", "field",
            "signed distance of the rod's point at x* from its chord (the line from the crank pin to "
            "the rod's end), positive counter-clockwise", "L", options=MEMBRANE_OPTIONS,
-           build=lambda o: chord_deflection()),
+           build=lambda o: chord_deflection(o["approach"])),
 )
 
 

@@ -73,7 +73,7 @@ def time_derivative(vector):
 def stiffness_matrices(approach, m):
     """(K_lin without -m2, K_non) of eqs. (22)-(23) for an approach: B drops k_vvv, C also k_pvv."""
     k_lin = m["kuu"] + m["kpsipsi"]
-    k_non = sp.zeros(6, 6)
+    k_non = sp.zeros(s.ELEMENT_DOFS, s.ELEMENT_DOFS)
     if approach in ("A", "B"):
         k_lin = k_lin + m["kpvv"]
     if approach == "A":

@@ -39,12 +39,13 @@ import sympy as sp
 from sympy.integrals.quadrature import gauss_legendre
 
 from . import symbols as s
-from .shape_functions import B_PSI, B_U, B_V, N_PSI, N_U, N_V, d_dx
+from .energies import field_columns
 
 DIGITS = 20                      # decimal digits of the rule's points and weights (printed as literals)
 
-# The fields at a point: name -> shape function column (eqs. 8-13); "u_xx" vanishes (linear u).
-FIELD_COLUMNS = {"u": N_U, "v": N_V, "psi": N_PSI, "u_x": B_U, "v_x": B_V, "v_xx": B_PSI, "u_xx": d_dx(B_U)}
+# The fields at a point: name -> shape function column (eqs. 8-13; energies.field_columns: the
+# approach's u, whose "u_xx" vanishes where u is linear).
+FIELD_COLUMNS = field_columns()
 # d/dx of a field, as a field (what the curvature of the exact section rotation needs)
 X_DERIVATIVE = {"u": "u_x", "v": "v_x", "u_x": "u_xx", "v_x": "v_xx"}
 # time levels: the nodal vector a field is a linear form in, and the suffix of its name in the field
@@ -89,11 +90,11 @@ class PointSpace:
     opaquely (energies.QUANTITIES); element_terms computes each of their partial derivatives once
     per point."""
 
-    def __init__(self, rule, quantities=None, element_fields=None, point_fields=None):
+    def __init__(self, rule, quantities=None, element_fields=None, point_fields=None, columns=FIELD_COLUMNS):
         self.rule = rule
         self.quantities = dict(quantities or {})
         self.derived = {}        # element field symbol (and its rates) -> its definition
-        self.column = {}         # point symbol -> (level, 6-column)
+        self.column = {}         # point symbol -> (level, column over the nodal vector)
         self.rate = {}           # point symbol -> the symbol of its time derivative
         self._fields = []        # per point: {energies.fields key: symbol or 0, "x": abscissa}
         self._x_derivative = {}  # point symbol -> symbol (or 0) of its x-derivative
@@ -101,12 +102,12 @@ class PointSpace:
         shared = {}
         for g, zeta in enumerate(rule.points):
             values = {}
-            for field, column in FIELD_COLUMNS.items():
+            for field, column in columns.items():
                 col = column.subs(s.zeta, zeta).applyfunc(sp.expand)
                 constant = not column.has(s.zeta)
                 for level in range(len(LEVELS)):
                     key = level_name(field, level)
-                    if col == sp.zeros(6, 1):
+                    if col == sp.zeros(s.ELEMENT_DOFS, 1):
                         values[key] = sp.Integer(0)
                         continue
                     if constant:
@@ -117,7 +118,7 @@ class PointSpace:
                         values[key] = self._new(sp.Symbol(f"{key}_{g}", real=True), level, col)
             values["x"] = s.x0 + s.l * zeta
             self._fields.append(values)
-            for field in FIELD_COLUMNS:
+            for field in columns:
                 for level in range(len(LEVELS)):
                     sym = values[level_name(field, level)]
                     if level < len(LEVELS) - 1 and sym != 0:
@@ -240,23 +241,24 @@ class PointSpace:
         derivatives D_PQ = dR_P/dQ; the rows T_P = sum_Q D_PQ B_Q^T.
         Then r = sum_P R_P B_P and K (C, M) = sum_P B_P T_P over the displacement (rate,
         acceleration) point fields Q."""
-        r = sp.zeros(6, 1)
-        tangents = [sp.zeros(6, 6) for _ in LEVELS]
+        n = s.ELEMENT_DOFS
+        r = sp.zeros(n, 1)
+        tangents = [sp.zeros(n, n) for _ in LEVELS]
         points, rows = [], []
         for p in sorted(forces, key=str):
             col = self.column[p][1]
             force = sp.Symbol(f"R_{p}", real=True)
             points.append((force, forces[p]))
             r += force * col
-            row = [sp.zeros(1, 6) for _ in LEVELS]
+            row = [sp.zeros(1, n) for _ in LEVELS]
             for other in sorted(self._depends_on(forces[p]), key=str):
                 level, col_q = self.column[other]
                 derivative = sp.Symbol(f"D{level}_{p}__{other}", real=True)
                 points.append((derivative, self.total(forces[p], other)))
                 row[level] += derivative * col_q.T
             for level in range(len(LEVELS)):
-                named = sp.zeros(1, 6)
-                for j in range(6):
+                named = sp.zeros(1, n)
+                for j in range(n):
                     if row[level][j] != 0:
                         sym = sp.Symbol(f"T{level}_{p}_{j}", real=True)
                         rows.append((sym, row[level][j]))

@@ -34,7 +34,7 @@ from . import outputs
 from . import symbols as s
 from .euler_lagrange import gradient, kinetic_residual
 from .groups import ELEMENT_VARS, ROD_AXIAL_ROWS, SLIDER_AXIAL_ROWS, SLIDER_VARS, group_vector
-from .shape_functions import B_V, N_PSI, N_U, N_V, integrate_element
+from .shape_functions import B_V, N_PSI, N_U, N_U_CUBIC, N_V, integrate_element
 
 ELEMENT_DOFS = s.ELEMENT_DOFS    # (u, v, psi) of the element's two nodes, eq. (14)
 CRANK_SYMBOLS = (s.theta, s.thetad, s.thetadd)
@@ -518,14 +518,13 @@ def _option_cases(names):
 
 
 def _coarse_key(options):
-    """The membrane strain's cases: linear (approach C), pointwise or averaged; exact or
-    exact_averaged for the geometrically exact rod."""
+    """The membrane strain's cases: linear (approach C), pointwise or averaged; exact for the
+    geometrically exact rod (whose strain is pointwise whatever the membrane option)."""
     if options.get("approach") == "C":
         return "linear"
-    averaged = options.get("membrane") == "averaged"
     if options.get("approach") == model.EXACT:
-        return "exact_averaged" if averaged else "exact"
-    return "averaged" if averaged else "pointwise"
+        return "exact"
+    return "averaged" if options.get("membrane") == "averaged" else "pointwise"
 
 
 def _group_suffix(cases, every):
@@ -684,5 +683,5 @@ def audit_groups():
     return tuple(out)
 
 
-SHAPES = {"N_u": N_U, "N_v": N_V, "N_psi": N_PSI,
+SHAPES = {"N_u": N_U, "N_v": N_V, "N_psi": N_PSI, "N_u_cubic": N_U_CUBIC,
           "slope_gram": (B_V * B_V.T).applyfunc(integrate_element)}

@@ -1,29 +1,33 @@
-"""Stage 1: shape functions of Appendix A and their x-derivatives (eqs. 8-13, B10-B12)."""
+"""Stage 1: shape functions of Appendix A and their x-derivatives (eqs. 8-13, B10-B12), as columns
+over the element's nodal vector (u, v, psi, chi of its two nodes: symbols.NODE); and the exact rod's
+cubic axial field."""
 
 from functools import lru_cache
 
 import sympy as sp
 
+from . import symbols as s
 from .symbols import l, zeta
 
+
+def _column(**by_component):
+    """A column over the nodal vector from {component: (its function at node 0, at node 1)}."""
+    col = sp.zeros(s.ELEMENT_DOFS, 1)
+    for component, (first, second) in by_component.items():
+        col[s.element_slots(0, (component,))[0]] = first
+        col[s.element_slots(1, (component,))[0]] = second
+    return col
+
+
+# The cubic Hermite functions of a value and its x-derivative at the two nodes.
+HERMITE_VALUE = (1 - 3 * zeta**2 + 2 * zeta**3, zeta**2 * (3 - 2 * zeta))
+HERMITE_SLOPE = (zeta * (zeta - 1) ** 2 * l, zeta**2 * (zeta - 1) * l)
+
 # Appendix A, as printed.
-N_U = sp.Matrix([1 - zeta, 0, 0, zeta, 0, 0])
-N_V = sp.Matrix([
-    0,
-    1 - 3 * zeta**2 + 2 * zeta**3,
-    zeta * (zeta - 1) ** 2 * l,
-    0,
-    zeta**2 * (3 - 2 * zeta),
-    zeta**2 * (zeta - 1) * l,
-])
-N_PSI = sp.Matrix([
-    0,
-    6 * zeta / l * (zeta - 1),
-    1 - 4 * zeta + 3 * zeta**2,
-    0,
-    -6 * zeta / l * (zeta - 1),
-    3 * zeta**2 - 2 * zeta,
-])
+N_U = _column(u=(1 - zeta, zeta))
+N_V = _column(v=HERMITE_VALUE, psi=HERMITE_SLOPE)
+N_PSI = _column(v=(6 * zeta / l * (zeta - 1), -6 * zeta / l * (zeta - 1)),
+                psi=(1 - 4 * zeta + 3 * zeta**2, 3 * zeta**2 - 2 * zeta))
 
 
 def d_dx(column):
@@ -37,7 +41,13 @@ B_PSI = d_dx(N_PSI)   # eq. (B12)
 
 # The printed slope functions are the x-derivatives of the cubic ones, so psi = v_x exactly
 # (a consistency check of the transcription, not an assumption).
-assert (B_V - N_PSI).applyfunc(sp.simplify) == sp.zeros(6, 1)
+assert (B_V - N_PSI).applyfunc(sp.simplify) == sp.zeros(s.ELEMENT_DOFS, 1)
+
+# The geometrically exact rod interpolates u as v is: cubic in u and chi = u_x at the nodes (the
+# absolute-slope coordinates of an ANCF cable element, in the moving frame), so that its tangent
+# r' = (1 + u_x, v_x) is continuous along the rod.
+N_U_CUBIC = _column(u=HERMITE_VALUE, chi=HERMITE_SLOPE)
+B_U_CUBIC = d_dx(N_U_CUBIC)
 
 
 @lru_cache(maxsize=None)

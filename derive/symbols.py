@@ -31,9 +31,12 @@ theta, thetad, phi, phid, phidd = sp.symbols("theta thetad phi phid phidd", real
 thetadd = sp.Symbol("thetadd", real=True)
 beta, betad, betadd = sp.symbols("beta betad betadd", real=True)
 
-# The components of a node (eq. 14): axial and transverse displacement, slope; an element's nodal
-# vector holds its two nodes' components, the first node's first.
-NODE = ("u", "v", "psi")
+# The components of a node (eq. 14): axial and transverse displacement, slope psi = v_x, and the
+# axial slope chi = u_x, which only the geometrically exact rod interpolates (its u is cubic, so its
+# tangent (1 + u_x, v_x) is continuous at the nodes); approaches A, B and C interpolate u linearly
+# and have no chi (the DOF map leaves it out: records.Body.conditional).  An element's nodal vector
+# holds its two nodes' components, the first node's first.
+NODE = ("u", "v", "psi", "chi")
 ELEMENT_NODES = 2
 ELEMENT_DOFS = len(NODE) * ELEMENT_NODES
 
@@ -43,7 +46,8 @@ def element_slots(node, components):
     return tuple(node * len(NODE) + NODE.index(c) for c in components)
 
 
-# Element nodal vector {q}_i = {u_i, v_i, psi_i, u_i+1, v_i+1, psi_i+1} (eq. 14) and its rates.
+# Element nodal vector {q}_i = {u_i, v_i, psi_i, chi_i, u_i+1, v_i+1, psi_i+1, chi_i+1} (eq. 14 with
+# chi) and its rates.
 q = sp.Matrix(sp.symbols(f"q0:{ELEMENT_DOFS}", real=True))
 qd = sp.Matrix(sp.symbols(f"qd0:{ELEMENT_DOFS}", real=True))
 qdd = sp.Matrix(sp.symbols(f"qdd0:{ELEMENT_DOFS}", real=True))

@@ -31,9 +31,13 @@ strain has no geometric stiffness, 0.9 % whatever the mesh (a property of the mo
 The geometrically exact rod (approach "exact") has the same centre line; its section's director is
 the unit vector d = -sin(theta) e_i + cos(theta) e_j, whose inertial angle is theta - phi, so its
 rotary kinetic energy is rho I/2 int (theta' - phid)^2 dx and its part of the frame moment
-rho I int (phidd - theta'') dx; theta, the strain energy and the dissipation are those of
-exact_reference.py (numpy.arcsin of the slope over the element's stretch, by the rule the model
-declares), theta' and theta'' by central differences in time along the nodal motion.
+rho I int (phidd - theta'') dx; its u is cubic in the nodal u and chi = u_x (typed in here like
+v); theta, the strain energy and the dissipation are those of exact_reference.py (numpy.arctan2 of
+the tangent, the strain pointwise, by the rule the model declares), theta' and theta'' by central
+differences in time along the nodal motion.
+
+Element vectors hold (u, v, psi, chi) of each of the element's two nodes (8 slots, reference.py's
+layout); approaches A, B and C have no chi (their slots are the DOF map's dummy).
 """
 
 import math
@@ -41,21 +45,29 @@ import math
 import numpy as np
 
 import exact_reference as xr
+from reference import AXIAL, END_UV, TRANSVERSE, U1, V1
 
 N_GAUSS = 6
 _XG, _WG = np.polynomial.legendre.leggauss(N_GAUSS)
 ZETA, WEIGHTS = (_XG + 1) / 2, _WG / 2
 
 
-def shapes(z, l):
-    """N_u, N_v, N_v' , N_v'' rows (len(z), 6) of Appendix A at zeta = z (typed in by hand)."""
+def shapes(z, l, cubic_u=False):
+    """N_u, N_u', N_v, N_v' , N_v'' rows (len(z), 8) at zeta = z (typed in by hand): Appendix A's
+    (u linear; nodal vector (u, v, psi, chi) of each node), or (cubic_u) the exact rod's u, cubic
+    Hermite in u and chi like v in v and psi."""
     z = np.asarray(z, float)
     o = 0 * z
-    Nu = np.stack([1 - z, o, o, z, o, o], -1)
-    Nv = np.stack([o, 1 - 3 * z**2 + 2 * z**3, l * z * (z - 1) ** 2, o, z**2 * (3 - 2 * z), l * z**2 * (z - 1)], -1)
-    Nvx = np.stack([o, (6 * z**2 - 6 * z) / l, 3 * z**2 - 4 * z + 1, o, (6 * z - 6 * z**2) / l, 3 * z**2 - 2 * z], -1)
-    Nvxx = np.stack([o, (12 * z - 6) / l**2, (6 * z - 4) / l, o, (6 - 12 * z) / l**2, (6 * z - 2) / l], -1)
-    Nux = np.stack([-1 + o, o, o, 1 + o, o, o], -1) / l
+    Nv = np.stack([o, 1 - 3 * z**2 + 2 * z**3, l * z * (z - 1) ** 2, o,
+                   o, z**2 * (3 - 2 * z), l * z**2 * (z - 1), o], -1)
+    Nvx = np.stack([o, (6 * z**2 - 6 * z) / l, 3 * z**2 - 4 * z + 1, o,
+                    o, (6 * z - 6 * z**2) / l, 3 * z**2 - 2 * z, o], -1)
+    Nvxx = np.stack([o, (12 * z - 6) / l**2, (6 * z - 4) / l, o, o, (6 - 12 * z) / l**2, (6 * z - 2) / l, o], -1)
+    if cubic_u:               # v's rows moved from the (v, psi) slots to the (u, chi) slots
+        move = [1, 0, 3, 2, 5, 4, 7, 6]
+        return Nv[:, move], Nvx[:, move], Nv, Nvx, Nvxx
+    Nu = np.stack([1 - z, o, o, o, z, o, o, o], -1)
+    Nux = np.stack([-1 + o, o, o, o, 1 + o, o, o, o], -1) / l
     return Nu, Nux, Nv, Nvx, Nvxx
 
 
@@ -104,7 +116,7 @@ def rod_fields(model, q, qd, qdd):
     """Fields at the Gauss points (Nt, n, N_GAUSS): x, u, v, psi = v_x, u_x, v_xx and rates."""
     mesh = model.mesh
     l = mesh.length
-    Nu, Nux, Nv, Nvx, Nvxx = shapes(ZETA, l)
+    Nu, Nux, Nv, Nvx, Nvxx = shapes(ZETA, l, model.options["approach"] == "exact")
     f = {"x": mesh.x0[:, None] + l * ZETA[None, :], "l": l}
     for name, Q in (("", q), ("d", qd), ("dd", qdd)):
         for key, N in (("u", Nu), ("v", Nv), ("psi", Nvx), ("ux", Nux), ("vxx", Nvxx)):
@@ -172,12 +184,12 @@ def end_state(model, kin, s, sd, sdd):
 
 
 def nodal_states(model, kin, d, v, a):
-    """Element nodal vectors (Nt, n, 6) of reduced histories (Nt, N), the end mapped here."""
+    """Element nodal vectors (Nt, n, 8) of reduced histories (Nt, N), the end mapped here."""
     mesh = model.mesh
     q, qd, qdd = mesh.gather(d), mesh.gather(v), mesh.gather(a)
     S = mesh.reduced_coordinates()[0]
     for Q, val in zip((q, qd, qdd), end_state(model, kin, d[:, S], v[:, S], a[:, S])[:3]):
-        Q[:, -1, 3:5] = val
+        Q[:, -1, END_UV] = val
     return q, qd, qdd
 
 
@@ -192,7 +204,7 @@ def kinetic_energy(model, kin, q, qd):
     else:
         (Ci, Cj), _ = section_rates(f["psi"], f["psid"], 0, kin)
         T = 0.5 * _integrate(f, m.rhoA * (Vi**2 + Vj**2) + m.rhoI * (Ci**2 + Cj**2))
-    (Vsi, Vsj), _ = point_kinematics(1.0, q[:, -1, 3], qd[:, -1, 3], 0, q[:, -1, 4], qd[:, -1, 4], 0, kin, m.a)
+    (Vsi, Vsj), _ = point_kinematics(1.0, q[:, -1, U1], qd[:, -1, U1], 0, q[:, -1, V1], qd[:, -1, V1], 0, kin, m.a)
     return T + 0.5 * m.ms * (Vsi**2 + Vsj**2)
 
 
@@ -202,10 +214,10 @@ def _element_mean(g):
 
 def strain_energy(model, q, approach, averaged=False):
     """Eq. (2) for A; without the quartic term for B; linear strain for C.  averaged: the
-    membrane strain uses the element mean of v_x^2."""
+    membrane strain uses the element mean of v_x^2 (A and B; the exact rod's strain is pointwise)."""
     m = model.mechanism
     if approach == "exact":
-        return np.sum(xr.strain_energy(q, model.mesh.length, m.EA, m.EI, averaged), -1)
+        return np.sum(xr.strain_energy(q, model.mesh.length, m.EA, m.EI), -1)
     f = rod_fields(model, q, 0 * q, 0 * q)
     vx2 = _element_mean(f["psi"] ** 2) if averaged else f["psi"] ** 2
     axial = {"A": (f["ux"] + vx2 / 2) ** 2, "B": f["ux"] ** 2 + f["ux"] * vx2, "C": f["ux"] ** 2}[approach]
@@ -216,7 +228,7 @@ def kelvin_voigt_power(model, q, qd, approach, averaged=False):
     """2 D = mu int [EA (d/dt e)^2 + EI (d/dt v_xx)^2] dx, e the approach's axial strain."""
     m = model.mechanism
     if approach == "exact":
-        return 2 * np.sum(xr.dissipation(q, qd, model.mesh.length, m.EA, m.EI, m.mu, averaged), -1)
+        return 2 * np.sum(xr.dissipation(q, qd, model.mesh.length, m.EA, m.EI, m.mu), -1)
     f = rod_fields(model, q, qd, 0 * q)
     vvd = f["psi"] * f["psid"]
     ed = f["uxd"] + ((_element_mean(vvd) if averaged else vvd) if approach in "AB" else 0)
@@ -234,34 +246,35 @@ def frame_moment(model, kin, q, qd, qdd):
     else:
         _, (Di, Dj) = section_rates(f["psi"], f["psid"], f["psidd"], kin)
         J = _integrate(f, m.rhoA * (Bi * f["v"] - Bj * (f["x"] + f["u"])) + m.rhoI * (Di + Dj * f["psi"]))
-    us, vs = q[:, -1, 3], q[:, -1, 4]
-    _, (Bsi, Bsj) = point_kinematics(1.0, us, qd[:, -1, 3], qdd[:, -1, 3], vs, qd[:, -1, 4], qdd[:, -1, 4], kin, m.a)
+    us, vs = q[:, -1, U1], q[:, -1, V1]
+    _, (Bsi, Bsj) = point_kinematics(1.0, us, qd[:, -1, U1], qdd[:, -1, U1], vs, qd[:, -1, V1], qdd[:, -1, V1], kin, m.a)
     return J + m.ms * (Bsi * vs - Bsj * (1.0 + us))
 
 
 def _exact_rotary_moment(model, kin, q, qd, qdd, h=1e-3):
     """int (phidd - theta'') dx per element (Nt, n): d'' . dd/dphi of the unit director, whose
     inertial angle is theta - phi; theta'' = d^2/ds^2 theta(q + s qd + s^2/2 qdd) at s = 0 by a
-    5-point central difference, by the model's rule."""
+    5-point central difference (theta measured from its value at s = 0: no branch of arctan2 is
+    crossed), by the model's rule."""
     l = model.mesh.length
     z, w = xr.rule()
 
     def theta(s):
-        return xr.rotation(q + s * qd + s**2 / 2 * qdd, l, z)
+        return xr._turn(q + s * qd + s**2 / 2 * qdd, l, z, q, z)
     second = (-theta(2 * h) + 16 * theta(h) - 30 * theta(0.0) + 16 * theta(-h) - theta(-2 * h)) / (12 * h**2)
     return xr.integrate(kin.phidd[:, None, None] - second, l, w)
 
 
 def damping_forces(model, kin, q, qd):
-    """(rod (Nt, n, 6), slider (Nt, 2)) forces of the model's damping kernels."""
+    """(rod (Nt, n, 8), slider (Nt, 2)) forces of the model's damping kernels."""
     r_d = _family_forces(model, kin, q, qd, 0 * q, "rod", {"dissipation"})
-    r_sd = _family_forces(model, kin, q, qd, 0 * q, "end", {"slider_dissipation"})[:, 3:5]
+    r_sd = _family_forces(model, kin, q, qd, 0 * q, "end", {"slider_dissipation"})[:, END_UV]
     return r_d, r_sd
 
 
 def _family_forces(model, kin, q, qd, qdd, part, names):
     """Sum of the residuals of the model's selected kernels of the named families on every element
-    ('rod': (Nt, n, 6)) or on the last one ('end': (Nt, 6))."""
+    ('rod': (Nt, n, 8)) or on the last one ('end': (Nt, 8))."""
     geo, coef = model.geometry, model.coefficients
     if part == "rod":
         args, shape = (q, qd, qdd, geo, coef, kin.vector[:, None, :]), q.shape
@@ -290,18 +303,18 @@ def printed_damping_forces(model, kin, q, qd, approach):
     r = ((axial * wl) @ Nux + (transverse_slope * wl) @ Nvx + (m.EI * f["vxxd"] * wl) @ Nvxx
          - (phd2 * m.rhoA * f["ud"] * wl) @ Nu - (phd2 * m.rhoA * f["vd"] * wl) @ Nv
          - (phd2 * m.rhoI * f["psid"] * wl) @ Nvx)
-    r_s = -m.ms * kin.phid[:, None] ** 2 * qd[:, -1, 3:5]
+    r_s = -m.ms * kin.phid[:, None] ** 2 * qd[:, -1, END_UV]
     return m.mu * r, m.mu * r_s
 
 
 def unreduced_residual(model, kin, q, qd, qdd):
-    """Element residuals (Nt, n, 6) of the unreduced system from crankgen's kernels: the pinned
+    """Element residuals (Nt, n, 8) of the unreduced system from crankgen's kernels: the pinned
     rows (pin reaction) and the slider rows (guide reaction) are kept, nothing is projected."""
     r = _family_forces(model, kin, q, qd, qdd, "rod", {"inertia", "elastic", "gravity"})
     r_d, r_sd = damping_forces(model, kin, q, qd)
     r = r + r_d
-    r[:, -1, 3:5] += _family_forces(model, kin, q, qd, qdd, "end", {"slider_inertia", "slider_gravity"})[:, 3:5]
-    r[:, -1, 3:5] += r_sd
+    r[:, -1, END_UV] += _family_forces(model, kin, q, qd, qdd, "end", {"slider_inertia", "slider_gravity"})[:, END_UV]
+    r[:, -1, END_UV] += r_sd
     return r
 
 
@@ -322,11 +335,11 @@ def power_history(model, t, d, v, a, averaged=False):
         P_diss = kelvin_voigt_power(model, q, qd, options["approach"], averaged)
     else:                           # eq. (24): qd . C qd, C written out here (not the kernels)
         r_d, r_sd = printed_damping_forces(model, kin, q, qd, options["approach"])
-        P_diss = np.sum(r_d * qd, axis=(1, 2)) + np.sum(r_sd * qd[:, -1, 3:5], axis=1)
-    net_i = np.sum(r_d[:, :, [0, 3]], axis=(1, 2)) + r_sd[:, 0]
-    net_j = np.sum(r_d[:, :, [1, 4]], axis=(1, 2)) + r_sd[:, 1]
-    rs = r[:, -1, 3:5]                                              # guide reaction on (e_i, e_j)
-    us, vs = q[:, -1, 3], q[:, -1, 4]
+        P_diss = np.sum(r_d * qd, axis=(1, 2)) + np.sum(r_sd * qd[:, -1, END_UV], axis=1)
+    net_i = np.sum(r_d[:, :, AXIAL], axis=(1, 2)) + r_sd[:, 0]
+    net_j = np.sum(r_d[:, :, TRANSVERSE], axis=(1, 2)) + r_sd[:, 1]
+    rs = r[:, -1, END_UV]                                           # guide reaction on (e_i, e_j)
+    us, vs = q[:, -1, U1], q[:, -1, V1]
     Q_phi = frame_moment(model, kin, q, qd, qdd) - (rs[:, 0] * vs - rs[:, 1] * (1.0 + us))
     T = kinetic_energy(model, kin, q, qd)
     U = strain_energy(model, q, options["approach"], averaged)

@@ -4,13 +4,15 @@ Generated element kernels share one calling convention, (q, qd, qdd, geo, coef, 
 geo = (l, x0), coef = the coefficient vector (crankgen.declaration.ingredients.COEFFICIENTS) and kin = the
 kinematics vector of crankgen.declaration.schema.KINEMATICS (a, theta, thetad, phi, phid, phidd, thetadd, ...).  The tests compare them with independent quadrature and finite
 differences written with physical arguments (l, x0, rhoA, ..., a, theta, ...); these wrappers pack
-those arguments into the convention (and cut slider terms to the last node's (u, v)), nothing else.
+those arguments into the convention (and cut slider terms to the last node's (u, v), slots END_UV of the 8-slot element vector), nothing
+else.
 """
 
 from types import SimpleNamespace
 
 import numpy as np
 
+from reference import END_UV, NDOF
 from crankgen.declaration import ingredients, schema
 from crankgen._generated import elements as E
 from crankgen._generated import energy as _energy
@@ -44,8 +46,8 @@ def _zeros_like_q(q):
 
 def _slider_q(qs):
     qs = np.asarray(qs, dtype=float)
-    q = np.zeros(qs.shape[:-1] + (6,))
-    q[..., 3:5] = qs
+    q = np.zeros(qs.shape[:-1] + (NDOF,))
+    q[..., END_UV] = qs
     return q
 
 
@@ -61,7 +63,7 @@ def _slider_inertia(kernel):
         out = kernel(_slider_q(qs), _slider_q(qsd), _slider_q(qsdd), vec(L, 0.0), coef(ms=ms),
                      _kin(a, theta, thetad, phi, phid, phidd, thetadd))
         r, K, C, M = out[:4]
-        return r[..., 3:5], K[..., 3:5, 3:5], C[..., 3:5, 3:5], M[..., 3:5, 3:5]
+        return r[..., END_UV], K[..., END_UV, END_UV], C[..., END_UV, END_UV], M[..., END_UV, END_UV]
     return f
 
 
@@ -93,7 +95,7 @@ def _paper_slider_damping(qsd, ms, phid, mu):
     out = E.slider_dissipation_paper(np.zeros_like(qd), qd, np.zeros_like(qd), vec(1.0, 0.0),
                                      coef(ms=ms, mu=mu), _kin(phid=phid))
     r, K, C = out[:3]
-    return r[..., 3:5], K[..., 3:5, 3:5], C[..., 3:5, 3:5]
+    return r[..., END_UV], K[..., END_UV, END_UV], C[..., END_UV, END_UV]
 
 
 APPROACHES = ("A", "B", "C")

@@ -12,7 +12,7 @@ Everything here is written from the physics, not from the symbolic derivation:
 * 5-point central finite differences for derivatives that are checked numerically.
 
 Conventions: a leading "element" shape S (e.g. (n,) or (B, n)) is carried by every array; vector
-inputs carry their 6 (or 2) components on the trailing axis; scalars broadcast against S.
+inputs carry their 8 (or 2) components on the trailing axis; scalars broadcast against S.
 Inside the quadrature routines an extra axis of length N_GAUSS is appended after S.
 """
 
@@ -30,28 +30,59 @@ APPROACHES = ("A", "B", "C")
 # shape functions (Appendix A)
 # --------------------------------------------------------------------------------------------
 
+# The element's nodal vector: (u, v, psi, chi) of its first node, then of its second (typed in
+# from the element's definition, eq. 14 with the exact rod's axial slope chi = u_x).  Approaches A,
+# B and C interpolate u linearly: chi is no field of theirs, so every shape function of theirs
+# vanishes in the chi slots.
+NODE = ("u", "v", "psi", "chi")
+NDOF = 2 * len(NODE)
+U0, V0, PSI0, CHI0, U1, V1, PSI1, CHI1 = range(NDOF)
+AXIAL, TRANSVERSE, SLOPES, CHIS = [U0, U1], [V0, V1], [PSI0, PSI1], [CHI0, CHI1]
+END_UV = slice(U1, V1 + 1)       # the second node's (u, v): where the slider acts
+
+
+def _slots(z, **columns):
+    """An (..., 8) row from {slot: values} (the other slots zero)."""
+    out = np.zeros(np.shape(z) + (NDOF,))
+    for slot, values in columns.items():
+        out[..., NODE.index(slot[:-1]) + len(NODE) * int(slot[-1])] = values
+    return out
+
+
 def shape_at(z, l):
-    """(N_u, N_v, N_psi, B_u, B_v, B_psi) at zeta = z for element length l, each (..., 6).
+    """(N_u, N_v, N_psi, B_u, B_v, B_psi) at zeta = z for element length l, each (..., 8).
 
     z and l broadcast against each other.  B_v = dN_v/dx equals N_psi (written out separately
-    below, from the derivative of N_v), B_psi = dN_psi/dx.
+    below, from the derivative of N_v), B_psi = dN_psi/dx.  u linear (approaches A, B, C).
     """
     z, l = np.broadcast_arrays(np.asarray(z, float), np.asarray(l, float))
-    o = np.zeros_like(z)
     one = np.ones_like(z)
-    n_u = np.stack([1 - z, o, o, z, o, o], axis=-1)
-    n_v = np.stack([o, 1 - 3 * z**2 + 2 * z**3, z * (z - 1) ** 2 * l,
-                    o, z**2 * (3 - 2 * z), z**2 * (z - 1) * l], axis=-1)
+    n_u = _slots(z, u0=1 - z, u1=z)
+    n_v = _slots(z, v0=1 - 3 * z**2 + 2 * z**3, psi0=z * (z - 1) ** 2 * l,
+                 v1=z**2 * (3 - 2 * z), psi1=z**2 * (z - 1) * l)
     # Appendix A as printed
-    n_psi = np.stack([o, 6 * z * (z - 1) / l, 1 - 4 * z + 3 * z**2,
-                      o, -6 * z * (z - 1) / l, 3 * z**2 - 2 * z], axis=-1)
+    n_psi = _slots(z, v0=6 * z * (z - 1) / l, psi0=1 - 4 * z + 3 * z**2,
+                   v1=-6 * z * (z - 1) / l, psi1=3 * z**2 - 2 * z)
     # d/dx = (1/l) d/dzeta, differentiated by hand
-    b_u = np.stack([-one / l, o, o, one / l, o, o], axis=-1)
-    b_v = np.stack([o, (-6 * z + 6 * z**2) / l, (z - 1) ** 2 + 2 * z * (z - 1),
-                    o, (6 * z - 6 * z**2) / l, 3 * z**2 - 2 * z], axis=-1)
-    b_psi = np.stack([o, (12 * z - 6) / l**2, (6 * z - 4) / l,
-                      o, (6 - 12 * z) / l**2, (6 * z - 2) / l], axis=-1)
+    b_u = _slots(z, u0=-one / l, u1=one / l)
+    b_v = _slots(z, v0=(-6 * z + 6 * z**2) / l, psi0=(z - 1) ** 2 + 2 * z * (z - 1),
+                 v1=(6 * z - 6 * z**2) / l, psi1=3 * z**2 - 2 * z)
+    b_psi = _slots(z, v0=(12 * z - 6) / l**2, psi0=(6 * z - 4) / l,
+                   v1=(6 - 12 * z) / l**2, psi1=(6 * z - 2) / l)
     return n_u, n_v, n_psi, b_u, b_v, b_psi
+
+
+def cubic_u_at(z, l):
+    """(N_u, B_u, B_u') of the exact rod's axial field at zeta = z, each (..., 8): cubic Hermite in
+    the nodal values u and slopes chi = u_x, the same polynomials as v's in (v, psi)."""
+    z, l = np.broadcast_arrays(np.asarray(z, float), np.asarray(l, float))
+    n_u = _slots(z, u0=1 - 3 * z**2 + 2 * z**3, chi0=z * (z - 1) ** 2 * l,
+                 u1=z**2 * (3 - 2 * z), chi1=z**2 * (z - 1) * l)
+    b_u = _slots(z, u0=(-6 * z + 6 * z**2) / l, chi0=(z - 1) ** 2 + 2 * z * (z - 1),
+                 u1=(6 * z - 6 * z**2) / l, chi1=3 * z**2 - 2 * z)
+    b_uu = _slots(z, u0=(12 * z - 6) / l**2, chi0=(6 * z - 4) / l,
+                  u1=(6 - 12 * z) / l**2, chi1=(6 * z - 2) / l)
+    return n_u, b_u, b_uu
 
 
 def _q(x):
@@ -65,7 +96,7 @@ def _qv(x):
 
 
 def element_shapes(l):
-    """Shape functions at the Gauss points of elements of length l: each S + (N_GAUSS, 6)."""
+    """Shape functions at the Gauss points of elements of length l: each S + (N_GAUSS, 8)."""
     return shape_at(ZETA, _q(l))
 
 
@@ -84,9 +115,12 @@ def outer(a, b):
     return a[..., :, None] * b[..., None, :]
 
 
-def element_fields(q, qd, l):
-    """Interpolated fields at the Gauss points (each S + (N_GAUSS,)) and the shape functions."""
+def element_fields(q, qd, l, cubic_u=False):
+    """Interpolated fields at the Gauss points (each S + (N_GAUSS,)) and the shape functions; u
+    linear, or (cubic_u) the exact rod's cubic u (cubic_u_at)."""
     n_u, n_v, n_psi, b_u, b_v, b_psi = element_shapes(l)
+    if cubic_u:
+        n_u, b_u, _ = cubic_u_at(ZETA, _q(l))
     q, qd = _qv(q), _qv(qd)
     f = dict(
         u=dot(n_u, q), v=dot(n_v, q), psi=dot(n_psi, q),
@@ -134,8 +168,10 @@ def slider_crank_angles(t, a, omega, L=1.0):
 # energies
 # --------------------------------------------------------------------------------------------
 
-def rod_kinetic_energy(q, qd, l, x0, rhoA, rhoI, a, theta, thetad, phi, phid):
-    f = element_fields(q, qd, l)
+def rod_kinetic_energy(q, qd, l, x0, rhoA, rhoI, a, theta, thetad, phi, phid, cubic_u=False):
+    """rhoA/2 |R'|^2 of the centre line plus the small-rotation director's rhoI part (eq. 4); u
+    linear, or the exact rod's cubic u."""
+    f = element_fields(q, qd, l, cubic_u)
     x = _q(l) * ZETA
     xi = _q(x0) + x + f["u"]
     v_i, v_j = frame_velocity(xi, f["v"], f["ud"], f["vd"], _q(a), _q(theta), _q(thetad),
@@ -307,8 +343,8 @@ def printed_matrices(q, l, x0, rhoA, rhoI, EA, EI, a, theta, thetad, phi, phid, 
     n_u, n_v, n_psi = f["N_u"], f["N_v"], f["N_psi"]
     b_u, b_v, b_psi = f["B_u"], f["B_v"], f["B_psi"]
     x = (_q(l) * ZETA)[..., None]
-    s2 = lambda v: _q(v)[..., None, None]          # scalar against (gauss, 6, 6)
-    s1 = lambda v: _q(v)[..., None]                # scalar against (gauss, 6)
+    s2 = lambda v: _q(v)[..., None, None]          # scalar against (gauss, 8, 8)
+    s1 = lambda v: _q(v)[..., None]                # scalar against (gauss, 8)
     rA, rI, pd, pdd = s1(rhoA), s1(rhoI), s1(phid), s1(phidd)
     crank = s1(a) * s1(thetad)
     tp = s1(theta) + s1(phi)
@@ -330,7 +366,7 @@ def printed_matrices(q, l, x0, rhoA, rhoI, EA, EI, a, theta, thetad, phi, phid, 
     m["kuu"] = integrate(s2(EA) * outer(b_u, b_u), l, 2)
     m["kpsipsi"] = integrate(s2(EI) * outer(b_psi, b_psi), l, 2)
     # B_u is constant along the element: P_i = EA B_u^T q
-    P = np.asarray(EA, float) * (np.asarray(q, float)[..., 3] - np.asarray(q, float)[..., 0]) \
+    P = np.asarray(EA, float) * (np.asarray(q, float)[..., U1] - np.asarray(q, float)[..., U0]) \
         / np.asarray(l, float)
     m["P"] = P
     m["G"] = integrate(outer(b_v, b_v) + 0 * s2(l), l, 2)
@@ -378,8 +414,8 @@ def paper_rod_elastic(approach, q, l, EA, EI):
     K = m["kuu"] + m["kpsipsi"]
     if approach in ("A", "B"):
         dP = np.zeros(np.shape(q))
-        dP[..., 0] = -np.asarray(EA, float) / np.asarray(l, float)
-        dP[..., 3] = np.asarray(EA, float) / np.asarray(l, float)
+        dP[..., U0] = -np.asarray(EA, float) / np.asarray(l, float)
+        dP[..., U1] = np.asarray(EA, float) / np.asarray(l, float)
         K = K + m["kpvv"] + outer(matvec(m["G"], q), dP)
     if approach == "A":
         K = K + 6 * m["kvvv"]
@@ -416,8 +452,8 @@ def paper_damping(approach, q, qd, l, EA, EI, rhoA, rhoI, phid, mu):
     K = np.zeros_like(c)
     if approach in ("A", "B"):
         dP = np.zeros(np.shape(q))
-        dP[..., 0] = -np.asarray(EA, float) / np.asarray(l, float)
-        dP[..., 3] = np.asarray(EA, float) / np.asarray(l, float)
+        dP[..., U0] = -np.asarray(EA, float) / np.asarray(l, float)
+        dP[..., U1] = np.asarray(EA, float) / np.asarray(l, float)
         K = K + mu2 * outer(matvec(m["G"], qd), dP)
     if approach == "A":
         f = element_fields(q, qd, l)
@@ -491,10 +527,12 @@ def assert_close(actual, expected, rtol, trailing, what, atol=0.0):
 # --------------------------------------------------------------------------------------------
 
 def random_nodal(rng, shape):
-    """Nodal vectors of realistic magnitude: axial ~1e-3, transverse ~1e-2..1e-1, slopes alike."""
-    mag = np.array([1e-3, 5e-2, 5e-2, 1e-3, 5e-2, 5e-2])
-    q = rng.uniform(-1, 1, shape + (6,)) * mag
-    q[..., [1, 4]] *= rng.uniform(0.2, 2.0, shape + (2,))
+    """Nodal vectors of realistic magnitude: axial ~1e-3, transverse ~1e-2..1e-1, slopes alike (the
+    axial slopes chi like the axial strain, ~1e-3: no field of approaches A, B, C, which must
+    ignore them)."""
+    mag = np.array([1e-3, 5e-2, 5e-2, 1e-3, 1e-3, 5e-2, 5e-2, 1e-3])
+    q = rng.uniform(-1, 1, shape + (NDOF,)) * mag
+    q[..., TRANSVERSE] *= rng.uniform(0.2, 2.0, shape + (2,))
     return q
 
 
@@ -510,9 +548,9 @@ def random_elements(rng, n=7):
         phid=u(-1.0, 1.0), phidd=u(-2.0, 2.0),
         ms=u(0.1, 1.0), L=u(0.8, 1.2),
     )
-    d["qs"] = d["q"][:, 3:5].copy()
-    d["qsd"] = d["qd"][:, 3:5].copy()
-    d["qsdd"] = d["qdd"][:, 3:5].copy()
+    d["qs"] = d["q"][:, END_UV].copy()
+    d["qsd"] = d["qd"][:, END_UV].copy()
+    d["qsdd"] = d["qdd"][:, END_UV].copy()
     return d
 
 

@@ -83,7 +83,7 @@ def test_slider_euler_lagrange_with_an_accelerating_crank(t):
     ms = rng.uniform(0.1, 1.0, n)
     traj = AcceleratingTrajectory(rng, (n,), a=0.25, omega=2.3, c=1.5, w=1.9, L=L)
     full_q = traj.q
-    traj.q = lambda s: tuple(x[..., 3:5] for x in full_q(s))
+    traj.q = lambda s: tuple(x[..., ref.END_UV] for x in full_q(s))
 
     def lag(qs, qsd, s):
         return energy.slider_kinetic_energy(qs, qsd, ms, L, *traj.kinematics(s)[:5])

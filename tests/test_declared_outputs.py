@@ -14,7 +14,7 @@ def test_the_transmission_angle_is_the_angle_between_coupler_and_rocker():
                           store_nodes=True)
     from crankgen.discrete.kinematics import case_state
     kin = case_state(r.case, r.t)
-    u, v = r.nodes[:, -3], r.nodes[:, -2]                      # the end node's (u, v)
+    u, v = r.nodes[:, -4], r.nodes[:, -3]                      # the end node's (u, v) of its (u, v, psi, chi)
     e_i = np.stack([np.cos(kin.phi), -np.sin(kin.phi)], -1)
     e_j = np.stack([np.sin(kin.phi), np.cos(kin.phi)], -1)
     A = 0.15 * np.stack([np.cos(kin.theta), np.sin(kin.theta)], -1)

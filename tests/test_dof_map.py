@@ -29,8 +29,29 @@ def test_the_declared_constraints_give_the_papers_reduced_vector():
             else:
                 assert m.reduced_index(*key) == k
         assert m.reduced_index(0, mesh.U) is None and m.reduced_index(n, mesh.V) is None
-        assert m.holders() == [(n - 1, (3, 4), (3,))]
+        assert all(m.reduced_index(node, mesh.CHI) is None for node in range(n + 1))     # no chi: linear u
+        assert m.holders() == [(n - 1, (4, 5), (4,))]          # the second node's (u, v) of the last element
         assert [h[0] for h in m.holders(schema.CONSTRAINTS[0])] == [0]
+        assert (m.element_dofs[:, [mesh.CHI, mesh.NODE_DOFS + mesh.CHI]] == m.dummy).all()
+
+
+def test_the_exact_rods_nodes_carry_the_axial_slope():
+    """[psi_0, chi_0, u_1, v_1, psi_1, chi_1, ..., s, psi_n, chi_n]: the exact rod's cubic u adds
+    chi = u_x at every node, the pin and the guide eliminate the same (u, v)."""
+    options = dict(schema.resolve_options("exact"))
+    for n in range(1, 6):
+        m = mesh.Mesh(n, components=mesh.components_of(options))
+        assert m.components == ("u", "v", "psi", "chi")
+        expected = ([(0, mesh.PSI), (0, mesh.CHI)] + [(node, c) for node in range(1, n) for c in range(4)]
+                    + [("s",), (n, mesh.PSI), (n, mesh.CHI)])
+        assert m.n_dofs == len(expected) == 4 * n + 1                    # 4 (n + 1) less the pin's two and v_n
+        for k, key in enumerate(expected):
+            if key == ("s",):
+                assert m.reduced_coordinates() == (k,)
+            else:
+                assert m.reduced_index(*key) == k
+        assert m.holders() == [(n - 1, (4, 5), (4,))]
+    assert mesh.components_of(dict(schema.resolve_options("consistent"))) == ("u", "v", "psi")
 
 
 def _as_lists(c):
@@ -52,13 +73,13 @@ def test_the_compiled_condensation_is_the_meshs(monkeypatch):
     for n in (3, 5):
         m = mesh.Mesh(n)
         held = m.holders(inner)
-        assert held == [(1, (3, 4), (3,)), (2, (0, 1), (0,))]          # node 2 ends element 1, starts element 2
+        assert held == [(1, (4, 5), (4,)), (2, (0, 1), (0,))]          # node 2 ends element 1, starts element 2
         s = m.reduced_coordinates(inner)[0]
-        assert m.element_dofs[1, 3] == m.element_dofs[2, 0] == s       # one s, shared
-        assert m.element_dofs[1, 4] == m.element_dofs[2, 1] == m.dummy
+        assert m.element_dofs[1, 4] == m.element_dofs[2, 0] == s       # one s, shared
+        assert m.element_dofs[1, 5] == m.element_dofs[2, 1] == m.dummy
         assert m.n_dofs == 3 * (n + 1) - 2 - 1                          # the pin's two, v_2
         mapped, elements_, slots, reduced = records._condensation(n)
-        assert _as_lists((elements_, slots, reduced)) == [[1, 2], [[3, 4], [0, 1]], [[3], [0]]]
+        assert _as_lists((elements_, slots, reduced)) == [[1, 2], [[4, 5], [0, 1]], [[4], [0]]]
 
 
 def held_index(held, e):

@@ -1,7 +1,7 @@
 """The geometrically exact rod in every analysis (issue 26 item 4): each takes model="exact" and
 gives finite numbers that agree with the consistent model where the two theories agree (small
 deflections: eps = 0.01 at low speed, or a short crank), and its section forces are the exact
-ones (N = EA e, M = EI kappa of the element's stretch, tests/exact_reference.py)."""
+ones (N = EA e, M = EI kappa of the centre line's stretch and curvature, tests/exact_reference.py)."""
 
 import numpy as np
 import pytest
@@ -22,7 +22,7 @@ def _close(a, b, rtol):
 
 def test_steady_state_section_forces_are_the_exact_ones():
     """bending_moment and axial_force of a steady state at Omega* = 0.8 (|v|/L 0.09) against
-    EI kappa and EA (lambda - 1) computed here from its nodal states."""
+    EI kappa and EA (|r'| - 1) computed here from its nodal states (u and v cubic)."""
     st = crankgen.steady_state(MECH, model="exact", omega=0.8, **SMALL)
     model = Model(st.case)
     q = model.mesh.gather(st.states)                         # interior elements: no end map needed
@@ -31,7 +31,7 @@ def test_steady_state_section_forces_are_the_exact_ones():
     element, zeta = 1, 0.5                                   # x* = 0.375 of 4 elements
     x = (element + zeta) / 4
     kappa = xr.curvature(q[k, element], l, np.array([zeta]))[0]
-    strain = xr.element_strain(q[k, element], l)
+    strain = xr.strain(q[k, element], l, np.array([zeta]))[0]
     EI, EA = model.mechanism.EI, model.mechanism.EA
     assert np.isclose(st.bending_moment(x)[k], kappa, rtol=1e-7)              # M* = M L / EI = kappa
     assert np.isclose(st.axial_force(x)[k], strain * EA / EI, rtol=1e-7)       # N* = N L^2 / EI
@@ -52,7 +52,11 @@ def test_simulate_on_every_guide_and_motion_agrees_with_consistent_at_small_defl
     speed = dict(omega=0.3) if motion is None else dict(crank=motion)
     runs = [crankgen.simulate(mech, model=m, revolutions=2, **speed, **SMALL) for m in ("exact", "consistent")]
     _close(runs[0].v_mid, runs[1].v_mid, 5e-3)
-    _close(runs[0].torque, runs[1].torque, 5e-3)
+    # the torque from the first step on: at t = 0 it comes from the start's accelerations (eq. 34),
+    # which a sudden crank acceleration (the run-up) makes depend on the axial mass interpolation
+    # (u linear or cubic): measured on the circle, |difference| 8.5e-6, 4.2e-6, 2.1e-6 with 4, 8, 16
+    # elements (O(h), 0.85 % of the largest torque with 4), against 6.5e-4 relative over the steps
+    _close(runs[0].torque[1:], runs[1].torque[1:], 5e-3)
 
 
 def test_sweep_continuation_poincare_and_modes_take_the_exact_model():
@@ -75,20 +79,3 @@ def test_si_and_an_initial_state_take_the_exact_model():
     runs = [crankgen.simulate(steel, units="si", initial=bent, times=[0.05, 0.1], model=m, n_elements=4)
             for m in ("exact", "consistent")]
     _close(runs[0].si.at_times.slider_position, runs[1].si.at_times.slider_position, 1e-3)
-
-
-def test_a_section_turning_90_degrees_from_the_chord_ends_the_run_in_words():
-    """eps = 0.01, Omega* = 1.2 from rest: the rod snaps through and, at t* = 34.6, the section at
-    the crank pin turns to 90 degrees from the rod's chord, where the element's slope v_x reaches
-    its stretch (theta = asin(v_x / lambda)); the run stops there with a message that says so, and
-    its partial result shows the rotation (|v_x| / lambda above 0.99 at a Gauss point)."""
-    with pytest.raises(crankgen.ConvergenceError, match="90 degrees from the rod's chord") as info:
-        crankgen.simulate(MECH, model="exact", omega=1.2, revolutions=8, n_elements=16, steps_per_rev=100)
-    partial = info.value.partial
-    assert 34.0 < partial.t[-1] < 34.7
-    model = Model(partial.case)
-    q = model.mesh.gather(partial.states[-1:])[0, :-1]           # the interior elements
-    l = float(np.mean(model.mesh.length))
-    z, _ = xr.rule()
-    _, v_x, _ = xr._fields_at(q, l, z)
-    assert np.max(np.abs(v_x) / xr.element_stretch(q, l)[:, None]) > 0.99

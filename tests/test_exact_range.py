@@ -80,10 +80,17 @@ def test_an_exact_result_beyond_its_own_limits_warns_and_says_which():
 
 
 def test_the_exact_limits_as_data_name_what_they_leave_out():
-    flag = theory.exact_range_flag(0.01, 0.001, 75.0)
-    assert flag and [m.name for m in flag.tripped] == ["section_rotation"]
-    assert "section rotation (deg) = 75 > 60" in str(flag) and "90 degrees" in flag.remedy
-    assert not theory.exact_range_flag(0.01, 0.001, 59.0)
+    """The section rotation is reported, not limited (the element turns through any angle): a
+    rotation past 90 degrees trips nothing; the limits that remain name what they leave out."""
+    for rotation in (59.0, 75.0, 170.0):
+        flag = theory.exact_range_flag(0.01, 0.001, rotation)
+        assert not flag and flag.known and not flag.tripped
+        assert f"section rotation (deg) = {rotation:.3g}" in str(flag) and ">" not in str(flag)
+        assert flag.measure("section_rotation").value == rotation
+    flag = theory.exact_range_flag(0.08, 0.001, 170.0)
+    assert [m.name for m in flag.tripped] == ["slenderness"] and "shear" in flag.remedy
+    flag = theory.exact_range_flag(0.01, 0.02, 10.0)
+    assert [m.name for m in flag.tripped] == ["fibre_strain"] and "plasticity" in flag.remedy
     assert not theory.exact_range_flag().known and theory.exact_range_flag().label == ""
 
 

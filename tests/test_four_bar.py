@@ -329,7 +329,7 @@ def test_kinematic_outputs_are_what_they_say():
     mech = crankgen.Mechanism(eps=0.05, **g)
     r = crankgen.simulate(mech, omega=0.9, n_elements=4, steps_per_rev=50, revolutions=1.5, store_nodes=True)
     kin = _kinematics.case_state(r.case, r.t)
-    nodes = r.nodes.reshape(len(r.t), -1, 3)                            # (steps, n + 1, (u, v, psi))
+    nodes = r.nodes.reshape(len(r.t), -1, 4)                            # (steps, n + 1, (u, v, psi, chi))
     ei = np.stack([np.cos(kin.phi), -np.sin(kin.phi)], -1)
     ej = np.stack([np.sin(kin.phi), np.cos(kin.phi)], -1)
     A = g["a"] * np.stack([np.cos(kin.theta), np.sin(kin.theta)], -1)
@@ -349,7 +349,7 @@ def test_kinematic_outputs_are_what_they_say():
         e = min(int(x / l), 3)
         z = x / l - e
         Nu, _, Nv, _, _ = shapes(np.array([z]), l)
-        q = np.concatenate([nodes[:, e], nodes[:, e + 1]], -1)           # (steps, 6)
+        q = np.concatenate([nodes[:, e], nodes[:, e + 1]], -1)           # (steps, 8)
         P = np.stack([x + q @ Nu[0], q @ Nv[0]], -1)
         want = (chord[:, 0] * P[:, 1] - chord[:, 1] * P[:, 0]) / np.hypot(*chord.T)
         got = r.chord_deflection(x)

@@ -126,7 +126,7 @@ def test_section_quantities_are_derivatives_of_the_strain_energy_density(approac
     eps = 0.02
     case = Case(eps=eps, approach=approach, membrane=membrane, n_elements=1)
     EA, EI = 1 / (PI4 * eps**2), 1 / PI4
-    q = 0.05 * rng.standard_normal(6)
+    q = 0.05 * rng.standard_normal(ref.NDOF)                 # chi slots too: no field of A, B, C
     l = 1.0
     coef = case.coefficients
     geo = np.array([l, 0.0])
@@ -148,8 +148,8 @@ def test_section_quantities_are_derivatives_of_the_strain_energy_density(approac
             assert N_kernel(q, zeta, geo, coef) * EI == pytest.approx(dW_du, rel=1e-6)
             assert M_kernel(q, zeta, geo, coef) * EI == pytest.approx(dW_dv, rel=1e-6)
     else:
-        e = np.zeros(6)
-        e[3] = h
+        e = np.zeros(ref.NDOF)
+        e[ref.U1] = h
         U = lambda qq: ref.strain_energy_averaged(approach, qq, l, EA, EI)   # noqa: E731
         dU = (U(q + e) - U(q - e)) / (2 * h)                 # = int N B_u dx = mean N (B_u = 1/l)
         assert N_kernel(q, 0.3, geo, coef) * EI == pytest.approx(dU, rel=1e-6)

@@ -72,7 +72,7 @@ def test_elastic_tangent(formulation, approach, elems):
 def test_elastic_tangent_large_slopes(formulation, approach):
     """Slopes of order one, where the cubic terms of A dominate the tangent."""
     rng = np.random.default_rng(5)
-    q = rng.uniform(-1, 1, (6, 6)) * [0.05, 0.3, 1.0, 0.05, 0.3, 1.0]
+    q = rng.uniform(-1, 1, (6, ref.NDOF)) * [0.05, 0.3, 1.0, 0.05, 0.05, 0.3, 1.0, 0.05]
     args = [q, rng.uniform(0.1, 0.5, 6), rng.uniform(10, 100, 6), rng.uniform(0.01, 0.1, 6)]
     kernel = getattr(FORMULATIONS[formulation], f"rod_elastic_{approach}")
     _check_tangent(kernel, args, ("q", "l", "EA", "EI"), "q", 1,
@@ -227,7 +227,7 @@ def test_slider_euler_lagrange(t):
     full_q = traj.q
 
     def slider_q(s):
-        return tuple(x[..., 3:5] for x in full_q(s))
+        return tuple(x[..., ref.END_UV] for x in full_q(s))
 
     traj.q = slider_q
 
@@ -255,7 +255,7 @@ def test_paper_rod_forcing_uses_time_derivative_of_m3(t):
     zero = np.zeros(n)
 
     def mats(s):
-        return ref.printed_matrices(zero[:, None] + np.zeros(6), l, x0, rhoA, rhoI, 1.0, 1.0,
+        return ref.printed_matrices(zero[:, None] + np.zeros(ref.NDOF), l, x0, rhoA, rhoI, 1.0, 1.0,
                                     *traj.kinematics(s))
 
     m = mats(t)
@@ -283,7 +283,7 @@ def test_paper_slider_forcing_uses_time_derivative_of_ms4(t):
 
     ms3 = ms34(t)[0]
     ms4dot = ref.fd_derivative(lambda s: ms34(s)[1], t, 1e-3)
-    qs, qsd, qsdd = (x[..., 3:5] for x in traj.q(t))
+    qs, qsd, qsdd = (x[..., ref.END_UV] for x in traj.q(t))
     phid = traj.kinematics(t)[4]
     expected = ms[:, None] * qsdd - ms[:, None] * phid**2 * qs - (ms3 - ms4dot)
     r = paper.slider_inertia(qs, qsd, qsdd, ms, L, *traj.kinematics(t))[0]

@@ -51,22 +51,35 @@ def test_reference_slopes_are_derivatives_of_reference_shapes():
     assert_close(d_dx(0), b_u, 1e-9, 1, "dN_u/dx")
     assert_close(d_dx(1), b_v, 1e-9, 1, "dN_v/dx")
     assert_close(d_dx(2), b_psi, 1e-9, 1, "dN_psi/dx")
-    # nodal values: u, v, psi interpolate the nodal vector
+    # nodal values: u, v, psi interpolate the nodal vector (8 slots: u, v, psi, chi of each node)
     ends = ref.shape_at(np.array([0.0, 1.0]), np.array([0.3, 0.3]))
-    np.testing.assert_allclose(ends[0], [[1, 0, 0, 0, 0, 0], [0, 0, 0, 1, 0, 0]], atol=1e-15)
-    np.testing.assert_allclose(ends[1], [[0, 1, 0, 0, 0, 0], [0, 0, 0, 0, 1, 0]], atol=1e-15)
-    np.testing.assert_allclose(ends[2], [[0, 0, 1, 0, 0, 0], [0, 0, 0, 0, 0, 1]], atol=1e-15)
+    unit = np.eye(ref.NDOF)
+    np.testing.assert_allclose(ends[0], unit[[ref.U0, ref.U1]], atol=1e-15)
+    np.testing.assert_allclose(ends[1], unit[[ref.V0, ref.V1]], atol=1e-15)
+    np.testing.assert_allclose(ends[2], unit[[ref.PSI0, ref.PSI1]], atol=1e-15)
+    for column in ends + ref.shape_at(z, l):            # linear u: nothing in the chi slots
+        assert not column[..., ref.CHIS].any()
+    # the exact rod's cubic u: B_u = dN_u/dx, its derivative likewise, and (u, u_x) interpolate
+    # (u, chi) at the nodes
+    n_c, b_c, b_cc = ref.cubic_u_at(z, l)
+    d_dx_cubic = lambda k: ref.fd_derivative(lambda zz: ref.cubic_u_at(zz, l)[k], z, h) / l[:, None]
+    assert_close(d_dx_cubic(0), b_c, 1e-9, 1, "dN_u_cubic/dx")
+    assert_close(d_dx_cubic(1), b_cc, 1e-9, 1, "dB_u_cubic/dx")
+    n_c, b_c, _ = ref.cubic_u_at(np.array([0.0, 1.0]), np.array([0.3, 0.3]))
+    np.testing.assert_allclose(n_c, unit[[ref.U0, ref.U1]], atol=1e-15)
+    np.testing.assert_allclose(b_c, unit[[ref.CHI0, ref.CHI1]], atol=1e-15)
 
 
 def test_shape_functions():
     rng = np.random.default_rng(3)
     z = np.concatenate([[0.0, 1.0, 0.5], rng.uniform(0, 1, 12)])
     l = rng.uniform(0.05, 0.5, z.shape)
-    n_u, n_v, n_psi = shape.shape_functions(z, l)
+    n_u, n_v, n_psi, n_u_cubic = shape.shape_functions(z, l)
     e_u, e_v, e_psi = ref.shape_at(z, l)[:3]
     assert_close(n_u, e_u, 1e-13, 1, "N_u")
     assert_close(n_v, e_v, 1e-13, 1, "N_v")
     assert_close(n_psi, e_psi, 1e-13, 1, "N_psi")
+    assert_close(n_u_cubic, ref.cubic_u_at(z, l)[0], 1e-13, 1, "N_u_cubic (the exact rod)")
 
 
 def test_slope_gram():
@@ -118,7 +131,7 @@ def test_strain_energy(approach, elems):
 def test_strain_energy_large_slopes_distinguish_approaches(approach):
     """Slopes of order one make the v_x^4 and u_x v_x^2 terms dominant: A, B, C must differ."""
     rng = np.random.default_rng(11)
-    q = rng.uniform(-1, 1, (5, 6)) * [0.05, 0.3, 1.0, 0.05, 0.3, 1.0]
+    q = rng.uniform(-1, 1, (5, ref.NDOF)) * [0.05, 0.3, 1.0, 0.05, 0.05, 0.3, 1.0, 0.05]
     l, EA, EI = rng.uniform(0.1, 0.5, 5), rng.uniform(10, 100, 5), rng.uniform(0.01, 0.1, 5)
     U = getattr(energy, f"strain_energy_{approach}")(q, l, EA, EI)
     assert_close(U, ref.strain_energy(approach, q, l, EA, EI), RTOL, 0, f"strain_energy_{approach}")
@@ -163,7 +176,10 @@ def test_lagrange_rod_inertia_mass_matrix(elems):
     m1 = ref.integrate(rA * (ref.outer(n_u, n_u) + ref.outer(n_v, n_v)) + rI * ref.outer(n_psi, n_psi),
                        elems["l"], 2)
     assert_close(M, m1, RTOL, 2, "lagrange.rod_inertia.M")
-    assert np.all(np.linalg.eigvalsh(M) > 0)
+    # positive on the six nodal unknowns of a linear-u element; nothing on the chi slots it lacks
+    live = [k for k in range(ref.NDOF) if k not in ref.CHIS]
+    assert np.all(np.linalg.eigvalsh(M[:, live][:, :, live]) > 0)
+    assert not M[:, ref.CHIS].any() and not M[:, :, ref.CHIS].any()
 
 
 @pytest.mark.parametrize("term", ["rhoA", "rhoI", "crank", "phid", "phidd"])
@@ -325,7 +341,7 @@ GENERATED = (gen_shape, gen_kinematics, gen_elements, gen_energy, gen_fields, ge
 ALL_KERNELS = [(mod.__name__.rsplit(".", 1)[-1], name, getattr(mod, name))
                for mod in GENERATED for name in mod.__all__ if not name.endswith(VARIANTS)]
 
-VECTOR_SIZE = {"q": 6, "qd": 6, "qdd": 6}
+VECTOR_SIZE = {"q": ref.NDOF, "qd": ref.NDOF, "qdd": ref.NDOF}
 ELEMENT_RANGES = {"l": (0.05, 0.5), "x0": (0.0, 0.9)}          # geo = (l, x0)
 COEF_RANGES = {"rhoA": (0.5, 2.0), "rhoI": (0.01, 0.1), "EA": (10.0, 1000.0), "EI": (0.005, 0.05),
                "mu": (0.01, 0.5), "ms": (0.1, 1.0), "gX": (-1.0, 1.0), "gY": (-1.0, 1.0)}
@@ -399,9 +415,10 @@ def test_every_kernel_is_covered():
     expected |= {f"elements.{k}" for k in dispatch.ELEMENT_KERNELS}
     for ap in APPROACHES:
         expected |= {f"energy.strain_energy_{ap}", f"energy.dissipation_{ap}"}
-    for ap in ("A", "B", "exact"):
+    for ap in ("A", "B"):                # the exact rod has no averaged membrane (its strain is pointwise)
         expected |= {f"energy.strain_energy_{ap}_averaged", f"energy.dissipation_{ap}_averaged"}
-    expected |= {"energy.strain_energy_exact", "energy.dissipation_exact", "energy.rod_kinetic_energy_exact"}
+    expected |= {"energy.strain_energy_exact", "energy.dissipation_exact", "energy.rod_kinetic_energy_exact",
+                 "energy.rod_gravity_potential_exact"}
     assert expected <= names
     assert {n.split(".")[0] for n in names - expected} <= {"fields", "groups"}
 
@@ -417,9 +434,8 @@ def test_batch_axis_matches_loop(module, name, kernel, element_data):
     has_batch = False
     for arg in inspect.signature(kernel).parameters:
         if arg in VECTOR_SIZE:
-            # the exact rod's section rotation asin(v_x / lambda) needs |v_x| below the element's
-            # stretch at every point: slopes of a real rod, not the random ones of up to ~4
-            v = ref.random_nodal(rng, (B, n)) * (0.25 if "exact" in name else 1.0)
+            # any slopes (the exact rod's section rotation atan2(v_x, 1 + u_x) has no limit)
+            v = ref.random_nodal(rng, (B, n))
             batched.append(v)
             per_b.append(lambda b, v=v: v[b])
             has_batch = True

@@ -46,7 +46,7 @@ def test_forces_are_gradients_and_tangents_are_derivatives(batch, approach):
     r, K = kern(b["q"], b["l"], b["EA"], b["EI"])
     g = _fd_grad(lambda q: ref.strain_energy_averaged(approach, q, b["l"], b["EA"], b["EI"]), b["q"])
     np.testing.assert_allclose(r, g, rtol=1e-6, atol=1e-8 * np.abs(g).max())
-    for k in range(6):
+    for k in range(ref.NDOF):
         col = _fd_grad(lambda q: kern(q, b["l"], b["EA"], b["EI"])[0][..., k], b["q"])
         np.testing.assert_allclose(K[..., k, :], col, rtol=1e-6, atol=1e-7 * np.abs(K).max())
     kv = getattr(damping, f"kelvin_voigt_{approach}_averaged")
@@ -54,7 +54,7 @@ def test_forces_are_gradients_and_tangents_are_derivatives(batch, approach):
     gd = _fd_grad(lambda qd: ref.dissipation_averaged(approach, b["q"], qd, b["l"], b["EA"], b["EI"],
                                                       b["mu"]), b["qd"])
     np.testing.assert_allclose(rd, gd, rtol=1e-6, atol=1e-8 * np.abs(gd).max())
-    for k in range(6):
+    for k in range(ref.NDOF):
         col_q = _fd_grad(lambda q: kv(q, b["qd"], b["l"], b["EA"], b["EI"], b["mu"])[0][..., k], b["q"])
         col_qd = _fd_grad(lambda qd: kv(b["q"], qd, b["l"], b["EA"], b["EI"], b["mu"])[0][..., k], b["qd"])
         np.testing.assert_allclose(Kd[..., k, :], col_q, rtol=1e-6, atol=1e-7 * np.abs(Kd).max())
@@ -66,9 +66,9 @@ def test_equal_to_plain_element_when_the_slope_is_constant(batch, approach):
     """With v linear in the element, v_x^2 equals its mean: both elements give the same energy."""
     b = batch
     q = b["q"].copy()
-    slope = q[:, 2]
-    q[:, 4] = q[:, 1] + slope * b["l"]
-    q[:, 5] = slope
+    slope = q[:, ref.PSI0]
+    q[:, ref.V1] = q[:, ref.V0] + slope * b["l"]
+    q[:, ref.PSI1] = slope
     plain = getattr(energy, f"strain_energy_{approach}")(q, b["l"], b["EA"], b["EI"])
     avg = getattr(energy, f"strain_energy_{approach}_averaged")(q, b["l"], b["EA"], b["EI"])
     np.testing.assert_allclose(avg, plain, rtol=1e-12)

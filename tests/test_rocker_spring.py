@@ -11,6 +11,7 @@ import pytest
 
 import crankgen
 from crankgen.discrete import kinematics
+from crankgen.declaration import schema
 from crankgen.declaration.cases import Case
 from crankgen.discrete.system import Model
 from crankgen.analyses.modes import FrozenModel
@@ -97,13 +98,13 @@ def test_the_springs_energy_and_force(s):
     d = np.zeros(model.n_dofs)
     d[model.mesh.reduced_coordinates()[0]] = s
     q = model.nodal_state(kin, d, 0 * d, 0 * d)[0][-1]
-    geo, coef, z = model.geometry[-1], model.coefficients, np.zeros(6)
+    geo, coef, z = model.geometry[-1], model.coefficients, np.zeros(schema.ELEMENT_DOFS)
     V = energy.rocker_spring_potential(q, z, geo, coef, kin.vector)
     assert V == pytest.approx(k * (float(kin.beta) + s - free) ** 2 / 2, rel=1e-13)
     force = elements.rocker_spring_torsional(q, z, z, geo, coef, kin.vector)[0]
     h = 1e-6
-    for slot in range(6):
-        dq = np.zeros(6)
+    for slot in range(schema.ELEMENT_DOFS):
+        dq = np.zeros(schema.ELEMENT_DOFS)
         dq[slot] = h
         fd = (energy.rocker_spring_potential(q + dq, z, geo, coef, kin.vector)
               - energy.rocker_spring_potential(q - dq, z, geo, coef, kin.vector)) / (2 * h)

@@ -52,7 +52,7 @@ def test_section_forces_in_si_are_e_i_v_xx_and_e_a_u_x_from_the_si_nodes(run):
     h = L / n
     for k in (5, 40, 60):
         nodes = si.nodes[k]
-        u, v, psi = nodes[0::3], nodes[1::3], nodes[2::3]
+        u, v, psi = nodes[0::4], nodes[1::4], nodes[2::4]             # (u, v, psi, chi) a node
         e, z = 2, 0.3                                       # x = (2 + 0.3) h, inside element 2
         x = (e + z) * h
         curvature = ((12 * z - 6) * v[e] + h * (6 * z - 4) * psi[e] + (6 - 12 * z) * v[e + 1]

@@ -78,8 +78,8 @@ def test_quartic_group_is_the_gradient_of_the_quartic_energy(data):
     z = 0 * d["q"]
     r = groups.rod_elastic_A__quartic(d["q"], z, z, d["geo"], coef(EA=100.0, EI=0.01), d["kin"])[0]
     h = 1e-7
-    for k in range(6):
-        e = np.zeros(6)
+    for k in range(ref.NDOF):
+        e = np.zeros(ref.NDOF)
         e[k] = h
 
         def quartic(q):

@@ -99,7 +99,7 @@ def _hand(r, k, x):
     A = a * np.array([math.cos(th), math.sin(th)])
     Ad = a * omega * np.array([-math.sin(th), math.cos(th)])
     nodes = r.nodes[k]
-    u, v, psi = nodes[0::3], nodes[1::3], nodes[2::3]
+    u, v, psi = nodes[0::4], nodes[1::4], nodes[2::4]             # (u, v, psi, chi) a node
     B = A + (1 + u[n]) * ei + v[n] * ej
     # the end's rates: (u, v)_n = s (cos phi, sin phi), s the slider's reduced co-ordinate
     s, sd = r.states[k][-2], r.rates[k][-2]

@@ -7,7 +7,9 @@ For eps in EPS and Omega* in SPEEDS (a* = 0.1, ms* = 0.5, mu* = 0.5, strain-rate
 - crankgen, consistent model: steady_state(approach="A", formulation="lagrange",
   damping="kelvin-voigt", membrane="averaged", n_elements=16), same time step as Exudyn;
 - crankgen, paper model: formulation="paper", damping="paper" (for context only: another
-  damping model, so not expected to match).
+  damping model, so not expected to match);
+- crankgen, the geometrically exact rod without rotary inertia (model="exact",
+  rotary_inertia=False): the cable's own physics, so the two should agree to discretization error.
 Diagnostics that explain the differences:
 - crankgen without rotary inertia (rho I = 0; ANCF cable elements have none) for eps = 0.1;
 - smaller cranks (a* = 0.01, 0.03) at Omega* = 0.8: the differences vanish with the amplitude.
@@ -98,6 +100,44 @@ def crankgen_steady(eps, omega, model, a=A):
     """Approach A of one of crankgen's models ("consistent" or "paper")."""
     return crankgen.steady_state(crankgen.Mechanism(a=a, eps=eps, ms=MS, mu=MU), omega=omega, model=model,
                                  approach="A", n_elements=N_EL, steps_per_rev=SPR)
+
+
+def crankgen_exact(eps, omega):
+    """crankgen's geometrically exact rod without rotary inertia (the ANCF cable has none): the
+    same kinematics and strain measures as Exudyn's cable, so the two should agree."""
+    try:
+        return crankgen.steady_state(crankgen.Mechanism(a=A, eps=eps, ms=MS, mu=MU), omega=omega, model="exact",
+                                     n_elements=N_EL, steps_per_rev=SPR, rotary_inertia=False)
+    except Exception as exc:                   # report, never hide
+        return f"failed: {type(exc).__name__}: {exc}"
+
+
+def exact_section(rows, cgx):
+    """The exact rod against Exudyn: a table and its largest difference where both are periodic."""
+    L = ["## The geometrically exact rod against Exudyn\n",
+         "*crankgen exact* = `steady_state(model=\"exact\", rotary_inertia=False, "
+         f"n_elements={N_EL}, steps_per_rev={SPR})`: the same rod as the ANCF cable (exact stretch "
+         "and curvature, no rotary inertia), so the difference measures the two codes' "
+         "discretizations and nothing of the physics.\n",
+         "| eps | Omega* | Exudyn | crankgen exact | difference |", "|---:|---:|---:|---:|---:|"]
+    diffs = []
+    for r in rows:
+        x = cgx[r["eps"], r["omega"]]
+        if isinstance(x, str):
+            L.append(f"| {r['eps']:g} | {r['omega']:g} | {fnum(r['exudyn_amplitude'])} | {x} | - |")
+            continue
+        both = r["exudyn_status"] == "periodic" and x.status == "periodic"
+        d = rel(x.amplitude, r["exudyn_amplitude"]) if both else math.nan
+        if both:
+            diffs.append(abs(d))
+        ex = fnum(r["exudyn_amplitude"]) if r["exudyn_status"] == "periodic" else \
+            f"{fnum(r['exudyn_amplitude'])} ({r['exudyn_status']})"
+        L.append(f"| {r['eps']:g} | {r['omega']:g} | {ex} | {cg_cell(x)} | {fpct(d)} |")
+    L.append("")
+    if diffs:
+        L.append(f"Where both are periodic the exact rod and the ANCF cable differ by at most "
+                 f"{100 * max(diffs):.2f} %.\n")
+    return "\n".join(L)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -192,11 +232,12 @@ def main():
             jobs[("norot-small", 0.1, a)] = pool.submit(norot_job, 0.1, 0.8, a=a)
 
         # 2. crankgen steady states (in this process, meanwhile)
-        cg, cgp, cg_small = {}, {}, {}
+        cg, cgp, cg_small, cgx = {}, {}, {}, {}
         for eps in EPS:
             for w in SPEEDS:
                 cg[eps, w] = crankgen_steady(eps, w, "consistent")
                 cgp[eps, w] = crankgen_steady(eps, w, "paper")
+                cgx[eps, w] = crankgen_exact(eps, w)
             for a in SMALL_A:
                 cg_small[eps, a] = crankgen_steady(eps, 0.8, "consistent", a=a)
         res = {k: f.result() for k, f in jobs.items()}
@@ -217,6 +258,8 @@ def main():
                 exudyn_amplitude_half_dt=exu_amp(res[("dt", eps, w)]),
                 crankgen_amplitude=c.amplitude, crankgen_status=c.status,
                 rel_diff=rel(c.amplitude, exu_amp(ex)) if both else math.nan,
+                crankgen_exact_amplitude=(cgx[eps, w].amplitude if not isinstance(cgx[eps, w], str) else math.nan),
+                crankgen_exact_status=(cgx[eps, w].status if not isinstance(cgx[eps, w], str) else cgx[eps, w]),
                 crankgen_paper_amplitude=cp.amplitude, crankgen_paper_status=cp.status,
                 crankgen_norot_amplitude=nr["norot"][0] if nr else math.nan,
                 crankgen_norot_status=marched_status(nr["norot"]) if nr else "",
@@ -231,7 +274,7 @@ def main():
         for r in rows:
             wr.writerow({k: (repr(float(v)) if isinstance(v, float) else v) for k, v in r.items()})
 
-    md = render(rows, res, cg, cgp, cg_small, wall, exudyn.__version__)
+    md = render(rows, res, cg, cgp, cg_small, wall, exudyn.__version__, exact_section(rows, cgx))
     with open(os.path.join(args.out, "results.md"), "w") as fh:
         fh.write(md)
     print(md)
@@ -359,7 +402,7 @@ def findings(rows, res, cg, cg_small):
     return "\n".join(T)
 
 
-def render(rows, res, cg, cgp, cg_small, wall, exu_version):
+def render(rows, res, cg, cgp, cg_small, wall, exu_version, exact=""):
     L = []
     add = L.append
     add("# Exudyn (ANCF cable) vs crankgen: steady midspan amplitude\n")
@@ -394,6 +437,8 @@ def render(rows, res, cg, cgp, cg_small, wall, exu_version):
     add("")
 
     add(findings(rows, res, cg, cg_small))
+    if exact:
+        add(exact)
     add("## Exudyn model and settings\n")
     add("- Rod: ObjectANCFCable2D elements (NodePoint2DSlope1 nodes), L = 1, rho A = 1, "
         "EI = 1/pi^4, EA = 1/(pi^4 eps^2); damping parameters bendingDamping = mu* EI and "

@@ -58,7 +58,7 @@ def erratum_b3():
     psid_coefficient = sp.expand(kinetic_parts()["m3"]).coeff(psid)
     rows_printed = tuple(dimensions(e) for e in printed_set(False)["m3"])
     rows_corrected = tuple(dimensions(e) for e in printed_set(True)["m3"])
-    ok = (d_corrected == sp.zeros(6, 1) and d_printed != sp.zeros(6, 1)
+    ok = (d_corrected == sp.zeros(s.ELEMENT_DOFS, 1) and d_printed != sp.zeros(s.ELEMENT_DOFS, 1)
           and all(len(r) <= 1 for r in rows_corrected) and any(len(r) > 1 for r in rows_printed))
     return Verdict("(B3)", "B3", (
         Evidence(r"coefficient of $\dot\psi$ in the kinetic energy density (terms linear in rates)", psid_coefficient),
@@ -116,8 +116,8 @@ def erratum_eq39():
 
 def erratum_b15_b16():
     """(B15)/(B16): the slider's (u, v) are the element's end-node values only at zeta = 1."""
-    e_u, e_v = sp.zeros(6, 1), sp.zeros(6, 1)
-    e_u[3], e_v[4] = 1, 1
+    e_u, e_v = sp.zeros(s.ELEMENT_DOFS, 1), sp.zeros(s.ELEMENT_DOFS, 1)
+    e_u[s.element_slots(1, ("u",))[0]], e_v[s.element_slots(1, ("v",))[0]] = 1, 1
     roots = sp.solve(list(N_U - e_u) + list(N_V - e_v), s.zeta, dict=True)
     end_abscissa = (s.x0 + s.l * s.zeta).subs({s.zeta: 1, s.x0: s.L - s.l})
     ok = roots == [{s.zeta: 1}] and end_abscissa == s.L

@@ -9,11 +9,10 @@ order delta, the axial strain of order delta^2,
 with <.> and var(.) an element's mean and variance.  A's membrane strain is u_x + v_x^2/2 (order
 delta^2) and its curvature v_xx (order delta); the exact rod's (derive/energies.py):
 
-- pointwise stretch  e = sqrt((1 + u_x)^2 + v_x^2) - 1;
-- the element's stretch (membrane="averaged") lambda - 1, lambda^2 = (1 + u_x)^2 + <v_x^2>
-  + var(v_x^2) / (4 (1 + u_x)^2), against A's element mean u_x + <v_x^2>/2;
-- the textbook curvature d/dx atan2(v_x, 1 + u_x) of the exact section rotation, and crankgen's,
-  Reissner's measure at the element's stretch, v_xx / sqrt(lambda^2 - v_x^2).
+- the stretch  e = sqrt((1 + u_x)^2 + v_x^2) - 1, pointwise;
+- the curvature, the rate of the section's rotation theta = atan2(v_x, 1 + u_x),
+  kappa = ((1 + u_x) v_xx - v_x u_xx) / ((1 + u_x)^2 + v_x^2) (Reissner's measure per undeformed
+  length).
 """
 
 import functools
@@ -33,23 +32,13 @@ LATEX_NAMES = {u_xx: "u_{,xx}", m2: r"\langle v_{,x}^2\rangle", var: r"\operator
 FIELD_LATEX_NAMES.update(LATEX_NAMES)
 
 
-def _lambda2():
-    return (1 + u_x) ** 2 + m2 + var / (4 * (1 + u_x) ** 2)
-
-
 # name -> (the exact measure, A's, words)
 MEASURES = {
     "stretch": (sp.sqrt((1 + u_x) ** 2 + v_x ** 2) - 1, u_x + v_x ** 2 / 2,
-                "membrane strain, pointwise: $|r'| - 1$ against $u_{,x} + v_{,x}^2/2$"),
-    "element stretch": (sp.sqrt(_lambda2()) - 1, u_x + m2 / 2,
-                        "membrane strain, element mean (`membrane=\"averaged\"`, the consistent and exact "
-                        "models): $\\lambda - 1$ against $u_{,x} + \\langle v_{,x}^2\\rangle/2$"),
-    "rotation rate": ((((1 + u_x) * v_xx - v_x * u_xx) / ((1 + u_x) ** 2 + v_x ** 2)), v_xx,
-                      "curvature, textbook: $\\frac{d}{dx}\\operatorname{atan2}(v_{,x}, 1 + u_{,x})$ "
-                      "against $v_{,xx}$"),
-    "curvature": (v_xx / sp.sqrt(_lambda2() - v_x ** 2), v_xx,
-                  "curvature, crankgen's exact rod: $v_{,xx}/\\sqrt{\\lambda^2 - v_{,x}^2}$ at the "
-                  "element's stretch, against $v_{,xx}$"),
+                "membrane strain: $|r'| - 1$ against $u_{,x} + v_{,x}^2/2$"),
+    "curvature": ((((1 + u_x) * v_xx - v_x * u_xx) / ((1 + u_x) ** 2 + v_x ** 2)), v_xx,
+                  "curvature: $\\frac{d}{dx}\\operatorname{atan2}(v_{,x}, 1 + u_{,x})$ "
+                  "against $v_{,xx}$"),
 }
 
 
@@ -63,7 +52,7 @@ def dropped(name, terms=2):
     """[(order in delta, the part of exact - A of that order)], the first `terms` non-zero orders
     of what A drops from the exact measure `name` (MEASURES)."""
     exact, approx = MEASURES[name][:2]
-    lowest = 1 if name in ("rotation rate", "curvature") else 2
+    lowest = a_order(name)
     series = sp.expand(sp.series(ordered(exact - approx), delta, 0, lowest + 2 * terms + 1).removeO())
     out = []
     for k in range(lowest, lowest + 2 * terms + 1):
@@ -77,14 +66,14 @@ def dropped(name, terms=2):
 
 def a_order(name):
     """The order in delta of A's own measure (2 for a membrane strain, 1 for a curvature)."""
-    return 1 if name in ("rotation rate", "curvature") else 2
+    return 1 if name == "curvature" else 2
 
 
 @functools.lru_cache(maxsize=None)
 def energy_difference():
     """The leading part of the exact strain-energy density less A's, (EA/2)(e^2 - e_A^2) +
-    (EI/2)(kappa^2 - v_xx^2) with the element's stretch and crankgen's curvature, and its order."""
-    ee, ea = MEASURES["element stretch"][:2]
+    (EI/2)(kappa^2 - v_xx^2), pointwise, by order."""
+    ee, ea = MEASURES["stretch"][:2]
     ke, ka = MEASURES["curvature"][:2]
     diff = s.EA / 2 * (ee ** 2 - ea ** 2) + s.EI / 2 * (ke ** 2 - ka ** 2)
     series = sp.expand(sp.series(ordered(diff), delta, 0, 7).removeO())

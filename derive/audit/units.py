@@ -22,8 +22,8 @@ for _base, _rate, _accel in zip(COORDS, RATES, ACCELS):
     DIMENSIONS[_rate], DIMENSIONS[_accel] = (d0[0], d0[1], -1), (d0[0], d0[1], -2)
 for _base, _rate in zip(GRADIENTS, GRADIENT_RATES):
     DIMENSIONS[_rate] = DIMENSIONS[_base][:2] + (-1,)
-for _k in range(6):
-    _node = _ONE if _k in (2, 5) else _LEN             # psi slots are slopes
+for _k in range(s.ELEMENT_DOFS):
+    _node = _ONE if s.NODE[_k % len(s.NODE)] in ("psi", "chi") else _LEN     # the slopes' slots
     DIMENSIONS[s.q[_k]] = _node
     DIMENSIONS[s.qd[_k]] = (_node[0], _node[1], -1)
     DIMENSIONS[s.qdd[_k]] = (_node[0], _node[1], -2)

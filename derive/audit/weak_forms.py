@@ -127,7 +127,7 @@ def element_vector(form):
 
     Evaluated by an exact rational quadrature, not by the symbolic integration of
     shape_functions.integrate_element, so comparing the two is a real cross-check."""
-    total = sp.zeros(6, 1)
+    total = sp.zeros(s.ELEMENT_DOFS, 1)
     for name, density in form.items():
         total += _quadrature(density, sp.Matrix(SLOT[name].shape))
     return sp.ImmutableMatrix(total.applyfunc(sp.expand))

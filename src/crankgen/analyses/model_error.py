@@ -79,20 +79,27 @@ class _Linear:
         self.model, self.exact = Model(case), Model(exact_case(case))
 
     def chunks(self):
-        """(K, C, M, f) of consecutive chunks of steps."""
-        axial = _axial_dofs(self.model.mesh)
+        """(K, C, M, f) of consecutive chunks of steps.  The exact rod reads the states in its own
+        layout (its nodes' chi: the nodal slopes of the model's u, then settled with the other axial
+        unknowns: _membrane_consistent) and its residual is read back on the model's unknowns."""
+        from ..discrete.mesh import transfer
+        mine, exact = self.model.mesh, self.exact.mesh
+        axial = _axial_dofs(exact)
         for start in range(0, len(self.t), CHUNK):
             part = slice(start, start + CHUNK)
             kin = self.model.kinematics(self.t[part])
             d, v, a = self.d[part], self.v[part], self.a[part]
             r_m, K, C, M = _dense(self.model, kin, d, v, a)
-            yield K, C, M, _membrane_consistent(self.exact, kin, d, v, a, axial) - r_m
+            dx, vx, ax = (transfer(x, mine, exact) for x in (d, v, a))
+            yield K, C, M, transfer(_membrane_consistent(self.exact, kin, dx, vx, ax, axial), exact, mine) - r_m
 
 
 def _axial_dofs(mesh):
-    """The reduced indices of the axial unknowns: u of every node that has one, and the end's."""
-    from ..discrete.mesh import U
-    idx = {mesh.reduced_index(node, U) for node in range(mesh.n_elements + 1)} | set(mesh.reduced_coordinates())
+    """The reduced indices of the axial unknowns: u (and the exact rod's chi) of every node that has
+    one, and the end's."""
+    from ..discrete.mesh import CHI, U
+    idx = ({mesh.reduced_index(node, c) for node in range(mesh.n_elements + 1) for c in (U, CHI)}
+           | set(mesh.reduced_coordinates()))
     return np.array(sorted(i for i in idx if i is not None), dtype=np.intp)
 
 
@@ -174,8 +181,8 @@ def correction(result, periodic=None):
 def transverse(case, d):
     """(..., n + 1): the transverse displacement v of every node of reduced states d (the end
     node's, on the guide, left at 0)."""
-    from ..discrete.mesh import Mesh
-    mesh = Mesh(case.n_elements)
+    from ..discrete.mesh import Mesh, components_of
+    mesh = Mesh(case.n_elements, components=components_of(case.options))
     d = np.asarray(d, dtype=float)
     out = np.zeros(d.shape[:-1] + (case.n_elements + 1,))
     for node in range(case.n_elements + 1):

@@ -31,7 +31,7 @@ from ..discrete import kinematics as _kinematics
 from ..declaration import schema
 from ..declaration.cases import run_case
 from ..errors import ConvergenceError, ParameterError
-from ..discrete.mesh import PSI, U, V
+from ..discrete.mesh import CHI, PSI, U, V
 from ..discrete.system import Model
 from ..declaration.si import SIMechanism
 from ..declaration.units import Scales
@@ -98,9 +98,11 @@ class Modes:
 
 
 def _axial_dofs(mesh):
-    """Reduced indices of the axial unknowns: u of the interior nodes and the end co-ordinate."""
+    """Reduced indices of the axial unknowns: u of the interior nodes (and the exact rod's chi of
+    every node) and the end co-ordinate."""
     idx = [mesh.reduced_index(node, U) for node in range(1, mesh.n_elements)] + [mesh.reduced_coordinates()[0]]
-    return np.array(sorted(set(idx)), dtype=np.intp)
+    idx += [mesh.reduced_index(node, CHI) for node in range(mesh.n_elements + 1)]
+    return np.array(sorted({i for i in idx if i is not None}), dtype=np.intp)
 
 
 class FrozenModel:

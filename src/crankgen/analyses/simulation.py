@@ -15,6 +15,7 @@ from ..discrete.kinematics import check_crank_steps
 from ..declaration.cases import Case, run_case
 from ..errors import ConvergenceError, ParameterError
 from .limits import check_run_size
+from ..discrete.mesh import components_of
 from ..discrete.system import Model, check_coordinates
 from ..discrete.initial import initial_state
 from ..discrete.newmark import NewmarkSettings, integrate
@@ -373,13 +374,13 @@ def _failure(status, step, residual, dt, result=None):
 
 
 def _exact_rod_hint(status, result):
-    """For the geometrically exact rod, what a non-finite state may mean: its element represents
-    section rotations below 90 degrees from the rod's chord (|v_x| < lambda, README)."""
+    """For the geometrically exact rod, what a non-finite state may mean: a section rotation is not
+    a limit of its element, an element folded onto itself (|r'| = 0: compressed to a point) is."""
     case = getattr(result, "case", None)
     if status != _engine.NOT_FINITE or case is None or case.approach != "exact":
         return ""
-    return ("; the exact rod's element represents sections turned less than 90 degrees from the "
-            "rod's chord (|v_x| < its stretch): a section that turns that far ends the run")
+    return ("; the exact rod's element has no rotation limit, but an element compressed to zero length "
+            "(|r'| = 0) has no tangent: try more elements or steps per revolution")
 
 
 def _motor_hint(result, dt):
@@ -421,11 +422,12 @@ def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=Fals
             check_coordinates(c)
     time_scheme.warn_steps([c for c in cases if not c.motion_record.coordinates])
     groups = {}
-    for i, c in enumerate(cases):          # one state layout a batch: the mesh and the motion's co-ordinates
+    for i, c in enumerate(cases):          # one state layout a batch: the mesh, its nodes and the motion's co-ordinates
         groups.setdefault((c.n_elements, c.steps_per_rev, run_length(c, revolutions)[1],
-                           tuple(x.name for x in c.motion_record.coordinates)), []).append(i)
+                           tuple(x.name for x in c.motion_record.coordinates), components_of(c.options)),
+                          []).append(i)
     total = sum(key[2] * len(idx) for key, idx in groups.items())
-    for (n, _, n_steps, _), idx in groups.items():
+    for (n, _, n_steps, _, _), idx in groups.items():
         check_run_size(n, n_steps, n_cases=len(idx), stored="states" if keep_states else "outputs",
                        names={"n_steps": "revolutions", "n_cases": "cases"})
     for i, c in enumerate(cases):
@@ -434,7 +436,7 @@ def simulate_many(cases, revolutions, progress=None, chunks=20, keep_states=Fals
             check_crank_steps(c, dt, n_steps * dt, f"cases[{i}]: " if len(cases) > 1 else "")
     out = [None] * len(cases)
     done_total = 0
-    for (n, spr, n_steps, _), idx in sorted(groups.items()):
+    for (n, spr, n_steps, _, _), idx in sorted(groups.items()):
         batch = _engine.Batch([cases[i] for i in idx])
         B, n_rod = len(idx), batch.mesh.n_rod
         starts = [start_state(cases[i], np.zeros(n_rod), np.zeros(n_rod)) for i in idx]

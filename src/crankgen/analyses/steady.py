@@ -49,6 +49,7 @@ from ..declaration.cases import Case, run_case
 from ..errors import ParameterError
 from .limits import check_run_size, count
 from .section import WARMUP, CrankSection, TimeSection
+from ..discrete.mesh import components_of
 from ..discrete.system import check_coordinates
 from ..results.outputs import DeclaredOutputs, engine_columns, takes_engine_outputs
 from ..declaration.si import si_input
@@ -443,7 +444,8 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
     for i, c in enumerate(cases):
         generalized = time_scheme.coefficients(c.rho_inf).generalized    # shooting's state size
         alone = i if c.motion_record.coordinates else -1                # a driven crank: its own section map
-        groups.setdefault((c.n_elements, c.steps_per_rev, generalized, alone), []).append(i)
+        groups.setdefault((c.n_elements, c.steps_per_rev, generalized, alone, components_of(c.options)),
+                          []).append(i)
     results = [None] * len(cases)
     done = 0
     for key in sorted(groups):

@@ -24,11 +24,9 @@ approximated is the rod theory and the material, and the element's representatio
   (fiber = +-sqrt(3) radii of gyration: e - y kappa), nodes and element midpoints over the stored
   steps, must stay below 0.5 %, the yield strain of high-strength steels and aluminium alloys
   (structural steel yields near 0.15 %: compare the measure's value with your material's);
-- ROTATION_LIMIT (60 degrees): each element stays a graph over the rod's chord (the moving frame's
-  e_i), its sections turned by theta = asin(v_x / lambda) with |theta| < 90 degrees, where the
-  element ends (a run stops there); the element was checked against the Euler elastica to 60
-  degrees of section rotation, the margin.  Measured at the element ends, lambda the element's
-  stretch (1 + its membrane strain at the element midpoint).
+- the section rotation is not limited: the element's tangent (1 + u_x, v_x) turns through any angle
+  (a section may turn past 90 degrees from the chord).  Its largest value (degrees, from the
+  chord, atan2(|v_x|, 1 + u_x) at the nodes) is reported beside the limits, as information.
 An exact-model result is flagged when one of these is exceeded (EXACT_CRITERION), and the flag names
 which; crankgen has no model beyond them.
 
@@ -65,7 +63,7 @@ EXACT = "exact"                    # the approach that has its own limits
 SLENDERNESS_LIMIT = 0.05           # eps = r/L: no shear (module docstring)
 FIBRE_STRAIN_LIMIT = 0.005         # outer-fibre strain: a linear elastic material
 OUTER_FIBRE = math.sqrt(3.0)       # a rectangle's outer fibres, in radii of gyration
-ROTATION_LIMIT = 60.0              # degrees of section rotation from the chord (the element: 90)
+ROTATION_LIMIT = math.inf          # the section rotation is reported, not limited (module docstring)
 
 # approach -> why its strain energy is unbounded below (approaches not listed: bounded below by 0)
 UNBOUNDED_BELOW = {
@@ -76,16 +74,14 @@ ILL_POSED = "ill-posed: strain energy unbounded below"
 CRITERION = (f"|v|/L = eps max|v*| > {DEFLECTION_LIMIT:g} or axial strain of the neutral axis "
              f"> {STRAIN_LIMIT:g}")
 EXACT_CRITERION = (f"the exact rod's limits: slenderness eps > {SLENDERNESS_LIMIT:g} (no shear), outer-fibre "
-                   f"strain > {FIBRE_STRAIN_LIMIT:g} (a linear elastic material), section rotation > "
-                   f"{ROTATION_LIMIT:g} degrees from the chord (the element ends at 90)")
+                   f"strain > {FIBRE_STRAIN_LIMIT:g} (a linear elastic material)")
 
 # what to use beyond the range (a model whose range covers it), shown by the flag and the warning
 REMEDY = ('use model="exact": the geometrically exact rod drops none of the terms these limits guard '
-          '(it has its own limits: slenderness, outer-fibre strain, section rotation)')
+          '(it has its own limits: slenderness, outer-fibre strain)')
 # what each of the exact rod's limits leaves out: crankgen has no model beyond them
 EXACT_BEYOND = {"slenderness": "shear deformation (a Timoshenko rod)",
-                "fibre_strain": "plasticity (a material beyond its elastic range)",
-                "section_rotation": "sections turned past 90 degrees within an element"}
+                "fibre_strain": "plasticity (a material beyond its elastic range)"}
 
 
 @dataclass(frozen=True)
@@ -111,6 +107,8 @@ class Measure:
                  "section_rotation": "section rotation (deg)"}.get(self.name, self.name)
         if not self.known:
             return f"{label} unknown"
+        if not math.isfinite(self.limit):                  # reported, not limited
+            return f"{label} = {self.value:.3g}"
         return f"{label} = {self.value:.3g} {'>' if self.exceeded else '<='} {self.limit:g}"
 
 
@@ -199,10 +197,10 @@ def _finite(x):
 
 def exact_range_flag(slenderness=math.nan, fibre_strain=math.nan, rotation=math.nan):
     """The RangeFlag of an exact-model response by the exact rod's own limits: its slenderness eps,
-    largest outer-fibre strain and largest section rotation (degrees; nan: unknown)."""
+    largest outer-fibre strain and largest section rotation (degrees; nan: unknown; reported, not
+    limited)."""
     tripped = [name for name, x, lim in (("slenderness", slenderness, SLENDERNESS_LIMIT),
-                                         ("fibre_strain", fibre_strain, FIBRE_STRAIN_LIMIT),
-                                         ("section_rotation", rotation, ROTATION_LIMIT))
+                                         ("fibre_strain", fibre_strain, FIBRE_STRAIN_LIMIT))
                if math.isfinite(_finite(x)) and _finite(x) > lim]
     remedy = ("crankgen has no model of " + " nor of ".join(EXACT_BEYOND[n] for n in tripped)) if tripped else ""
     return RangeFlag((Measure("slenderness", _finite(slenderness), SLENDERNESS_LIMIT),
@@ -289,15 +287,15 @@ def axial_strain(result, per_step=False):
 def exact_measures(result, per_step=False):
     """(largest |outer-fibre strain|, largest section rotation in degrees) of an exact-model result
     that stores its states: the strain e - y kappa at fiber = +-OUTER_FIBRE over the nodes and
-    element midpoints; the rotation asin(|v_x| / lambda) at the element ends, lambda = 1 + the
-    element's membrane strain at its midpoint (90 where |v_x| >= lambda).  One value per stored
-    step (per_step) or the largest over them; nan when the result holds no states."""
+    element midpoints; the rotation |atan2(v_x, 1 + u_x)| from the chord at the nodes (0 to 180).
+    One value per stored step (per_step) or the largest over them; nan when the result holds no
+    states."""
     case = getattr(result, "case", None)
     if getattr(result, "states", None) is None or case is None:
         t = getattr(result, "t", None)
         empty = np.full(0 if t is None else len(t), math.nan)
         return (empty, empty.copy()) if per_step else (math.nan, math.nan)
-    from ..discrete.mesh import NODE_DOFS, PSI
+    from ..discrete.mesh import CHI, NODE_DOFS, PSI
     n = case.n_elements
     fibre = None
     with np.errstate(over="ignore", invalid="ignore"):
@@ -306,12 +304,11 @@ def exact_measures(result, per_step=False):
                 e = np.abs(np.asarray(result.quantity("surface_strain", float(x), fiber=y), dtype=float))
                 e = np.where(np.isnan(e), np.inf, e)
                 fibre = e if fibre is None else np.maximum(fibre, e)
-        stretch = 1.0 + np.asarray(result.quantity("surface_strain", (np.arange(n) + 0.5) / n, fiber=0.0),
-                                   dtype=float).reshape(-1, n)
-        slopes = np.abs(result._history().element_vectors()[..., [PSI, NODE_DOFS + PSI]]).max(axis=-1)
-        ratio = slopes / stretch
-        rotation = np.degrees(np.arcsin(np.clip(ratio, 0.0, 1.0)))
-        rotation = np.where(np.isfinite(ratio) & (stretch > 0), rotation, 90.0).max(axis=-1)
+        q = result._history().element_vectors()
+        angles = [np.abs(np.arctan2(q[..., node * NODE_DOFS + PSI], 1.0 + q[..., node * NODE_DOFS + CHI]))
+                  for node in (0, 1)]
+        rotation = np.degrees(np.maximum(*angles))
+        rotation = np.where(np.isfinite(rotation), rotation, 180.0).max(axis=-1)
     if per_step:
         return fibre, rotation
     return ((float(fibre.max()) if fibre.size else math.nan),

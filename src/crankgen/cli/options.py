@@ -263,8 +263,9 @@ def _describe(case):
     main, other = schema.describe(case.parameters())
     extra = "" if case.rotary_inertia else ", no rotary inertia"
     from ..discrete.time_scheme import label
-    return (f"approach {case.approach}, {case.formulation} formulation, {case.damping} damping, "
-            f"{case.membrane} membrane, {label(case.rho_inf)}, "
+    from ..plots.figures import membrane_words
+    return (f"approach {case.approach}, {case.formulation} formulation, {case.damping} damping"
+            f"{membrane_words(case.as_dict())}, {label(case.rho_inf)}, "
             + ", ".join(main + [f"n = {case.n_elements}"] + other) + extra)
 
 

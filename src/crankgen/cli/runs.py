@@ -138,16 +138,18 @@ def _simulate(args, case, revolutions, steps, out, si=None, section=None):
         out.wrote(write_csv(out.path("summary.csv"), *flat_table(list(peaks), [peaks])))
     if args.nodes and res.nodes is not None:
         nodes = res.nodes if view is None else view.nodes
-        from ..discrete.mesh import NODE_DOFS
+        from ..discrete.mesh import COMPONENTS, NODE_DOFS, components_of
         n = nodes.shape[1] // NODE_DOFS
         # node i at x* = i / n: u, v (along and across the rigid rod; units of L, or m with --si)
-        # and the slope psi = dv/dx (rad)
+        # and the slope psi = dv/dx (rad), on the exact rod also chi = du/dx (dimensionless)
         # then every node's inertial position X, Y (crankgen.plots.animation.inertial_nodes)
         from ..plots.animation import inertial_nodes
         length = "L" if view is None else "m"
-        node_columns = columns[:2] + [f"{q}{i}_{unit}" for i in range(n)
-                                             for q, unit in (("u", length), ("v", length),
-                                                             ("psi", "rad"))]
+        units = {"u": length, "v": length, "psi": "rad", "chi": "1"}
+        present = components_of(case.options)
+        keep = [i * NODE_DOFS + COMPONENTS.index(q) for i in range(n) for q in present]
+        nodes = np.asarray(nodes)[:, keep]
+        node_columns = columns[:2] + [f"{q}{i}_{units[q]}" for i in range(n) for q in present]
         node_columns += [f"{q}{i}_{length}" for i in range(n) for q in ("X", "Y")]
         where = inertial_nodes(res).reshape(len(res.t), -1) * (1.0 if view is None else view.scales.L)
         node_rows = (dict(zip(node_columns, (t, th, *row, *xy)))                     # streamed

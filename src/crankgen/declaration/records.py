@@ -274,7 +274,8 @@ class Body:
     motion the rigid closure's, or a declared co-ordinate's); `frame`: what its moving frame follows
     (the crank angle, the chord of the rigid linkage, the guide).  The DOF map numbers the flexible
     bodies' nodal unknowns in the declared order, then the motion's co-ordinates; the joints between
-    bodies are the constraints (Constraint.body, .joint)."""
+    bodies are the constraints (Constraint.body, .joint).  `conditional`: components a node has only
+    under some model options (`components`)."""
 
     name: str
     kind: str
@@ -282,6 +283,14 @@ class Body:
     frame: str
     node: tuple = ()
     elements: str = None
+    conditional: tuple = ()
+
+    def components(self, options):
+        """The node's components a case with these model options has: `conditional` holds
+        (component, option, values) for a component present only where the option takes one of
+        the values (the exact rod's axial slope chi); the others are always present."""
+        absent = {c for c, option, values in self.conditional if options.get(option) not in values}
+        return tuple(c for c in self.node if c not in absent)
 
 
 @dataclass(frozen=True)

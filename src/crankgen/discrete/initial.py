@@ -9,21 +9,24 @@ their time derivatives in that frame, functions of the material position x along
 
     u(x)    axial displacement (along e_i),          u_t(x)   its rate d u / dt,
     v(x)    transverse displacement (along e_j),     v_t(x)   its rate d v / dt,
-    v_x(x)  the slope d v / dx,                      v_xt(x)  its rate.
+    v_x(x)  the slope d v / dx,                      v_xt(x)  its rate,
+    u_x(x)  the slope d u / dx (the exact rod only), u_xt(x)  its rate.
 
 The default, every field zero, is the rigid mechanism at theta0 with the rod undeformed and at rest
 in the moving frame (the paper's start).  A field is None (zero), a callable of x (called with the
 array of the n + 1 node positions; a function of a scalar only is called node by node), or the
-array of its n + 1 nodal values (nodes x_k = k L / n).  The slopes v_x and v_xt default to the
-derivatives of v and v_t: a callable is differentiated by the complex step, v'(x) = Im v(x + i h)
-/ h with h = 1e-20 L (exact to rounding for any analytic function that accepts complex
-arguments); nodal arrays of v or v_t need their slopes given.
+array of its n + 1 nodal values (nodes x_k = k L / n).  The slopes v_x and v_xt (u_x and u_xt)
+default to the derivatives of v and v_t (u and u_t): a callable is differentiated by the complex
+step, v'(x) = Im v(x + i h) / h with h = 1e-20 L (exact to rounding for any analytic function that
+accepts complex arguments); nodal arrays of v or v_t need their slopes given (of u or u_t, on the
+exact rod).
 
-Projection: nodal interpolation.  The element interpolates u linearly and v with cubic Hermite
-polynomials (Appendix A), from the nodal values of u, v and psi = v_x; crankgen takes those values
-from the fields at the nodes, so that a field in the element space (u piecewise linear, v
-piecewise cubic with continuous slope, on the mesh) is reproduced exactly, and any other field with
-the interpolation error of the element (O(h^2) in u, O(h^4) in v).  The same holds for the rates.
+Projection: nodal interpolation.  The element interpolates u linearly (the exact rod: cubic Hermite
+in u and chi = u_x) and v with cubic Hermite polynomials (Appendix A), from the nodal values of u,
+v and psi = v_x; crankgen takes those values from the fields at the nodes, so that a field in the
+element space (u piecewise linear, v piecewise cubic with continuous slope, on the mesh) is
+reproduced exactly, and any other field with the interpolation error of the element (O(h^2) in u,
+O(h^4) in v).  The same holds for the rates.
 
 Checks: the rod is pinned to the crank, so u, v, u_t, v_t vanish at x = 0; its end lies on the
 guide and moves along it, so (u, v)(L) = g(s) and (u_t, v_t)(L) = g_s s_t + dg/dt for some s and
@@ -42,12 +45,13 @@ import numpy as np
 from . import kinematics as _kinematics
 from ..declaration import schema
 from ..errors import ParameterError
-from .mesh import PSI, U, V, Mesh
+from .mesh import CHI, PSI, U, V, Mesh, components_of
 
 COMPLEX_STEP = 1e-20
 # the unit of each field (derive/declaration.py's units strings; crankgen.declaration.units)
-FIELD_UNITS = {"u": "L", "v": "L", "v_x": "1", "u_t": "L omega_b", "v_t": "L omega_b", "v_xt": "omega_b"}
-_SLOPE_OF = {"v_x": "v", "v_xt": "v_t"}
+FIELD_UNITS = {"u": "L", "v": "L", "v_x": "1", "u_t": "L omega_b", "v_t": "L omega_b", "v_xt": "omega_b",
+               "u_x": "1", "u_xt": "omega_b"}
+_SLOPE_OF = {"v_x": "v", "v_xt": "v_t", "u_x": "u", "u_xt": "u_t"}
 
 
 @dataclass(frozen=True)
@@ -62,6 +66,8 @@ class InitialState:
     v_t: object = None
     v_x: object = None
     v_xt: object = None
+    u_x: object = None
+    u_xt: object = None
     tol: float = 1e-6
 
     def __post_init__(self):
@@ -192,7 +198,7 @@ def reduced_state(case, initial, scales=None):
     a case, projected by nodal interpolation and checked against the pin and the guide.  scales: a
     crankgen.declaration.units.Scales when the fields are in SI (x in m, u and v in m, u_t and v_t in m/s, v_x
     dimensionless, v_xt in 1/s); None: crankgen's units."""
-    mesh = Mesh(case.n_elements)
+    mesh = Mesh(case.n_elements, components=components_of(case.options))
     n = mesh.n_elements
     x = np.arange(n + 1) / n
     length = 1.0 if scales is None else scales.L
@@ -204,7 +210,8 @@ def reduced_state(case, initial, scales=None):
     values = {}
     for name in ("u", "v", "u_t", "v_t"):
         values[name] = _nodal(name, getattr(initial, name), x_user, n) / factor(name)
-    for name in ("v_x", "v_xt"):
+    slopes = ("v_x", "v_xt") + (("u_x", "u_xt") if "chi" in mesh.components else ())
+    for name in slopes:
         values[name] = _slope(name, initial, x_user, n, length) / factor(name)
 
     tol = float(initial.tol)
@@ -235,7 +242,8 @@ def reduced_state(case, initial, scales=None):
 
     d0, v0 = np.zeros(mesh.n_dofs), np.zeros(mesh.n_dofs)
     for k in range(n + 1):
-        for component, (disp, rate) in ((U, ("u", "u_t")), (V, ("v", "v_t")), (PSI, ("v_x", "v_xt"))):
+        for component, (disp, rate) in ((U, ("u", "u_t")), (V, ("v", "v_t")), (PSI, ("v_x", "v_xt")),
+                                        (CHI, ("u_x", "u_xt"))):
             idx = mesh.reduced_index(k, component)
             if idx is not None:
                 d0[idx] = values[disp][k]
@@ -251,7 +259,7 @@ def initial_state(case, initial, scales=None):
     None unless given (the run then starts from g0 = the accelerations of eq. 34).  The vectors are
     the rod's nodal ones (3 n_elements), or, for a driven motion, the DOF map's whole state (its
     co-ordinates after them)."""
-    mesh = Mesh(case.n_elements)
+    mesh = Mesh(case.n_elements, components=components_of(case.options))
     N = mesh.n_dofs
     if initial is None:
         return np.zeros(N), np.zeros(N), None
@@ -278,7 +286,7 @@ def initial_state(case, initial, scales=None):
                                          for x in vectors) or len({x.shape for x in vectors}) > 1:
         also = f" (or {full}, with the motion's co-ordinates)" if full != N else ""
         raise ParameterError(f"initial must be two (d0, v0) or three (d0, v0, a0) finite vectors of "
-                             f"length {N} (3 n_elements){also}")
+                             f"length {N} (the rod's nodal unknowns){also}")
     if len(vectors) == 3 and case.rho_inf == 1.0:
         raise ParameterError("initial's third vector, algorithmic accelerations, belongs to generalized-alpha "
                              "(rho_inf < 1); Newmark (rho_inf = 1) starts from (d0, v0)")

@@ -1,13 +1,16 @@
 """Mesh of the connecting rod and its DOF map: from element DOFs to the reduced (free) DOFs.
 
-Full nodal vector: the components of each node (schema.NODE: u, v, psi, eq. 14), nodes 0..n along
-the rod.  Each constraint of the DOF map (schema.CONSTRAINTS, declared in derive/declaration.py)
+Full nodal vector: the components of each node (schema.NODE: u, v, psi, eq. 14, and chi = u_x,
+which only the exact rod's nodes have: the DOF map of the other models leaves it out), nodes 0..n
+along the rod.  Each constraint of the DOF map (schema.CONSTRAINTS, declared in derive/declaration.py)
 eliminates components of its node; its reduced co-ordinates take the places of the first of them,
 in order.  The crank pin eliminates u_0, v_0; the guide replaces (u_n, v_n) by the reduced
 co-ordinate s of its end map, (u_n, v_n) = g(s, t) (a slider: s (cos phi, sin phi), eq. 26; see
 constraints.py).  The reduced vector is
 
     [psi_0,  u_1, v_1, psi_1,  ...,  u_{n-1}, v_{n-1}, psi_{n-1},  s, psi_n]     (3 n entries),
+
+with chi after each psi on the exact rod (4 n + 1 entries),
 
 followed by the co-ordinates the case's motion declares (records.Coordinate: a driven crank's
 angle, a motor rotor's angle; none for a prescribed crank), each with its own equation: the DOF
@@ -22,12 +25,19 @@ from ..declaration import schema
 from ..declaration.validation import integer
 
 NDOF = schema.ELEMENT_DOFS
-# the flexible body (schema.BODIES: the rod; one runs today) and its node's components (u, v, psi)
+# the flexible body (schema.BODIES: the rod; one runs today) and its node's components (u, v, psi,
+# chi; chi only where the case's model has it: records.Body.components)
 BODY = next(b for b in schema.BODIES.values() if b.kind == "flexible")
 COMPONENTS = BODY.node
 NODE_DOFS = len(COMPONENTS)                   # per node; an element holds two nodes' (NDOF)
-U, V, PSI = range(NODE_DOFS)
+U, V, PSI, CHI = range(NODE_DOFS)
 MAPPED = next(c for c in schema.CONSTRAINTS if c.body == BODY.name and c.map is not None)   # reduced co-ordinates
+
+
+def components_of(options):
+    """The rod's node components under a case's model options (records.Body.components: chi only
+    on the exact rod); {} gives the default model's."""
+    return BODY.components(dict(options) or schema.resolve_options())
 
 
 def joints(body=BODY):
@@ -48,17 +58,23 @@ class Mesh:
 
     n_elements: int
     coordinates: tuple = ()
+    components: tuple = None
     element_dofs: np.ndarray = field(init=False, repr=False)
 
     @classmethod
     def of_case(cls, case):
-        """The DOF map of a case: its rod's mesh and its motion's co-ordinates."""
-        return cls(case.n_elements, tuple(case.motion_record.coordinates))
+        """The DOF map of a case: its rod's mesh with the node components of its model, and its
+        motion's co-ordinates."""
+        return cls(case.n_elements, tuple(case.motion_record.coordinates), components_of(case.options))
 
     def __post_init__(self):
         n = integer("n_elements", self.n_elements, 1)
         object.__setattr__(self, "n_elements", n)
         object.__setattr__(self, "coordinates", tuple(self.coordinates))
+        present = components_of({}) if self.components is None else tuple(self.components)
+        if not set(present) <= set(COMPONENTS) or not present:
+            raise ValueError(f"components must be some of {COMPONENTS}, got {present!r}")
+        object.__setattr__(self, "components", tuple(c for c in COMPONENTS if c in present))
         object.__setattr__(self, "_index", self._numbering())
         object.__setattr__(self, "element_dofs", self._element_dofs())
 
@@ -76,6 +92,9 @@ class Mesh:
             c = held.get(node)
             for comp in range(NODE_DOFS):
                 name = COMPONENTS[comp]
+                if name not in self.components:         # not a component of this model's node
+                    index[(node, comp)] = None
+                    continue
                 if c is not None and name in c.eliminated:
                     j = c.eliminated.index(name)
                     if j < len(c.reduced):
@@ -90,7 +109,8 @@ class Mesh:
 
     @property
     def n_rod(self):
-        """Number of the rod's reduced nodal DOFs (3 n with the pin and the guide): the band."""
+        """Number of the rod's reduced nodal DOFs (3 n, 4 n + 1 with chi, with the pin and the guide):
+        the band."""
         return self._index["size"]
 
     @property
@@ -156,7 +176,7 @@ class Mesh:
                 node, comp = e + k // NODE_DOFS, k % NODE_DOFS
                 c = held.get(node)
                 idx = self._index.get((node, comp))
-                if c is not None and COMPONENTS[comp] in c.eliminated:
+                if c is not None and COMPONENTS[comp] in c.eliminated and COMPONENTS[comp] in self.components:
                     j = c.eliminated.index(COMPONENTS[comp])
                     idx = self._index[(c.name, j)] if j < len(c.reduced) else None
                 dofs[e, k] = self.dummy if idx is None else idx
@@ -191,3 +211,46 @@ class Mesh:
         """(element index, zeta) of the point x in [0, 1]."""
         e = min(int(np.floor(x * self.n_elements)), self.n_elements - 1)
         return e, (x - e * self.length) / self.length
+
+
+def transfer(values, source, target):
+    """Reduced vectors (..., source.n_dofs) of one DOF map in the layout of another on the same
+    elements and co-ordinates (a consistent model's states read by the exact rod, whose nodes add
+    chi): every (node, component) both have is copied, and the reduced and declared co-ordinates;
+    a chi that the source lacks is the slope of its u at the node (the mean of the two elements'
+    slopes u_x, the one element's at an end; the end node's u through the reduced co-ordinate is
+    not at hand there, so the last element's slope is its neighbour's).  Returns (..., target.n_dofs)."""
+    values = np.asarray(values, dtype=float)
+    if source.n_elements != target.n_elements or source.coordinates != target.coordinates:
+        raise ValueError("transfer needs two DOF maps of the same elements and co-ordinates")
+    out = np.zeros(values.shape[:-1] + (target.n_dofs,))
+    n = source.n_elements
+    u = np.zeros(values.shape[:-1] + (n + 1,))
+    known = np.zeros(n + 1, dtype=bool)
+    for node in range(n + 1):
+        for comp in range(NODE_DOFS):
+            i, j = source.reduced_index(node, comp), target.reduced_index(node, comp)
+            if comp == U and i is not None and i not in set(source.reduced_coordinates()):
+                u[..., node], known[node] = values[..., i], True
+            if i is not None and j is not None:
+                out[..., j] = values[..., i]
+    known[0] = True                                  # the pin: u_0 = 0
+    for a, b in zip(source.reduced_coordinates(), target.reduced_coordinates()):
+        out[..., b] = values[..., a]
+    out[..., target.n_rod:] = values[..., source.n_rod:]
+    if "chi" in target.components and "chi" not in source.components:
+        h = source.length
+        slopes = np.full(values.shape[:-1] + (n,), np.nan)
+        for e in range(n):
+            if known[e] and known[e + 1]:
+                slopes[..., e] = (u[..., e + 1] - u[..., e]) / h
+        for e in range(n):                           # an element without both ends: its neighbour's slope
+            if not (known[e] and known[e + 1]):
+                slopes[..., e] = slopes[..., e - 1] if e > 0 else 0.0
+        for node in range(n + 1):
+            j = target.reduced_index(node, CHI)
+            if j is None:
+                continue
+            around = [e for e in (node - 1, node) if 0 <= e < n]
+            out[..., j] = np.mean([slopes[..., e] for e in around], axis=0)
+    return out

@@ -14,6 +14,7 @@ import numpy as np
 
 from ..discrete import kinematics as _kinematics
 from ..discrete import newton, time_scheme
+from ..discrete.mesh import components_of
 from ..declaration import schema, torque_curve
 from ..results.outputs import primitive_data
 from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
@@ -50,16 +51,21 @@ class Batch:
         coordinates = tuple(cases[0].motion_record.coordinates)
         if any(tuple(c.motion_record.coordinates) != coordinates for c in cases):
             raise ValueError("all cases of a batch must share the co-ordinates of their motion (one state layout)")
+        components = components_of(cases[0].options)
+        if any(components_of(c.options) != components for c in cases):
+            raise ValueError("all cases of a batch must share their rod's node components (one state layout): "
+                             "the exact rod's nodes carry chi = u_x, the other models' do not")
         self.cases, self.n_elements, self.steps_per_rev = cases, n, spr
         select = select_rows(cases)
         self.entries = frozenset(entries)
         if (like is not None and kernels_table is None and like.n_elements == n and like.steps_per_rev == spr
                 and len(like.runs) == 1 and (select == like.records.select[0]).all()
-                and self.entries <= like.entries and like.mesh.coordinates == coordinates):
+                and self.entries <= like.entries and like.mesh.coordinates == coordinates
+                and like.mesh.components == components):
             self.mesh, self.N, self.meshdata = like.mesh, like.N, like.meshdata
             self.runs = [(like.runs[0][0], 0, len(cases))]
         else:
-            self._new_mesh(n, coordinates)
+            self._new_mesh(n, coordinates, components)
             if kernels_table is None:
                 prepare([f"entry:{e}" for e in entries] + build_items(select))
             # runs of consecutive cases of one model, each with its model's kernel table
@@ -82,11 +88,11 @@ class Batch:
             *torque_curve.batch_tables(cases))
         self.generalized = np.array([time_scheme.coefficients(c.rho_inf).generalized for c in cases])
 
-    def _new_mesh(self, n, coordinates):
+    def _new_mesh(self, n, coordinates, components):
         from ..discrete.assembly import BandedAssembler
         from ..discrete.mesh import Mesh
 
-        self.mesh = Mesh(n, coordinates)
+        self.mesh = Mesh(n, coordinates, components)
         self.N = self.mesh.n_dofs
         points, grams = primitive_data(self.mesh)
         self.meshdata = MeshData(

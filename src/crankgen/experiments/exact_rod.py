@@ -7,7 +7,8 @@ exact_range of the consistent model and of the exact rod (model="consistent" / "
 mesh, steps and corrector tolerance, period doublings followed up to exact_max_period).  Where a
 branch of the exact rod stops before the end of the range, the orbit at its last point is marched
 and its section rotation and outer-fibre strain read (crankgen.analyses.theory.exact_measures): the
-element's own limit is a rotation of 90 degrees.  Then both models are marched from rest at
+element has no rotation limit, so such an end is the continuation's (its corrector, its step bound),
+not the rod's.  Then both models are marched from rest at
 Omega* = exact_snap_omega for exact_snap_revolutions revolutions (the consistent model's
 snap-through orbit).  `compare` pairs the special points (same kind and period, nearest in
 Omega* within exact_match) into survive / move / vanish / new.  Data only: plot_exact_rod.py
@@ -128,8 +129,7 @@ def _snap(ctx, m):
         part = getattr(exc, "partial", None)
         rec.update(status="stopped", message=str(exc).split(";")[0],
                    time=float(getattr(exc, "time", math.nan) or math.nan),
-                   reason=("the section rotation reached 90 degrees from the chord" if "90 degrees" in str(exc)
-                           else str(exc)))
+                   reason=str(exc))
         r = part
     if r is not None and len(r.v_mid):
         v = np.abs(np.asarray(r.v_mid, dtype=float))

@@ -62,8 +62,7 @@ def _amplitudes(cfg, data):
             lines += [f"The exact rod has no result in Figure {f} at " + "; ".join(
                 f"eps = {e:g}, Omega* = " + ", ".join(f"{r['omega']:g}" for r in failed if r["eps"] == e)
                 for e in sorted({r["eps"] for r in failed})) + ": its runs fail (the CSV's message says how; "
-                "a non-finite state is what the march from rest at Omega* = 1.2 below reaches when a section "
-                "turns to 90 degrees from the chord, the element's limit).", ""]
+                "the element itself has no rotation limit).", ""]
         if diffs:
             within = [r for a, _, r in diffs if a <= DIFFER]
             big = max(diffs, key=lambda t: t[0])
@@ -119,7 +118,8 @@ def _special_points(exact):
                 facts.append(f"the exact rod's period-{br['period']} branch ends at Omega* = {num(end['omega'], 5)} "
                              f"(max |v*| {num(end['amplitude'])}): {br['stop_reason']}; its orbit there turns "
                              f"sections by up to {num(rot, 3)} degrees from the chord (outer-fibre strain "
-                             f"{num(end.get('fibre_strain'), 3)}), near the element's limit of 90 degrees"
+                             f"{num(end.get('fibre_strain'), 3)}); the element has no rotation limit, so the "
+                             "branch ends where the continuation stops, not at an end of the rod's model"
                              if rot is not None else
                              f"the exact rod's period-{br['period']} branch ends at Omega* = {num(end['omega'], 5)}: "
                              f"{br['stop_reason']} ({end.get('message', '')})")

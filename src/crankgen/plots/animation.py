@@ -23,7 +23,7 @@ import numpy as np
 from ..discrete import kinematics as _kinematics
 from .._generated import geometry as _geometry
 from ..errors import ParameterError
-from ..discrete.mesh import NODE_DOFS, PSI, U, V
+from ..discrete.mesh import CHI, NODE_DOFS, PSI, U, V, components_of
 from ..analyses.limits import count as bounded
 from ..declaration.validation import in_range, integer
 
@@ -42,7 +42,7 @@ def inertial_nodes(result, magnification=1.0):
                              "(simulate with history, a steady state with an orbit)")
     case = result.case
     kin = _run_kinematics(result)
-    nodal = Model(case).full_nodal(result.states, kin)              # (steps, 3 (n + 1))
+    nodal = Model(case).full_nodal(result.states, kin)              # (steps, NODE_DOFS (n + 1))
     u, v = nodal[:, U::NODE_DOFS], nodal[:, V::NODE_DOFS]
     x = np.linspace(0.0, 1.0, u.shape[1])
     return _place(case, kin, x + magnification * u, magnification * v)
@@ -67,17 +67,24 @@ def _place(case, kin, along, across):
 
 
 def _rod_curve(case, kin, nodal, magnification, points=6):
-    """(steps, P, 2): the rod drawn between its nodes (cubic v with the slopes, linear u)."""
+    """(steps, P, 2): the rod drawn between its nodes as its elements interpolate it (cubic v with
+    the slopes psi; u linear, or cubic with the slopes chi on the exact rod)."""
     n = case.n_elements
     u, v, psi = nodal[:, U::NODE_DOFS], nodal[:, V::NODE_DOFS], nodal[:, PSI::NODE_DOFS]
+    chi = nodal[:, CHI::NODE_DOFS]
+    cubic_u = "chi" in components_of(case.options)
     h = 1.0 / n
     z = np.linspace(0.0, 1.0, points + 1)[:-1]
     H = np.stack([2 * z**3 - 3 * z**2 + 1, (z**3 - 2 * z**2 + z) * h, -2 * z**3 + 3 * z**2, (z**3 - z**2) * h])
+
+    def hermite(f, slope, e):
+        return f[:, e, None] * H[0] + slope[:, e, None] * H[1] + f[:, e + 1, None] * H[2] + slope[:, e + 1, None] * H[3]
+
     along, across = [], []
     for e in range(n):
-        along.append((e + z) * h + magnification * (u[:, e, None] * (1 - z) + u[:, e + 1, None] * z))
-        across.append(magnification * (v[:, e, None] * H[0] + psi[:, e, None] * H[1]
-                                       + v[:, e + 1, None] * H[2] + psi[:, e + 1, None] * H[3]))
+        axial = hermite(u, chi, e) if cubic_u else u[:, e, None] * (1 - z) + u[:, e + 1, None] * z
+        along.append((e + z) * h + magnification * axial)
+        across.append(magnification * hermite(v, psi, e))
     along.append(1.0 + magnification * u[:, -1:])
     across.append(magnification * v[:, -1:])
     return _place(case, kin, np.concatenate(along, axis=1), np.concatenate(across, axis=1))
@@ -123,6 +130,8 @@ class Frames:
         guide, params = case.guide_record, case.kinematic_parameters
         self.pivot = (getattr(_geometry, f"pivot_{guide.name}")(params) * self.length if guide.pivot else None)
         beta = np.asarray(kin.beta, dtype=float)           # the guide co-ordinate of the rigid end
+        s = np.asarray(result.states, dtype=float)[self.steps][:, Model(case).mesh.reduced_coordinates()[0]]
+        beta = np.concatenate([beta, beta + self.magnification * s])      # and of the drawn end on it
         span = float(beta.max() - beta.min()) if beta.size else 0.0
         reach = np.linspace(beta.min() - 0.5 * span - 0.1, beta.max() + 0.5 * span + 0.1, 181)
         self.guide_curve = getattr(_geometry, f"curve_{guide.name}")(reach, params) * self.length

@@ -9,8 +9,9 @@ from .figures import fit_panels, panels
 
 def _describe(info, scales):
     from ..declaration import schema
-    model = (f"approach {info['approach']}, {info['formulation']} / {info['damping']} / "
-             f"{info['membrane']}, n = {info['n_elements']}")
+    membrane = "" if info["approach"] in ("C", "exact") else f" / {info['membrane']}"
+    model = (f"approach {info['approach']}, {info['formulation']} / {info['damping']}{membrane}, "
+             f"n = {info['n_elements']}")
     import textwrap
     values = {k: v for k, v in info.items() if k in schema.PARAMETERS}
     skip = (schema.CRANK_SPEED, schema.CRANK_ANGLE)        # the abscissa, and a frozen angle of each

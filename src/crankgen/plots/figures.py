@@ -23,6 +23,14 @@ def subplots(nrows=1, ncols=1, **kwargs):
     return fig, fig.subplots(nrows, ncols, **kwargs)
 
 
+def membrane_words(s):
+    """", <membrane> membrane" of a case's options (as_dict), "" for the models it does not apply to
+    (approach C's and the exact rod's strain is pointwise whatever the option)."""
+    if s.get("approach") in ("C", "exact"):
+        return ""
+    return f", {s.get('membrane', 'pointwise')} membrane"
+
+
 def _title(s):
     """Two lines naming the model and the case (the mechanism's parameters and the crank's, from
     their records); a third for the rest that differs from the defaults (gravity, a guide offset,
@@ -31,8 +39,8 @@ def _title(s):
     main, other = schema.describe(s)
     if not s.get("rotary_inertia", True):
         other.append("no rotary inertia")
-    return (f"approach {s['approach']}, {s['formulation']} formulation, {s['damping']} damping, "
-            f"{s.get('membrane', 'pointwise')} membrane\n"
+    return (f"approach {s['approach']}, {s['formulation']} formulation, {s['damping']} damping"
+            f"{membrane_words(s)}\n"
             + textwrap.fill(listed(main + [f"n = {s['n_elements']}"]), 95, break_on_hyphens=False)
             + ("\n" + ", ".join(other) if other else ""))
 
@@ -266,8 +274,8 @@ def _si_title(result, si):
     title.  si: the result's SI view, or the crankgen.Scales it converts by."""
     from ..declaration.si import describe_si
     s, sc = result.case.as_dict(), getattr(si, "scales", si)
-    return (f"approach {s['approach']}, {s['formulation']} formulation, {s['damping']} damping, "
-            f"{s.get('membrane', 'pointwise')} membrane, n = {s['n_elements']}\n"
+    return (f"approach {s['approach']}, {s['formulation']} formulation, {s['damping']} damping"
+            f"{membrane_words(s)}, n = {s['n_elements']}\n"
             f"L = {sc.L:g} m, omega_b = {sc.omega_b:.5g} rad/s, rho A = {sc.rhoA:.4g} kg/m, r = {sc.base['r']:.4g} m\n"
             + textwrap.fill(listed(describe_si(result.case.parameters(), sc)), 88))
 

@@ -63,7 +63,8 @@ def modes_figure(m):
         parts = main + other
     # wrapped to the width of the panels, so that no line runs past the figure's edges
     width = int(cols * 4.4 / 0.078)
-    text = textwrap.fill(f"approach {c.approach}, {c.formulation} / {c.damping} / {c.membrane}, n = "
+    membrane = "" if c.approach in ("C", "exact") else f" / {c.membrane}"
+    text = textwrap.fill(f"approach {c.approach}, {c.formulation} / {c.damping}{membrane}, n = "
                          f"{c.n_elements}, " + ", ".join(parts), width, break_on_hyphens=False)
     fig.suptitle(textwrap.fill(f"mode shapes of the mechanism frozen at crank angle {math.degrees(m.theta):g} "
                                f"degrees, {speed}", width) + "\n" + text, fontsize=9)

@@ -28,7 +28,7 @@ from ..discrete import kinematics as _kinematics
 from .._generated import per_step as _per_step
 from .._generated.shape import shape_functions
 from ..errors import ParameterError
-from ..discrete.mesh import MAPPED, NODE_DOFS, U, V, Mesh
+from ..discrete.mesh import MAPPED, NODE_DOFS, U, V, Mesh, components_of
 from ..declaration.validation import finite_number, in_range
 
 NODE_TOLERANCE = 1e-12      # x* closer than this (relative to an element) to a node is at the node
@@ -48,6 +48,8 @@ def unknown_output(name):
                               f"rocker_on_tip on a four-bar)")
     return ParameterError(f"no output {name!r}; the outputs are {', '.join(schema.OUTPUTS)}")
 FIELDS = ("u", "v", "psi")  # the interpolated fields, in the order of the shape functions (eqs. 8-10)
+# (shape_functions gives a fourth, the exact rod's cubic N_u in u and chi; no engine output reads u
+# between the nodes)
 
 
 def primitive_data(mesh):
@@ -80,7 +82,7 @@ def engine_outputs(mesh, q, parameters):
 def deflection_at(mesh, q, x):
     """v(x) in units of L, interpolated with the element's shape functions (any element count)."""
     e, zeta = mesh.locate(x)
-    _, N_v, _ = shape_functions(zeta, mesh.length)
+    _, N_v, _, _ = shape_functions(zeta, mesh.length)
     return q[..., e, :] @ N_v
 
 
@@ -128,7 +130,7 @@ class StateHistory:
         self.states = None if states is None else np.asarray(states)   # None: the kinematics' outputs alone
         self.crank = None if crank is None else np.asarray(crank, dtype=float)     # a driven crank's (theta, thetad, thetadd)
         self.rates, self.accelerations = rates, accelerations
-        self.mesh = Mesh(case.n_elements)
+        self.mesh = Mesh(case.n_elements, components=components_of(case.options))
         self._kin = None
         self._pin_end = None
         self._constraints = tuple(c.name for c in schema.CONSTRAINTS)
