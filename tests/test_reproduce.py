@@ -701,3 +701,36 @@ def test_the_exact_rods_special_points_are_its_own_stability_changes(tiny_run):
     assert f"period doubling {float(next(r for r in cons if r['kind'] == 'period-doubling')['omega']):.5g} -> " \
            f"{omega:.5g}" in text
     assert (out / "exact_rod.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_the_exact_rods_character_rows_are_the_response_an_independent_march_finds(tiny_run):
+    """exact_rod_character.csv: the exact rod's Poincare samples at exact_character_omegas are the
+    mid-span deflections that crankgen.simulate (another path through the engine) finds from rest
+    once per revolution after the transient; a row classified period-k repeats with period k, a
+    non-periodic one carries its Lyapunov exponent, and findings.md states each row."""
+    _, out = tiny_run
+    cfg = ReproduceConfig.tiny()
+    rows = list(csv.DictReader(open(out / "exact_rod_character.csv")))
+    assert [(r["mechanism"], float(r["omega"])) for r in rows] == \
+        [(m, w) for m in cfg.exact_mechanisms for w in cfg.exact_character_omegas]
+    text = (out / "findings.md").read_text()
+    for r in rows:
+        assert r["model"] == "exact" and r["classification"] != "failed", r
+        n, spr = int(r["n_elements"]), int(r["steps_per_rev"])
+        transient, samples = int(r["transient"]), int(r["samples"])
+        assert (n, spr, transient, samples) == (cfg.exact_elements, cfg.exact_steps,
+                                                cfg.exact_character_transient, cfg.exact_character_samples)
+        mech = crankgen.Mechanism(a=cfg.a, eps=float(r["eps"]), ms=cfg.ms, mu=cfg.mu)
+        run = crankgen.simulate(mech, omega=float(r["omega"]), model="exact", n_elements=n, steps_per_rev=spr,
+                                revolutions=transient + samples, history=True)
+        v = np.asarray(run.v_mid)[::spr][transient + 1:transient + samples + 1]
+        assert len(v) == samples
+        assert float(r["sample_min"]) == pytest.approx(v.min(), rel=1e-6, abs=1e-9)
+        assert float(r["sample_max"]) == pytest.approx(v.max(), rel=1e-6, abs=1e-9)
+        if r["classification"].startswith("period-"):
+            k = int(r["period"])
+            assert r["classification"] == f"period-{k}" and r["lyapunov"] == ""
+            assert np.abs(v[k:] - v[:-k]).max() <= 1e-6 * np.abs(v).max()
+        else:
+            assert math.isfinite(float(r["lyapunov"]))
+        assert f"- {r['mechanism']}, Omega* = {float(r['omega']):g}: {r['classification']}" in text

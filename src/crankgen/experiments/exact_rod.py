@@ -10,7 +10,10 @@ and its section rotation and outer-fibre strain read (crankgen.analyses.theory.e
 element has no rotation limit, so such an end is the continuation's (its corrector, its step bound),
 not the rod's.  Then both models are marched from rest at
 Omega* = exact_snap_omega for exact_snap_revolutions revolutions (the consistent model's
-snap-through orbit).  `compare` pairs the special points (same kind and period, nearest in
+snap-through orbit), and the exact rod's response at exact_character_omegas is classified on each
+mechanism (crankgen.poincare from rest: exact_character_transient revolutions, then
+exact_character_samples sampled once per revolution; period-k, quasi-periodic or irregular, with
+the largest Lyapunov exponent of the revolution map).  `compare` pairs the special points (same kind and period, nearest in
 Omega* within exact_match) into survive / move / vanish / new.  Data only: plot_exact_rod.py
 draws it, report_exact_rod.py states it in findings.md.
 """
@@ -29,6 +32,9 @@ MOVED = 0.005            # |Delta Omega*| below this: the point survives where i
 _FAILURES = (CrankgenError, ArithmeticError, np.linalg.LinAlgError)
 BRANCH_COLUMNS = ["mechanism", "model", "eps", "n_elements", "steps_per_rev", "branch", "period", "origin",
                   "stop_reason", "point", "omega", "amplitude", "stable", "max_abs_multiplier"]
+CHARACTER_COLUMNS = ["mechanism", "model", "eps", "n_elements", "steps_per_rev", "transient", "samples", "omega",
+                     "classification", "period", "lyapunov", "distinct", "amplitude", "sample_min", "sample_max",
+                     "message"]
 POINT_COLUMNS = ["mechanism", "model", "eps", "n_elements", "steps_per_rev", "kind", "omega", "amplitude",
                  "period", "branch", "multiplier_abs", "fate", "exact_omega", "shift", "message"]
 
@@ -45,7 +51,9 @@ def settings_of(cfg):
     return dict(mechanisms=list(cfg.exact_mechanisms), eps=cfg.exact_eps, range=list(cfg.exact_range),
                 n_elements=cfg.exact_elements, steps_per_rev=cfg.exact_steps, max_period=cfg.exact_max_period,
                 dp_max=cfg.exact_dp_max, rocker=cfg.exact_rocker, tol=cfg.exact_tol, snap_omega=cfg.exact_snap_omega,
-                snap_revolutions=cfg.exact_snap_revolutions, match=cfg.exact_match)
+                snap_revolutions=cfg.exact_snap_revolutions, match=cfg.exact_match,
+                character_omegas=list(cfg.exact_character_omegas), character_transient=cfg.exact_character_transient,
+                character_samples=cfg.exact_character_samples)
 
 
 def exact_rod(ctx):
@@ -54,9 +62,11 @@ def exact_rod(ctx):
     runs = map_in_threads(lambda pair: _run(ctx, *pair), [(name, m) for name in cfg.exact_mechanisms for m in MODELS],
                           stop=ctx.stop)
     snaps = [_snap(ctx, m) for m in MODELS] if cfg.exact_snap_revolutions > 0 else []
+    characters = (map_in_threads(lambda name: _character(ctx, name), list(cfg.exact_mechanisms), stop=ctx.stop)
+                  if cfg.exact_character_omegas else [])
     comparisons = {name: compare(*[r for r in runs if r["mechanism"] == name], cfg.exact_match)
                    for name in cfg.exact_mechanisms}
-    return dict(settings=settings_of(cfg), runs=runs, snaps=snaps, comparisons=comparisons)
+    return dict(settings=settings_of(cfg), runs=runs, snaps=snaps, characters=characters, comparisons=comparisons)
 
 
 def _run(ctx, name, m):
@@ -141,6 +151,41 @@ def _snap(ctx, m):
     return rec
 
 
+def _character(ctx, name):
+    """The exact rod's response at exact_character_omegas on one mechanism: crankgen.poincare swept
+    up (the first speed from rest), each speed's classification with its evidence (the largest
+    Lyapunov exponent per revolution from the exact Jacobians of the revolution map, the distinct
+    samples of v* at theta = 0, their range) and the amplitude max |v*|."""
+    from .. import notices
+    from ..analyses.bifurcation import poincare
+    cfg = ctx.config
+    omegas = [float(w) for w in cfg.exact_character_omegas]
+    label = f"exact rod, {name}"
+    ctx.log(f"{label}: Poincare sampling at Omega* = {', '.join(f'{w:g}' for w in omegas)} "
+            f"({cfg.exact_character_transient} revolutions, then {cfg.exact_character_samples} sampled)")
+    rec = dict(mechanism=name, transient=int(cfg.exact_character_transient),
+               samples=int(cfg.exact_character_samples), status="ok", message="", points=[])
+    try:
+        with notices.quiet():
+            d = poincare(mechanism(cfg, name), "omega", omegas, "up", model=EXACT.key,
+                         n_elements=cfg.exact_elements, steps_per_rev=cfg.exact_steps,
+                         transient=cfg.exact_character_transient, samples=cfg.exact_character_samples)
+    except _FAILURES as exc:
+        rec.update(status="failed", message=f"{type(exc).__name__}: {exc}")
+        ctx.log(f"{label}: Poincare sampling FAILED: {exc}")
+        return rec
+    for q in d.points:
+        s = np.asarray(q.samples, dtype=float)
+        rec["points"].append(dict(omega=float(q.parameter), classification=q.classification, period=int(q.period),
+                                  lyapunov=None if q.lyapunov is None else float(q.lyapunov),
+                                  distinct=int(q.distinct), amplitude=None if q.amplitude is None else float(q.amplitude),
+                                  sample_min=float(s.min()) if s.size else None,
+                                  sample_max=float(s.max()) if s.size else None, message=q.message))
+        ctx.log(f"{label}: Omega* = {q.parameter:g}: {q.classification}"
+                + (f", largest Lyapunov exponent {q.lyapunov:+.3f} per revolution" if q.lyapunov is not None else ""))
+    return rec
+
+
 def compare(consistent, exact, window):
     """[(consistent special point, exact special point or None, fate)] and the exact points with no
     consistent counterpart: fate "survives" (|shift| < MOVED), "moves" (within window) or
@@ -222,8 +267,14 @@ def tables(data):
             elif r["model"] == EXACT.key and id_of(s) in new:
                 row["fate"] = "new"
             points.append(row)
+    character = [dict(mechanism=c["mechanism"], model=EXACT.key, eps=data["settings"]["eps"],
+                      n_elements=data["settings"]["n_elements"], steps_per_rev=data["settings"]["steps_per_rev"],
+                      transient=c["transient"], samples=c["samples"], **q)
+                 for c in data.get("characters", []) for q in (c["points"] if c["status"] == "ok" else
+                                                              [dict(classification="failed", message=c["message"])])]
     return {"exact_rod_branches.csv": (BRANCH_COLUMNS, branches),
-            "exact_rod_points.csv": (POINT_COLUMNS, points)}
+            "exact_rod_points.csv": (POINT_COLUMNS, points),
+            "exact_rod_character.csv": (CHARACTER_COLUMNS, character)}
 
 
 def id_of(point):

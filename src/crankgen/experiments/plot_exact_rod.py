@@ -2,7 +2,8 @@
 rod (right), one row per mechanism, on the same axes (data: exact_rod.py).  Branches in the colour
 of their period, stable solid, unstable dashed; special points marked and labelled with their kind
 and Omega* (plot_bifurcations.py); an exact-rod branch that ends before the range's end is marked
-(x) where it ends, its sections' largest rotation from the chord there in the legend."""
+(x) where it ends (where the continuation stopped: the element has no rotation limit), its sections'
+largest rotation from the chord there in the legend."""
 
 import math
 
@@ -64,4 +65,4 @@ def _end_handle(period, end):
     from matplotlib.lines import Line2D
     return Line2D([], [], ls="none", marker="x", color="k",
                   label=f"period-{period} branch ends at Omega* = {end['omega']:.4g}: sections turned "
-                        f"{end['section_rotation_deg']:.1f} deg from the chord (the element ends at 90)")
+                        f"{end['section_rotation_deg']:.1f} deg from the chord (where the continuation stopped)")

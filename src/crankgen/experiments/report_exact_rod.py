@@ -2,7 +2,8 @@
 6 against the consistent model's and the paper's (approach A), its own range (crankgen.analyses.theory:
 slenderness, outer-fibre strain, section rotation), and the consistent model's special points
 re-read on it (data: exact_rod.py): which survive, move or vanish, the hysteresis loop, the
-snap-through orbit and where the exact rod's branches end."""
+snap-through orbit, where the exact rod's branches end, and the character of its response at
+exact_character_omegas (period-k, quasi-periodic, irregular)."""
 
 import math
 
@@ -153,6 +154,33 @@ def _snaps(exact):
     return lines + [""]
 
 
+def _characters(exact):
+    chars = exact.get("characters") or []
+    if not chars:
+        return []
+    st = exact["settings"]
+    lines = [f"The exact rod's response, classified by crankgen.poincare (from rest, {chars[0]['transient']} "
+             f"revolutions, then {chars[0]['samples']} sampled once per revolution at theta = 0; the largest "
+             "Lyapunov exponent per revolution from the exact Jacobians of the revolution map; "
+             "`exact_rod_character.csv`):", ""]
+    for c in chars:
+        if c["status"] != "ok":
+            lines.append(f"- {c['mechanism']}: failed ({c['message']}).")
+            continue
+        for q in c["points"]:
+            lyap = q.get("lyapunov")
+            lines.append(f"- {c['mechanism']}, Omega* = {q['omega']:g}: {q['classification']}"
+                         + (f", largest Lyapunov exponent {lyap:+.3f} per revolution" if lyap is not None else "")
+                         + f", {q['distinct']} distinct samples of v* in {num(q.get('sample_min'))} to "
+                         f"{num(q.get('sample_max'))}, max |v*| {num(q.get('amplitude'))} (|v|/L "
+                         f"{num((q.get('amplitude') or math.nan) * st['eps'], 3)})."
+                         + (f" {q['message']}" if q.get("message") else ""))
+    return lines + ["", "(irregular: a positive exponent above 0.01, chaos; unsettled: a negative one, still "
+                    "converging after the transient. The character depends on the step near a period doubling: "
+                    "docs/theory/exact-rod.md reads it at 100 to 400 steps per revolution and 16 and 32 "
+                    "elements, with examples/large_orbit.py.)", ""]
+
+
 def _range(data):
     rows = [r for f in (5, 6) for r in data.get(f, {}).get("rows", []) if r["model"] == EXACT.key]
     if not rows:
@@ -203,6 +231,7 @@ def section(cfg, data, exact, missing=None):
               f"`--guide circle --rocker {st['rocker']:g} --ground 1`).", ""]
     lines += _special_points(exact)
     lines += _snaps(exact)
+    lines += _characters(exact)
     return lines
 
 

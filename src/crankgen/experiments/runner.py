@@ -34,7 +34,7 @@ DATA = "data"          # subfolder of the computed data that findings.md is buil
 
 
 BIFURCATION_FILES = ["bifurcations.csv", "bifurcation_branches.csv", "bifurcation_beyond.csv"]
-EXACT_FILES = ["exact_rod.png", "exact_rod_points.csv", "exact_rod_branches.csv"]
+EXACT_FILES = ["exact_rod.png", "exact_rod_points.csv", "exact_rod_branches.csv", "exact_rod_character.csv"]
 
 
 def output_names(figures=FIGURES):
@@ -86,7 +86,8 @@ _BIFURCATION_KEYS = ("fig6_eps", "bif_range", "bif_elements", "bif_steps_per_rev
                      "bif_dp_max", "bif_tol", "bif_beyond_values", "bif_transient", "bif_samples")
 _EXACT_KEYS = ("exact_mechanisms", "exact_eps", "exact_range", "exact_elements", "exact_steps",
                "exact_max_period", "exact_dp_max", "exact_rocker", "exact_tol", "exact_match", "exact_snap_omega",
-               "exact_snap_revolutions", "dpi")
+               "exact_snap_revolutions", "exact_character_omegas", "exact_character_transient",
+               "exact_character_samples", "dpi")
 
 
 def _settings(cfg, keys, **extra):
