@@ -718,7 +718,7 @@ def test_the_exact_rods_character_rows_are_the_response_an_independent_march_fin
         assert r["model"] == "exact" and r["classification"] != "failed", r
         n, spr = int(r["n_elements"]), int(r["steps_per_rev"])
         transient, samples = int(r["transient"]), int(r["samples"])
-        assert (n, spr, transient, samples) == (cfg.exact_elements, cfg.exact_steps,
+        assert (n, spr, transient, samples) == (cfg.exact_elements, cfg.exact_character_steps or cfg.exact_steps,
                                                 cfg.exact_character_transient, cfg.exact_character_samples)
         mech = crankgen.Mechanism(a=cfg.a, eps=float(r["eps"]), ms=cfg.ms, mu=cfg.mu)
         run = crankgen.simulate(mech, omega=float(r["omega"]), model="exact", n_elements=n, steps_per_rev=spr,

@@ -150,7 +150,8 @@ def build_parser():
                                    "(bifurcations.csv, drawn over Figure 6), the geometrically exact rod "
                                    "beside both models in Figures 5 and 6 and, with Figure 6, the consistent "
                                    "model's special points re-read on it (continuation of both, slider-crank "
-                                   "and four-bar: exact_rod.png, exact_rod_points.csv), and findings.md: the "
+                                   "and four-bar: exact_rod.png, exact_rod_points.csv; its response at "
+                                   "Omega* 1.2 classified: exact_rod_character.csv), and findings.md: the "
                                    "paper's claims beside both models, every number computed from the runs. A "
                                    "rerun keeps what is complete and current (manifest.json).")
     p.add_argument("--out", default="results",

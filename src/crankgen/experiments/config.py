@@ -143,9 +143,12 @@ class ReproduceConfig:
     # the exact rod's response at exact_character_omegas on each mechanism (crankgen.poincare swept
     # up, the first from rest: exact_character_transient revolutions, then exact_character_samples
     # sampled, classified with the largest Lyapunov exponent; (): skip)
+    # at exact_character_steps steps per revolution (None: exact_steps; near the period doubling at
+    # 1.18 the continuation's 100 steps put rest in another basin than 200 and 400 do)
     exact_character_omegas: tuple = (1.2,)
-    exact_character_transient: int = 100
+    exact_character_transient: int = 200
     exact_character_samples: int = 64
+    exact_character_steps: object = 200
     # thresholds of the findings
     differ_threshold: float = 0.10       # "B or C differs from A by more than 10 %"
     crossing_rel_tol: float = 0.05       # extension spread at a common crossing / largest spread
@@ -179,6 +182,7 @@ class ReproduceConfig:
             bif_beyond_values=2, bif_transient=60, bif_samples=16,
             exact_row_elements=8, exact_elements=4, exact_steps=50, exact_tol=1e-7, exact_snap_revolutions=12,
             exact_range=(0.1, 1.6), exact_dp_max=0.1, exact_character_transient=60, exact_character_samples=32,
+            exact_character_steps=None,
             steady_options={"max_revolutions": 50, "tol": 1e-6})
 
     @classmethod
@@ -195,7 +199,7 @@ class ReproduceConfig:
             bif_beyond_values=2, bif_transient=20, bif_samples=8,
             exact_mechanisms=("slider-crank",), exact_range=(0.9, 1.2), exact_elements=4, exact_steps=50,
             exact_tol=1e-7, exact_snap_revolutions=2, exact_character_transient=4,
-            exact_character_samples=4, steady_options={"max_revolutions": 20})
+            exact_character_samples=4, exact_character_steps=None, steady_options={"max_revolutions": 20})
 
     @classmethod
     def preset_named(cls, name):

@@ -53,7 +53,12 @@ def settings_of(cfg):
                 dp_max=cfg.exact_dp_max, rocker=cfg.exact_rocker, tol=cfg.exact_tol, snap_omega=cfg.exact_snap_omega,
                 snap_revolutions=cfg.exact_snap_revolutions, match=cfg.exact_match,
                 character_omegas=list(cfg.exact_character_omegas), character_transient=cfg.exact_character_transient,
-                character_samples=cfg.exact_character_samples)
+                character_samples=cfg.exact_character_samples, character_steps=character_steps(cfg))
+
+
+def character_steps(cfg):
+    """The steps per revolution of the character step: exact_character_steps, or exact_steps."""
+    return int(cfg.exact_character_steps or cfg.exact_steps)
 
 
 def exact_rod(ctx):
@@ -105,9 +110,11 @@ def _end_measures(mech, m, cfg, br, hi):
     from .. import notices
     from ..analyses import theory
     from ..analyses.simulation import simulate
-    from ..discrete.mesh import Mesh
+    from ..declaration.schema import resolve_options
+    from ..discrete.mesh import Mesh, components_of
     state = np.asarray(br.states[-1], dtype=float)
-    parts = tuple(state.reshape(-1, Mesh(cfg.exact_elements).n_dofs))      # (d, v) or (d, v, a)
+    mesh = Mesh(cfg.exact_elements, components=components_of(resolve_options(model=m.key)))
+    parts = tuple(state.reshape(-1, mesh.n_dofs))      # (d, v) or (d, v, a), the model's node layout
     out = dict(omega=float(br.parameter[-1]), amplitude=float(br.amplitude[-1]))
     try:
         with notices.quiet():
@@ -162,13 +169,14 @@ def _character(ctx, name):
     omegas = [float(w) for w in cfg.exact_character_omegas]
     label = f"exact rod, {name}"
     ctx.log(f"{label}: Poincare sampling at Omega* = {', '.join(f'{w:g}' for w in omegas)} "
-            f"({cfg.exact_character_transient} revolutions, then {cfg.exact_character_samples} sampled)")
-    rec = dict(mechanism=name, transient=int(cfg.exact_character_transient),
+            f"({character_steps(cfg)} steps per revolution; {cfg.exact_character_transient} revolutions, then "
+            f"{cfg.exact_character_samples} sampled)")
+    rec = dict(mechanism=name, transient=int(cfg.exact_character_transient), steps_per_rev=character_steps(cfg),
                samples=int(cfg.exact_character_samples), status="ok", message="", points=[])
     try:
         with notices.quiet():
             d = poincare(mechanism(cfg, name), "omega", omegas, "up", model=EXACT.key,
-                         n_elements=cfg.exact_elements, steps_per_rev=cfg.exact_steps,
+                         n_elements=cfg.exact_elements, steps_per_rev=character_steps(cfg),
                          transient=cfg.exact_character_transient, samples=cfg.exact_character_samples)
     except _FAILURES as exc:
         rec.update(status="failed", message=f"{type(exc).__name__}: {exc}")
@@ -268,8 +276,8 @@ def tables(data):
                 row["fate"] = "new"
             points.append(row)
     character = [dict(mechanism=c["mechanism"], model=EXACT.key, eps=data["settings"]["eps"],
-                      n_elements=data["settings"]["n_elements"], steps_per_rev=data["settings"]["steps_per_rev"],
-                      transient=c["transient"], samples=c["samples"], **q)
+                      n_elements=data["settings"]["n_elements"],
+                      steps_per_rev=c.get("steps_per_rev", data["settings"]["steps_per_rev"]), transient=c["transient"], samples=c["samples"], **q)
                  for c in data.get("characters", []) for q in (c["points"] if c["status"] == "ok" else
                                                               [dict(classification="failed", message=c["message"])])]
     return {"exact_rod_branches.csv": (BRANCH_COLUMNS, branches),

@@ -3,7 +3,9 @@ rod (right), one row per mechanism, on the same axes (data: exact_rod.py).  Bran
 of their period, stable solid, unstable dashed; special points marked and labelled with their kind
 and Omega* (plot_bifurcations.py); an exact-rod branch that ends before the range's end is marked
 (x) where it ends (where the continuation stopped: the element has no rotation limit), its sections'
-largest rotation from the chord there in the legend."""
+largest rotation from the chord there in the legend.  On the exact rod's panels the response marched
+from rest at exact_character_omegas (a star at its max |v*|, its class and Lyapunov exponent in the
+legend) where it is not one of the drawn orbits."""
 
 import math
 
@@ -37,6 +39,8 @@ def plot_exact_rod(data, cfg):
                     if end and math.isfinite(end.get("section_rotation_deg", math.nan)):
                         ax.plot([end["omega"]], [end["amplitude"]], "x", color="k", ms=8, mew=1.6, zorder=7)
                         extra.append(_end_handle(br["period"], end))
+                if key == "exact":
+                    extra += _characters(ax, data, name)
             n = run["n_elements"] if run else "?"
             ax.set_title(f"{name}, {TITLES[key]}, eps = {data['settings']['eps']:g}, n = {n}", fontsize=9)
             ax.set_xlabel("Omega*")
@@ -66,3 +70,22 @@ def _end_handle(period, end):
     return Line2D([], [], ls="none", marker="x", color="k",
                   label=f"period-{period} branch ends at Omega* = {end['omega']:.4g}: sections turned "
                         f"{end['section_rotation_deg']:.1f} deg from the chord (where the continuation stopped)")
+
+
+def _characters(ax, data, name):
+    """Stars at the exact rod's marched responses that are not period-k orbits (classified by
+    exact_rod.py's character step), with a legend entry each."""
+    from matplotlib.lines import Line2D
+    out = []
+    for c in data.get("characters", []):
+        if c["mechanism"] != name or c["status"] != "ok":
+            continue
+        for q in c["points"]:
+            if str(q["classification"]).startswith("period-") or q.get("amplitude") is None:
+                continue
+            ax.plot([q["omega"]], [q["amplitude"]], "*", color="0.25", ms=10, zorder=8)
+            lyap = q.get("lyapunov")
+            out.append(Line2D([], [], ls="none", marker="*", color="0.25", ms=9,
+                              label=f"march from rest: {q['classification']}"
+                                    + (f", Lyapunov {lyap:+.2f}" if lyap is not None else "")))
+    return out

@@ -159,7 +159,9 @@ def _characters(exact):
     if not chars:
         return []
     st = exact["settings"]
-    lines = [f"The exact rod's response, classified by crankgen.poincare (from rest, {chars[0]['transient']} "
+    spr = chars[0].get("steps_per_rev", st["steps_per_rev"])
+    lines = [f"The exact rod's response, classified by crankgen.poincare (from rest, {spr} steps per revolution, "
+             f"{chars[0]['transient']} "
              f"revolutions, then {chars[0]['samples']} sampled once per revolution at theta = 0; the largest "
              "Lyapunov exponent per revolution from the exact Jacobians of the revolution map; "
              "`exact_rod_character.csv`):", ""]
@@ -174,11 +176,32 @@ def _characters(exact):
                          + f", {q['distinct']} distinct samples of v* in {num(q.get('sample_min'))} to "
                          f"{num(q.get('sample_max'))}, max |v*| {num(q.get('amplitude'))} (|v|/L "
                          f"{num((q.get('amplitude') or math.nan) * st['eps'], 3)})."
-                         + (f" {q['message']}" if q.get("message") else ""))
+                         + (f" {q['message']}" if q.get("message") else "")
+                         + "".join(f" Beside it the continuation's stable period-{k} orbit (max |v*| {num(a)}, "
+                                   f"{st['steps_per_rev']} steps per revolution): two attractors at this speed."
+                                   for k, a in _stable_orbits_at(exact, c["mechanism"], q["omega"])
+                                   if q["classification"] != f"period-{k}"))
     return lines + ["", "(irregular: a positive exponent above 0.01, chaos; unsettled: a negative one, still "
-                    "converging after the transient. The character depends on the step near a period doubling: "
-                    "docs/theory/exact-rod.md reads it at 100 to 400 steps per revolution and 16 and 32 "
-                    "elements, with examples/large_orbit.py.)", ""]
+                    "converging after the transient. Near a period doubling the step decides which attractor a march "
+                    "from rest ends on: docs/theory/exact-rod.md reads the response at 100 to 400 steps per "
+                    "revolution and 16 and 32 elements, with its periodic orbits and basins, by "
+                    "examples/large_orbit.py.)", ""]
+
+
+def _stable_orbits_at(exact, mechanism, omega):
+    """[(period, max |v*|)] of the exact rod's continued orbits that are stable at Omega* = omega
+    (both neighbouring points of a branch stable, the amplitude interpolated between them)."""
+    run = next((r for r in exact.get("runs", []) if r["mechanism"] == mechanism and r["model"] == EXACT.key
+                and r["status"] == "ok"), None)
+    out = []
+    for br in (run or {}).get("branches", []):
+        w, a, ok = (list(br[k]) for k in ("omega", "amplitude", "stable"))
+        for i in range(len(w) - 1):
+            lo, hi = sorted((w[i], w[i + 1]))
+            if ok[i] and ok[i + 1] and lo <= omega <= hi and hi > lo:
+                t = (omega - w[i]) / (w[i + 1] - w[i])
+                out.append((int(br["period"]), a[i] + t * (a[i + 1] - a[i])))
+    return out
 
 
 def _range(data):
@@ -203,8 +226,9 @@ def _range(data):
 
 def section(cfg, data, exact, missing=None):
     lines = ["## The geometrically exact rod beside the two models", "",
-             "The exact rod (`model=\"exact\"`: exact stretch, curvature and section rotation, Lagrange "
-             "equations, Kelvin-Voigt damping, element-mean stretch) drops none of the terms of the paper's "
+             "The exact rod (`model=\"exact\"`: the exact stretch |r'| - 1 at every quadrature point and "
+             "the exact curvature of the deformed axis, with no limit on the section rotation; Lagrange "
+             "equations, Kelvin-Voigt damping, rotary inertia) drops none of the terms of the paper's "
              "strain; where it differs from the consistent model, the difference is what approach A drops "
              "(`crankgen audit`, section 7).", ""]
     lines += _amplitudes(cfg, data)

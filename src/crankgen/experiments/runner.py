@@ -87,7 +87,7 @@ _BIFURCATION_KEYS = ("fig6_eps", "bif_range", "bif_elements", "bif_steps_per_rev
 _EXACT_KEYS = ("exact_mechanisms", "exact_eps", "exact_range", "exact_elements", "exact_steps",
                "exact_max_period", "exact_dp_max", "exact_rocker", "exact_tol", "exact_match", "exact_snap_omega",
                "exact_snap_revolutions", "exact_character_omegas", "exact_character_transient",
-               "exact_character_samples", "dpi")
+               "exact_character_samples", "exact_character_steps", "dpi")
 
 
 def _settings(cfg, keys, **extra):
