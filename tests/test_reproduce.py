@@ -212,7 +212,7 @@ def test_every_table_parses_into_numbers_words_and_empty_fields(tiny_run):
     from helpers import check_csv
     _, out = tiny_run
     tables = sorted(out.glob("*.csv"))
-    assert len(tables) == 13
+    assert len(tables) == 14
     for path in tables:
         check_csv(path)
 
@@ -415,7 +415,7 @@ def test_sigint_then_rerun_gives_the_uninterrupted_result(tiny_run, tmp_path):
     assert "figure 4: computing (incomplete" in log or "figure 4: computing (missing" in log
     assert "figure 5: computing (missing" in log and "removed 1 temporary file" in log
     assert not list(out.glob(".*.tmp"))
-    assert _tables(out) == _tables(ref) and len(_tables(out)) == 13
+    assert _tables(out) == _tables(ref) and len(_tables(out)) == 14
     for name in output_names():                  # the figures too, byte for byte
         if name != "findings.md":
             assert (out / name).read_bytes() == (ref / name).read_bytes(), name
