@@ -119,7 +119,7 @@ def kernel_vs_quadrature(n=16, repeats=200):
     rng = np.random.default_rng(0)
     mech = crankgen.Mechanism()
     l, x0 = 1.0 / n, np.arange(n) / n
-    q, qd, qdd = (1e-3 * rng.standard_normal((n, 6)) for _ in range(3))
+    q, qd, qdd = (1e-3 * rng.standard_normal((n, crankgen.declaration.schema.ELEMENT_DOFS)) for _ in range(3))
     kin = (mech.a, 0.3, 0.8, 0.03, 0.07, -0.02)
     args = (mech.rhoA, mech.rhoI)
     model = Model.from_case(Case(n_elements=n, damping="kelvin-voigt"))
@@ -151,7 +151,7 @@ def kernel_vs_quadrature(n=16, repeats=200):
     case = Case(n_elements=n, damping="kelvin-voigt")
     batch = engine.Batch([case])
     mesh, rec = batch.meshdata, batch.records
-    w = engine.make_work(n, batch.N, mesh.kb)
+    w = engine.make_work(n, batch.N, mesh.kb, mesh.n_rod)
     w.kin[:] = kin_v
     d = 1e-3 * rng.standard_normal(batch.N)
     args = (batch.kernels, rec.select[0], rec.coef[0], rec.params[0], mesh.dofs, mesh.l, d, w)
