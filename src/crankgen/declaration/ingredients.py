@@ -129,6 +129,38 @@ def check_switched_off(groups_off, selection):
     return names
 
 
+def _output_kernels(options):
+    """Per declared output with kernels: the name of the one the options select (None: none)."""
+    return tuple(next((k for when, k in o.kernels if _matches(when, options)), None)
+                 for o in OUTPUTS.values() if not o.engine)
+
+
+def applies(option, options):
+    """Whether the model option `option` makes a difference under the other `options` (a case's
+    options, or as_dict()): whether another of its choices selects another variant of some family or
+    another kernel of some output.  The membrane option does not apply to approach C (no v_x^2 in
+    its strain) nor to the exact rod (its strain is pointwise whatever it says), read off the
+    declaration, not restated."""
+    base = check_options({k: options[k] for k in schema.OPTIONS if k in options})
+    return _applies(option, tuple(sorted(base.items())))
+
+
+@functools.lru_cache(maxsize=256)
+def _applies(option, key):
+    base = dict(key)
+    ref = (_select(base, None).kernels, _output_kernels(base))
+    for value in schema.OPTIONS[option].choices:
+        if value == base[option]:
+            continue
+        try:
+            other = check_options(dict(base, **{option: value}))
+        except ParameterError:          # a combination the declaration refuses
+            continue
+        if (_select(other, None).kernels, _output_kernels(other)) != ref:
+            return True
+    return False
+
+
 def coefficients(vector, options, switched_off=()):
     """Coefficient vector (COEFFICIENTS order) of the element kernels for a parameter vector
     (schema.PARAMETER_VECTOR order), the model options and the switched-off term groups."""

@@ -9,7 +9,8 @@ from .figures import fit_panels, panels
 
 def _describe(info, scales):
     from ..declaration import schema
-    membrane = "" if info["approach"] in ("C", "exact") else f" / {info['membrane']}"
+    from .figures import membrane_applies
+    membrane = f" / {info['membrane']}" if membrane_applies(info) else ""
     model = (f"approach {info['approach']}, {info['formulation']} / {info['damping']}{membrane}, "
              f"n = {info['n_elements']}")
     import textwrap

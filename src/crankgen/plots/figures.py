@@ -23,12 +23,26 @@ def subplots(nrows=1, ncols=1, **kwargs):
     return fig, fig.subplots(nrows, ncols, **kwargs)
 
 
+def membrane_applies(s):
+    """Whether the membrane option of a case's options (as_dict, or a result's info) makes a
+    difference to its model (declaration.ingredients.applies: not on approach C nor the exact rod,
+    whose strain is pointwise whatever it says)."""
+    from ..declaration.ingredients import applies
+    return "membrane" in s and applies("membrane", s)
+
+
 def membrane_words(s):
-    """", <membrane> membrane" of a case's options (as_dict), "" for the models it does not apply to
-    (approach C's and the exact rod's strain is pointwise whatever the option)."""
-    if s.get("approach") in ("C", "exact"):
-        return ""
-    return f", {s.get('membrane', 'pointwise')} membrane"
+    """", <membrane> membrane" of a case's options (as_dict), "" where the option does not apply."""
+    return f", {s['membrane']} membrane" if membrane_applies(s) else ""
+
+
+def model_parts(info):
+    """The model of a result's info in a title: ["approach A", "lagrange / kelvin-voigt / averaged",
+    "n = 16"], the membrane option only where it applies, None for what info does not hold."""
+    return [f"approach {info['approach']}" if "approach" in info else None,
+            " / ".join(str(info[k]) for k in ("formulation", "damping", "membrane") if k in info
+                       and (k != "membrane" or membrane_applies(info))) or None,
+            f"n = {info['n_elements']}" if "n_elements" in info else None]
 
 
 def _title(s):

@@ -8,7 +8,7 @@ import textwrap
 import numpy as np
 
 from ..declaration import schema
-from .figures import fit_panels, panels
+from .figures import fit_panels, membrane_applies, panels
 
 
 def _hermite(values, slopes, length, points=12):
@@ -63,7 +63,7 @@ def modes_figure(m):
         parts = main + other
     # wrapped to the width of the panels, so that no line runs past the figure's edges
     width = int(cols * 4.4 / 0.078)
-    membrane = "" if c.approach in ("C", "exact") else f" / {c.membrane}"
+    membrane = f" / {c.membrane}" if membrane_applies(c.as_dict()) else ""
     text = textwrap.fill(f"approach {c.approach}, {c.formulation} / {c.damping}{membrane}, n = "
                          f"{c.n_elements}, " + ", ".join(parts), width, break_on_hyphens=False)
     fig.suptitle(textwrap.fill(f"mode shapes of the mechanism frozen at crank angle {math.degrees(m.theta):g} "

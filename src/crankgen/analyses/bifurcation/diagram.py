@@ -39,10 +39,8 @@ def describe(info, what, parameter, width=None):
     second line wrapped at that many characters, between items (a figure's title)."""
     if not info:
         return f"{what} in {parameter}"
-    parts = [f"approach {info['approach']}" if "approach" in info else None,
-             " / ".join(str(info[k]) for k in ("formulation", "damping", "membrane") if k in info
-                        and not (k == "membrane" and info.get("approach") in ("C", "exact"))) or None,
-             f"n = {info['n_elements']}" if "n_elements" in info else None]
+    from ...plots.figures import model_parts
+    parts = model_parts(info)
     main, other = schema.describe({k: v for k, v in info.items() if k in schema.PARAMETERS}, skip=(parameter,))
     head = f"{what} in {axis(parameter)}: " + ", ".join(p for p in parts if p)
     if width is None:

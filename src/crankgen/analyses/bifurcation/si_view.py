@@ -201,10 +201,8 @@ def _title(view, what):
     from ...declaration.si import describe_si
     d, sc = view.diagram, view.scales
     info = d.info
-    parts = [f"approach {info['approach']}" if "approach" in info else None,
-             " / ".join(str(info[k]) for k in ("formulation", "damping", "membrane") if k in info
-                        and not (k == "membrane" and info.get("approach") in ("C", "exact"))) or None,
-             f"n = {info['n_elements']}" if "n_elements" in info else None]
+    from ...plots.figures import model_parts
+    parts = model_parts(info)
     name = (schema.PARAMETERS[d.parameter_name].si or d.parameter_name).replace("_", " ")
     rod = [f"L = {sc.L:g} m", f"omega_b = {sc.omega_b:.5g} rad/s", f"rho A = {sc.rhoA:.4g} kg/m",
            f"r = {sc.base['r']:.4g} m"]

@@ -46,10 +46,8 @@ def chart_title(chart):
     left out)."""
     from ..bifurcation.diagram import axis
     info, xn, yn = chart.info, chart.x[0], chart.y[0]
-    parts = [f"approach {info['approach']}" if "approach" in info else None,
-             " / ".join(str(info[k]) for k in ("formulation", "damping", "membrane") if k in info
-                        and not (k == "membrane" and info.get("approach") in ("C", "exact"))) or None,
-             f"n = {info['n_elements']}" if "n_elements" in info else None]
+    from ...plots.figures import model_parts
+    parts = model_parts(info)
     main, other = schema.describe({k: v for k, v in info.items() if k in schema.PARAMETERS}, skip=(xn, yn))
     return (f"stability chart in ({axis(xn)}, {axis(yn)}): " + ", ".join(p for p in parts if p)
             + "\n" + ", ".join(main + other))
