@@ -177,8 +177,7 @@ def _characters(exact):
                          f"{num(q.get('sample_max'))}, max |v*| {num(q.get('amplitude'))} (|v|/L "
                          f"{num((q.get('amplitude') or math.nan) * st['eps'], 3)})."
                          + (f" {q['message']}" if q.get("message") else "")
-                         + "".join(f" Beside it the continuation's stable period-{k} orbit (max |v*| {num(a)}, "
-                                   f"{st['steps_per_rev']} steps per revolution): two attractors at this speed."
+                         + "".join(_beside(q["classification"], k, a, st["steps_per_rev"])
                                    for k, a in _stable_orbits_at(exact, c["mechanism"], q["omega"])
                                    if q["classification"] != f"period-{k}"))
     return lines + ["", "(irregular: a positive exponent above 0.01, chaos; unsettled: a negative one, still "
@@ -186,6 +185,16 @@ def _characters(exact):
                     "from rest ends on: docs/theory/exact-rod.md reads the response at 100 to 400 steps per "
                     "revolution and 16 and 32 elements, with its periodic orbits and basins, by "
                     "examples/large_orbit.py.)", ""]
+
+
+def _beside(classification, period, amplitude, steps):
+    """What the continuation's stable period-`period` orbit at the same speed adds to a marched
+    response: a second attractor, unless the march is still converging (unsettled), maybe to it."""
+    where = f"(max |v*| {num(amplitude)}, {steps} steps per revolution)"
+    if classification == "unsettled":
+        return (f" The continuation's period-{period} orbit is stable here {where}: the march may still be "
+                "converging to it.")
+    return f" Beside it the continuation's stable period-{period} orbit {where}: two attractors at this speed."
 
 
 def _stable_orbits_at(exact, mechanism, omega):
