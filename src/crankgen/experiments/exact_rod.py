@@ -171,8 +171,7 @@ def _character(ctx, name):
     ctx.log(f"{label}: Poincare sampling at Omega* = {', '.join(f'{w:g}' for w in omegas)} "
             f"({character_steps(cfg)} steps per revolution; {cfg.exact_character_transient} revolutions, then "
             f"{cfg.exact_character_samples} sampled)")
-    rec = dict(mechanism=name, transient=int(cfg.exact_character_transient), steps_per_rev=character_steps(cfg),
-               samples=int(cfg.exact_character_samples), status="ok", message="", points=[])
+    rec = dict(mechanism=name, status="ok", message="", points=[])
     try:
         with notices.quiet():
             d = poincare(mechanism(cfg, name), "omega", omegas, "up", model=EXACT.key,
@@ -275,9 +274,10 @@ def tables(data):
             elif r["model"] == EXACT.key and id_of(s) in new:
                 row["fate"] = "new"
             points.append(row)
-    character = [dict(mechanism=c["mechanism"], model=EXACT.key, eps=data["settings"]["eps"],
-                      n_elements=data["settings"]["n_elements"],
-                      steps_per_rev=c.get("steps_per_rev", data["settings"]["steps_per_rev"]), transient=c["transient"], samples=c["samples"], **q)
+    st = data["settings"]
+    character = [dict(mechanism=c["mechanism"], model=EXACT.key, eps=st["eps"], n_elements=st["n_elements"],
+                      steps_per_rev=st["character_steps"], transient=st["character_transient"],
+                      samples=st["character_samples"], **q)
                  for c in data.get("characters", []) for q in (c["points"] if c["status"] == "ok" else
                                                               [dict(classification="failed", message=c["message"])])]
     return {"exact_rod_branches.csv": (BRANCH_COLUMNS, branches),

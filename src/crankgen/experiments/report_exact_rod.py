@@ -159,10 +159,9 @@ def _characters(exact):
     if not chars:
         return []
     st = exact["settings"]
-    spr = chars[0].get("steps_per_rev", st["steps_per_rev"])
-    lines = [f"The exact rod's response, classified by crankgen.poincare (from rest, {spr} steps per revolution, "
-             f"{chars[0]['transient']} "
-             f"revolutions, then {chars[0]['samples']} sampled once per revolution at theta = 0; the largest "
+    lines = [f"The exact rod's response, classified by crankgen.poincare (from rest, {st['character_steps']} "
+             f"steps per revolution, {st['character_transient']} revolutions, then {st['character_samples']} "
+             "sampled once per revolution at theta = 0; the largest "
              "Lyapunov exponent per revolution from the exact Jacobians of the revolution map; "
              "`exact_rod_character.csv`):", ""]
     for c in chars:
