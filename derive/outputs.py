@@ -37,7 +37,7 @@ class Output(records.Output):
     coef, kin, the parameters' symbols, q_end ((u, v) of the rod's end node in the moving frame),
     qd_end (their time derivatives), s (the end map's reduced co-ordinate), pin ((F_i, F_j): the
     force the crank pin applies to the rod, in the moving frame), end ((F_i, F_j): the force the
-    guide applies to the rod's end with the end mass, i.e. to the end mass), rod_end ((F_i, F_j):
+    guide's body applies to the end mass: the slider's guide, a four-bar's rocker), rod_end ((F_i, F_j):
     the force the end mass applies to the rod at B, the rod's own terms at its end node), fiber,
     and the engine's
     primitives (at_point, over_rod).  options: the model options the expression depends on (its
@@ -217,8 +217,8 @@ OUTPUTS = (
     Output("rod_on_tip_y", "step", "Y component of the force the rod applies to the rocker's tip at B", FORCE,
            build=lambda o: -_inertial(rod_end)[1], guides=TIP_GUIDES),
     Output("rocker_on_tip_x", "step",
-           "X component of the force the rocker applies to its tip mass at B (along the rocker, a "
-           "massless two-force member: the force at its pivot D too)", FORCE,
+           "X component of the force the rocker applies to its tip mass at B (along the rocker when "
+           "it is a massless two-force member without a spring: then the force at its pivot D too)", FORCE,
            build=lambda o: _inertial(end_force)[0], guides=TIP_GUIDES),
     Output("rocker_on_tip_y", "step", "Y component of the force the rocker applies to its tip mass at B",
            FORCE, build=lambda o: _inertial(end_force)[1], guides=TIP_GUIDES),

@@ -404,7 +404,8 @@ def test_every_kernel_is_covered():
     expected = {"shape.shape_functions", "shape.slope_gram", "energy.rod_kinetic_energy",
                 "energy.slider_kinetic_energy", "energy.rod_gravity_potential",
                 "energy.slider_gravity_potential",
-                "energy.rocker_spring_potential"}                 # tests/test_rocker_spring.py
+                "energy.rocker_spring_potential",                 # tests/test_rocker_spring.py
+                "energy.rocker_kinetic_energy", "energy.rocker_gravity_potential"}   # tests/test_rocker_mass.py
     for g, record in schema.GUIDES.items():
         check = "margins" if record.closure == "closed-form" else "closure"      # a numerical closure is sampled
         expected |= {f"kinematics.{k}_{g}" for k in ("guide", "end_map", "rigid_end", check, "end_scale")}
