@@ -123,3 +123,27 @@ def test_the_rockers_energies():
     _close(T[1:-1][half:], J_D * rate[half:] ** 2 / 2, 1e-3)
     weight = -m * k * c * (g[0] * np.cos(gamma) + g[1] * np.sin(gamma))
     _close(V + m * k * (g[0] * D[0] + g[1] * D[1]), weight, 1e-12)
+
+
+@pytest.mark.parametrize("model", ["consistent", "paper"])
+def test_the_pivot_bears_the_rockers_momentum_balance(model):
+    """ground_on_rocker = m a_G - m g - F_tip_on_rocker with a_G by central differences of the centre
+    of mass G = D + k c (cos gamma, sin gamma) along the run (past the start), F_tip_on_rocker =
+    -rocker_on_tip; with a massless rocker it is the force at the tip."""
+    m, k, J_G, g = 0.4, 0.3, 0.02, (0.02, -0.09)
+    c, D = FOUR_BAR["c"], np.array([FOUR_BAR["d"], FOUR_BAR["offset"]])
+    run = crankgen.simulate(crankgen.Mechanism(**FOUR_BAR, gravity=g, rocker_mass=m, rocker_centre=k,
+                                               rocker_inertia=J_G, rocker_stiffness=0.03),
+                            model=model, omega=0.8, n_elements=2, steps_per_rev=400, revolutions=1)
+    gamma = np.unwrap(run.quantity("rocker_angle"))
+    G = D + k * c * np.stack([np.cos(gamma), np.sin(gamma)], axis=-1)
+    a_G = (G[2:] - 2 * G[1:-1] + G[:-2]) / (run.t[1] - run.t[0]) ** 2
+    tip = np.stack([run.quantity("rocker_on_tip_x"), run.quantity("rocker_on_tip_y")], axis=-1)[1:-1]
+    pivot = np.stack([run.quantity("ground_on_rocker_x"), run.quantity("ground_on_rocker_y")], axis=-1)[1:-1]
+    half = len(a_G) // 2
+    _close(pivot[half:], (m * a_G - m * np.array(g) + tip)[half:], 2e-3)
+    assert np.max(np.abs(pivot - tip)) > 0.05 * np.max(np.abs(tip))       # the rocker's own share
+
+    massless = crankgen.simulate(crankgen.Mechanism(**FOUR_BAR, gravity=g), model=model, **RUN)
+    np.testing.assert_array_equal(massless.quantity("ground_on_rocker_x"), massless.quantity("rocker_on_tip_x"))
+    np.testing.assert_array_equal(massless.quantity("ground_on_rocker_y"), massless.quantity("rocker_on_tip_y"))
