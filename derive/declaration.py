@@ -119,6 +119,15 @@ class Parameter(records.Parameter):
 # the torsional spring at the rocker's ground pivot: its stiffness and the rocker angle at which it is relaxed
 rocker_stiffness = sp.Symbol("k_rocker", nonnegative=True)
 rocker_free_angle = sp.Symbol("beta_free", real=True)
+# the rigid rocker's mass, its centre of mass (a fraction k of c along the rocker from its pivot D)
+# and its moment of inertia about that centre; the coefficients they enter: the tip mass that
+# carries the rocker's kinetic energy, J_D / c^2 with J_D = J_G + m (k c)^2 its moment of inertia
+# about D, and the weight of the tip mass that carries its weight's moment, m k (gX, gY)
+rocker_mass = sp.Symbol("m_rocker", nonnegative=True)
+rocker_centre = sp.Symbol("k_rocker_G", real=True)
+rocker_inertia = sp.Symbol("J_rocker_G", nonnegative=True)
+rocker_tip_mass = sp.Symbol("m_rocker_tip", nonnegative=True)
+rocker_tip_weight = (sp.Symbol("wX_rocker", real=True), sp.Symbol("wY_rocker", real=True))
 
 PARAMETERS = (
     Parameter("a", "real", 0.1, "a (crank length a* = a/L)", "crank length over rod length a* = a/L",
@@ -139,7 +148,7 @@ PARAMETERS = (
               symbol=(s.gX, s.gY)),
     Parameter("guide", "choice", "line", "guide",
               "the curve the rod's end travels on: line (a slider on the line Y = offset), circle "
-              "(the tip of a rigid massless rocker of length c pivoted at (d, offset): a four-bar "
+              "(the tip of a rigid rocker of length c pivoted at (d, offset), massless unless given a mass: a four-bar "
               "linkage with a flexible coupler), cam (a slider on a wavy track) or incline (a slider on a "
               "line at an angle inclination to the X axis)", choices=guides.GUIDES),
     Parameter("offset", "real", 0.0, "offset (guide offset e/L)",
@@ -163,6 +172,19 @@ PARAMETERS = (
     Parameter("rocker_free_angle", "real", 0.0, "rocker_free_angle (rocker spring's free angle, rad)",
               "the rocker angle (rad, counter-clockwise from the X axis) at which the rocker's spring is "
               "relaxed", units="rad", symbol=rocker_free_angle),
+    Parameter("rocker_mass", "real", 0.0, "rocker_mass (rocker's mass m_r*)",
+              "mass m_r* = m_r/(rho A L) of the rigid rocker (0: a massless rocker, the tip's mass being "
+              "ms)", low=0.0, units="rhoA L", continuable=True, symbol=rocker_mass, axis="rocker mass m_r*"),
+    Parameter("rocker_centre", "real", 0.5, "rocker_centre (rocker's centre of mass, fraction of c)",
+              "where the rigid rocker's centre of mass G lies on the line from its ground pivot D to its "
+              "tip: DG = rocker_centre * c (0.5: a uniform bar; 1: at the tip; negative: behind the pivot, "
+              "a counterweight)", units="1", continuable=True, symbol=rocker_centre,
+              axis="rocker centre DG/c"),
+    Parameter("rocker_inertia", "real", 0.0, "rocker_inertia (rocker's J_G* about its centre of mass)",
+              "moment of inertia J_G* of the rigid rocker about its centre of mass (a uniform bar: "
+              "m_r c^2 / 12), units of rho A L^3; about the pivot it is J_G + m_r (rocker_centre c)^2",
+              low=0.0, units="rhoA L^3", continuable=True, symbol=rocker_inertia,
+              axis="rocker inertia J_G*"),
     Parameter("cam_height", "real", 0.02, "cam_height (cam track height h/L)",
               "height h/L of a cam track's waves, Y = e + h cos(2 pi X / lambda)", low=0.0, units="L",
               continuable=True, symbol=guides.cam_height, axis="cam height h/L"),
@@ -288,6 +310,9 @@ COEFFICIENTS = {
     rocker_stiffness: rocker_stiffness,
     rocker_free_angle: rocker_free_angle,
     s.c: s.c,
+    rocker_tip_mass: (rocker_inertia + rocker_mass * (rocker_centre * s.c) ** 2) / s.c**2,
+    rocker_tip_weight[0]: rocker_mass * rocker_centre * s.gX,
+    rocker_tip_weight[1]: rocker_mass * rocker_centre * s.gY,
 }
 
 
@@ -408,18 +433,43 @@ SLIDER_GRAVITY = Energy("slider_gravity_potential", "Potential of gravity on the
                         "element.", _on_last_element(en.slider_gravity_potential))
 
 
-def rocker_spring_potential(qs=s.qs):
-    """V = k (gamma - gamma_free)^2 / 2 of the torsional spring at the rocker's pivot D: the rocker
-    angle gamma is the rigid one, beta, plus the turn from the rigid tip D + c (cos beta, sin beta)
-    to the end node, displaced by (u, v) on (e_i, e_j) (the guide keeps it on the rocker's circle)."""
+def rocker_angle(qs=s.qs):
+    """The rocker angle gamma: the rigid one, beta, plus the turn from the rigid tip D + c (cos beta,
+    sin beta) to the end node, displaced by (u, v) on (e_i, e_j) (the guide keeps it on the
+    rocker's circle)."""
     dX = qs[0] * sp.cos(s.phi) + qs[1] * sp.sin(s.phi)
     dY = -qs[0] * sp.sin(s.phi) + qs[1] * sp.cos(s.phi)
     turn = sp.atan2(sp.cos(s.beta) * dY - sp.sin(s.beta) * dX, s.c + sp.cos(s.beta) * dX + sp.sin(s.beta) * dY)
-    return rocker_stiffness * (s.beta + turn - rocker_free_angle) ** 2 / 2
+    return s.beta + turn
+
+
+def rocker_spring_potential(qs=s.qs):
+    """V = k (gamma - gamma_free)^2 / 2 of the torsional spring at the rocker's pivot D."""
+    return rocker_stiffness * (rocker_angle(qs) - rocker_free_angle) ** 2 / 2
+
+
+def rocker_kinetic_energy(qs=s.qs, qsd=s.qsd):
+    """T_r = J_D gamma_dot^2 / 2 of the rigid rocker turning about its ground pivot D (J_D = J_G +
+    m_r (k c)^2): the tip B moves on the rocker's circle at the speed c gamma_dot (the end map keeps
+    it there), so T_r is the kinetic energy of a point mass J_D / c^2 at B, eq. (7)'s velocity."""
+    vel_i, vel_j = en.moving_frame_velocity(s.L + qs[0], qs[1], qsd[0], qsd[1])
+    return sp.expand(rocker_tip_mass * (vel_i**2 + vel_j**2) / 2)
+
+
+def rocker_gravity_potential(qs=s.qs):
+    """V_r = -m_r g . (G - D) of the rigid rocker's weight: its centre of mass G lies at k (B - D) on
+    the line from the pivot to the tip, so V_r is the potential of a point mass m_r k at B (the
+    constant +m_r k g . D left out)."""
+    X, Y = en.inertial_position(s.L + qs[0], qs[1])
+    return sp.expand(-(rocker_tip_weight[0] * X + rocker_tip_weight[1] * Y))
 
 
 ROCKER_SPRING = Energy("rocker_spring_potential", "Potential of the torsional spring at the rocker's "
                        "pivot, on the last element.", _on_last_element(rocker_spring_potential))
+ROCKER_KINETIC = Energy("rocker_kinetic_energy", "Kinetic energy of the rigid rocker turning about its "
+                        "pivot, on the last element.", _on_last_element(rocker_kinetic_energy))
+ROCKER_GRAVITY = Energy("rocker_gravity_potential", "Potential of gravity on the rigid rocker, on the "
+                        "last element.", _on_last_element(rocker_gravity_potential))
 
 
 def _strain_energy(ap, averaged):
@@ -579,6 +629,14 @@ def rocker_spring():
     return Term(on_last_element(gradient(rocker_spring_potential(), s.qs)))
 
 
+def rocker_inertia_lagrange():
+    return Term(on_last_element(kinetic_residual(rocker_kinetic_energy(), s.qs, s.qsd, s.qsdd)))
+
+
+def rocker_gravity():
+    return Term(on_last_element(gradient(rocker_gravity_potential(), s.qs)))
+
+
 def _elastic_variants():
     out = []
     for ap in ("A", "B"):
@@ -666,7 +724,16 @@ FAMILIES = (
            "rocker's tip", "potential", (
         Variant("torsional", {}, "dV/dq, V = k (gamma - gamma_free)^2 / 2", energy=ROCKER_SPRING,
                 build=rocker_spring),
-    ), vanishes_with=("k_rocker",)),
+    ), vanishes_with=("k_rocker",), body="rocker"),
+    Family("rocker_inertia", "end", "inertia of the rigid rocker turning about its ground pivot, on the "
+           "rocker's tip", "kinetic", (
+        Variant("rigid", {}, "d/dt dT_r/dqd - dT_r/dq, T_r = J_D gamma_dot^2 / 2, exact (every "
+                "formulation: the paper has no rocker)", energy=ROCKER_KINETIC, build=rocker_inertia_lagrange),
+    ), vanishes_with=("m_rocker_tip",), body="rocker"),
+    Family("rocker_gravity", "end", "weight of the rigid rocker, on the rocker's tip", "potential", (
+        Variant("uniform", {}, "dV_r/dq, V_r = -m_r g . (G - D), a point mass m_r k at the tip", 
+                energy=ROCKER_GRAVITY, build=rocker_gravity),
+    ), vanishes_with=("wX_rocker", "wY_rocker"), body="rocker"),
 )
 FAMILY = {f.name: f for f in FAMILIES}
 

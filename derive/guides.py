@@ -25,8 +25,8 @@ tangent need (engine/elements.py, model.py).
 - line: the straight guide Y = e (the slider-crank); beta is the slider's abscissa X and s its
   displacement along the guide; g = s (cos phi, sin phi) (eq. 26 holds identically).  The crank
   turns a full revolution iff a + |e| < L.
-- circle: a rigid massless rocker of length c pivoted at D = (d, e): the four-bar linkage with a
-  flexible coupler; beta is the rocker angle and s its deviation.  Two closures exist; branch +1
+- circle: a rigid rocker of length c pivoted at D = (d, e): the four-bar linkage with a flexible
+  coupler (the rocker massless unless given a mass, centre of mass and inertia: its own families); beta is the rocker angle and s its deviation.  Two closures exist; branch +1
   puts B on the counter-clockwise side of the line from A to D.  The crank turns a full
   revolution iff |L - c| < |D - A| < L + c at every crank angle; |D - A| runs from ||D| - a| to
   |D| + a, so iff ||D| - a| > |L - c| and |D| + a < L + c: a crank-rocker when |D| > a, a drag
@@ -97,8 +97,10 @@ def circle():
     end = PIN + chord
     ground = sp.sqrt(s.d**2 + s.e**2)
     return Guide(
-        "circle", "Circle", ("offset", "c", "d", "branch", "rocker_stiffness", "rocker_free_angle"),
-        "circle of radius c about D = (d, e): a rigid massless rocker DB carrying the end mass ms "
+        "circle", "Circle", ("offset", "c", "d", "branch", "rocker_stiffness", "rocker_free_angle",
+                             "rocker_mass", "rocker_centre", "rocker_inertia"),
+        "circle of radius c about D = (d, e): a rigid rocker DB (massless unless given rocker_mass, "
+        "rocker_inertia) carrying the end mass ms "
         "(a four-bar linkage with a flexible coupler)",
         aliases=(("center", ("d", "offset")), ("radius", ("c",))), label="four-bar",
         curve=D + s.c * sp.Matrix([sp.cos(s.beta), sp.sin(s.beta)]),

@@ -13,6 +13,7 @@ import sympy as sp
 
 from crankgen.declaration import records
 
+from . import declaration
 from . import energies as en
 from . import symbols as s
 from .declaration import EXACT, GUIDES, EXACT_KINETIC, EXACT_STRAIN_ENERGY, STRAIN_ENERGY, eps
@@ -35,9 +36,9 @@ class Output(records.Output):
     build gives: an integral over the rod).  Inputs a build may use: q, qd (the nodal vector of the
     element holding x*, or of each element for a reduction, and its rate), zeta (x / l in it), geo,
     coef, kin, the parameters' symbols, q_end ((u, v) of the rod's end node in the moving frame),
-    qd_end (their time derivatives), s (the end map's reduced co-ordinate), pin ((F_i, F_j): the
+    qd_end, qdd_end (their first and second time derivatives), s (the end map's reduced co-ordinate), pin ((F_i, F_j): the
     force the crank pin applies to the rod, in the moving frame), end ((F_i, F_j): the force the
-    guide applies to the rod's end with the end mass, i.e. to the end mass), rod_end ((F_i, F_j):
+    guide's body applies to the end mass: the slider's guide, a four-bar's rocker), rod_end ((F_i, F_j):
     the force the end mass applies to the rod at B, the rod's own terms at its end node), fiber,
     and the engine's
     primitives (at_point, over_rod).  options: the model options the expression depends on (its
@@ -83,6 +84,7 @@ SLOPE_SQUARED = over_rod("slope_squared", en.fields(s.q, s.q)["v_x"] ** 2)
 fiber = sp.Symbol("fiber", real=True)
 q_end = sp.Matrix(sp.symbols("qe0:2", real=True))
 qd_end = sp.Matrix(sp.symbols("qde0:2", real=True))
+qdd_end = sp.Matrix(sp.symbols("qdde0:2", real=True))
 pin = sp.Matrix(sp.symbols("pin0:2", real=True))
 end_force = sp.Matrix(sp.symbols("end0:2", real=True))
 rod_end = sp.Matrix(sp.symbols("rodend0:2", real=True))
@@ -133,6 +135,23 @@ def end_position():
 def _rate(expr):
     """d/dt of an expression in the end node's (u, v) and the rigid kinematics (theta, phi)."""
     return total_time_derivative(expr, tuple(q_end), tuple(qd_end), ())
+
+
+def end_acceleration():
+    """Inertial acceleration of the rod's end B: d/dt of its velocity (_rate of end_position),
+    with the end node's accelerations qdd_end."""
+    return sp.Matrix([total_time_derivative(_rate(x), tuple(q_end), tuple(qd_end), tuple(qdd_end))
+                      for x in end_position()])
+
+
+def ground_on_rocker():
+    """The force the ground applies to the rigid rocker at its pivot D: the rocker's momentum balance
+    m a_G = F_D + F_tip + m g, with its centre of mass G - D = k (B - D) (so a_G = k a_B, the tip on
+    the rocker's circle) and F_tip = -end the force its tip mass applies to it (the rocker's own
+    spring, weight and inertia left out of `end`)."""
+    m_k = declaration.rocker_mass * declaration.rocker_centre
+    gravity = sp.Matrix([s.gX, s.gY])
+    return m_k * end_acceleration() - declaration.rocker_mass * gravity + _inertial(end_force)
 
 
 def chord_angle():
@@ -217,11 +236,18 @@ OUTPUTS = (
     Output("rod_on_tip_y", "step", "Y component of the force the rod applies to the rocker's tip at B", FORCE,
            build=lambda o: -_inertial(rod_end)[1], guides=TIP_GUIDES),
     Output("rocker_on_tip_x", "step",
-           "X component of the force the rocker applies to its tip mass at B (along the rocker, a "
-           "massless two-force member: the force at its pivot D too)", FORCE,
+           "X component of the force the rocker applies to its tip mass at B (along the rocker when "
+           "it is a massless two-force member without a spring: then the force at its pivot D too)", FORCE,
            build=lambda o: _inertial(end_force)[0], guides=TIP_GUIDES),
     Output("rocker_on_tip_y", "step", "Y component of the force the rocker applies to its tip mass at B",
            FORCE, build=lambda o: _inertial(end_force)[1], guides=TIP_GUIDES),
+    Output("ground_on_rocker_x", "step",
+           "X component of the force the ground applies to the rocker at its pivot D (sizes the pivot's "
+           "bearing): the force at the tip with a massless rocker, plus the rocker's mass times its "
+           "centre's acceleration less its weight", FORCE, build=lambda o: ground_on_rocker()[0],
+           guides=TIP_GUIDES),
+    Output("ground_on_rocker_y", "step", "Y component of the force the ground applies to the rocker at D",
+           FORCE, build=lambda o: ground_on_rocker()[1], guides=TIP_GUIDES),
     Output("kinetic_energy", "reduction",
            "the rod's kinetic energy T = sum of the elements' T_i, eqs. (4)-(5) (the end mass's not "
            "included; the exact rod's with its unit director), units of rho A L^3 omega_b^2", TORQUE,

@@ -487,7 +487,7 @@ PARAMETERS_BESIDE_KIN = tuple(sp.Symbol(f"{sym.name}_param") if sym in s.KINEMAT
 OUTPUT_INPUTS = (
     ("q", tuple(s.q)), ("qd", tuple(s.qd)), ("zeta", (s.zeta,)), ("geo", s.GEOMETRY), ("coef", COEFFICIENT_SYMBOLS),
     ("kin", s.KINEMATICS), ("parameters", PARAMETERS_BESIDE_KIN),
-    ("q_end", tuple(outputs.q_end)), ("qd_end", tuple(outputs.qd_end)),
+    ("q_end", tuple(outputs.q_end)), ("qd_end", tuple(outputs.qd_end)), ("qdd_end", tuple(outputs.qdd_end)),
     ("s", (outputs.s_end,)), ("pin", tuple(outputs.pin)), ("end", tuple(outputs.end_force)),
     ("rod_end", tuple(outputs.rod_end)), ("fiber", (outputs.fiber,)),
 )
@@ -500,12 +500,19 @@ ENGINE_INPUTS = (("prims", PRIMITIVE_SYMBOLS), ("q_end", tuple(outputs.q_end)),
 
 
 def _output_inputs(expr, name, inputs=OUTPUT_INPUTS):
+    """The inputs an output's expression reads, in argument order: those that hold its symbols, the
+    one holding the most of them first where a symbol is in two (gravity is a coefficient and a
+    parameter; a kernel takes at most one of the inputs that share it)."""
     used = expr.free_symbols
-    names = [n for n, syms in inputs if used & set(syms)]
     known = set().union(*(set(syms) for _, syms in inputs))
     if used - known:
         raise ValueError(f"output {name}: symbols outside the output inputs: {used - known}")
-    return names
+    chosen, left = set(), set(used)
+    while left:
+        best = max(inputs, key=lambda item: len(left & set(item[1])))
+        chosen.add(best[0])
+        left -= set(best[1])
+    return [n for n, _ in inputs if n in chosen]
 
 
 def _option_cases(names):

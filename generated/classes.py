@@ -27,6 +27,9 @@ class MechanismFields:
     branch: object = None
     rocker_stiffness: object = None
     rocker_free_angle: object = None
+    rocker_mass: object = None
+    rocker_centre: object = None
+    rocker_inertia: object = None
     cam_height: object = None
     cam_wavelength: object = None
     inclination: object = None
@@ -49,6 +52,9 @@ class CaseFields:
     branch: object = None
     rocker_stiffness: object = None
     rocker_free_angle: object = None
+    rocker_mass: object = None
+    rocker_centre: object = None
+    rocker_inertia: object = None
     cam_height: object = None
     cam_wavelength: object = None
     inclination: object = None
@@ -98,6 +104,9 @@ class SIFields:
     branch: object = None
     rocker_stiffness: object = None
     rocker_free_angle: object = None
+    rocker_mass: object = None
+    rocker_centre: object = None
+    rocker_inertia: object = None
     cam_height: object = None
     cam_wavelength: object = None
     inclination: object = None
@@ -128,11 +137,11 @@ class Line(Spec):
 
 
 class Circle(Spec):
-    """circle of radius c about D = (d, e): a rigid massless rocker DB carrying the end mass ms (a four-bar linkage with a flexible coupler).  Parameters: offset, c, d, branch, rocker_stiffness, rocker_free_angle; keywords center = (d, offset), radius = (c)."""
+    """circle of radius c about D = (d, e): a rigid rocker DB (massless unless given rocker_mass, rocker_inertia) carrying the end mass ms (a four-bar linkage with a flexible coupler).  Parameters: offset, c, d, branch, rocker_stiffness, rocker_free_angle, rocker_mass, rocker_centre, rocker_inertia; keywords center = (d, offset), radius = (c)."""
 
     kind = 'guide'
     declaration = GUIDES[1]    # circle
-    defaults = {'offset': 0.0, 'c': 0.8, 'd': 1.0, 'branch': 1, 'rocker_stiffness': 0.0, 'rocker_free_angle': 0.0}
+    defaults = {'offset': 0.0, 'c': 0.8, 'd': 1.0, 'branch': 1, 'rocker_stiffness': 0.0, 'rocker_free_angle': 0.0, 'rocker_mass': 0.0, 'rocker_centre': 0.5, 'rocker_inertia': 0.0}
 
 
 class Cam(Spec):

@@ -865,7 +865,7 @@ def end_scale_line_into(eps, params, scale):
 
 
 def guide_circle(crank, params):
-    """Rigid kinematics kin of the circle guide: circle of radius c about D = (d, e): a rigid massless rocker DB carrying the end mass ms (a four-bar linkage with a flexible coupler).
+    """Rigid kinematics kin of the circle guide: circle of radius c about D = (d, e): a rigid rocker DB (massless unless given rocker_mass, rocker_inertia) carrying the end mass ms (a four-bar linkage with a flexible coupler).
 
     Inputs (broadcast against each other; vector inputs on the trailing axis):
         crank (..., 3)

@@ -357,7 +357,8 @@ PARAM_RANGES = {"a": (0.05, 0.3), "offset": (-0.1, 0.1), "c": (0.7, 0.9), "d": (
                 "rotor_inertia": (0.01, 1.0), "shaft_stiffness": (1.0, 100.0), "shaft_damping": (0.0, 0.1)}
 OTHER_VECTORS = {"crank": [(0.0, 6.3), (0.2, 3.0), (-1.0, 1.0)], "send": [(-1e-3, 1e-3), (-0.1, 0.1), (-1.0, 1.0)],
                  "q_end": [(-1e-3, 1e-3)] * 2, "qd_end": [(-1e-2, 1e-2)] * 2, "pin": [(-5.0, 5.0)] * 2,
-                 "end": [(-5.0, 5.0)] * 2, "rod_end": [(-5.0, 5.0)] * 2, "z": None, "z0": None}
+                 "qdd_end": [(-1e-1, 1e-1)] * 2, "end": [(-5.0, 5.0)] * 2, "rod_end": [(-5.0, 5.0)] * 2,
+                 "parameters": None, "z": None, "z0": None}
 # a driven motion's co-ordinates (values, rates, accelerations): as many as its docstring says
 SCALAR_RANGE = {"zeta": (0.0, 1.0), "l": (0.05, 0.5), "t": (0.0, 10.0), "eps": (0.005, 0.1),
                 "s": (-1e-3, 1e-3), "fiber": (-2.0, 2.0)}
@@ -404,7 +405,8 @@ def test_every_kernel_is_covered():
     expected = {"shape.shape_functions", "shape.slope_gram", "energy.rod_kinetic_energy",
                 "energy.slider_kinetic_energy", "energy.rod_gravity_potential",
                 "energy.slider_gravity_potential",
-                "energy.rocker_spring_potential"}                 # tests/test_rocker_spring.py
+                "energy.rocker_spring_potential",                 # tests/test_rocker_spring.py
+                "energy.rocker_kinetic_energy", "energy.rocker_gravity_potential"}   # tests/test_rocker_mass.py
     for g, record in schema.GUIDES.items():
         check = "margins" if record.closure == "closed-form" else "closure"      # a numerical closure is sampled
         expected |= {f"kinematics.{k}_{g}" for k in ("guide", "end_map", "rigid_end", check, "end_scale")}

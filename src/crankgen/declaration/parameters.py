@@ -119,8 +119,9 @@ class MechanismRules:
     """Dimensionless mechanism: a* = a/L, eps = r/L, ms* = m_s/(rho A L), mu* = omega_b mu,
     gravity = (gX, gY) in units of L omega_b^2 (inertial frame: X along the guide, Y so that the
     crank pin is at a* (cos theta, sin theta)), and the guide the rod's end travels on: the line
-    Y = offset (a slider; the default) or a circle of radius c about (d, offset) (a rigid massless
-    rocker: a four-bar linkage with a flexible coupler).  guide may be given as a record,
+    Y = offset (a slider; the default) or a circle of radius c about (d, offset) (a rigid
+    rocker, massless unless given rocker_mass and rocker_inertia: a four-bar linkage with a flexible
+    coupler).  guide may be given as a record,
     crankgen.Line(offset=e) or crankgen.Circle(center=(d, e), radius=c, branch=+1)."""
 
     def __post_init__(self):

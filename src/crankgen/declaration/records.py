@@ -201,7 +201,10 @@ class Family:
     """A term family of the equations of motion.  part: where it acts ("rod": every element;
     "end": the end node, the end mass); energy_kind: what its variants' energy kernels give
     ("kinetic", "potential", "dissipation"); vanishes_with: coefficients whose vanishing (all of
-    them) leaves the family out of a case."""
+    them) leaves the family out of a case; body: the body whose own force the family is when it is
+    not the part's (None): "rocker" for a four-bar rocker's spring, weight and inertia, written on
+    the tip's node but carried by the rocker, so that the force the rocker applies to the tip mass
+    leaves them out."""
 
     name: str
     part: str
@@ -209,6 +212,7 @@ class Family:
     energy_kind: str
     variants: tuple = ()
     vanishes_with: tuple = ()
+    body: str = None
 
 
 @dataclass(frozen=True)

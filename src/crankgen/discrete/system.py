@@ -23,6 +23,8 @@ from ..declaration import schema
 from .constraints import ROWS, expand, project
 from .mesh import COMPONENTS, MAPPED, NODE_DOFS, Mesh
 from ..declaration.schema import ELEMENT_DOFS as NDOF
+# the body that carries each family when it is not the one the family's part names (Family.body)
+CARRIER = {f.name: f.body for f in schema.FAMILIES}
 
 _PIN = next(c for c in schema.CONSTRAINTS if c.map is None and c.node == 0)     # the crank pin
 
@@ -163,11 +165,13 @@ class Model:
                                                                  slots)
         return p, pd, pdd, E
 
-    def unprojected_terms(self, kin, d, v, a, secant=False, rod_only=None):
+    def unprojected_terms(self, kin, d, v, a, secant=False, rod_only=None, carried=None):
         """(q, E, r, K, C, M): the element terms before the projection on the reduced co-ordinates
         (the eliminated rows of an element holding a constrained node are the force the constraint
         must apply: the guide's with the end mass included).  rod_only: a list that receives a copy
-        of r with the rod's own families alone (before the constrained node's end mass's)."""
+        of r with the rod's own families alone (before the constrained node's end mass's).
+        carried: a dict that receives, per body other than the end mass that carries families
+        written on the end node (Family.body: a four-bar's rocker), the residual of those alone."""
         q, qd, qdd, E = self.nodal_state(kin, d, v, a)
         geo, coef, kv = self.geometry, self.coefficients, kin.vector
         shape = q.shape[:-1]
@@ -181,9 +185,11 @@ class Model:
         for part, where, args, kin_arg in parts:
             if part != "rod" and rod_only is not None:
                 rod_only.append(r.copy())
-            for _name, kernel in self.selection.vectorized(part):
+            for name, kernel in self.selection.vectorized(part):
                 out = kernel(*args, coef, kin_arg)
                 r[where] += out[0]
+                if carried is not None and CARRIER[name] is not None:
+                    carried.setdefault(CARRIER[name], np.zeros_like(r))[where] += out[0]
                 K[where] += out[4] if secant and len(out) > 4 else out[1]
                 C[where] += out[2]
                 M[where] += out[3]
@@ -204,22 +210,46 @@ class Model:
         for reduced states d, v, a (..., N): the residual rows of its eliminated components (summed
         over the elements holding its node; the end node's reaction is normal to the guide:
         g_s . end = 0 at a solution)."""
-        return self.joint_forces(t, d, v, a)[0]
+        return self._constraint_forces(self.state_kinematics(t, d, v, a), d, v, a)[0]
 
-    def joint_forces(self, t, d, v, a, kin=None):
-        """(reactions, rod's): the force each constraint applies (reactions, above), and the same
-        rows of the rod's own families alone: at the guide's node, the force the end mass applies
-        to the rod (the rod applies its opposite to the end mass, through the pin at B); at the
-        crank pin, the reaction itself (no end mass there).  kin: the kinematics (a CrankState) in
-        place of the prescribed motion's at t (a motor-driven crank's, crankgen.discrete.motor)."""
-        rod = []
-        kin = self.state_kinematics(t, d, v, a) if kin is None else kin
-        _, _, r, _, _, _ = self.unprojected_terms(kin, d, v, a, rod_only=rod)
+    def _constraint_forces(self, kin, d, v, a):
+        """(reactions, rod's, carried): the constraint rows of every family, of the rod's alone, and
+        of the families another body carries (None: none selected), the latter's part along the
+        guide's tangent only (below)."""
+        rod, carried = [], {}
+        _, E, r, _, _, _ = self.unprojected_terms(kin, d, v, a, rod_only=rod, carried=carried)
 
         def at_constraints(x):
             return tuple(sum(x[..., e, list(slots)] for e, slots, _ in self.mesh.holders(c))
                          for c in schema.CONSTRAINTS)
-        return at_constraints(r), at_constraints(rod[0] if rod else r)
+        if not carried:
+            return at_constraints(r), at_constraints(rod[0] if rod else r), None
+        own = list(at_constraints(sum(carried.values())))
+        # A rocker's families are written as those of a point mass at its tip (derive/declaration.py:
+        # the same reduced equations, the tip held on the rocker's circle); what the rocker's inertia,
+        # weight and spring demand of the force at its tip is their part along the circle's tangent
+        # (its moment about the pivot), the part along the rocker being the pivot's to bear.
+        k = schema.CONSTRAINTS.index(MAPPED)
+        G = np.stack([E[..., ROWS[name], :] for name in ROWS if name.startswith("g_s") and "ss" not in name],
+                     axis=-2)                                     # (..., m, k): the guide's tangents
+        coeffs = np.linalg.solve(G @ np.swapaxes(G, -1, -2), (G @ own[k][..., None]))
+        own[k] = (np.swapaxes(G, -1, -2) @ coeffs)[..., 0]
+        return at_constraints(r), at_constraints(rod[0] if rod else r), tuple(own)
+
+    def joint_forces(self, t, d, v, a, kin=None):
+        """(joints', rod's): the force each constraint's joint applies to what it holds, and the
+        same rows of the rod's own families alone.  At the crank pin both are the reaction (no
+        end mass there).  At the guide's node, the first is the force the guide's body applies to
+        the end mass (the slider's guide; a four-bar's rocker, whose own spring, weight and
+        inertia, written on the node, are left out: the rocker turns under them and the force at
+        its tip); the second the force the end mass applies to the rod (the rod applies its
+        opposite to the end mass, through the pin at B).  kin: the kinematics (a CrankState) in
+        place of the prescribed motion's at t (a motor-driven crank's, crankgen.discrete.motor)."""
+        kin = self.state_kinematics(t, d, v, a) if kin is None else kin
+        reactions, rod, carried = self._constraint_forces(kin, d, v, a)
+        if carried is not None:
+            reactions = tuple(total - own for total, own in zip(reactions, carried))
+        return reactions, rod
 
     def residual(self, t, d, v, a):
         """Reduced nodal residual R(t, d, v, a) (n_rod,)."""

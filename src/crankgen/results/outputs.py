@@ -149,14 +149,16 @@ class StateHistory:
                                  "outputs of the crank's and the guide's kinematics are available")
         return self.states
 
-    def _mapped(self, reduced, row, rates=None):
+    def _mapped(self, reduced, row, rates=None, accelerations=None):
         """(steps, n, 6) element vectors of reduced vectors, the end node's (u, v) from the end map's
-        row ("q": positions; "qd": rates, from the states and `rates`)."""
+        row ("q": positions; "qd": rates, from the states and `rates`; "qdd": accelerations, from
+        those and `accelerations`)."""
         self._need_states()
         q = self.mesh.gather(reduced)
         S = self.mesh.reduced_coordinates()[0]
         E = _kinematics.end_map(self.case, self.kinematics().vector, self.states[:, S],
-                                0.0 if rates is None else rates[:, S])
+                                0.0 if rates is None else rates[:, S],
+                                0.0 if accelerations is None else accelerations[:, S])
         for e, slots, _ in self.mesh.holders():
             for a, slot in enumerate(slots):
                 q[..., e, slot] = E[..., schema.END_MAP_ROWS[row], a]
@@ -169,6 +171,14 @@ class StateHistory:
     def element_rates(self):
         """(steps, n, 6) nodal velocities, the end node's through the guide's end map."""
         return self._mapped(self._need_rates("the rates of the nodes"), "qd", self.rates)
+
+    def element_accelerations(self):
+        """(steps, n, 6) nodal accelerations, the end node's through the guide's end map."""
+        self._need_rates("the accelerations of the nodes")
+        if self.accelerations is None:
+            raise ParameterError("the accelerations of the nodes need the stored accelerations, which "
+                                 "this result does not hold")
+        return self._mapped(self.accelerations, "qdd", self.rates, self.accelerations)
 
     def _need_rates(self, what):
         if self.rates is None:
@@ -199,9 +209,10 @@ class StateHistory:
                 out[name] = self.kinematics().vector
             elif name == "parameters":
                 out[name] = self.case.parameter_vector
-            elif name in ("q_end", "qd_end"):      # the mapped node's eliminated components
+            elif name in ("q_end", "qd_end", "qdd_end"):      # the mapped node's eliminated components
                 e, slots, _ = self.mesh.holders()[0]
-                values = self.element_vectors() if name == "q_end" else self.element_rates()
+                values = {"q_end": self.element_vectors, "qd_end": self.element_rates,
+                          "qdd_end": self.element_accelerations}[name]()
                 out[name] = values[:, e, list(slots)]
             elif name == "s":
                 out[name] = self._need_states()[:, self.mesh.reduced_coordinates()[0]]
