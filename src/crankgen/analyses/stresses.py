@@ -227,7 +227,8 @@ class PeakLoad:
 
 def peak_loads(result, scales: Optional[Scales] = None):
     """The driving torque of largest magnitude, and the largest joint forces |F| over a result (the
-    pins at A and B, the guide or the rocker), with when: crankgen's units, or SI with `scales`."""
+    pins at A and B, the guide or the rocker at its tip, and a rocker's ground pivot), with when:
+    crankgen's units, or SI with `scales`."""
     from ..declaration import schema
 
     def factor(units):                    # a declared unit in SI (as the result's SI view converts it)
@@ -242,8 +243,11 @@ def peak_loads(result, scales: Optional[Scales] = None):
     at_b = declared(("pin force at B (rod on slider)", "rod_on_slider"), ("pin force at B (rod on rocker tip)",
                                                                         "rod_on_tip"))
     guide = declared(("guide force (on slider)", "guide_on_slider"), ("rocker force (on its tip)", "rocker_on_tip"))
-    for name, parts in (("torque", ("torque",)), ("pin force at A (crank on rod)", ("crank_on_rod_x", "crank_on_rod_y")),
-                        (at_b[0], (at_b[1] + "_x", at_b[1] + "_y")), (guide[0], (guide[1] + "_x", guide[1] + "_y"))):
+    loads = [("torque", ("torque",)), ("pin force at A (crank on rod)", ("crank_on_rod_x", "crank_on_rod_y")),
+             (at_b[0], (at_b[1] + "_x", at_b[1] + "_y")), (guide[0], (guide[1] + "_x", guide[1] + "_y"))]
+    if here in schema.OUTPUTS["ground_on_rocker_x"].guides:
+        loads.append(("pivot force (ground on rocker)", ("ground_on_rocker_x", "ground_on_rocker_y")))
+    for name, parts in loads:
         values = [np.asarray(result.quantity(p), dtype=float) * factor(schema.OUTPUTS[p].units) for p in parts]
         magnitude = np.sqrt(sum(v ** 2 for v in values))
         k = int(np.argmax(magnitude))

@@ -123,8 +123,10 @@ def describe(values, skip=()):
     """A case's parameters as text, from their records: (main, other), two lists of "axis = value".
     main: the mechanism's real parameters and the continuable parameters of the crank motion;
     other: the guide or motion when not the default one, named by its record's label with every
-    parameter it reads ("four-bar: rocker length c/L = 0.8, ..."), and any other parameter entering
-    an equation that is not at its default (gravity, an offset, a start angle).  The run's settings
+    parameter of its geometry or law (a kinematic parameter: "four-bar: rocker length c/L = 0.8,
+    ...") and every other one it reads that is not at its default (a rocker's spring or mass), and
+    any other parameter entering an equation that is not at its default (gravity, an offset, a
+    start angle).  The run's settings
     (mesh, steps, integrator) are left to the caller; `skip`: names left out."""
     chosen = {"guide": selected(values, "guide"), "motion": selected(values, "motion")}
     records = {"guide": GUIDES[chosen["guide"]], "motion": MOTIONS[chosen["motion"]]}
@@ -137,7 +139,8 @@ def describe(values, skip=()):
         if (p.owner == "mechanism" and p.kind == "real") or (p.owner == "motion" and p.continuable):
             main.append(item)
         elif p.owner in groups and chosen[p.owner] != PARAMETERS[SELECTOR[p.owner]].default:
-            groups[p.owner].append(item)
+            if p.name in KINEMATIC_PARAMETERS or value != p.default:
+                groups[p.owner].append(item)
         elif p.slots and value != p.default:
             other.append(item)
     for kind, items in groups.items():

@@ -8,8 +8,9 @@ over the orbit:
 - peak_torque: the driving torque of largest magnitude, signed;
 - peak_pin_force_A, peak_pin_force_B, peak_support_force: the largest magnitude of the joint
   forces (outputs.py): the crank's on the rod at A (crank_on_rod), the rod's on the slider or the
-  rocker's tip at B (rod_on_slider, rod_on_tip), the guide's on the slider or the rocker's on its
-  tip (guide_on_slider, rocker_on_tip);
+  rocker's tip at B (rod_on_slider, rod_on_tip), the support's: the guide's on the slider or the
+  ground's on the rocker at its pivot (guide_on_slider, ground_on_rocker: the rocker's force on its
+  tip when the rocker is massless);
 - peak_axial_force: the axial force N* of largest magnitude along the rod, signed (tension > 0);
 - peak_strain: the largest |surface_strain| at the outer fibres, fiber = +-sqrt(3) radii of
   gyration (a rectangular section's outer fibres) or, with a section, its own;
@@ -56,7 +57,7 @@ QUANTITIES = ("peak_v", "peak_torque", "peak_pin_force_A", "peak_pin_force_B", "
               "peak_axial_force", "peak_strain", "peak_stress")
 # the joint forces each quantity reads, the first whose output the case's guide declares
 JOINTS = {"peak_pin_force_A": ("crank_on_rod",), "peak_pin_force_B": ("rod_on_slider", "rod_on_tip"),
-          "peak_support_force": ("guide_on_slider", "rocker_on_tip")}
+          "peak_support_force": ("guide_on_slider", "ground_on_rocker")}
 RECTANGLE_FIBRE = math.sqrt(3.0)        # outer fibre of a rectangle, in radii of gyration
 CHUNK = 64                              # orbits marched in one batch
 # a motor-driven crank's own quantities (module docstring), before the others in motor_units()
