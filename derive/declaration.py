@@ -452,16 +452,14 @@ def rocker_kinetic_energy(qs=s.qs, qsd=s.qsd):
     """T_r = J_D gamma_dot^2 / 2 of the rigid rocker turning about its ground pivot D (J_D = J_G +
     m_r (k c)^2): the tip B moves on the rocker's circle at the speed c gamma_dot (the end map keeps
     it there), so T_r is the kinetic energy of a point mass J_D / c^2 at B, eq. (7)'s velocity."""
-    vel_i, vel_j = en.moving_frame_velocity(s.L + qs[0], qs[1], qsd[0], qsd[1])
-    return sp.expand(rocker_tip_mass * (vel_i**2 + vel_j**2) / 2)
+    return en.point_mass_kinetic_energy(rocker_tip_mass, qs, qsd)
 
 
 def rocker_gravity_potential(qs=s.qs):
     """V_r = -m_r g . (G - D) of the rigid rocker's weight: its centre of mass G lies at k (B - D) on
     the line from the pivot to the tip, so V_r is the potential of a point mass m_r k at B (the
     constant +m_r k g . D left out)."""
-    X, Y = en.inertial_position(s.L + qs[0], qs[1])
-    return sp.expand(-(rocker_tip_weight[0] * X + rocker_tip_weight[1] * Y))
+    return en.point_mass_gravity_potential(rocker_tip_weight, qs)
 
 
 ROCKER_SPRING = Energy("rocker_spring_potential", "Potential of the torsional spring at the rocker's "
@@ -731,7 +729,7 @@ FAMILIES = (
                 "formulation: the paper has no rocker)", energy=ROCKER_KINETIC, build=rocker_inertia_lagrange),
     ), vanishes_with=("m_rocker_tip",), body="rocker"),
     Family("rocker_gravity", "end", "weight of the rigid rocker, on the rocker's tip", "potential", (
-        Variant("uniform", {}, "dV_r/dq, V_r = -m_r g . (G - D), a point mass m_r k at the tip", 
+        Variant("uniform", {}, "dV_r/dq, V_r = -m_r g . (G - D), a point mass m_r k at the tip",
                 energy=ROCKER_GRAVITY, build=rocker_gravity),
     ), vanishes_with=("wX_rocker", "wY_rocker"), body="rocker"),
 )

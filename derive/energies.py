@@ -74,10 +74,16 @@ def rod_kinetic_energy(q=s.q, qd=s.qd):
     return integrate_element(rod_kinetic_energy_density(q, qd))
 
 
-def slider_kinetic_energy(qs=s.qs, qsd=s.qsd):
-    """Slider kinetic energy T_s, eqs. (6)-(7); (qs0, qs1) = (u, v) of the rod's last node."""
+def point_mass_kinetic_energy(mass, qs=s.qs, qsd=s.qsd):
+    """Kinetic energy of a point mass at the rod's end, eqs. (6)-(7); (qs0, qs1) = (u, v) of the rod's
+    last node."""
     vel_i, vel_j = moving_frame_velocity(s.L + qs[0], qs[1], qsd[0], qsd[1])
-    return sp.expand(s.ms * (vel_i**2 + vel_j**2) / 2)
+    return sp.expand(mass * (vel_i**2 + vel_j**2) / 2)
+
+
+def slider_kinetic_energy(qs=s.qs, qsd=s.qsd):
+    """Slider kinetic energy T_s, eqs. (6)-(7): the point mass m_s at the rod's end."""
+    return point_mass_kinetic_energy(s.ms, qs, qsd)
 
 
 def axial_strain(approach, q=s.q):
@@ -201,10 +207,15 @@ def rod_gravity_potential(q=s.q, approach=None):
     return integrate_element(-s.rhoA * (s.gX * X + s.gY * Y))
 
 
-def slider_gravity_potential(qs=s.qs):
-    """Potential of gravity on the slider, V_s = -m_s g . R_s (R_s: eq. 7's point at x = L)."""
+def point_mass_gravity_potential(weight, qs=s.qs):
+    """Potential -W . R of a weight W = (WX, WY) at the rod's end R (eq. 7's point at x = L)."""
     X, Y = inertial_position(s.L + qs[0], qs[1])
-    return sp.expand(-s.ms * (s.gX * X + s.gY * Y))
+    return sp.expand(-(weight[0] * X + weight[1] * Y))
+
+
+def slider_gravity_potential(qs=s.qs):
+    """Potential of gravity on the slider, V_s = -m_s g . R_s."""
+    return point_mass_gravity_potential((s.ms * s.gX, s.ms * s.gY), qs)
 
 
 # ----------------------------------------------------------------------------------------------

@@ -15,6 +15,7 @@ Independent truths:
   force the tip applies to the rocker (minus the output rocker_on_tip).
 """
 
+import functools
 import math
 
 import numpy as np
@@ -60,22 +61,37 @@ def test_a_rocker_inertia_alone_is_a_tip_mass_J_over_c_squared():
     _close(rocker.torque, tip.torque, 1e-9)
 
 
+# a rocker with a mass off its tip, an inertia and a spring, under gravity: one run per model, shared
+HEAVY = dict(m=0.4, k=0.3, J_G=0.02, spring=0.03, free=1.0, g=(0.02, -0.09))
+PIVOT = np.array([FOUR_BAR["d"], FOUR_BAR["offset"]])
+
+
+@functools.lru_cache(maxsize=None)
+def heavy_run(model):
+    """(run, unwrapped rocker angle, its step) of the heavy rocker over one revolution of 400 steps."""
+    h = HEAVY
+    mech = crankgen.Mechanism(**FOUR_BAR, gravity=h["g"], rocker_mass=h["m"], rocker_centre=h["k"],
+                              rocker_inertia=h["J_G"], rocker_stiffness=h["spring"], rocker_free_angle=h["free"])
+    run = crankgen.simulate(mech, model=model, omega=0.8, n_elements=2, steps_per_rev=400, revolutions=1)
+    return run, np.unwrap(run.quantity("rocker_angle")), run.t[1] - run.t[0]
+
+
+def _pair(run, name):
+    return np.stack([run.quantity(name + "_x"), run.quantity(name + "_y")], axis=-1)
+
+
 @pytest.mark.parametrize("model", ["consistent", "paper"])
 def test_the_rocker_turns_under_the_moments_on_it(model):
     """J_D gamma_dd = (B - D) x F_tip_on_rocker + m k c (cos gamma gY - sin gamma gX) - k_s (gamma -
     gamma_free) along a run, F_tip_on_rocker = -rocker_on_tip (the force the rocker applies to its
     tip mass): the joint force leaves the rocker's own spring, weight and inertia out."""
-    m, k, J_G, spring, free, g = 0.4, 0.3, 0.02, 0.03, 1.0, (0.02, -0.09)
-    c, D = FOUR_BAR["c"], np.array([FOUR_BAR["d"], FOUR_BAR["offset"]])
-    mech = crankgen.Mechanism(**FOUR_BAR, gravity=g, rocker_mass=m, rocker_centre=k, rocker_inertia=J_G,
-                              rocker_stiffness=spring, rocker_free_angle=free)
-    run = crankgen.simulate(mech, model=model, omega=0.8, n_elements=2, steps_per_rev=400, revolutions=1)
-    gamma = np.unwrap(run.quantity("rocker_angle"))
-    dt = run.t[1] - run.t[0]
+    m, k, J_G, spring, free, g = (HEAVY[n] for n in ("m", "k", "J_G", "spring", "free", "g"))
+    c = FOUR_BAR["c"]
+    run, gamma, dt = heavy_run(model)
     gamma_dd = (gamma[2:] - 2 * gamma[1:-1] + gamma[:-2]) / dt**2
     B = np.stack([run.quantity("slider_position"), run.quantity("end_height")], axis=-1)[1:-1]
-    F = -np.stack([run.quantity("rocker_on_tip_x"), run.quantity("rocker_on_tip_y")], axis=-1)[1:-1]
-    arm = B - D
+    F = -_pair(run, "rocker_on_tip")[1:-1]
+    arm = B - PIVOT
     assert np.allclose(np.hypot(*arm.T), c, atol=1e-12)             # the tip stays on the rocker's circle
     g1 = gamma[1:-1]
     moments = (arm[:, 0] * F[:, 1] - arm[:, 1] * F[:, 0]
@@ -111,19 +127,16 @@ def test_the_rockers_energies():
     from crankgen._generated import energy
     from crankgen.discrete import kinematics
     from crankgen.discrete.system import Model
-    m, k, J_G, g = 0.4, 0.3, 0.02, (0.02, -0.09)
-    c, D = FOUR_BAR["c"], np.array([FOUR_BAR["d"], FOUR_BAR["offset"]])
-    run = crankgen.simulate(crankgen.Mechanism(**FOUR_BAR, gravity=g, rocker_mass=m, rocker_centre=k,
-                                               rocker_inertia=J_G),
-                            omega=0.8, n_elements=2, steps_per_rev=400, revolutions=1)
+    m, k, J_G, g = (HEAVY[n] for n in ("m", "k", "J_G", "g"))
+    c, D = FOUR_BAR["c"], PIVOT
+    run, gamma, dt = heavy_run("consistent")
     model = Model(run.case)
     kin = kinematics.case_state(run.case, run.t)
     q, qd, _, _ = model.nodal_state(kin, run.states, run.rates, run.accelerations)
     geo, coef = model.geometry[-1], model.coefficients
     T = energy.rocker_kinetic_energy(q[:, -1], qd[:, -1], geo, coef, kin.vector)
     V = energy.rocker_gravity_potential(q[:, -1], qd[:, -1], geo, coef, kin.vector)
-    gamma = np.unwrap(run.quantity("rocker_angle"))
-    rate = (gamma[2:] - gamma[:-2]) / (2 * (run.t[1] - run.t[0]))
+    rate = (gamma[2:] - gamma[:-2]) / (2 * dt)
     J_D = J_G + m * (k * c) ** 2
     half = len(rate) // 2
     _close(T[1:-1][half:], J_D * rate[half:] ** 2 / 2, 1e-3)
@@ -136,16 +149,12 @@ def test_the_pivot_bears_the_rockers_momentum_balance(model):
     """ground_on_rocker = m a_G - m g - F_tip_on_rocker with a_G by central differences of the centre
     of mass G = D + k c (cos gamma, sin gamma) along the run (past the start), F_tip_on_rocker =
     -rocker_on_tip; with a massless rocker it is the force at the tip."""
-    m, k, J_G, g = 0.4, 0.3, 0.02, (0.02, -0.09)
-    c, D = FOUR_BAR["c"], np.array([FOUR_BAR["d"], FOUR_BAR["offset"]])
-    run = crankgen.simulate(crankgen.Mechanism(**FOUR_BAR, gravity=g, rocker_mass=m, rocker_centre=k,
-                                               rocker_inertia=J_G, rocker_stiffness=0.03),
-                            model=model, omega=0.8, n_elements=2, steps_per_rev=400, revolutions=1)
-    gamma = np.unwrap(run.quantity("rocker_angle"))
-    G = D + k * c * np.stack([np.cos(gamma), np.sin(gamma)], axis=-1)
-    a_G = (G[2:] - 2 * G[1:-1] + G[:-2]) / (run.t[1] - run.t[0]) ** 2
-    tip = np.stack([run.quantity("rocker_on_tip_x"), run.quantity("rocker_on_tip_y")], axis=-1)[1:-1]
-    pivot = np.stack([run.quantity("ground_on_rocker_x"), run.quantity("ground_on_rocker_y")], axis=-1)[1:-1]
+    m, k, g = (HEAVY[n] for n in ("m", "k", "g"))
+    run, gamma, dt = heavy_run(model)
+    G = PIVOT + k * FOUR_BAR["c"] * np.stack([np.cos(gamma), np.sin(gamma)], axis=-1)
+    a_G = (G[2:] - 2 * G[1:-1] + G[:-2]) / dt**2
+    tip = _pair(run, "rocker_on_tip")[1:-1]
+    pivot = _pair(run, "ground_on_rocker")[1:-1]
     half = len(a_G) // 2
     _close(pivot[half:], (m * a_G - m * np.array(g) + tip)[half:], 2e-3)
     assert np.max(np.abs(pivot - tip)) > 0.05 * np.max(np.abs(tip))       # the rocker's own share

@@ -80,6 +80,11 @@ def _on(E, row, slots, X, axis):
     return total
 
 
+def tangents(E, m=len(REDUCED)):
+    """The map's tangents g_s_j (..., m, k): the directions its node moves in as s_j varies."""
+    return np.stack([E[..., ROWS["g_s" + _tag(j, m)], :] for j in range(m)], axis=-2)
+
+
 def project_residual(E, r, slots=SLOTS, reduced=REDUCED):
     """An element's residual (..., NDOF) on the reduced co-ordinates: g_s_j . r_elim in the slot of
     s_j, the other eliminated slots 0."""

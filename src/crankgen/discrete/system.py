@@ -20,7 +20,7 @@ from . import kinematics as _kinematics
 from .assembly import BandedAssembler
 from ..declaration.cases import Case
 from ..declaration import schema
-from .constraints import ROWS, expand, project
+from .constraints import ROWS, expand, project, tangents
 from .mesh import COMPONENTS, MAPPED, NODE_DOFS, Mesh
 from ..declaration.schema import ELEMENT_DOFS as NDOF
 # the body that carries each family when it is not the one the family's part names (Family.body)
@@ -170,8 +170,8 @@ class Model:
         (the eliminated rows of an element holding a constrained node are the force the constraint
         must apply: the guide's with the end mass included).  rod_only: a list that receives a copy
         of r with the rod's own families alone (before the constrained node's end mass's).
-        carried: a dict that receives, per body other than the end mass that carries families
-        written on the end node (Family.body: a four-bar's rocker), the residual of those alone."""
+        carried: a list that receives the residual of the families another body than the end
+        mass carries (Family.body: a four-bar's rocker's), when any is selected."""
         q, qd, qdd, E = self.nodal_state(kin, d, v, a)
         geo, coef, kv = self.geometry, self.coefficients, kin.vector
         shape = q.shape[:-1]
@@ -189,7 +189,9 @@ class Model:
                 out = kernel(*args, coef, kin_arg)
                 r[where] += out[0]
                 if carried is not None and CARRIER[name] is not None:
-                    carried.setdefault(CARRIER[name], np.zeros_like(r))[where] += out[0]
+                    if not carried:
+                        carried.append(np.zeros_like(r))
+                    carried[0][where] += out[0]
                 K[where] += out[4] if secant and len(out) > 4 else out[1]
                 C[where] += out[2]
                 M[where] += out[3]
@@ -216,7 +218,7 @@ class Model:
         """(reactions, rod's, carried): the constraint rows of every family, of the rod's alone, and
         of the families another body carries (None: none selected), the latter's part along the
         guide's tangent only (below)."""
-        rod, carried = [], {}
+        rod, carried = [], []
         _, E, r, _, _, _ = self.unprojected_terms(kin, d, v, a, rod_only=rod, carried=carried)
 
         def at_constraints(x):
@@ -224,14 +226,13 @@ class Model:
                          for c in schema.CONSTRAINTS)
         if not carried:
             return at_constraints(r), at_constraints(rod[0] if rod else r), None
-        own = list(at_constraints(sum(carried.values())))
+        own = list(at_constraints(carried[0]))
         # A rocker's families are written as those of a point mass at its tip (derive/declaration.py:
         # the same reduced equations, the tip held on the rocker's circle); what the rocker's inertia,
         # weight and spring demand of the force at its tip is their part along the circle's tangent
         # (its moment about the pivot), the part along the rocker being the pivot's to bear.
         k = schema.CONSTRAINTS.index(MAPPED)
-        G = np.stack([E[..., ROWS[name], :] for name in ROWS if name.startswith("g_s") and "ss" not in name],
-                     axis=-2)                                     # (..., m, k): the guide's tangents
+        G = tangents(E)                                           # (..., m, k)
         coeffs = np.linalg.solve(G @ np.swapaxes(G, -1, -2), (G @ own[k][..., None]))
         own[k] = (np.swapaxes(G, -1, -2) @ coeffs)[..., 0]
         return at_constraints(r), at_constraints(rod[0] if rod else r), tuple(own)
