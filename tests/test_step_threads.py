@@ -5,7 +5,7 @@ import threading
 
 import pytest
 
-from crankgen.analyses.bifurcation import _blas
+from crankgen.analyses import blas as _blas
 from crankgen.experiments.threads import Stopped, map_in_threads, stopping
 
 

@@ -36,6 +36,7 @@ from ..discrete.system import Model
 from ..declaration.si import SIMechanism
 from ..declaration.units import Scales
 from ..declaration.validation import angle, choice, finite_number, integer
+from .blas import single_thread
 
 UNITS = ("crankgen", "si")
 AXIAL_SHARE = 0.5              # a mode whose kinetic energy is more than half axial is "axial"
@@ -153,9 +154,10 @@ class FrozenModel:
 
     def eigen(self, theta):
         """(kin, d, lambda (T, N) ascending, vectors (T, N, N), M (T, N, N)) at the angles theta."""
-        kin, d = self.frozen(theta)
-        _, K, M = self._assemble(kin, d)
-        lam, vec = np.linalg.eig(np.linalg.solve(M, K))
+        with single_thread():
+            kin, d = self.frozen(theta)
+            _, K, M = self._assemble(kin, d)
+            lam, vec = np.linalg.eig(np.linalg.solve(M, K))
         order = np.argsort(lam.real, axis=1)
         lam = np.take_along_axis(lam.real, order, axis=1)
         vec = np.take_along_axis(vec.real, order[:, None, :], axis=2)

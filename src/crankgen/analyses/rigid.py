@@ -28,6 +28,7 @@ from ..declaration import schema
 from ..errors import ConvergenceError, ParameterError
 from ..results.outputs import DeclaredOutputs
 from ..declaration.units import Scales
+from .blas import single_thread
 
 NEWTON_TOL = 1e-12
 NEWTON_ITERATIONS = 40
@@ -67,7 +68,8 @@ def kineto_static(case, t):
     zero = np.zeros_like(d)
     for _ in range(NEWTON_ITERATIONS):
         r, K, _, _ = _dense(model, kin, d, zero, zero)
-        step = -np.linalg.solve(K, r[..., None])[..., 0]
+        with single_thread():
+            step = -np.linalg.solve(K, r[..., None])[..., 0]
         d += step
         if not np.all(np.isfinite(d)):
             break

@@ -49,6 +49,7 @@ from ..declaration.cases import Case, run_case
 from ..errors import ParameterError
 from .limits import check_run_size, count
 from .section import WARMUP, CrankSection, TimeSection
+from .blas import single_thread
 from ..discrete.mesh import components_of
 from ..discrete.system import check_coordinates
 from ..results.outputs import DeclaredOutputs, engine_columns, takes_engine_outputs
@@ -447,6 +448,18 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
         groups.setdefault((c.n_elements, c.steps_per_rev, generalized, alone, components_of(c.options)),
                           []).append(i)
     results = [None] * len(cases)
+    with single_thread():                   # the multipliers' eigenvalues, the shooting's solves
+        _solve_groups(cases, groups, results, tol, max_revolutions, warmup, max_shooting, method, parallel,
+                      progress)
+    what = "steady motion" if all(c.motion_record.coordinates for c in cases) else "periodic response"
+    warn_beyond(results, what if len(results) == 1 else f"{what} of a case", stacklevel=_stacklevel)
+    return results
+
+
+def _solve_groups(cases, groups, results, tol, max_revolutions, warmup, max_shooting, method, parallel,
+                  progress):
+    """steady_states' batches: the cases of each group (same mesh, steps and scheme) solved together
+    into results."""
     done = 0
     for key in sorted(groups):
         idx = groups[key]
@@ -464,9 +477,6 @@ def steady_states(cases, tol=1e-8, max_revolutions=400, progress=None, method="s
         done += len(idx)
         if progress is not None:
             progress(done, len(cases))
-    what = "steady motion" if all(c.motion_record.coordinates for c in cases) else "periodic response"
-    warn_beyond(results, what if len(results) == 1 else f"{what} of a case", stacklevel=_stacklevel)
-    return results
 
 
 def steady_state(mech=None, omega=None, *, model=None, case=None, crank=None, tol=1e-8,

@@ -48,7 +48,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._blas import single_thread
+from ..blas import single_thread
 from .diagram import BifurcationDiagram, Branch, SpecialPoint
 from .false_position import FalsePosition
 from .maps import MapError, state_weights

@@ -28,7 +28,7 @@ import numpy as np
 
 from ...declaration import schema
 from ...errors import CrankgenError, ParameterError
-from ._blas import single_thread
+from ..blas import single_thread
 from .maps import MapError
 
 from ...results.io import atomic_file, save_figure
