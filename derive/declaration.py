@@ -128,6 +128,13 @@ rocker_centre = sp.Symbol("k_rocker_G", real=True)
 rocker_inertia = sp.Symbol("J_rocker_G", nonnegative=True)
 rocker_tip_mass = sp.Symbol("m_rocker_tip", nonnegative=True)
 rocker_tip_weight = (sp.Symbol("wX_rocker", real=True), sp.Symbol("wY_rocker", real=True))
+# the rigid crank's own mass, its centre of mass (a fraction k of a along the crank from its axis O)
+# and its moment of inertia about that centre: they enter no equation of the rod, only the torque
+# the crank's drive supplies (derive/outputs.py: J_O thetadd and the weight's moment, J_O = J_G +
+# m (k a)^2; a motor's equation reads that torque) and the force on the crank's bearing at O
+crank_mass = sp.Symbol("m_crank", nonnegative=True)
+crank_centre = sp.Symbol("k_crank_G", real=True)
+crank_inertia = sp.Symbol("J_crank_G", nonnegative=True)
 
 PARAMETERS = (
     Parameter("a", "real", 0.1, "a (crank length a* = a/L)", "crank length over rod length a* = a/L",
@@ -185,6 +192,20 @@ PARAMETERS = (
               "m_r c^2 / 12), units of rho A L^3; about the pivot it is J_G + m_r (rocker_centre c)^2",
               low=0.0, units="rhoA L^3", continuable=True, symbol=rocker_inertia,
               axis="rocker inertia J_G*"),
+    Parameter("crank_mass", "real", 0.0, "crank_mass (crank's mass m_c*)",
+              "mass m_c* = m_c/(rho A L) of the rigid crank (0: its mass and inertia left out, or held in a "
+              "motor's `inertia`); it changes the driving torque and the crank bearing's force, not the rod's "
+              "motion under a prescribed crank", low=0.0, units="rhoA L", continuable=True, symbol=crank_mass,
+              axis="crank mass m_c*"),
+    Parameter("crank_centre", "real", 0.5, "crank_centre (crank's centre of mass, fraction of a)",
+              "where the rigid crank's centre of mass G lies on the line from its axis O to the crank pin A: "
+              "OG = crank_centre * a (0.5: a uniform bar; 0: balanced; negative: a counterweight)", units="1",
+              continuable=True, symbol=crank_centre, axis="crank centre OG/a"),
+    Parameter("crank_inertia", "real", 0.0, "crank_inertia (crank's J_G* about its centre of mass)",
+              "moment of inertia J_G* of the rigid crank about its centre of mass (a uniform bar: m_c a^2 / "
+              "12), units of rho A L^3; about its axis it is J_G + m_c (crank_centre a)^2.  A motor's `inertia` "
+              "then holds the rotor's and flywheel's only", low=0.0, units="rhoA L^3", continuable=True,
+              symbol=crank_inertia, axis="crank inertia J_G*"),
     Parameter("cam_height", "real", 0.02, "cam_height (cam track height h/L)",
               "height h/L of a cam track's waves, Y = e + h cos(2 pi X / lambda)", low=0.0, units="L",
               continuable=True, symbol=guides.cam_height, axis="cam height h/L"),
@@ -230,7 +251,8 @@ PARAMETERS = (
               axis="no-load speed Omega_nl*"),
     Parameter("inertia", "real", 0.05, "inertia (crank, rotor and flywheel J*)",
               "the moment of inertia J* of the crank, the motor's rotor and any flywheel about the crank "
-              "axis (the rod and end mass not included: they are modelled), units of rho A L^3", owner="run",
+              "axis (the rod and end mass not included: they are modelled; the crank's not included either "
+              "when declared as crank_mass, crank_inertia), units of rho A L^3", owner="run",
               low=0.0, low_open=True, units="rhoA L^3", continuable=True, symbol=motions.inertia,
               axis="inertia J*"),
     Parameter("load_torque", "real", 0.0, "load_torque (constant load torque T_load*)",

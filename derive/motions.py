@@ -34,7 +34,8 @@ it (an added 0.0 changes no sum).
       J thetadd - T_m(thetad) + T_load + T_rod = 0,
   T_rod = a (e_r x F_pin) the torque the rod and end mass demand (the output `torque`: the
   crank's generalized residual of the same energies; `ROD_TORQUE` here, substituted by the
-  representation).  Its theta(t) = theta0 + Omega_i t is only the crank's start (the speed at
+  representation), with the crank's own J_O thetadd and weight's moment when the crank is given a
+  mass and an inertia (crank_mass, crank_inertia: then J is the rotor's and flywheel's alone).  Its theta(t) = theta0 + Omega_i t is only the crank's start (the speed at
   t = 0, Omega_i, default 0: from rest); its step period is the no-load revolution 2 pi / Omega_nl
   (the fastest the motor turns the crank in steady running).  The equation holds the linear law;
   a case's per-unit torque_curve f (crankgen.declaration.torque_curve: a table, cubic Hermite

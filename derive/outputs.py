@@ -176,6 +176,31 @@ def chord_deflection(approach=None):
     return ((1 + q_end[0]) * f["v"] - q_end[1] * (x + f["u"])) / length
 
 
+def pin_torque():
+    """a (e_r x F_pin): the torque the rod and end mass demand of the crank through the crank pin."""
+    return s.a * (sp.cos(s.theta) * _inertial(pin)[1] - sp.sin(s.theta) * _inertial(pin)[0])
+
+
+def crank_own_torque():
+    """The torque that turns the rigid crank itself and holds its weight's moment about its axis O:
+    J_O thetadd + m k a (gX sin theta - gY cos theta), J_O = J_G + m (k a)^2 (G = k a e_r, the
+    crank's centre of mass; zero without crank_mass and crank_inertia)."""
+    m, k = declaration.crank_mass, declaration.crank_centre
+    moment_of_inertia = declaration.crank_inertia + m * (k * s.a) ** 2
+    return moment_of_inertia * s.thetadd + m * k * s.a * (s.gX * sp.sin(s.theta) - s.gY * sp.cos(s.theta))
+
+
+def ground_on_crank():
+    """The force the ground applies to the rigid crank at its axis O (its main bearing): the crank's
+    momentum balance m a_G = F_O - F_pin + m g, with a_G the acceleration of G = k a e_r and -F_pin
+    the force the rod applies to the crank at A."""
+    m, k = declaration.crank_mass, declaration.crank_centre
+    e_r = sp.Matrix([sp.cos(s.theta), sp.sin(s.theta)])
+    e_t = sp.Matrix([-sp.sin(s.theta), sp.cos(s.theta)])
+    a_G = k * s.a * (s.thetadd * e_t - s.thetad ** 2 * e_r)
+    return m * a_G - m * sp.Matrix([s.gX, s.gY]) + _inertial(pin)
+
+
 # the options the membrane strain depends on
 MEMBRANE_OPTIONS = ("approach", "membrane")
 # N* = N L^2/EI = EA e / EI = e / eps^2 = e EA/EI;  M* = M L / EI = v_xx (L = 1).  Forces in rho A L^2
@@ -209,9 +234,10 @@ OUTPUTS = (
     Output("slider_velocity", "step", "X velocity of the rod's end (the slider; the rocker's tip)",
            "L omega_b", build=lambda o: _rate(end_position()[0])),
     Output("torque", "step",
-           "driving torque the crank needs to hold its prescribed motion (counter-clockwise), "
-           "a (e_r x F_pin), units of rho A L^3 omega_b^2", TORQUE,
-           build=lambda o: s.a * (sp.cos(s.theta) * _inertial(pin)[1] - sp.sin(s.theta) * _inertial(pin)[0])),
+           "driving torque the crank needs to hold its prescribed motion (counter-clockwise): the rod's "
+           "a (e_r x F_pin) and, with a crank_mass or crank_inertia, the crank's own J_O thetadd and its "
+           "weight's moment (a motor supplies it: its equation reads this torque), units of rho A L^3 "
+           "omega_b^2", TORQUE, build=lambda o: pin_torque() + crank_own_torque()),
     # the joint forces, named "<body>_on_<body>": who acts on whom (inertial X, Y components)
     Output("crank_on_rod_x", "step",
            "X component of the force the crank applies to the rod at the crank pin A (sizes the pin "
@@ -248,6 +274,12 @@ OUTPUTS = (
            guides=TIP_GUIDES),
     Output("ground_on_rocker_y", "step", "Y component of the force the ground applies to the rocker at D",
            FORCE, build=lambda o: ground_on_rocker()[1], guides=TIP_GUIDES),
+    Output("ground_on_crank_x", "step",
+           "X component of the force the ground applies to the crank at its axis O (sizes the main "
+           "bearing): the rod's force at the crank pin, plus the crank's mass times its centre's "
+           "acceleration less its weight (crank_mass)", FORCE, build=lambda o: ground_on_crank()[0]),
+    Output("ground_on_crank_y", "step", "Y component of the force the ground applies to the crank at O",
+           FORCE, build=lambda o: ground_on_crank()[1]),
     Output("kinetic_energy", "reduction",
            "the rod's kinetic energy T = sum of the elements' T_i, eqs. (4)-(5) (the end mass's not "
            "included; the exact rod's with its unit director), units of rho A L^3 omega_b^2", TORQUE,

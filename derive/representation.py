@@ -105,6 +105,8 @@ def _kinematic_symbols():
     for m in model.MOTIONS:
         exprs += [m.theta, m.thetad, m.thetadd, m.period, m.step_period]
         exprs += [c.equation for c in m.coordinates] + [x for c in m.coordinates for x in c.start]
+        if m.coordinates:           # a driven crank's equation reads the torque its load demands
+            exprs.append(next(o for o in outputs.OUTPUTS if o.name == "torque").build({}))
     used = set().union(*(sp.sympify(e).free_symbols for e in exprs if e is not None))
     return tuple(sym for sym in parameter_symbols().values() if sym in used)
 

@@ -30,6 +30,9 @@ class MechanismFields:
     rocker_mass: object = None
     rocker_centre: object = None
     rocker_inertia: object = None
+    crank_mass: object = None
+    crank_centre: object = None
+    crank_inertia: object = None
     cam_height: object = None
     cam_wavelength: object = None
     inclination: object = None
@@ -55,6 +58,9 @@ class CaseFields:
     rocker_mass: object = None
     rocker_centre: object = None
     rocker_inertia: object = None
+    crank_mass: object = None
+    crank_centre: object = None
+    crank_inertia: object = None
     cam_height: object = None
     cam_wavelength: object = None
     inclination: object = None
@@ -107,6 +113,9 @@ class SIFields:
     rocker_mass: object = None
     rocker_centre: object = None
     rocker_inertia: object = None
+    crank_mass: object = None
+    crank_centre: object = None
+    crank_inertia: object = None
     cam_height: object = None
     cam_wavelength: object = None
     inclination: object = None

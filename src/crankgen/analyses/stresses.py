@@ -227,7 +227,8 @@ class PeakLoad:
 
 def peak_loads(result, scales: Optional[Scales] = None):
     """The driving torque of largest magnitude, and the largest joint forces |F| over a result (the
-    pins at A and B, the guide or the rocker at its tip, and a rocker's ground pivot), with when:
+    pins at A and B, the guide or the rocker at its tip, a rocker's ground pivot, and the crank's
+    bearing when the crank has a mass), with when:
     crankgen's units, or SI with `scales`."""
     from ..declaration import schema
 
@@ -247,6 +248,8 @@ def peak_loads(result, scales: Optional[Scales] = None):
              (at_b[0], (at_b[1] + "_x", at_b[1] + "_y")), (guide[0], (guide[1] + "_x", guide[1] + "_y"))]
     if here in schema.OUTPUTS["ground_on_rocker_x"].guides:
         loads.append(("pivot force (ground on rocker)", ("ground_on_rocker_x", "ground_on_rocker_y")))
+    if getattr(result.case, "crank_mass", 0.0):           # else the pin force at A, bit for bit
+        loads.append(("main bearing force (ground on crank)", ("ground_on_crank_x", "ground_on_crank_y")))
     for name, parts in loads:
         values = [np.asarray(result.quantity(p), dtype=float) * factor(schema.OUTPUTS[p].units) for p in parts]
         magnitude = np.sqrt(sum(v ** 2 for v in values))
