@@ -118,7 +118,7 @@ def test_iteration_matrix_factorizations_agree_on_a_real_step():
     rng = np.random.default_rng(5)
     d, v, a = (1e-4 * rng.standard_normal(b.N) for _ in range(3))
     kb, dofs, l = b.meshdata.kb, b.meshdata.dofs, b.meshdata.l
-    w = engine.make_work(n, b.N, kb, N, b.meshdata.slots)
+    w = engine.make_work(n, b.N, kb, N)
     sel, cf, params = b.records.select[0], b.records.coef[0], b.records.params[0]
 
     def loop(mode, cv, cd):

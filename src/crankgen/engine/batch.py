@@ -14,7 +14,7 @@ import numpy as np
 
 from ..discrete import kinematics as _kinematics
 from ..discrete import newton, time_scheme
-from ..discrete.mesh import components_of, element_slots
+from ..discrete.mesh import components_of
 from ..declaration import schema, torque_curve
 from ..results.outputs import primitive_data
 from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
@@ -103,8 +103,7 @@ class Batch:
             np.array([k for k, _ in grams], dtype=np.int64),
             np.ascontiguousarray(np.array([G for _, G in grams], dtype=float).reshape(len(grams), NDOF, NDOF)),
             self.mesh.n_rod, self.mesh.crank_coordinate, self.mesh.motor_coordinate,
-            np.array(self.mesh.holders(PIN)[0][1], dtype=np.int64),
-            np.array(element_slots(0, self.mesh.components) + element_slots(1, self.mesh.components), dtype=np.int64))
+            np.array(self.mesh.holders(PIN)[0][1], dtype=np.int64))
 
     @property
     def dt(self):
@@ -158,7 +157,7 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, 
     N = D0.shape[1]
     kern, cases, mesh = borrowed_kernels(kern), borrowed_cases(cases), borrowed_mesh(mesh)    # the caller's
     for b in range(lo, hi):
-        owned = make_work(n, N, mesh.kb, mesh.n_rod, mesh.slots)
+        owned = make_work(n, N, mesh.kb, mesh.n_rod)
         w = borrowed_work(owned)
         sel, params = cases.select[b], cases.params[b]
         dt = cases.dt[b]
@@ -234,7 +233,7 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, 
 @jit
 def _initial_accelerations(kern, cases, mesh, lo, hi, t0, step0, D0, V0, A0, status):
     n, N = mesh.dofs.shape[0], D0.shape[1]
-    w = make_work(n, N, mesh.kb, mesh.n_rod, mesh.slots)
+    w = make_work(n, N, mesh.kb, mesh.n_rod)
     for b in range(lo, hi):
         if not initial_acceleration(kern, cases, b, mesh, t0[b] + step0 * cases.dt[b], D0[b], V0[b], A0[b], w):
             status[b] = SINGULAR

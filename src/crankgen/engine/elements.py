@@ -190,12 +190,9 @@ def _lane_loop(add, e0, e1, kern, sel, coef, params, dofs, l, d, v, acc, cv, cd,
     time: each group's nodal states gathered into a lane buffer of w.lanes (an element holding the
     mapped constraint's node through its map, its state kept in w.qc; unused lanes at rest), the
     lane function of each family slot called once, the terms copied into w.rE[e] and (by add)
-    w.SE[e] or w.KE[e], w.CE[e], w.ME[e].  Only the entries of the node's components (w.slots) are
-    written, zeroed and copied: the others (chi without the exact rod) stay zero everywhere."""
+    w.SE[e] or w.KE[e], w.CE[e], w.ME[e]."""
     q, qd, qdd, kin, rod = w.q, w.qd, w.qdd, w.kin, kern.rod
     rE, SE, KE, CE, ME = w.rE, w.SE, w.KE, w.CE, w.ME
-    slots = w.slots
-    ns = slots.shape[0]
     for c in range(e0, e1, LANES):
         b = w.lanes[(c - e0) // LANES]
         m = min(LANES, e1 - c)
@@ -206,84 +203,53 @@ def _lane_loop(add, e0, e1, kern, sel, coef, params, dofs, l, d, v, acc, cv, cd,
                 h = w.mapped[e]
                 if h >= 0:
                     _map_held(kern, sel, params, h, q, qd, qdd, w)
-                for a in range(ns):
-                    k = slots[a]
+                for k in range(NDOF):
                     b[(LQ + k) * LANES + j] = q[k]
                     b[(LQD + k) * LANES + j] = qd[k]
                     b[(LQDD + k) * LANES + j] = qdd[k]
             else:
-                for a in range(ns):
-                    k = slots[a]
+                for k in range(NDOF):
                     b[(LQ + k) * LANES + j] = 0.0
                     b[(LQD + k) * LANES + j] = 0.0
                     b[(LQDD + k) * LANES + j] = 0.0
             b[LGEO * LANES + j] = l
             b[(LGEO + 1) * LANES + j] = e * l
-        for a in range(ns):
-            row = (LR + slots[a]) * LANES
-            for i in range(row, row + LANES):
-                b[i] = 0.0
+        for i in range(LR * LANES, (LR + NDOF) * LANES):
+            b[i] = 0.0
         if add == ADD_NEWMARK:
-            _zero_blocks(b, LS, LS, LS, 1, slots)
+            for i in range(LS * LANES, (LS + NDOF * NDOF) * LANES):
+                b[i] = 0.0
         elif add != ADD_RESIDUAL:
-            _zero_blocks(b, LK, LC, LM, 3, slots)
+            for block in (LK, LC, LM):
+                for i in range(block * LANES, (block + NDOF * NDOF) * LANES):
+                    b[i] = 0.0
         for k in range(N_ROD):
             if sel[k] >= 0:
                 call(rod, k, (add, b, coef, kin, cv, cd))
         for j in range(m):
             e = c + j
-            for a in range(ns):
-                i = slots[a]
+            for i in range(NDOF):
                 rE[e, i] = b[(LR + i) * LANES + j]
             if add == ADD_NEWMARK:
-                for a in range(ns):
-                    i = slots[a]
-                    for a2 in range(ns):
-                        i2 = slots[a2]
-                        SE[e, i, i2] = b[(LS + i * NDOF + i2) * LANES + j]
+                for i in range(NDOF * NDOF):
+                    SE[e, i // NDOF, i % NDOF] = b[(LS + i) * LANES + j]
             elif add != ADD_RESIDUAL:
-                for a in range(ns):
-                    i = slots[a]
-                    for a2 in range(ns):
-                        i2 = slots[a2]
-                        x = (i * NDOF + i2) * LANES + j
-                        KE[e, i, i2] = b[LK * LANES + x]
-                        CE[e, i, i2] = b[LC * LANES + x]
-                        ME[e, i, i2] = b[LM * LANES + x]
-
-
-def _zero_blocks(b, first, second, third, count, slots):
-    """Zero the lanes of the entries (i, j), i and j in slots, of `count` of the NDOF x NDOF blocks
-    starting at rows first, second, third of the lane buffer b."""
-    ns = slots.shape[0]
-    for a in range(ns):
-        for a2 in range(ns):
-            x = (slots[a] * NDOF + slots[a2]) * LANES
-            for i in range(first * LANES + x, first * LANES + x + LANES):
-                b[i] = 0.0
-            if count > 1:
-                for i in range(second * LANES + x, second * LANES + x + LANES):
-                    b[i] = 0.0
-                for i in range(third * LANES + x, third * LANES + x + LANES):
-                    b[i] = 0.0
-
-
-_zero_blocks = jit(_zero_blocks, inline="always", python=False)
+                for i in range(NDOF * NDOF):
+                    KE[e, i // NDOF, i % NDOF] = b[(LK + i) * LANES + j]
+                    CE[e, i // NDOF, i % NDOF] = b[(LC + i) * LANES + j]
+                    ME[e, i // NDOF, i % NDOF] = b[(LM + i) * LANES + j]
 
 
 _lane_loop = jit(_lane_loop, python=False)
 
 
 @jit(python=False)
-def iteration_matrices(ME, CE, KE, cv, cd, SE, e0, e1, slots):
+def iteration_matrices(ME, CE, KE, cv, cd, SE, e0, e1):
     """SE[e] = M_e + cv C_e + cd K_e, the element part of the iteration matrix of eq. (37), for
-    e0 <= e < e1, at the entries of the node's components (slots; the others stay zero)."""
-    ns = slots.shape[0]
+    e0 <= e < e1."""
     for e in range(e0, e1):
-        for a in range(ns):
-            i = slots[a]
-            for a2 in range(ns):
-                j = slots[a2]
+        for i in range(NDOF):
+            for j in range(NDOF):
                 SE[e, i, j] = ME[e, i, j] + cv * CE[e, i, j] + cd * KE[e, i, j]
 
 
@@ -352,9 +318,9 @@ def _element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv
                     CE[e, i, j] = C[i, j]
                     ME[e, i, j] = M[i, j]
         if mode == NEWMARK and apart:   # a holding element's own iteration matrix
-            iteration_matrices(ME, CE, KE, cv, cd, SE, e, e + 1, w.slots)
+            iteration_matrices(ME, CE, KE, cv, cd, SE, e, e + 1)
     if mode == NEWMARK and not apart:   # with printed matrices every element's
-        iteration_matrices(ME, CE, KE, cv, cd, SE, 0, n, w.slots)
+        iteration_matrices(ME, CE, KE, cv, cd, SE, 0, n)
 
 
 @jit(python=False)
@@ -369,8 +335,6 @@ def step_outputs(kern, sel, params, p, mesh, d, w, out):
     n = dofs.shape[0]
     N = d.shape[0]
     q, prims = w.q, w.prims
-    slots_used = mesh.slots             # the node's components (the other entries are zero)
-    ns = slots_used.shape[0]
     for k in range(prims.shape[0]):
         prims[k] = 0.0
     for e in range(n):
@@ -393,15 +357,12 @@ def step_outputs(kern, sel, params, p, mesh, d, w, out):
         for j in range(mesh.point_slots.shape[0]):
             if mesh.point_elements[j] == e:
                 k = mesh.point_slots[j]
-                for a in range(ns):
-                    i = slots_used[a]
+                for i in range(NDOF):
                     prims[k] += mesh.point_weights[j, i] * q[i]
         for g in range(mesh.gram_slots.shape[0]):
             k = mesh.gram_slots[g]
-            for a in range(ns):
-                i = slots_used[a]
-                for a2 in range(ns):
-                    jj = slots_used[a2]
+            for i in range(NDOF):
+                for jj in range(NDOF):
                     prims[k] += q[i] * mesh.grams[g, i, jj] * q[jj]
     per_step(prims, w.q_end, p, out)
 

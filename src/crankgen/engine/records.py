@@ -20,10 +20,7 @@
   and the state's layout: `n_rod` nodal co-ordinates (the band), then the motion's declared
   co-ordinates (records.Coordinate: `crank_index`, the index among them of the crank angle, -1
   none; `motor_index`, of the one a torque curve drives), and the crank pin's eliminated slots of element 0
-  (`pin_slots`: its reaction, which the co-ordinates' equations read); `slots`, the places of the
-  node's components in an element's nodal vector (both nodes: 6 of the 8 without chi, all 8 for
-  the exact rod): the only entries of the element arrays the engine's loops touch (the others are
-  zero in every element: the shape functions vanish there and the DOF map drops them).
+  (`pin_slots`: its reaction, which the co-ordinates' equations read).
 - Scheme: the Newton tolerance and iteration limit.
 - Work: the scratch arrays of one case's Newmark steps (allocated once per case and reused).
 Every record is a namedtuple of arrays and numbers: numba compiles them as such, and with
@@ -64,8 +61,7 @@ Cases = namedtuple("Cases", ["select", "coef", "params", "dt", "p", "scheme", "p
                              "curve_n"])
 
 MeshData = namedtuple("MeshData", ["dofs", "kb", "l", "point_slots", "point_elements", "point_weights",
-                                   "gram_slots", "grams", "n_rod", "crank_index", "motor_index", "pin_slots",
-                                   "slots"])
+                                   "gram_slots", "grams", "n_rod", "crank_index", "motor_index", "pin_slots"])
 
 Scheme = namedtuple("Scheme", ["tol", "max_iter"])
 
@@ -84,7 +80,6 @@ Work = namedtuple("Work", [
     "qc", "qdc", "qddc", "Ec",          # per holding element: its mapped nodal state and map values
     "px", "pr",                         # the projection's scratch: eliminated entries (3, K_ELIM), reduced (3, M_RED)
     "dp", "vp",                         # a step's predictors (N)
-    "slots",                            # the element's slots of the node's components (MeshData.slots)
     # the border of the declared co-ordinates (m of them; the state is the n_rod nodal co-ordinates, then them)
     "zin", "pin", "geq", "geq1",        # the co-ordinate kernel's z (3 m) and pin force (2); its rows (m, 3 m + 3)
     "R0", "Yb", "Cb", "Sm", "gz",       # residual (n_rod); S^-1 B (m, n_rod); C^T (m, n_rod); Schur complement (m, m); dz
@@ -119,10 +114,9 @@ def _condensation(n):
 condensation = jit(_condensation)                # called by make_work, compiled or not
 
 
-def _make_work(n, N, kb, n_rod, slots):
+def _make_work(n, N, kb, n_rod):
     """Work arrays for n elements, N reduced DOFs of which n_rod nodal ones (the rest the declared
-    co-ordinates), bandwidth kb; slots: the places of the node's components in an element's nodal
-    vector (MeshData.slots), the only entries of the element arrays the loops touch."""
+    co-ordinates), bandwidth kb."""
     mapped, held, held_slots, held_reduced = condensation(n)
     m = N - n_rod
     h = held.shape[0]
@@ -136,7 +130,7 @@ def _make_work(n, N, kb, n_rod, slots):
                 np.zeros((NDOF, NDOF)), np.zeros(((n + LANES - 1) // LANES, LANE_SIZE)), np.zeros(N_PRIMITIVES),
                 np.zeros(K_ELIM), mapped, held, held_slots, held_reduced, np.zeros((h, NDOF)), np.zeros((h, NDOF)),
                 np.zeros((h, NDOF)), np.zeros((h, END_ROWS, K_ELIM)), np.zeros((3, K_ELIM)), np.zeros((3, M_RED)),
-                np.zeros(N), np.zeros(N), slots.copy(),
+                np.zeros(N), np.zeros(N),
                 np.zeros(3 * m), np.zeros(2), np.zeros((m, 3 * m + 3)), np.zeros((m, 3 * m + 3)),
                 np.zeros(n_rod), np.zeros((m, n_rod)), np.zeros((m, n_rod)), np.zeros((m, m)), np.zeros(m))
 

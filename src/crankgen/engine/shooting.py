@@ -116,7 +116,7 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
         width = (ncol + PAD - 1) // PAD * PAD if with_j else 0
         P = S                                       # the parameter column
         ratio = (1.0 - af) / (1.0 - am)
-        owned = make_work(n, N, kb, mesh.n_rod, mesh.slots)
+        owned = make_work(n, N, kb, mesh.n_rod)
         w = borrowed_work(owned)
         sel, coef, params = cases.select[b], cases.coef[b], cases.params[b]
         dt = cases.dt[b]
@@ -187,7 +187,7 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
                 assemble_band(dofs, kb, w.ME, w.CE, w.KE, 0.0, 1.0, 0.0, Cb)
                 fixed = False
                 if kb == KB_FIXED:
-                    iteration_matrices(w.ME, w.CE, w.KE, cv, cd, w.SE, 0, dofs.shape[0], w.slots)
+                    iteration_matrices(w.ME, w.CE, w.KE, cv, cd, w.SE, 0, dofs.shape[0])
                     assemble_fixed(dofs, w.SE, w.F, N)
                     fixed = factor_fixed(w.F, N, w.diag)
                 if not fixed:
