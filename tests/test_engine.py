@@ -85,20 +85,38 @@ def _band_matrix(rng, N, kb, diagonal):
     return A
 
 
-def test_fixed_bandwidth_solver_matches_dense_solve_and_refuses_small_pivots():
+@pytest.mark.parametrize("kb", engine.FIXED_WIDTHS)
+def test_fixed_bandwidth_solver_matches_dense_solve_and_refuses_small_pivots(kb):
     rng = np.random.default_rng(4)
-    N, kb = 23, engine.KB_FIXED
+    N = 23
     A = _band_matrix(rng, N, kb, 8.0 + rng.uniform(size=N))   # positive definite symmetric part
     F, diag = np.zeros((N + kb, 2 * kb + 1)), np.zeros(N)
     F[N:, kb] = 1.0
     for i in range(N):
         for j in range(max(0, i - kb), min(N, i + kb + 1)):
             F[i, j - i + kb] = A[i, j]
+    F0 = F.copy()
     assert engine.factor_fixed(F, N, diag)
     b = np.concatenate([rng.standard_normal(N), np.full(kb, np.nan)])     # padding is reset
     x = b.copy()
     engine.solve_fixed(F, N, x)
     np.testing.assert_allclose(x[:N], scipy.linalg.solve(A, b[:N]), rtol=1e-11, atol=1e-13)
+    B = rng.standard_normal((N, 3))                     # the shooting's tangent solves: many columns
+    X = B.copy()
+    engine.solve_fixed_columns(F, X)
+    np.testing.assert_allclose(X, scipy.linalg.solve(A, B), rtol=1e-11, atol=1e-13)
+    # the same matrix assembled from element matrices (consecutive blocks of kb + 1 DOFs)
+    n = N - kb
+    dofs = np.full((n, schema.ELEMENT_DOFS), N + 100, dtype=np.int64)     # >= N: left out
+    dofs[:, :kb + 1] = np.arange(n)[:, None] + np.arange(kb + 1)
+    SE = np.zeros((n, schema.ELEMENT_DOFS, schema.ELEMENT_DOFS))
+    for i in range(N):                  # each entry of A given to the first element holding it
+        for j in range(max(0, i - kb), min(N, i + kb + 1)):
+            e = min(min(i, j), n - 1)
+            SE[e, i - e, j - e] = A[i, j]
+    G = np.full_like(F, np.nan)
+    engine.assemble_fixed(dofs, SE, G, N)
+    np.testing.assert_array_equal(G, F0)
     # matrices that need row interchanges are refused, so that the step falls back to band_factor
     for k, value in ((3, 0.0), (0, 1e-9)):      # zero diagonal; tiny first pivot (huge multipliers)
         B = A.copy()
@@ -110,14 +128,18 @@ def test_fixed_bandwidth_solver_matches_dense_solve_and_refuses_small_pivots():
         assert not engine.factor_fixed(F, N, diag)
 
 
-def test_iteration_matrix_factorizations_agree_on_a_real_step():
-    """The iteration matrix of a 16-element case: fixed-bandwidth LU = pivoted band LU = dense."""
-    case = Case(omega=0.8, n_elements=16, damping="kelvin-voigt", membrane="pointwise")
+@pytest.mark.parametrize("model, kb", [("consistent", 5), ("exact", 7)])
+def test_iteration_matrix_factorizations_agree_on_a_real_step(model, kb):
+    """The iteration matrix of a 16-element case (nodes (u, v, psi): bandwidth 5; the exact rod's
+    (u, v, psi, chi): 7): fixed-bandwidth LU = pivoted band LU = dense."""
+    fields = dict(damping="kelvin-voigt", membrane="pointwise") if model == "consistent" else {}
+    case = Case(model=model, omega=0.8, n_elements=16, **fields)
     b = engine.Batch([case])
+    assert b.meshdata.kb == kb and engine.fixed_width(kb)
     n, N = 16, b.mesh.n_rod          # the rod's nodal unknowns; the crank's co-ordinate follows them
     rng = np.random.default_rng(5)
     d, v, a = (1e-4 * rng.standard_normal(b.N) for _ in range(3))
-    kb, dofs, l = b.meshdata.kb, b.meshdata.dofs, b.meshdata.l
+    dofs, l = b.meshdata.dofs, b.meshdata.l
     w = engine.make_work(n, b.N, kb, N)
     sel, cf, params = b.records.select[0], b.records.coef[0], b.records.params[0]
 
@@ -140,10 +162,10 @@ def test_iteration_matrix_factorizations_agree_on_a_real_step():
                 if dofs[e, i] < N and dofs[e, j] < N:
                     A[dofs[e, i], dofs[e, j]] += SE[e, i, j]
     rhs = rng.standard_normal(N)
-    F, diag = np.zeros((N + 5, 11)), np.zeros(N)
+    F, diag = np.zeros((N + kb, 2 * kb + 1)), np.zeros(N)
     engine.assemble_fixed(dofs, SE, F, N)
     assert engine.factor_fixed(F, N, diag)
-    x = np.concatenate([rhs, np.zeros(5)])
+    x = np.concatenate([rhs, np.zeros(kb)])
     engine.solve_fixed(F, N, x)
     W = np.zeros((N, 3 * kb + 1))
     engine.assemble_band_newmark(dofs, kb, SE, W)

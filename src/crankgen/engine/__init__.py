@@ -23,8 +23,9 @@ the same numbers and the same iteration counts.
 """
 
 
-from .banded import (KB_FIXED, assemble_band, assemble_band_newmark, assemble_fixed, assemble_vector,  # noqa: F401
-                     band_factor, band_lu_solve, band_matmul, band_solve, factor_fixed, solve_fixed)
+from .banded import (FIXED_WIDTHS, KB_FIXED, assemble_band, assemble_band_newmark, assemble_fixed, assemble_vector,  # noqa: F401
+                     band_factor, band_lu_solve, band_matmul, band_solve, factor_fixed, fixed_width, solve_fixed,
+                     solve_fixed_columns)
 from .compiled import CACHE, CODE_HASH, KERNELS_HASH, is_warm  # noqa: F401
 from .coordinates import hermite  # noqa: F401
 from .elements import FULL, NEWMARK, RESIDUAL, element_terms  # noqa: F401

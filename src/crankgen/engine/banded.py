@@ -3,7 +3,7 @@
 Row band storage W[i, j - i + kb] of a matrix of bandwidth kb.  band_factor / band_lu_solve: LU with
 partial pivoting (like LAPACK gbtrf/gbtrs; width 3 kb + 1 for the fill of row interchanges).
 factor_fixed / solve_fixed: a padded, fixed-bandwidth LU without pivoting for the Newton-Newmark
-iteration matrices (see the note before KB_FIXED).
+iteration matrices, compiled for each bandwidth of FIXED_WIDTHS (see the note before KB_FIXED).
 """
 
 import numpy as np
@@ -136,23 +136,25 @@ def band_solve(W, kb, B):
 
 # Iteration matrices have a positive definite symmetric part (mass + beta dt^2 stiffness +
 # gamma dt damping, with skew gyroscopic terms), for which LU without pivoting is stable.  With the
-# element DOFs on consecutive indices the bandwidth is 5 (n_elements >= 2), and a fixed-width,
-# padded LU without pivoting is several times faster than the general pivoted one.  It is used
-# when every pivot keeps at least PIVOT_RATIO of its (non-zero) original diagonal entry and no
-# multiplier exceeds MAX_MULTIPLIER (no large element growth); otherwise the step falls back to
-# band_factor (partial pivoting).  The converged state does not depend on it: the residual is exact,
-# the factorization only steers the iteration.
-KB_FIXED = 5
+# element DOFs on consecutive indices the bandwidth is 5 for nodes (u, v, psi) and 7 for the exact
+# rod's (u, v, psi, chi) (n_elements >= 2), and a padded LU without pivoting, compiled for each of
+# these widths (the width a constant: numba unrolls its loops), is several times faster than the
+# general pivoted one.  It is used when every pivot keeps at least PIVOT_RATIO of its (non-zero)
+# original diagonal entry and no multiplier exceeds MAX_MULTIPLIER (no large element growth);
+# otherwise the step falls back to band_factor (partial pivoting).  The converged state does not
+# depend on it: the residual is exact, the factorization only steers the iteration.
+KB_FIXED = 5                    # the default models' bandwidth
+FIXED_WIDTHS = (5, 7)           # the bandwidths with a fixed-width LU (5, and 7: the exact rod's)
 PIVOT_RATIO = 1e-6
 MAX_MULTIPLIER = 1e3
+KB = KB_FIXED                   # the width of the functions below; each compiled copy binds its own
 
 
-@jit
-def assemble_fixed(dofs, SE, F, N):
-    """F[i, j - i + 5] = A[i, j] (F: (N + 5, 11)); rows N.. are identity padding."""
+def _assemble_fixed(dofs, SE, F, N):
+    """F[i, j - i + KB] = A[i, j] (F: (N + KB, 2 KB + 1)); rows N.. are identity padding."""
     F[:, :] = 0.0
     for i in range(N, F.shape[0]):
-        F[i, KB_FIXED] = 1.0
+        F[i, KB] = 1.0
     for e in range(dofs.shape[0]):
         for i in range(NDOF):
             gi = dofs[e, i]
@@ -161,47 +163,117 @@ def assemble_fixed(dofs, SE, F, N):
             for j in range(NDOF):
                 gj = dofs[e, j]
                 if gj < N:
-                    F[gi, gj - gi + KB_FIXED] += SE[e, i, j]
+                    F[gi, gj - gi + KB] += SE[e, i, j]
 
 
-@jit
-def factor_fixed(F, N, diag):
-    """In-place LU without pivoting of the padded bandwidth-5 matrix F (assemble_fixed).  Returns
-    False (F then unusable) if a diagonal entry is zero, a pivot falls below PIVOT_RATIO times its
-    diagonal entry or a multiplier exceeds MAX_MULTIPLIER."""
+def _factor_fixed(F, N, diag):
+    """In-place LU without pivoting of the padded bandwidth-KB matrix F (assemble_fixed)."""
     for k in range(N):
-        diag[k] = abs(F[k, KB_FIXED])
+        diag[k] = abs(F[k, KB])
     for k in range(N):
-        pivot = F[k, KB_FIXED]
+        pivot = F[k, KB]
         if not (abs(pivot) > PIVOT_RATIO * diag[k] and diag[k] > 0.0) or not np.isfinite(pivot):
             return False
         inv = 1.0 / pivot
-        for ii in range(1, KB_FIXED + 1):
+        for ii in range(1, KB + 1):
             i = k + ii
-            o = KB_FIXED - ii
+            o = KB - ii
             f = F[i, o] * inv
             if abs(f) > MAX_MULTIPLIER:
                 return False
             F[i, o] = f
-            for j in range(1, KB_FIXED + 1):
-                F[i, o + j] -= f * F[k, KB_FIXED + j]
+            for j in range(1, KB + 1):
+                F[i, o + j] -= f * F[k, KB + j]
     return True
 
 
-@jit
-def solve_fixed(F, N, b):
-    """Solve with the factors of factor_fixed; b: (N + 5,) right-hand side, overwritten."""
+def _solve_fixed(F, N, b):
+    """Solve with the factors of factor_fixed; b: (N + KB,), overwritten."""
     for i in range(N, b.shape[0]):
         b[i] = 0.0
     for k in range(N):
         bk = b[k]
-        for ii in range(1, KB_FIXED + 1):
-            b[k + ii] -= F[k + ii, KB_FIXED - ii] * bk
+        for ii in range(1, KB + 1):
+            b[k + ii] -= F[k + ii, KB - ii] * bk
     for i in range(N - 1, -1, -1):
         s = b[i]
-        for j in range(1, KB_FIXED + 1):
-            s -= F[i, KB_FIXED + j] * b[i + j]
-        b[i] = s / F[i, KB_FIXED]
+        for j in range(1, KB + 1):
+            s -= F[i, KB + j] * b[i + j]
+        b[i] = s / F[i, KB]
+
+
+def _solve_fixed_columns(F, B):
+    """Solve with the factors of factor_fixed for B (N, m), in place."""
+    N, m = B.shape
+    for k in range(N):
+        for ii in range(1, min(KB, N - 1 - k) + 1):
+            f = F[k + ii, KB - ii]
+            for c in range(m):
+                B[k + ii, c] -= f * B[k, c]
+    for i in range(N - 1, -1, -1):
+        for j in range(1, min(KB, N - 1 - i) + 1):
+            u = F[i, KB + j]
+            for c in range(m):
+                B[i, c] -= u * B[i + j, c]
+        piv = F[i, KB]
+        for c in range(m):
+            B[i, c] /= piv
+
+
+def _width_copies(fn):
+    """fn compiled once per width of FIXED_WIDTHS, KB bound to it (named fn_5, fn_7)."""
+    return tuple(jit(fn, name=f"{fn.__name__[1:]}_{kb}", namespace={"KB": kb}, python=False)
+                 for kb in FIXED_WIDTHS)
+
+
+_assemble_5, _assemble_7 = _width_copies(_assemble_fixed)
+_factor_5, _factor_7 = _width_copies(_factor_fixed)
+_solve_5, _solve_7 = _width_copies(_solve_fixed)
+_columns_5, _columns_7 = _width_copies(_solve_fixed_columns)
+_WIDE = 2 * FIXED_WIDTHS[1] + 1         # the columns of F for the wider width
+
+
+@jit
+def fixed_width(kb):
+    """Whether bandwidth kb has a fixed-width LU (one of FIXED_WIDTHS)."""
+    return kb == FIXED_WIDTHS[0] or kb == FIXED_WIDTHS[1]
+
+
+@jit
+def assemble_fixed(dofs, SE, F, N):
+    """F[i, j - i + kb] = A[i, j] (F: (N + kb, 2 kb + 1), kb of FIXED_WIDTHS); rows N.. are identity padding."""
+    if F.shape[1] == _WIDE:
+        _assemble_7(dofs, SE, F, N)
+    else:
+        _assemble_5(dofs, SE, F, N)
+
+
+@jit
+def factor_fixed(F, N, diag):
+    """In-place LU without pivoting of the padded band matrix F (assemble_fixed; its bandwidth kb of
+    FIXED_WIDTHS from its shape).  Returns False (F then unusable) if a diagonal entry is zero, a
+    pivot falls below PIVOT_RATIO times its diagonal entry or a multiplier exceeds MAX_MULTIPLIER."""
+    if F.shape[1] == _WIDE:
+        return _factor_7(F, N, diag)
+    return _factor_5(F, N, diag)
+
+
+@jit
+def solve_fixed(F, N, b):
+    """Solve with the factors of factor_fixed; b: (N + kb,) right-hand side, overwritten."""
+    if F.shape[1] == _WIDE:
+        _solve_7(F, N, b)
+    else:
+        _solve_5(F, N, b)
+
+
+@jit
+def solve_fixed_columns(F, B):
+    """Solve with the factors of factor_fixed for B (N, m), in place."""
+    if F.shape[1] == _WIDE:
+        _columns_7(F, B)
+    else:
+        _columns_5(F, B)
 
 
 @jit(python=False)

@@ -32,7 +32,6 @@ from collections import namedtuple
 import numpy as np
 
 from ..declaration import schema
-from .banded import KB_FIXED
 from .compiled import jit
 
 NDOF = schema.ELEMENT_DOFS
@@ -67,9 +66,9 @@ Scheme = namedtuple("Scheme", ["tol", "max_iter"])
 
 Work = namedtuple("Work", [
     "rE", "SE", "KE", "CE", "ME",       # element residuals, iteration and tangent matrices
-    "R", "rhs",                         # assembled residual, right-hand side / solution (N + 5, 1)
+    "R", "rhs",                         # assembled residual, right-hand side / solution (n_rod + kb, 1)
     "W", "piv", "ext",                  # pivoted band LU storage
-    "F", "diag",                        # fixed-bandwidth LU storage
+    "F", "diag",                        # fixed-bandwidth LU storage (n_rod + kb, 2 kb + 1) (banded.py)
     "kin", "crank",                     # kinematics vector; (theta, thetad, thetadd)
     "q", "qd", "qdd", "geo",            # one element's nodal vectors and (l, x0)
     "send", "E",                        # the end map's (s, sd, sdd) and its (8, 2) values
@@ -121,9 +120,9 @@ def _make_work(n, N, kb, n_rod):
     m = N - n_rod
     h = held.shape[0]
     return Work(np.zeros((n, NDOF)), np.zeros((n, NDOF, NDOF)), np.zeros((n, NDOF, NDOF)),
-                np.zeros((n, NDOF, NDOF)), np.zeros((n, NDOF, NDOF)), np.zeros(n_rod), np.zeros((n_rod + KB_FIXED, 1)),
+                np.zeros((n, NDOF, NDOF)), np.zeros((n, NDOF, NDOF)), np.zeros(n_rod), np.zeros((n_rod + kb, 1)),
                 np.zeros((n_rod, 3 * kb + 1)), np.zeros(n_rod, dtype=np.int64), np.zeros(n_rod, dtype=np.int64),
-                np.zeros((n_rod + KB_FIXED, 2 * KB_FIXED + 1)), np.zeros(n_rod), np.zeros(N_KIN), np.zeros(3),
+                np.zeros((n_rod + kb, 2 * kb + 1)), np.zeros(n_rod), np.zeros(N_KIN), np.zeros(3),
                 np.zeros(NDOF), np.zeros(NDOF), np.zeros(NDOF), np.zeros(2), np.zeros(3 * M_RED),
                 np.zeros((END_ROWS, K_ELIM)),
                 np.zeros(NDOF), np.zeros((NDOF, NDOF)), np.zeros((NDOF, NDOF)), np.zeros((NDOF, NDOF)),

@@ -12,8 +12,8 @@ band LU: banded.py)."""
 import numpy as np
 
 from ..discrete import newton
-from .banded import (KB_FIXED, assemble_band, assemble_fixed, assemble_vector, band_factor, band_lu_solve,
-                     factor_fixed)
+from .banded import (assemble_band, assemble_fixed, assemble_vector, band_factor, band_lu_solve, factor_fixed,
+                     fixed_width, solve_fixed_columns)
 from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
 from .compiled import jit
 from .elements import FULL, RESIDUAL, element_loop, iteration_matrices, kinematics, step_outputs
@@ -60,25 +60,6 @@ def _tangent_rhs(Kb, Cb, kb, Dd, Dv, Da):
             cc = Cb[i, j - i + kb]
             for c in range(m):
                 Da[i, c] -= k * Dd[j, c] + cc * Dv[j, c]
-
-
-@jit
-def _solve_fixed_columns(F, B):
-    """Solve with the factors of banded.factor_fixed for B (N, m), in place."""
-    N, m = B.shape
-    for k in range(N):
-        for ii in range(1, min(KB_FIXED, N - 1 - k) + 1):
-            f = F[k + ii, KB_FIXED - ii]
-            for c in range(m):
-                B[k + ii, c] -= f * B[k, c]
-    for i in range(N - 1, -1, -1):
-        for j in range(1, min(KB_FIXED, N - 1 - i) + 1):
-            u = F[i, KB_FIXED + j]
-            for c in range(m):
-                B[i, c] -= u * B[i + j, c]
-        piv = F[i, KB_FIXED]
-        for c in range(m):
-            B[i, c] /= piv
 
 
 @jit
@@ -186,7 +167,7 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
                 assemble_band(dofs, kb, w.ME, w.CE, w.KE, 0.0, 0.0, 1.0, Kb)
                 assemble_band(dofs, kb, w.ME, w.CE, w.KE, 0.0, 1.0, 0.0, Cb)
                 fixed = False
-                if kb == KB_FIXED:
+                if fixed_width(kb):
                     iteration_matrices(w.ME, w.CE, w.KE, cv, cd, w.SE, 0, dofs.shape[0])
                     assemble_fixed(dofs, w.SE, w.F, N)
                     fixed = factor_fixed(w.F, N, w.diag)
@@ -226,7 +207,7 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
                     for i in range(N):
                         Da[i, P] -= g[i]
                 if fixed:
-                    _solve_fixed_columns(w.F, Da)
+                    solve_fixed_columns(w.F, Da)
                 else:
                     band_lu_solve(w.W, kb, w.piv, w.ext, Da)
                 for i in range(N):

@@ -13,8 +13,8 @@ import math
 import numpy as np
 
 from ..discrete import newton, time_scheme
-from .banded import (KB_FIXED, assemble_band, assemble_band_newmark, assemble_fixed, assemble_vector,
-                     band_factor, band_lu_solve, band_solve, factor_fixed, solve_fixed)
+from .banded import (assemble_band, assemble_band_newmark, assemble_fixed, assemble_vector,
+                     band_factor, band_lu_solve, band_solve, factor_fixed, fixed_width, solve_fixed)
 from .compiled import jit
 from .coordinates import (COLUMN_STEP, border_rows, bordered_solve, equations, schur, solve_band,
                           state_kinematics)
@@ -177,7 +177,7 @@ def newmark_step(kern, cases, b, mesh, scheme, t_new, d, v, acc, alg, hist, n_pr
             return NOT_FINITE, it, rnorm
         if refresh:
             fixed = False
-            if kb == KB_FIXED:
+            if fixed_width(kb):
                 assemble_fixed(dofs, w.SE, w.F, n_rod)
                 fixed = factor_fixed(w.F, n_rod, w.diag)
             if not fixed:
