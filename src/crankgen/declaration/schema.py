@@ -121,7 +121,7 @@ def natural_sizes_of(vector):
 
 # a rigid body's own parameters, named after it (crank_mass, crank_centre, crank_inertia): titles
 # list them only away from their defaults (a massless crank by default)
-_BODY_PARAMETERS = tuple(n for n, p in PARAMETERS.items() if p.owner == "mechanism"
+BODY_PARAMETERS = tuple(n for n, p in PARAMETERS.items() if p.owner == "mechanism"
                          and n.split("_")[0] in BODIES and BODIES[n.split("_")[0]].kind == "rigid")
 
 
@@ -142,7 +142,7 @@ def describe(values, skip=()):
             continue
         value = _values.canonical(p, values.get(p.name, p.default))        # a pair from JSON: a list
         item = f"{p.axis} = {_values.text(p, value)}"
-        if p.name in _BODY_PARAMETERS:             # a rigid body's mass, centre, inertia: when given
+        if p.name in BODY_PARAMETERS:             # a rigid body's mass, centre, inertia: when given
             if value != p.default:
                 other.append(item)
         elif (p.owner == "mechanism" and p.kind == "real") or (p.owner == "motion" and p.continuable):
