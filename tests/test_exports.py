@@ -33,7 +33,7 @@ def test_a_four_bars_csv_holds_every_declared_output_of_its_guide(tmp_path):
     steps = [n for n, o in schema.OUTPUTS.items() if o.kind in ("step", "reduction") and "circle" in o.guides]
     fields = [n for n, o in schema.OUTPUTS.items() if o.kind == "field" and "circle" in o.guides]
     pairs = [n[:-2] for n in steps if n.endswith("_x") and n[:-2] + "_y" in steps]     # the joint forces
-    assert pairs == ["crank_on_rod", "rod_on_tip", "rocker_on_tip", "ground_on_rocker"]
+    assert pairs == ["crank_on_rod", "rod_on_tip", "rocker_on_tip", "ground_on_rocker", "ground_on_crank"]
     for p in pairs:                          # each also as magnitude and direction (degrees)
         np.testing.assert_allclose(table[f"{p}_magnitude_rhoA_L2_omega_b2"],
                                    np.hypot(getattr(run, p + "_x"), getattr(run, p + "_y")), rtol=1e-14)

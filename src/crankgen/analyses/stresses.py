@@ -248,7 +248,9 @@ def peak_loads(result, scales: Optional[Scales] = None):
              (at_b[0], (at_b[1] + "_x", at_b[1] + "_y")), (guide[0], (guide[1] + "_x", guide[1] + "_y"))]
     if here in schema.OUTPUTS["ground_on_rocker_x"].guides:
         loads.append(("pivot force (ground on rocker)", ("ground_on_rocker_x", "ground_on_rocker_y")))
-    if getattr(result.case, "crank_mass", 0.0):           # else the pin force at A, bit for bit
+    bearing = [np.asarray(result.quantity(p + "_" + x)) for p in ("ground_on_crank", "crank_on_rod") for x in "xy"]
+    if not (np.array_equal(bearing[0], bearing[2]) and np.array_equal(bearing[1], bearing[3])):
+        # a crank with its own mass: the main bearing no longer carries just the pin's force
         loads.append(("main bearing force (ground on crank)", ("ground_on_crank_x", "ground_on_crank_y")))
     for name, parts in loads:
         values = [np.asarray(result.quantity(p), dtype=float) * factor(schema.OUTPUTS[p].units) for p in parts]

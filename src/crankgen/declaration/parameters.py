@@ -109,6 +109,7 @@ def check_full_turn(values):
     if failed:
         shown = ", ".join(f"{n} = {values.get(n, schema.PARAMETERS[n].default):g}"
                           for n in schema.KINEMATIC_PARAMETERS
+                          if n in schema.PARAMETERS and n not in schema.BODY_PARAMETERS    # the geometry
                           if schema.PARAMETERS[n].owner == "mechanism" or n in guide.parameters
                           if schema.PARAMETERS[n].kind == "real")
         raise ParameterError(f"the crank cannot turn a full revolution: the {guide.name} guide needs "

@@ -119,6 +119,12 @@ def natural_sizes_of(vector):
     return _table.natural_sizes(vector)
 
 
+# a rigid body's own parameters, named after it (crank_mass, crank_centre, crank_inertia): titles
+# list them only away from their defaults (a massless crank by default)
+BODY_PARAMETERS = tuple(n for n, p in PARAMETERS.items() if p.owner == "mechanism"
+                         and n.split("_")[0] in BODIES and BODIES[n.split("_")[0]].kind == "rigid")
+
+
 def describe(values, skip=()):
     """A case's parameters as text, from their records: (main, other), two lists of "axis = value".
     main: the mechanism's real parameters and the continuable parameters of the crank motion;
@@ -126,7 +132,7 @@ def describe(values, skip=()):
     parameter of its geometry or law (a kinematic parameter: "four-bar: rocker length c/L = 0.8,
     ...") and every other one it reads that is not at its default (a rocker's spring or mass), and
     any other parameter entering an equation that is not at its default (gravity, an offset, a
-    start angle).  The run's settings
+    start angle, a rigid crank's mass).  The run's settings
     (mesh, steps, integrator) are left to the caller; `skip`: names left out."""
     chosen = {"guide": selected(values, "guide"), "motion": selected(values, "motion")}
     records = {"guide": GUIDES[chosen["guide"]], "motion": MOTIONS[chosen["motion"]]}
@@ -136,7 +142,10 @@ def describe(values, skip=()):
             continue
         value = _values.canonical(p, values.get(p.name, p.default))        # a pair from JSON: a list
         item = f"{p.axis} = {_values.text(p, value)}"
-        if (p.owner == "mechanism" and p.kind == "real") or (p.owner == "motion" and p.continuable):
+        if p.name in BODY_PARAMETERS:             # a rigid body's mass, centre, inertia: when given
+            if value != p.default:
+                other.append(item)
+        elif (p.owner == "mechanism" and p.kind == "real") or (p.owner == "motion" and p.continuable):
             main.append(item)
         elif p.owner in groups and chosen[p.owner] != PARAMETERS[SELECTOR[p.owner]].default:
             if p.name in KINEMATIC_PARAMETERS or value != p.default:
