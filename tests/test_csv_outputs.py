@@ -29,12 +29,14 @@ def test_simulate_writes_units_a_time_column_and_the_theory_flags(tmp_path):
                     "rod_on_slider_x": "rod_on_slider_x_rhoA_L2_omega_b2",
                     "rod_on_slider_y": "rod_on_slider_y_rhoA_L2_omega_b2",
                     "guide_on_slider_x": "guide_on_slider_x_rhoA_L2_omega_b2",
-                    "guide_on_slider_y": "guide_on_slider_y_rhoA_L2_omega_b2"}
+                    "guide_on_slider_y": "guide_on_slider_y_rhoA_L2_omega_b2",
+                    "ground_on_crank_x": "ground_on_crank_x_rhoA_L2_omega_b2",
+                    "ground_on_crank_y": "ground_on_crank_y_rhoA_L2_omega_b2"}
     reductions = {"kinetic_energy": "kinetic_energy_rhoA_L3_omega_b2",     # the rod's energies, per step
                   "strain_energy": "strain_energy_rhoA_L3_omega_b2"}
     fields = {"axial_force": "axial_force_at_0.5_EI_per_L2", "bending_moment": "bending_moment_at_0.5_EI_per_L",
               "chord_deflection": "chord_deflection_at_0.5_L"}
-    joints = [f"{j}_{q}" for j in ("crank_on_rod", "rod_on_slider", "guide_on_slider")     # the bearing loads
+    joints = [f"{j}_{q}" for j in ("crank_on_rod", "rod_on_slider", "guide_on_slider", "ground_on_crank")  # bearings
               for q in ("magnitude_rhoA_L2_omega_b2", "angle_deg")]
     along = [f"axial_force_at_{x:g}_EI_per_L2" for x in (0, 1)]     # at every node (2 elements; 1/2 above)
     assert list(sim.columns) == (["t_per_omega_b", "theta_deg", "v_mid_r", "u_end_r2_per_L", "extension"]

@@ -354,7 +354,9 @@ PARAM_RANGES = {"a": (0.05, 0.3), "offset": (-0.1, 0.1), "c": (0.7, 0.9), "d": (
                 "fluctuation": (-0.5, 0.5), "order": (2.0, 2.0), "theta0": (-3.0, 3.0),
                 "stall_torque": (0.01, 1.0), "no_load_speed": (0.2, 3.0), "inertia": (0.01, 1.0),
                 "load_torque": (-0.1, 0.1), "initial_speed": (0.0, 3.0),
-                "rotor_inertia": (0.01, 1.0), "shaft_stiffness": (1.0, 100.0), "shaft_damping": (0.0, 0.1)}
+                "rotor_inertia": (0.01, 1.0), "shaft_stiffness": (1.0, 100.0), "shaft_damping": (0.0, 0.1),
+                "gravity[0]": (-0.1, 0.1), "gravity[1]": (-0.1, 0.1), "crank_mass": (0.0, 2.0),
+                "crank_centre": (-0.5, 1.0), "crank_inertia": (0.0, 0.1)}
 OTHER_VECTORS = {"crank": [(0.0, 6.3), (0.2, 3.0), (-1.0, 1.0)], "send": [(-1e-3, 1e-3), (-0.1, 0.1), (-1.0, 1.0)],
                  "q_end": [(-1e-3, 1e-3)] * 2, "qd_end": [(-1e-2, 1e-2)] * 2, "pin": [(-5.0, 5.0)] * 2,
                  "qdd_end": [(-1e-1, 1e-1)] * 2, "end": [(-5.0, 5.0)] * 2, "rod_end": [(-5.0, 5.0)] * 2,
