@@ -66,16 +66,16 @@ def kineto_static(case, t):
     scales = model.mesh.dof_scales(case.natural_sizes, _kinematics.end_scale(case))
     d = np.zeros((t.size, N))
     zero = np.zeros_like(d)
-    for _ in range(NEWTON_ITERATIONS):
-        r, K, _, _ = _dense(model, kin, d, zero, zero)
-        with single_thread():
+    with single_thread():               # the Newton iterations' small dense solves
+        for _ in range(NEWTON_ITERATIONS):
+            r, K, _, _ = _dense(model, kin, d, zero, zero)
             step = -np.linalg.solve(K, r[..., None])[..., 0]
-        d += step
-        if not np.all(np.isfinite(d)):
-            break
-        size = np.max(np.abs(d) / scales, axis=1)
-        if np.all(np.max(np.abs(step) / scales, axis=1) <= NEWTON_TOL * (1 + size)):
-            return RigidResult(case, t, np.asarray(kin.theta, dtype=float), d, zero, zero.copy())
+            d += step
+            if not np.all(np.isfinite(d)):
+                break
+            size = np.max(np.abs(d) / scales, axis=1)
+            if np.all(np.max(np.abs(step) / scales, axis=1) <= NEWTON_TOL * (1 + size)):
+                return RigidResult(case, t, np.asarray(kin.theta, dtype=float), d, zero, zero.copy())
     raise ConvergenceError(f"the rigid mechanism's quasi-static rod did not converge at Omega* = "
                            f"{case.omega:g} (its compression beyond the rod's buckling load?)")
 
