@@ -133,6 +133,11 @@ rocker_tip_weight = (sp.Symbol("wX_rocker", real=True), sp.Symbol("wY_rocker", r
 # the crank's drive supplies (derive/outputs.py: J_O thetadd and the weight's moment, J_O = J_G +
 # m (k a)^2; a motor's equation reads that torque) and the force on the crank's bearing at O
 crank_mass = sp.Symbol("m_crank", nonnegative=True)
+# a flexible rocker's section relative to the coupler's (its rho A, E I and E A over the coupler's):
+# its elements are the coupler's kernels with these coefficients (BODY_COEFFICIENTS)
+rocker_density = sp.Symbol("rhoA_rocker", positive=True)
+rocker_bending = sp.Symbol("EI_rocker", positive=True)
+rocker_axial = sp.Symbol("EA_rocker", positive=True)
 crank_centre = sp.Symbol("k_crank_G", real=True)
 crank_inertia = sp.Symbol("J_crank_G", nonnegative=True)
 
@@ -192,6 +197,19 @@ PARAMETERS = (
               "m_r c^2 / 12), units of rho A L^3; about the pivot it is J_G + m_r (rocker_centre c)^2",
               low=0.0, units="rhoA L^3", continuable=True, symbol=rocker_inertia,
               axis="rocker inertia J_G*"),
+    Parameter("rocker_elements", "count", 0, "rocker_elements (flexible rocker's elements)",
+              "number of elements of a flexible rocker (0: the rocker is rigid); a flexible rocker is a beam "
+              "of the coupler's strain model, pinned at its ground pivot and to the coupler's end, its section "
+              "rocker_density, rocker_bending, rocker_axial", low=0),
+    Parameter("rocker_density", "real", 1.0, "rocker_density (flexible rocker's rho A over the coupler's)",
+              "mass per length of a flexible rocker over the coupler's, rho A_r / (rho A)", low=0.0,
+              low_open=True, units="1", continuable=True, symbol=rocker_density, axis="rocker rho A_r/(rho A)"),
+    Parameter("rocker_bending", "real", 1.0, "rocker_bending (flexible rocker's E I over the coupler's)",
+              "bending stiffness of a flexible rocker over the coupler's, E I_r / (E I)", low=0.0,
+              low_open=True, units="1", continuable=True, symbol=rocker_bending, axis="rocker E I_r/(E I)"),
+    Parameter("rocker_axial", "real", 1.0, "rocker_axial (flexible rocker's E A over the coupler's)",
+              "axial stiffness of a flexible rocker over the coupler's, E A_r / (E A)", low=0.0,
+              low_open=True, units="1", continuable=True, symbol=rocker_axial, axis="rocker E A_r/(E A)"),
     Parameter("crank_mass", "real", 0.0, "crank_mass (crank's mass m_c*)",
               "mass m_c* = m_c/(rho A L) of the rigid crank (0: its mass and inertia left out, or held in a "
               "motor's `inertia`); it changes the driving torque and the crank bearing's force, not the rod's "
@@ -336,6 +354,17 @@ COEFFICIENTS = {
     rocker_tip_weight[0]: rocker_mass * rocker_centre * s.gX,
     rocker_tip_weight[1]: rocker_mass * rocker_centre * s.gY,
 }
+# The coefficients of another flexible body's elements (the same kernels as the coupler's): the
+# coupler's with these replaced.  A flexible rocker: its rho A, E I and E A in the coupler's units, and
+# rho I = rho A_r r_r^2 with r_r^2 = I_r / A_r = (E I_r / E A_r) eps^2 (one material).
+BODY_COEFFICIENTS = {
+    "rocker": {
+        s.rhoA: rocker_density,
+        s.rhoI: with_rotary_inertia * eps**2 * rocker_density * rocker_bending / rocker_axial,
+        s.EA: rocker_axial / (sp.pi**4 * eps**2),
+        s.EI: rocker_bending / sp.pi**4,
+    },
+}
 
 
 # ----------------------------------------------------------------------------------------------
@@ -409,13 +438,30 @@ BODIES = (
                  elements="n_elements", conditional=(("chi", "approach", (EXACT,)),)),
     records.Body("end", "rigid", "the end mass ms* at B on the guide: a slider on a line, a four-bar's rocker "
                  "tip on its circle", "guide"),
+    records.Body("rocker", "flexible", "a four-bar's flexible rocker (rocker_elements > 0): a beam from its "
+                 "ground pivot D to its tip B, its nodes' (u, v, psi, chi) in the frame of the rigid rocker "
+                 "DB (origin D, axis at the rocker angle beta)", "rocker", node=s.NODE,
+                 elements="rocker_elements", conditional=(("chi", "approach", (EXACT,)),), length="c"),
 )
+# The kinematics of a flexible body's frame, as the entries of the mechanism's kinematics vector
+# (derive/symbols.py KINEMATICS) that differ: the rod's kernels read a frame whose origin is the
+# crank pin a e_r and whose axis e_i = (cos phi, -sin phi); the rocker's origin is its fixed pivot
+# (a = 0: the crank terms vanish, gravity's potential changes by a constant) and its axis the
+# rigid rocker's (cos beta, sin beta), phi_r = -beta.
+BODY_FRAMES = {"rocker": {s.a: sp.Integer(0), s.phi: -s.beta, s.phid: -s.betad, s.phidd: -s.betadd}}
 CONSTRAINTS = (
     records.Constraint("pin", 0, ("u", "v"), "the crank pin holds the rod's first node: u = v = 0",
                        body="rod", joint="crank"),
     records.Constraint("end", -1, ("u", "v"), "the guide holds the rod's last node: (u, v) = g(s, t), the "
                        "end map of the case's guide (derive/guides.py), one reduced co-ordinate s",
-                       reduced=("s",), map="end_map", body="rod", joint="end"),
+                       reduced=("s",), map="end_map", body="rod", joint="end", excludes="rocker"),
+    records.Constraint("ground", 0, ("u", "v"), "the ground pivot D holds a flexible rocker's first node: "
+                       "u = v = 0", body="rocker", joint="end", requires="rocker"),
+    records.Constraint("tip", -1, ("u", "v"), "a flexible rocker's tip holds the rod's last node: equal "
+                       "positions at B, u e_i + v e_j = u_r e_ir + v_r e_jr, the reduced co-ordinates the "
+                       "rocker's last node's (u_r, v_r) (the end map of the circle guide with a flexible "
+                       "rocker, end_map_circle_flexible)", reduced=("u", "v"), map="end_map", body="rod",
+                       joint="rocker", requires="rocker"),
 )
 END = CONSTRAINTS[1]
 # natural size of each component of a node (units of L) for Newton's scaled increments: the paper's

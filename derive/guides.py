@@ -98,7 +98,8 @@ def circle():
     ground = sp.sqrt(s.d**2 + s.e**2)
     return Guide(
         "circle", "Circle", ("offset", "c", "d", "branch", "rocker_stiffness", "rocker_free_angle",
-                             "rocker_mass", "rocker_centre", "rocker_inertia"),
+                             "rocker_mass", "rocker_centre", "rocker_inertia", "rocker_elements", "rocker_density",
+                             "rocker_bending", "rocker_axial"),
         "circle of radius c about D = (d, e): a rigid rocker DB (massless unless given rocker_mass, "
         "rocker_inertia) carrying the end mass ms "
         "(a four-bar linkage with a flexible coupler)",
@@ -206,6 +207,39 @@ def end_map(guide):
     gdd = gd.applyfunc(lambda x: total_time_derivative(x, coords, rates, accels))
     rows = (g, gd, gdd, g.diff(sp_s), gd.diff(sp_s), gdd.diff(sp_s), gdd.diff(sp_sd), g.diff(sp_s, 2))
     return sp.Matrix([list(r.applyfunc(sp.expand)) for r in rows])
+
+
+# A flexible rocker's tip: its (u_r, v_r) in the rocker's frame and their rates, the reduced
+# co-ordinates of the rod's end (Constraint "tip" in derive/declaration.py)
+TIP = sp.symbols("u_r v_r", real=True)
+TIP_RATES = sp.symbols("ud_r vd_r", real=True)
+TIP_ACCELERATIONS = sp.symbols("udd_r vdd_r", real=True)
+E_IR = sp.Matrix([sp.cos(s.beta), sp.sin(s.beta)])       # the rigid rocker's frame: e_i at phi_r = -beta
+E_JR = sp.Matrix([-sp.sin(s.beta), sp.cos(s.beta)])
+
+
+def map_rows(g, coords, rates, accels):
+    """The rows of a map (u, v) = g(z, t) of m reduced co-ordinates z (the engine's layout,
+    engine/elements.py): g, gd, gdd; per co-ordinate j: dg/dz_j, dgd/dz_j, dgdd/dz_j, dgdd/dzd_j; then
+    d2g/dz_j dz_l (m x m rows)."""
+    gd = g.applyfunc(lambda x: total_time_derivative(x, coords, rates, accels))
+    gdd = gd.applyfunc(lambda x: total_time_derivative(x, coords, rates, accels))
+    rows = [g, gd, gdd]
+    for z, zd in zip(coords, rates):
+        rows += [g.diff(z), gd.diff(z), gdd.diff(z), gdd.diff(zd)]
+    rows += [g.diff(z1, z2) for z1 in coords for z2 in coords]
+    return sp.Matrix([list(r.applyfunc(sp.expand)) for r in rows])
+
+
+def flexible_rocker_end_map():
+    """The rod's end held by a flexible rocker's tip, equal positions at B: u e_i + v e_j = u_r e_ir +
+    v_r e_jr (the rigid mechanism's ends coincide, A + L e_i = D + c e_ir), so (u, v) = R (u_r, v_r)
+    with R the rotation from the rocker's frame to the rod's, R = [[cos(phi + beta), -sin(phi + beta)],
+    [sin(phi + beta), cos(phi + beta)]]: linear in (u_r, v_r) and rheonomic; rows map_rows
+    (3 + 4 m + m^2 = 15 for m = 2)."""
+    tip = TIP[0] * E_IR + TIP[1] * E_JR
+    g = sp.Matrix([tip.dot(E_I), tip.dot(E_J)]).applyfunc(lambda x: TR10i(sp.factor_terms(sp.expand(x))))
+    return map_rows(g, TIP, TIP_RATES, TIP_ACCELERATIONS)
 
 
 def rigid_end(guide):

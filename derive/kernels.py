@@ -29,6 +29,7 @@ from functools import lru_cache
 
 import sympy as sp
 
+from . import guides as gd
 from . import representation as ir
 from . import symbols as s
 from .euler_lagrange import jacobian
@@ -178,6 +179,13 @@ def kinematics_kernels():
         out.append(Kernel(f"end_map_{g.name}", f"End map of the {g.name} guide: (u, v) of the rod's end "
                           "and its rates and derivatives in (s, sd, sdd) (rows guides.END_MAP_ROWS).",
                           (SEND, KIN, PARAMS_BESIDE_KIN), (Output("E", form.end_map, "end map"),)))
+        if form.pivot is not None:          # a link carrying the end (a rocker), which may be flexible
+            flexible = vector("send", gd.TIP + gd.TIP_RATES + gd.TIP_ACCELERATIONS)
+            out.append(Kernel(f"end_map_{g.name}_flexible", f"End map of the {g.name} guide with a flexible rocker: the "
+                              "rod's end (u, v) from the rocker tip's (u_r, v_r), equal positions at B, with its "
+                              "rates and derivatives (rows guides.map_rows, m = 2).",
+                              (flexible, KIN, PARAMS_BESIDE_KIN),
+                              (Output("E", gd.flexible_rocker_end_map(), "end map"),)))
         out.append(Kernel(f"rigid_end_{g.name}", f"(X, Y) of the rigid end point on the {g.name} guide.",
                           (KIN, PARAMS_BESIDE_KIN), (Output("X", form.rigid_end, "rigid end point"),)))
         if g.margins:

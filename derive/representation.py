@@ -18,7 +18,7 @@ off) of the element kernels and the kinematic parameter vector (KINEMATIC_PARAME
 the guides and motions read, found from their expressions) are generated from it.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import sympy as sp
@@ -225,25 +225,49 @@ def _unit_parameters():
     return {unit: _parameter_name(name) for unit, name in sorted(model.UNIT_PARAMETERS.items())}
 
 
+def _bodies():
+    """The bodies, a flexible body's frame map (model.BODY_FRAMES: the entries of its kinematics
+    vector that differ from the mechanism's, each linear in the mechanism's) as the matrix F of
+    kin_body = F kin."""
+    out = []
+    for b in model.BODIES:
+        frame = model.BODY_FRAMES.get(b.name)
+        if frame is not None:
+            rows = []
+            for sym in s.KINEMATICS:
+                expr = sp.sympify(frame.get(sym, sym))
+                row = [expr.diff(k) for k in s.KINEMATICS]
+                if any(not x.is_number for x in row) or sp.expand(expr - sum(x * k for x, k in zip(row, s.KINEMATICS))) != 0:
+                    raise ValueError(f"body {b.name}: its frame's {sym} is not linear in the kinematics vector")
+                rows.append(tuple(float(x) for x in row))
+            b = replace(b, frame_map=tuple(rows))
+        out.append(b)
+    return tuple(out)
+
+
 def _constraints():
     """The DOF map's constraints, checked: components of a node, one mapped constraint (the engine
     condenses one), which the 'end' families name."""
+    optional = [b.name for b in model.BODIES if b.kind == "flexible" and b.name != "rod"]
+    for present in [()] + [(name,) for name in optional]:
+        mapped = [c for c in model.CONSTRAINTS if c.map is not None and c.applies(present)]
+        if len(mapped) != 1:
+            raise ValueError(f"the engine condenses exactly one mapped constraint, got {[c.name for c in mapped]} "
+                             f"with the flexible bodies {present}")
     mapped = [c for c in model.CONSTRAINTS if c.map is not None]
-    if len(mapped) != 1:
-        raise ValueError(f"the engine condenses exactly one mapped constraint, got {[c.name for c in mapped]}")
     for c in model.CONSTRAINTS:
         if not set(c.eliminated) <= set(s.NODE) or len(c.reduced) > len(c.eliminated):
             raise ValueError(f"constraint {c.name}: eliminated {c.eliminated} must be components of a node "
                              f"{s.NODE}, at least as many as its reduced co-ordinates {c.reduced}")
     bodies = {b.name: b for b in model.BODIES}
     for c in model.CONSTRAINTS:
-        if c.body not in bodies or bodies[c.body].kind != "flexible" or c.joint not in bodies:
+        if c.body not in bodies or bodies[c.body].kind != "flexible" or c.joint not in set(bodies) | {"ground"}:
             raise ValueError(f"constraint {c.name}: it must hold a node of a flexible body and join it to a "
                              f"declared body, got body {c.body!r}, joint {c.joint!r}")
         if not set(c.eliminated) <= set(bodies[c.body].node):
             raise ValueError(f"constraint {c.name}: {c.eliminated} are not components of {c.body}'s nodes")
     for f in model.FAMILIES:
-        if f.part != "rod" and f.part != mapped[0].name:
+        if f.part != "rod" and f.part != mapped[0].name:      # "end": the mapped constraint's node
             raise ValueError(f"family {f.name}: part {f.part!r} is neither 'rod' nor the mapped constraint")
     return tuple(model.CONSTRAINTS)
 
@@ -283,7 +307,7 @@ def schema():
         unit_parameters=_unit_parameters(),
         element_dofs=ELEMENT_DOFS, node=Layout("node", s.NODE, "the components of a node (eq. 14): axial "
                                                 "and transverse displacement, slope"),
-        constraints=_constraints(), exclusions=_exclusions(), bodies=tuple(model.BODIES),
+        constraints=_constraints(), exclusions=_exclusions(), bodies=_bodies(),
         reductions=_reductions())
 
 
@@ -401,6 +425,7 @@ class Representation:
     outputs: tuple               # OutputForm
     grams: tuple                 # GramForm, of the engine's integral primitives
     natural_sizes: tuple         # CoefficientForm per component of a node (units of L)
+    body_coefficients: tuple = ()    # (body name, CoefficientForm tuple): another flexible body's coefficients
 
 
 def _motions():
@@ -466,11 +491,13 @@ def _natural_sizes():
     return tuple(out)
 
 
-def _coefficients():
+def _coefficients(replaced=None):
+    """The coefficient vector's formulas (model.COEFFICIENTS), those in `replaced` replaced (another
+    flexible body's: model.BODY_COEFFICIENTS)."""
     allowed = set(parameter_symbols().values()) | set(model.INDICATORS) | set(model.switched_off.values())
     out = []
     for sym, expr in model.COEFFICIENTS.items():
-        expr = sp.sympify(expr)
+        expr = sp.sympify((replaced or {}).get(sym, expr))
         unknown = expr.free_symbols - allowed
         if unknown:
             raise ValueError(f"coefficient {sym.name}: symbols that are neither parameters nor indicators: "
@@ -655,7 +682,9 @@ def _grams():
 @lru_cache(maxsize=None)
 def representation():
     """The model representation of the declaration (built once per process)."""
-    return Representation(schema=schema(), coefficients=_coefficients(), motions=_motions(), guides=_guides(),
+    return Representation(schema=schema(), coefficients=_coefficients(),
+                          body_coefficients=tuple((name, _coefficients(replaced))
+                                                  for name, replaced in model.BODY_COEFFICIENTS.items()), motions=_motions(), guides=_guides(),
                           families=_families(), energies=_energies(), outputs=_outputs(), grams=_grams(),
                           natural_sizes=_natural_sizes())
 

@@ -42,17 +42,24 @@ def literal(value, indent=""):
     return repr(value)
 
 
-def _coefficients_source(rep):
+def _coefficients_source(rep, forms=None, body=None):
     printer = _printer()
     schema = rep.schema
-    formulas = [c.formula for c in rep.coefficients]
+    forms = rep.coefficients if forms is None else forms
+    formulas = [c.formula for c in forms]
     used = set().union(*(f.free_symbols for f in formulas))
     symbols = ir.parameter_symbols()
-    lines = ["def coefficients(p, options, off):",
-             '    """The coefficient vector of the element kernels (COEFFICIENTS order) for the parameter vector',
-             "    p (PARAMETER_VECTOR order), the model options {name: value} and the switched-off term",
-             "    groups `off` (crankgen\'s units: rho A = 1, E I = 1/pi^4, E A = 1/(pi^4 eps^2), rho I = eps^2",
-             '    or 0 without rotary inertia, term weights 1, or 0 for a switched-off group)."""']
+    if body is None:
+        lines = ["def coefficients(p, options, off):",
+                 '    """The coefficient vector of the element kernels (COEFFICIENTS order) for the parameter vector',
+                 "    p (PARAMETER_VECTOR order), the model options {name: value} and the switched-off term",
+                 "    groups `off` (crankgen\'s units: rho A = 1, E I = 1/pi^4, E A = 1/(pi^4 eps^2), rho I = eps^2",
+                 '    or 0 without rotary inertia, term weights 1, or 0 for a switched-off group)."""']
+    else:
+        lines = [f"def coefficients_{body}(p, options, off):",
+                 f'    """The coefficient vector of the {body}\'s elements (a flexible body beside the rod: the',
+                 "    rod\'s coefficients with its own section\'s, BODY_COEFFICIENTS in derive/declaration.py), like",
+                 '    coefficients(p, options, off)."""']
     for k, name in enumerate(schema.parameter_vector.entries):
         if symbols[name] in used:
             lines.append(f"    {symbols[name].name} = float(p[{k}])    # {name}")
@@ -63,7 +70,7 @@ def _coefficients_source(rep):
         if sp.Symbol(f"off_{g}") in used:
             lines.append(f"    off_{g} = 1.0 if {g!r} in off else 0.0")
     lines.append("    return (")
-    for c in rep.coefficients:
+    for c in forms:
         lines.append(f"        float({printer.doprint(c.formula)}),    # {c.name}")
     lines.append("    )")
     return "\n".join(lines) + "\n"
@@ -166,8 +173,9 @@ def emit_schema(derive_command, spec_hash, element_names):
         f"ELEMENT_KERNELS = {tuple(sorted(element_names))!r}",
         "",
     ]
+    bodies = "".join(_coefficients_source(rep, forms, body) + "\n\n" for body, forms in rep.body_coefficients)
     return ("\n".join(header) + "\n" + _table_source(rep.schema) + "\n\n" + _coefficients_source(rep) + "\n\n"
-            + _natural_sizes_source(rep))
+            + bodies + _natural_sizes_source(rep))
 
 
 def _class_doc(record):

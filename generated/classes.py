@@ -30,6 +30,10 @@ class MechanismFields:
     rocker_mass: object = None
     rocker_centre: object = None
     rocker_inertia: object = None
+    rocker_elements: object = None
+    rocker_density: object = None
+    rocker_bending: object = None
+    rocker_axial: object = None
     crank_mass: object = None
     crank_centre: object = None
     crank_inertia: object = None
@@ -58,6 +62,10 @@ class CaseFields:
     rocker_mass: object = None
     rocker_centre: object = None
     rocker_inertia: object = None
+    rocker_elements: object = None
+    rocker_density: object = None
+    rocker_bending: object = None
+    rocker_axial: object = None
     crank_mass: object = None
     crank_centre: object = None
     crank_inertia: object = None
@@ -113,6 +121,10 @@ class SIFields:
     rocker_mass: object = None
     rocker_centre: object = None
     rocker_inertia: object = None
+    rocker_elements: object = None
+    rocker_density: object = None
+    rocker_bending: object = None
+    rocker_axial: object = None
     crank_mass: object = None
     crank_centre: object = None
     crank_inertia: object = None
@@ -146,11 +158,11 @@ class Line(Spec):
 
 
 class Circle(Spec):
-    """circle of radius c about D = (d, e): a rigid rocker DB (massless unless given rocker_mass, rocker_inertia) carrying the end mass ms (a four-bar linkage with a flexible coupler).  Parameters: offset, c, d, branch, rocker_stiffness, rocker_free_angle, rocker_mass, rocker_centre, rocker_inertia; keywords center = (d, offset), radius = (c)."""
+    """circle of radius c about D = (d, e): a rigid rocker DB (massless unless given rocker_mass, rocker_inertia) carrying the end mass ms (a four-bar linkage with a flexible coupler).  Parameters: offset, c, d, branch, rocker_stiffness, rocker_free_angle, rocker_mass, rocker_centre, rocker_inertia, rocker_elements, rocker_density, rocker_bending, rocker_axial; keywords center = (d, offset), radius = (c)."""
 
     kind = 'guide'
     declaration = GUIDES[1]    # circle
-    defaults = {'offset': 0.0, 'c': 0.8, 'd': 1.0, 'branch': 1, 'rocker_stiffness': 0.0, 'rocker_free_angle': 0.0, 'rocker_mass': 0.0, 'rocker_centre': 0.5, 'rocker_inertia': 0.0}
+    defaults = {'offset': 0.0, 'c': 0.8, 'd': 1.0, 'branch': 1, 'rocker_stiffness': 0.0, 'rocker_free_angle': 0.0, 'rocker_mass': 0.0, 'rocker_centre': 0.5, 'rocker_inertia': 0.0, 'rocker_elements': 0, 'rocker_density': 1.0, 'rocker_bending': 1.0, 'rocker_axial': 1.0}
 
 
 class Cam(Spec):

@@ -181,8 +181,8 @@ def correction(result, periodic=None):
 def transverse(case, d):
     """(..., n + 1): the transverse displacement v of every node of reduced states d (the end
     node's, on the guide, left at 0)."""
-    from ..discrete.mesh import Mesh, components_of
-    mesh = Mesh(case.n_elements, components=components_of(case.options))
+    from ..discrete.mesh import nodal_mesh
+    mesh = nodal_mesh(case)
     d = np.asarray(d, dtype=float)
     out = np.zeros(d.shape[:-1] + (case.n_elements + 1,))
     for node in range(case.n_elements + 1):

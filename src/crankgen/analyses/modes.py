@@ -31,7 +31,8 @@ from ..discrete import kinematics as _kinematics
 from ..declaration import schema
 from ..declaration.cases import run_case
 from ..errors import ConvergenceError, ParameterError
-from ..discrete.mesh import CHI, PSI, U, V
+from ..discrete.constraints import tangents
+from ..discrete.mesh import CHI, PSI, ROCKER, U, V
 from ..discrete.system import Model
 from ..declaration.si import SIMechanism
 from ..declaration.units import Scales
@@ -103,6 +104,9 @@ def _axial_dofs(mesh):
     every node) and the end co-ordinate."""
     idx = [mesh.reduced_index(node, U) for node in range(1, mesh.n_elements)] + [mesh.reduced_coordinates()[0]]
     idx += [mesh.reduced_index(node, CHI) for node in range(mesh.n_elements + 1)]
+    if mesh.rocker_elements:                    # a flexible rocker's u and chi
+        idx += [mesh.reduced_index((ROCKER.name, node), comp) for node in range(mesh.rocker_elements + 1)
+                for comp in (U, CHI)]
     return np.array(sorted({i for i in idx if i is not None}), dtype=np.intp)
 
 
@@ -182,11 +186,12 @@ class FrozenModel:
                 idx = mesh.reduced_index(node, comp)
                 if idx is not None and not (node == n and comp == U):
                     out[:, :, node, comp] = vectors[:, idx, :]
-        E = _kinematics.end_map(self.case, kin.vector, d[:, mesh.reduced_coordinates()[0]])
-        g_s = E[:, _kinematics.schema.END_MAP_ROWS["g_s"], :]                  # (T, 2)
-        s = vectors[:, mesh.reduced_coordinates()[0], :]                                        # (T, m)
-        out[:, :, n, U] = g_s[:, None, 0] * s
-        out[:, :, n, V] = g_s[:, None, 1] * s
+        S = list(mesh.reduced_coordinates())
+        E = _kinematics.end_map(self.case, kin.vector, d[:, S] if mesh.rocker_elements else d[:, S[0]])
+        G = tangents(E, len(S))                                                  # (T, m_red, 2)
+        s = vectors[:, S, :]                                                     # (T, m_red, m)
+        out[:, :, n, U] = np.einsum("tj,tjm->tm", G[:, :, 0], s)
+        out[:, :, n, V] = np.einsum("tj,tjm->tm", G[:, :, 1], s)
         big = np.max(np.abs(out[..., :2]), axis=(2, 3))
         flat = out[..., :2].reshape(T, m, -1)
         sign = np.sign(np.take_along_axis(flat, np.argmax(np.abs(flat), axis=2)[..., None], axis=2)[..., 0])

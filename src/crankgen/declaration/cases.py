@@ -59,6 +59,26 @@ class CaseRules:
         object.__setattr__(self, "groups_off", ",".join(sorted(off)))
         for view in ("selection", "coefficients"):    # read groups_off before it was normalised
             self.__dict__.get(_MEMO, {}).pop(view, None)
+        self._check_flexible_bodies()
+
+    def _check_flexible_bodies(self):
+        """A flexible body (a rocker with elements) carries its own mass: the families a rigid body of
+        that name carries (Family.body: a rigid rocker's mass, weight and spring) are refused."""
+        for body in schema.BODIES.values():
+            if body.kind != "flexible" or body.elements is None or body.elements not in self.guide_record.parameters:
+                continue
+            count = getattr(self, body.elements)
+            if not count:
+                continue
+            chosen = dict(zip((f.name for f in schema.FAMILIES), self.selection.families))
+            rigid = [f for f in schema.FAMILIES if f.body == body.name and chosen[f.name] >= 0]
+            if rigid:
+                names = ", ".join(f"{f.name} ({f.variants[chosen[f.name]].doc})" for f in rigid)
+                raise ParameterError(
+                    f"a flexible {body.name} ({body.elements} = {count}) carries its own mass, weight and "
+                    f"stiffness, its section's: the rigid {body.name}'s families cannot act on it too, and this "
+                    f"case selects {names}; give their parameters 0 (or {body.elements} = 0 for the rigid "
+                    f"{body.name})")
 
     def _derived(self, name, build):
         """A view of the case computed once: a case never changes after it is built (frozen), and
@@ -137,6 +157,12 @@ class CaseRules:
         """Coefficient vector of the element kernels (ingredients.COEFFICIENTS order)."""
         off = tuple(g for g in self.groups_off.split(",") if g)
         return self._derived("coefficients", lambda: ingredients.coefficients(self.parameter_vector, self.options, off))
+
+    def body_coefficients(self, body):
+        """Coefficient vector of another flexible body's elements (a flexible rocker's)."""
+        off = tuple(g for g in self.groups_off.split(",") if g)
+        return self._derived(f"coefficients_{body}", lambda: ingredients.body_coefficients(
+            body, self.parameter_vector, self.options, off))
 
     def as_dict(self):
         """The fields as plain JSON-able values (pairs as lists, a torque curve as a list of them)."""

@@ -167,6 +167,12 @@ def coefficients(vector, options, switched_off=()):
     return np.array(_table.coefficients(vector, options, tuple(switched_off)), dtype=float)
 
 
+def body_coefficients(body, vector, options, switched_off=()):
+    """The coefficient vector of another flexible body's elements (a flexible rocker's: the rod's with
+    its own section's; generated coefficients_<body>)."""
+    return np.array(getattr(_table, f"coefficients_{body}")(vector, options, tuple(switched_off)), dtype=float)
+
+
 def output_kernel(output, options):
     """The vectorized kernel of a declared step or field output for the options."""
     spec = OUTPUTS.get(output)

@@ -279,7 +279,9 @@ class Body:
     (the crank angle, the chord of the rigid linkage, the guide).  The DOF map numbers the flexible
     bodies' nodal unknowns in the declared order, then the motion's co-ordinates; the joints between
     bodies are the constraints (Constraint.body, .joint).  `conditional`: components a node has only
-    under some model options (`components`)."""
+    under some model options (`components`).  A flexible body whose element count may be 0 (a
+    rocker) is present only where it is not; `frame_map` gives the kinematics vector its elements'
+    kernels read (its moving frame's: a rocker's turns with the rocker, its origin the fixed pivot)."""
 
     name: str
     kind: str
@@ -288,6 +290,9 @@ class Body:
     node: tuple = ()
     elements: str = None
     conditional: tuple = ()
+    length: str = None           # the parameter giving a flexible body's length (None: L, the rod's)
+    frame_map: tuple = ()        # a flexible body's kinematics vector as a linear map of the mechanism's
+                                 # (rows and columns: schema.KINEMATICS; () for the mechanism's own)
 
     def components(self, options):
         """The node's components a case with these model options has: `conditional` holds
@@ -317,6 +322,13 @@ class Constraint:
     map: str = None
     body: str = None             # the flexible body whose node it holds
     joint: str = None            # the body it joins that node to (a pin)
+    requires: str = None         # a flexible body that must be present (its element count > 0) for it to apply
+    excludes: str = None         # a flexible body whose presence replaces it
+
+    def applies(self, present):
+        """Whether the constraint is one of a case's, `present` the names of its flexible bodies."""
+        return ((self.requires is None or self.requires in present)
+                and (self.excludes is None or self.excludes not in present))
 
 
 @dataclass(frozen=True)

@@ -69,20 +69,27 @@ def expand(E, p, pd, pdd, slots=SLOTS):
     return q, qd, qdd
 
 
+def rows_of(E):
+    """map_rows(m) of a map's values E (..., 3 + 4 m + m^2, k)."""
+    m = next(m for m in range(1, 8) if 3 + 4 * m + m * m == E.shape[-2])
+    return map_rows(m)
+
+
 def _on(E, row, slots, X, axis):
     """sum over the eliminated slots a of E[row, a] X[..., slot_a] along `axis` (-1: columns of a
     matrix or entries of a vector; -2: rows)."""
     total = 0.0
+    rows = rows_of(E)
     for a, slot in enumerate(slots):
         part = np.take(X, slot, axis=axis)
-        weight = E[..., ROWS[row], a]
+        weight = E[..., rows[row], a]
         total = total + (weight[..., None] * part if part.ndim > weight.ndim else weight * part)
     return total
 
 
 def tangents(E, m=len(REDUCED)):
     """The map's tangents g_s_j (..., m, k): the directions its node moves in as s_j varies."""
-    return np.stack([E[..., ROWS["g_s" + _tag(j, m)], :] for j in range(m)], axis=-2)
+    return np.stack([E[..., map_rows(m)["g_s" + _tag(j, m)], :] for j in range(m)], axis=-2)
 
 
 def project_residual(E, r, slots=SLOTS, reduced=REDUCED):

@@ -45,7 +45,7 @@ import numpy as np
 from . import kinematics as _kinematics
 from ..declaration import schema
 from ..errors import ParameterError
-from .mesh import CHI, PSI, U, V, Mesh, components_of
+from .mesh import CHI, PSI, U, V, Mesh, components_of, nodal_mesh
 
 COMPLEX_STEP = 1e-20
 # the unit of each field (derive/declaration.py's units strings; crankgen.declaration.units)
@@ -198,7 +198,10 @@ def reduced_state(case, initial, scales=None):
     a case, projected by nodal interpolation and checked against the pin and the guide.  scales: a
     crankgen.declaration.units.Scales when the fields are in SI (x in m, u and v in m, u_t and v_t in m/s, v_x
     dimensionless, v_xt in 1/s); None: crankgen's units."""
-    mesh = Mesh(case.n_elements, components=components_of(case.options))
+    mesh = nodal_mesh(case)
+    if mesh.rocker_elements:
+        raise ParameterError("initial state: an InitialState gives the rod's fields alone; with a flexible rocker "
+                             "give the reduced vectors (d0, v0) of the whole DOF map instead")
     n = mesh.n_elements
     x = np.arange(n + 1) / n
     length = 1.0 if scales is None else scales.L
@@ -259,7 +262,7 @@ def initial_state(case, initial, scales=None):
     None unless given (the run then starts from g0 = the accelerations of eq. 34).  The vectors are
     the rod's nodal ones (3 n_elements), or, for a driven motion, the DOF map's whole state (its
     co-ordinates after them)."""
-    mesh = Mesh(case.n_elements, components=components_of(case.options))
+    mesh = nodal_mesh(case)
     N = mesh.n_dofs
     if initial is None:
         return np.zeros(N), np.zeros(N), None

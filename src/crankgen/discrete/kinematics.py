@@ -13,6 +13,7 @@ import numpy as np
 from ..declaration import schema
 from .._generated import kinematics as _kinematics
 from ..errors import ParameterError
+from .mesh import rocker_of
 
 _K = schema.KIN
 
@@ -190,7 +191,14 @@ def call(name, case, **inputs):
 
 
 def end_map(case, kin, s, sd=0.0, sdd=0.0):
-    """The end map (..., 8, 2) (rows schema.END_MAP_ROWS) at kin and (s, sd, sdd)."""
+    """The end map (..., 8, 2) (rows schema.END_MAP_ROWS) at kin and (s, sd, sdd); with a flexible
+    rocker, the map of its tip (end_map_<guide>_flexible, (..., 15, 2): constraints.map_rows(2)) at
+    s, sd, sdd (..., 2), the rocker tip's (u_r, v_r) and their rates."""
+    if rocker_of(case)[0]:
+        s = np.asarray(s, float)
+        sd, sdd = (np.broadcast_to(np.asarray(x, float), s.shape) for x in (sd, sdd))
+        send = np.concatenate([s, sd, sdd], axis=-1)
+        return getattr(_kinematics, f"end_map_{case.guide_record.name}_flexible")(send, kin, case.kinematic_parameters)
     send = np.stack(np.broadcast_arrays(np.asarray(s, float), sd, sdd), axis=-1)
     return getattr(_kinematics, f"end_map_{case.guide_record.name}")(send, kin, case.kinematic_parameters)
 

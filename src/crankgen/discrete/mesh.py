@@ -12,6 +12,16 @@ constraints.py).  The reduced vector is
 
 with chi after each psi on the exact rod (4 n + 1 entries),
 
+With a flexible rocker (`rocker_elements` n_r > 0: the body "rocker", its constraints "ground" and
+"tip" in place of the guide's "end") the rod's end node is held by the rocker's tip, (u_n, v_n) =
+R(t) (u_r, v_r): the rocker tip's (u, v) are the reduced co-ordinates.  The rocker's nodes follow
+the rod's, from its tip to its pivot, so that the band stays narrow:
+
+    [..., u_{n-1}, v_{n-1}, psi_{n-1},  psi_n,  u_r, v_r,  psi_r,  (the rocker's nodes n_r - 1 .. 1),  psi_r0]
+
+(chi after each psi on the exact rod), the rocker's elements after the rod's (element n + k joins
+its nodes k and k + 1, from the pivot D, x = 0, to the tip B, x = c);
+
 followed by the co-ordinates the case's motion declares (records.Coordinate: a driven crank's
 angle, a motor rotor's angle; none for a prescribed crank), each with its own equation: the DOF
 map owns the whole state, `n_dofs` of them, the first `n_rod` the nodal ones (the band).
@@ -40,9 +50,33 @@ def components_of(options):
     return BODY.components(dict(options) or schema.resolve_options())
 
 
-def joints(body=BODY):
-    """The constraints of the body's nodes: the joints that hold them (schema.CONSTRAINTS)."""
-    return tuple(c for c in schema.CONSTRAINTS if c.body == body.name)
+ROCKER = next((b for b in schema.BODIES.values() if b.kind == "flexible" and b.name != BODY.name), None)
+
+
+def rocker_of(case):
+    """(element count, length) of a case's flexible rocker: (0, 1.0) when it has none (a rigid
+    rocker, or a guide without one)."""
+    if ROCKER is None or ROCKER.elements not in case.guide_record.parameters:
+        return 0, 1.0
+    n = int(getattr(case, ROCKER.elements) or 0)
+    return (n, float(getattr(case, ROCKER.length))) if n else (0, 1.0)
+
+
+def nodal_mesh(case):
+    """The DOF map of a case's flexible bodies without its motion's co-ordinates (the nodal state)."""
+    return Mesh(case.n_elements, (), components_of(case.options), *rocker_of(case))
+
+
+def joints(body=BODY, present=()):
+    """The constraints of the body's nodes: the joints that hold them (schema.CONSTRAINTS), those of
+    a case whose optional flexible bodies are `present` (names)."""
+    return tuple(c for c in schema.CONSTRAINTS if c.body == body.name and c.applies(present))
+
+
+def mapped_constraint(present=()):
+    """The DOF map's mapped constraint (the one with reduced co-ordinates through a map) of a case
+    whose optional flexible bodies are `present`: the guide's end, or a flexible rocker's tip."""
+    return next(c for c in schema.CONSTRAINTS if c.map is not None and c.applies(present))
 
 
 def element_slots(node_in_element, components):
@@ -59,17 +93,23 @@ class Mesh:
     n_elements: int
     coordinates: tuple = ()
     components: tuple = None
+    rocker_elements: int = 0                     # a flexible rocker's (0: none)
+    rocker_length: float = 1.0                   # its length c (units of L)
     element_dofs: np.ndarray = field(init=False, repr=False)
 
     @classmethod
     def of_case(cls, case):
-        """The DOF map of a case: its rod's mesh with the node components of its model, and its
-        motion's co-ordinates."""
-        return cls(case.n_elements, tuple(case.motion_record.coordinates), components_of(case.options))
+        """The DOF map of a case: its rod's mesh with the node components of its model, a flexible
+        rocker's elements, and its motion's co-ordinates."""
+        n_r, c = rocker_of(case)
+        return cls(case.n_elements, tuple(case.motion_record.coordinates), components_of(case.options), n_r, c)
 
     def __post_init__(self):
         n = integer("n_elements", self.n_elements, 1)
         object.__setattr__(self, "n_elements", n)
+        object.__setattr__(self, "rocker_elements", integer("rocker_elements", self.rocker_elements, 0))
+        object.__setattr__(self, "rocker_length", float(self.rocker_length))
+        object.__setattr__(self, "present", (ROCKER.name,) if self.rocker_elements else ())
         object.__setattr__(self, "coordinates", tuple(self.coordinates))
         present = components_of({}) if self.components is None else tuple(self.components)
         if not set(present) <= set(COMPONENTS) or not present:
@@ -78,32 +118,62 @@ class Mesh:
         object.__setattr__(self, "_index", self._numbering())
         object.__setattr__(self, "element_dofs", self._element_dofs())
 
+    @property
+    def mapped(self):
+        """The mapped constraint of this DOF map (the guide's end, or a flexible rocker's tip)."""
+        return mapped_constraint(self.present)
+
+    @property
+    def n_all(self):
+        """Number of elements of every flexible body: the rod's, then a flexible rocker's."""
+        return self.n_elements + self.rocker_elements
+
     def node_of(self, constraint):
-        """The node (0 .. n) a constraint holds."""
-        return constraint.node % (self.n_elements + 1)
+        """The node (0 .. n) of its body a constraint holds."""
+        count = self.rocker_elements if ROCKER is not None and constraint.body == ROCKER.name else self.n_elements
+        return constraint.node % (count + 1)
 
     def _numbering(self):
-        """{(node, component): reduced index or None} and {(constraint, j): reduced index} of the
-        DOF map: nodes in order, components in order; an eliminated component gives its place to
-        the constraint's j-th reduced co-ordinate (j its rank among the eliminated), or none."""
-        held = {self.node_of(c): c for c in joints()}
+        """{(node, component): reduced index or None} of the rod, {(rocker, node, component): ...} of
+        a flexible rocker, and {(constraint, j): reduced index} of the DOF map: nodes in order (the
+        rocker's from its tip), components in order; an eliminated component gives its place to the
+        constraint's j-th reduced co-ordinate (j its rank among the eliminated), or none.  A
+        flexible rocker's tip: the rod's end node's own components first, then the tip constraint's
+        reduced co-ordinates (the rocker tip's u, v), then the rocker tip's other components."""
         index, k = {}, 0
-        for node in range(self.n_elements + 1):
-            c = held.get(node)
+        order = [((node,), node, joints(BODY, self.present)) for node in range(self.n_elements + 1)]
+        if self.rocker_elements:
+            n_r = self.rocker_elements
+            order += [((ROCKER.name, node), node, joints(ROCKER, self.present)) for node in range(n_r, -1, -1)]
+        shared = None
+        for key, node, held in order:
+            c = next((c for c in held if self.node_of(c) == node), None)
+            later = []
             for comp in range(NODE_DOFS):
                 name = COMPONENTS[comp]
                 if name not in self.components:         # not a component of this model's node
-                    index[(node, comp)] = None
+                    index[key + (comp,)] = None
+                    continue
+                if shared is not None and key[0] == ROCKER.name and node == self.rocker_elements \
+                        and name in shared.reduced:     # the rocker tip's (u, v): the tip's reduced co-ordinates
+                    index[key + (comp,)] = index[(shared.name, shared.reduced.index(name))]
                     continue
                 if c is not None and name in c.eliminated:
                     j = c.eliminated.index(name)
                     if j < len(c.reduced):
+                        if self.rocker_elements and c is self.mapped:
+                            later.append((c, j, key + (comp,)))
+                            continue
                         index[(c.name, j)] = k
                     else:
-                        index[(node, comp)] = None
+                        index[key + (comp,)] = None
                         continue
-                index[(node, comp)] = k
+                index[key + (comp,)] = k
                 k += 1
+            for c, j, at in later:                      # after the node's own components
+                index[(c.name, j)] = index[at] = k
+                k += 1
+                shared = c
         index["size"] = k
         return index
 
@@ -146,46 +216,69 @@ class Mesh:
         """x co-ordinate of the first node of each element."""
         return np.arange(self.n_elements) * self.length
 
-    def reduced_coordinates(self, constraint=MAPPED):
-        """The reduced indices of a constraint's reduced co-ordinates."""
+    @property
+    def rocker_element_length(self):
+        return self.rocker_length / self.rocker_elements if self.rocker_elements else 0.0
+
+    def reduced_coordinates(self, constraint=None):
+        """The reduced indices of a constraint's reduced co-ordinates (default: the mapped one's)."""
+        constraint = self.mapped if constraint is None else constraint
         return tuple(self._index[(constraint.name, j)] for j in range(len(constraint.reduced)))
 
-    def holders(self, constraint=MAPPED):
+    def holders(self, constraint=None):
         """[(element, slots of the eliminated components there, slots of the reduced co-ordinates)]
-        of the elements holding a constraint's node (one at the first or last node, two inside)."""
+        of the elements holding a constraint's node (one at the first or last node, two inside;
+        default: the mapped constraint's); a rocker's elements are numbered after the rod's."""
+        constraint = self.mapped if constraint is None else constraint
         node = self.node_of(constraint)
+        rocker = ROCKER is not None and constraint.body == ROCKER.name
+        count, first = (self.rocker_elements, self.n_elements) if rocker else (self.n_elements, 0)
         out = []
         for e, at in ((node - 1, 1), (node, 0)):
-            if 0 <= e < self.n_elements:
+            if 0 <= e < count:
                 slots = element_slots(at, constraint.eliminated)
-                out.append((e, slots, slots[:len(constraint.reduced)]))
+                out.append((first + e, slots, slots[:len(constraint.reduced)]))
         return out
 
     def reduced_index(self, node, component):
-        """Reduced index of (node, component), or None if constrained away (or holding a reduced
-        co-ordinate of its constraint: reduced_coordinates)."""
-        return self._index.get((node, component))
+        """Reduced index of (node, component) of the rod (node a number) or of a flexible rocker
+        (node = (body name, number)), or None if constrained away (or holding a reduced co-ordinate
+        of its constraint: reduced_coordinates)."""
+        key = node + (component,) if isinstance(node, tuple) else (node, component)
+        return self._index.get(key)
 
     def _element_dofs(self):
-        """(n, NDOF) reduced index of each element DOF; an eliminated slot holding a reduced
-        co-ordinate holds its index (the end element's u_n slot holds s)."""
-        held = {self.node_of(c): c for c in joints()}
-        dofs = np.empty((self.n_elements, NDOF), dtype=np.intp)
-        for e in range(self.n_elements):
-            for k in range(NDOF):
-                node, comp = e + k // NODE_DOFS, k % NODE_DOFS
-                c = held.get(node)
-                idx = self._index.get((node, comp))
-                if c is not None and COMPONENTS[comp] in c.eliminated and COMPONENTS[comp] in self.components:
-                    j = c.eliminated.index(COMPONENTS[comp])
-                    idx = self._index[(c.name, j)] if j < len(c.reduced) else None
-                dofs[e, k] = self.dummy if idx is None else idx
-        return dofs
+        """(n_all, NDOF) reduced index of each element DOF, the rod's elements then a flexible
+        rocker's; an eliminated slot holding a reduced co-ordinate holds its index (the end element's
+        u_n slot holds s)."""
+        bodies = [(BODY, (), self.n_elements)]
+        if self.rocker_elements:
+            bodies.append((ROCKER, (ROCKER.name,), self.rocker_elements))
+        rows = []
+        for body, key, count in bodies:
+            held = {self.node_of(c): c for c in joints(body, self.present)}
+            for e in range(count):
+                row = []
+                for k in range(NDOF):
+                    node, comp = e + k // NODE_DOFS, k % NODE_DOFS
+                    c = held.get(node)
+                    idx = self._index.get(key + (node, comp))
+                    if c is not None and COMPONENTS[comp] in c.eliminated and COMPONENTS[comp] in self.components:
+                        j = c.eliminated.index(COMPONENTS[comp])
+                        idx = self._index[(c.name, j)] if j < len(c.reduced) else None
+                    row.append(self.dummy if idx is None else idx)
+                rows.append(row)
+        return np.array(rows, dtype=np.intp).reshape(-1, NDOF)
 
     def gather(self, reduced):
-        """Element view (..., n, NDOF) of reduced vectors (..., N; or their nodal part, n_rod);
-        constrained slots are 0 (a slot holding a reduced co-ordinate holds it, mapped by
-        constraints.py)."""
+        """The rod's element view (..., n, NDOF) of reduced vectors (..., N; or their nodal part,
+        n_rod); constrained slots are 0 (a slot holding a reduced co-ordinate holds it, mapped by
+        constraints.py).  gather_all: every flexible body's elements."""
+        return self.gather_all(reduced)[..., :self.n_elements, :]
+
+    def gather_all(self, reduced):
+        """Element view (..., n_all, NDOF) of reduced vectors: the rod's elements, then a flexible
+        rocker's."""
         reduced = np.asarray(reduced)[..., :self.n_rod]
         padded = np.concatenate([reduced, np.zeros(reduced.shape[:-1] + (self.n_dofs + 1 - self.n_rod,))], axis=-1)
         return padded[..., self.element_dofs]
@@ -202,8 +295,13 @@ class Mesh:
         keys = [k for k in self._index if isinstance(k, tuple) and self._index[k] is not None]
         for node, comp in (k for k in keys if not isinstance(k[0], str)):
             scales[self._index[(node, comp)]] = sizes[comp]
-        for key in (k for k in keys if isinstance(k[0], str)):      # the reduced co-ordinates
-            scales[self._index[key]] = sizes[U] if end is None else end
+        for key in (k for k in keys if isinstance(k[0], str) and len(k) == 3):     # a flexible rocker's nodes
+            scales[self._index[key]] = sizes[key[2]]
+        for key in (k for k in keys if isinstance(k[0], str) and len(k) == 2):     # the reduced co-ordinates
+            c = next(c for c in schema.CONSTRAINTS if c.name == key[0])
+            name = c.reduced[key[1]]
+            scales[self._index[key]] = (sizes[COMPONENTS.index(name)] if name in COMPONENTS    # a node's own (u, v)
+                                        else sizes[U] if end is None else end)
         scales[self.n_rod:] = 1.0
         return scales
 

@@ -21,7 +21,7 @@ from .assembly import BandedAssembler
 from ..declaration.cases import Case
 from ..declaration import schema
 from .constraints import ROWS, expand, project, tangents
-from .mesh import COMPONENTS, MAPPED, NODE_DOFS, Mesh
+from .mesh import COMPONENTS, MAPPED, NODE_DOFS, ROCKER, Mesh
 from ..declaration.schema import ELEMENT_DOFS as NDOF
 # the body that carries each family when it is not the one the family's part names (Family.body)
 CARRIER = {f.name: f.body for f in schema.FAMILIES}
@@ -148,16 +148,34 @@ class Model:
 
     @property
     def geometry(self):
-        """(n, 2): (l, x0) of every element, the kernels' geo."""
+        """(n_all, 2): (l, x0) of every element (the rod's, then a flexible rocker's), the kernels' geo."""
         mesh = self.mesh
-        return np.stack([np.full(mesh.n_elements, mesh.length), mesh.x0], axis=-1)
+        rod = np.stack([np.full(mesh.n_elements, mesh.length), mesh.x0], axis=-1)
+        if not mesh.rocker_elements:
+            return rod
+        lr = mesh.rocker_element_length
+        rocker = np.stack([np.full(mesh.rocker_elements, lr), np.arange(mesh.rocker_elements) * lr], axis=-1)
+        return np.concatenate([rod, rocker])
+
+    def bodies(self, kv):
+        """[(elements slice, coefficients, kinematics vector)] of each flexible body at the mechanism's
+        kinematics vector kv (..., N_KIN): the rod's, then a flexible rocker's (its frame's kinematics,
+        schema Body.frame_map)."""
+        mesh = self.mesh
+        out = [(slice(0, mesh.n_elements), self.coefficients, kv)]
+        if mesh.rocker_elements:
+            F = np.array(ROCKER.frame_map, dtype=float)
+            out.append((slice(mesh.n_elements, mesh.n_all), self.case.body_coefficients(ROCKER.name),
+                        np.einsum("ij,...j->...i", F, kv)))
+        return out
 
     def nodal_state(self, kin, d, v, a):
-        """Element nodal vectors q, qd, qdd (..., n, NDOF) with the constrained node mapped by the
+        """Element nodal vectors q, qd, qdd (..., n_all, NDOF) with the constrained node mapped by the
         constraint's map (the guide's end map) in every element holding it, and the map's values
         E (..., rows, k)."""
-        p, pd, pdd = self.mesh.gather(d), self.mesh.gather(v), self.mesh.gather(a)
-        S = self.mesh.reduced_coordinates()[0]
+        mesh = self.mesh
+        p, pd, pdd = mesh.gather_all(d), mesh.gather_all(v), mesh.gather_all(a)
+        S = list(mesh.reduced_coordinates()) if mesh.rocker_elements else mesh.reduced_coordinates()[0]
         E = _kinematics.end_map(self.case, kin.vector, np.asarray(d)[..., S], np.asarray(v)[..., S],
                                 np.asarray(a)[..., S])
         for e, slots, _ in self.mesh.holders():
@@ -178,15 +196,15 @@ class Model:
         n = NDOF
         r, K, C, M = np.zeros(shape + (n,)), np.zeros(shape + (n, n)), np.zeros(shape + (n, n)), np.zeros(shape + (n, n))
         lead = (slice(None),) * (q.ndim - 2)
-        kb = kv[..., None, :] if kv.ndim > 1 else kv
         e = self.mesh.holders()[0][0]           # the element whose families the constrained node carries
-        parts = [("rod", lead + (slice(None),), (q, qd, qdd, geo), kb),
-                 (MAPPED.name, lead + (e,), (q[..., e, :], qd[..., e, :], qdd[..., e, :], geo[e]), kv)]
-        for part, where, args, kin_arg in parts:
+        parts = [("rod", lead + (at,), (q[..., at, :], qd[..., at, :], qdd[..., at, :], geo[at]), cb,
+                  kb[..., None, :] if kb.ndim > 1 else kb) for at, cb, kb in self.bodies(kv)]
+        parts.append((MAPPED.name, lead + (e,), (q[..., e, :], qd[..., e, :], qdd[..., e, :], geo[e]), coef, kv))
+        for part, where, args, cb, kin_arg in parts:
             if part != "rod" and rod_only is not None:
                 rod_only.append(r.copy())
             for name, kernel in self.selection.vectorized(part):
-                out = kernel(*args, coef, kin_arg)
+                out = kernel(*args, cb, kin_arg)
                 r[where] += out[0]
                 if carried is not None and CARRIER[name] is not None:
                     if not carried:
@@ -221,9 +239,12 @@ class Model:
         rod, carried = [], []
         _, E, r, _, _, _ = self.unprojected_terms(kin, d, v, a, rod_only=rod, carried=carried)
 
-        def at_constraints(x):
-            return tuple(sum(x[..., e, list(slots)] for e, slots, _ in self.mesh.holders(c))
-                         for c in schema.CONSTRAINTS)
+        present = self.mesh.present
+
+        def at_constraints(x):             # a constraint that is not the case's: zero
+            return tuple(sum((x[..., e, list(slots)] for e, slots, _ in self.mesh.holders(c)),
+                             np.zeros(x.shape[:-2] + (len(c.eliminated),))) if c.applies(present)
+                         else np.zeros(x.shape[:-2] + (len(c.eliminated),)) for c in schema.CONSTRAINTS)
         if not carried:
             return at_constraints(r), at_constraints(rod[0] if rod else r), None
         own = list(at_constraints(carried[0]))
@@ -270,12 +291,14 @@ class Model:
         kin = self.kinematics(t) if kin is None else kin
         q, qd, _, _ = self.nodal_state(kin, d, v, np.zeros_like(d))
         geo, coef = self.geometry, self.coefficients
+        end = self.mesh.n_elements - 1         # the rod's last element (the end mass's node)
         total = 0.0
         for _name, part, kernel in self.selection.energy_kernels(kind):
             if part == "rod":
-                total += float(np.sum(kernel(q, qd, geo, coef, kin.vector)))
+                for at, cb, kb in self.bodies(kin.vector):
+                    total += float(np.sum(kernel(q[..., at, :], qd[..., at, :], geo[at], cb, kb)))
             else:
-                total += float(kernel(q[-1], qd[-1], geo[-1], coef, kin.vector))
+                total += float(kernel(q[..., end, :], qd[..., end, :], geo[end], coef, kin.vector))
         return total
 
     def energies(self, t, d, v):

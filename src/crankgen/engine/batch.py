@@ -14,7 +14,7 @@ import numpy as np
 
 from ..discrete import kinematics as _kinematics
 from ..discrete import newton, time_scheme
-from ..discrete.mesh import components_of
+from ..discrete.mesh import ROCKER, components_of, rocker_of
 from ..declaration import schema, torque_curve
 from ..results.outputs import primitive_data
 from .borrow import borrowed_cases, borrowed_kernels, borrowed_mesh, borrowed_work, keep
@@ -23,11 +23,32 @@ from .compiled import call, jit
 from .coordinates import state_kinematics
 from .elements import step_outputs
 from .kernels import build_items, noop_tables, select_rows, tables
-from .records import N_OUTPUTS, NDOF, Cases, MeshData, Scheme, make_work
+from .records import N_KIN, N_OUTPUTS, NDOF, Cases, MeshData, Scheme, condensation, make_work
 from .step import NOT_FINITE, OK, SINGULAR, initial_acceleration, newmark_step
 
 HISTORY = newton.HISTORY
 PIN = next(c for c in schema.CONSTRAINTS if c.map is None and c.node == 0)     # the crank pin (its reaction)
+
+
+def body_data(mesh):
+    """(bodies, lengths, frames) of the engine's mesh: per flexible body (the rod, then a flexible
+    rocker) its elements' range [first, end), its element length and its frame map (kin_b = F kin;
+    the rod's, unused, the identity)."""
+    bodies, lengths, frames = [(0, mesh.n_elements)], [mesh.length], [np.eye(N_KIN)]
+    if mesh.rocker_elements:
+        bodies.append((mesh.n_elements, mesh.n_all))
+        lengths.append(mesh.rocker_element_length)
+        frames.append(np.array(ROCKER.frame_map, dtype=float))
+    return (np.array(bodies, dtype=np.int64), np.array(lengths, dtype=float),
+            np.ascontiguousarray(np.array(frames, dtype=float)))
+
+
+def body_coefficients(case, mesh):
+    """(bodies, n_coef): the coefficient vector of each flexible body's elements, the rod's first."""
+    rows = [case.coefficients]
+    if mesh.rocker_elements:
+        rows.append(case.body_coefficients(ROCKER.name))
+    return np.array(rows, dtype=float)
 
 
 class Batch:
@@ -55,17 +76,22 @@ class Batch:
         if any(components_of(c.options) != components for c in cases):
             raise ValueError("all cases of a batch must share their rod's node components (one state layout): "
                              "the exact rod's nodes carry chi = u_x, the other models' do not")
+        rocker = rocker_of(cases[0])
+        if any(rocker_of(c) != rocker for c in cases):
+            raise ValueError("all cases of a batch must share their flexible rocker's elements and length (one "
+                             "state layout)")
         self.cases, self.n_elements, self.steps_per_rev = cases, n, spr
         select = select_rows(cases)
         self.entries = frozenset(entries)
         if (like is not None and kernels_table is None and like.n_elements == n and like.steps_per_rev == spr
                 and len(like.runs) == 1 and (select == like.records.select[0]).all()
                 and self.entries <= like.entries and like.mesh.coordinates == coordinates
-                and like.mesh.components == components):
+                and like.mesh.components == components
+                and (like.mesh.rocker_elements, like.mesh.rocker_length) == rocker):
             self.mesh, self.N, self.meshdata = like.mesh, like.N, like.meshdata
             self.runs = [(like.runs[0][0], 0, len(cases))]
         else:
-            self._new_mesh(n, coordinates, components)
+            self._new_mesh(n, coordinates, components, rocker)
             if kernels_table is None:
                 prepare([f"entry:{e}" for e in entries] + build_items(select))
             # runs of consecutive cases of one model, each with its model's kernel table
@@ -75,7 +101,7 @@ class Batch:
         printed = np.array([c.integrator == "one-pass" and c.selection.printed_iteration for c in cases])
         self.kernels = self.runs[0][0]
         self.records = Cases(
-            select, np.array([c.coefficients for c in cases], dtype=float),
+            select, np.array([body_coefficients(c, self.mesh) for c in cases], dtype=float),
             np.array([c.kinematic_parameters for c in cases], dtype=float),
             (np.array([_kinematics.step_period(c) / spr for c in cases], dtype=float) if dt is None else
              np.array(np.broadcast_to(np.asarray(dt, dtype=float), (len(cases),)))),
@@ -88,11 +114,11 @@ class Batch:
             *torque_curve.batch_tables(cases))
         self.generalized = np.array([time_scheme.coefficients(c.rho_inf).generalized for c in cases])
 
-    def _new_mesh(self, n, coordinates, components):
+    def _new_mesh(self, n, coordinates, components, rocker):
         from ..discrete.assembly import BandedAssembler
         from ..discrete.mesh import Mesh
 
-        self.mesh = Mesh(n, coordinates, components)
+        self.mesh = Mesh(n, coordinates, components, *rocker)
         self.N = self.mesh.n_dofs
         points, grams = primitive_data(self.mesh)
         self.meshdata = MeshData(
@@ -103,7 +129,8 @@ class Batch:
             np.array([k for k, _ in grams], dtype=np.int64),
             np.ascontiguousarray(np.array([G for _, G in grams], dtype=float).reshape(len(grams), NDOF, NDOF)),
             self.mesh.n_rod, self.mesh.crank_coordinate, self.mesh.motor_coordinate,
-            np.array(self.mesh.holders(PIN)[0][1], dtype=np.int64))
+            np.array(self.mesh.holders(PIN)[0][1], dtype=np.int64), *body_data(self.mesh),
+            *condensation(self.mesh.n_all, self.mesh.holders(), len(self.mesh.mapped.reduced)))
 
     @property
     def dt(self):
@@ -157,7 +184,7 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, 
     N = D0.shape[1]
     kern, cases, mesh = borrowed_kernels(kern), borrowed_cases(cases), borrowed_mesh(mesh)    # the caller's
     for b in range(lo, hi):
-        owned = make_work(n, N, mesh.kb, mesh.n_rod)
+        owned = make_work(mesh, N)
         w = borrowed_work(owned)
         sel, params = cases.select[b], cases.params[b]
         dt = cases.dt[b]
@@ -233,7 +260,7 @@ def _march_cases(kern, cases, mesh, scheme, lo, hi, t0, step0, n_steps, D0, V0, 
 @jit
 def _initial_accelerations(kern, cases, mesh, lo, hi, t0, step0, D0, V0, A0, status):
     n, N = mesh.dofs.shape[0], D0.shape[1]
-    w = make_work(n, N, mesh.kb, mesh.n_rod)
+    w = make_work(mesh, N)
     for b in range(lo, hi):
         if not initial_acceleration(kern, cases, b, mesh, t0[b] + step0 * cases.dt[b], D0[b], V0[b], A0[b], w):
             status[b] = SINGULAR

@@ -55,6 +55,7 @@ def borrowed_work(w):
         borrowed(w.M1), borrowed(w.lanes), borrowed(w.prims), borrowed(w.q_end), borrowed(w.mapped),
         borrowed(w.held), borrowed(w.held_slots), borrowed(w.held_reduced), borrowed(w.qc), borrowed(w.qdc),
         borrowed(w.qddc), borrowed(w.Ec), borrowed(w.px), borrowed(w.pr),
+        borrowed(w.bodies), borrowed(w.lengths), borrowed(w.frames), borrowed(w.kinb),
         borrowed(w.dp), borrowed(w.vp), borrowed(w.zin), borrowed(w.pin), borrowed(w.geq), borrowed(w.geq1),
         borrowed(w.R0), borrowed(w.Yb), borrowed(w.Cb), borrowed(w.Sm), borrowed(w.gz))
 
@@ -70,7 +71,8 @@ def borrowed_cases(c):
 def borrowed_mesh(m):
     return MeshData(borrowed(m.dofs), m.kb, m.l, borrowed(m.point_slots), borrowed(m.point_elements),
                     borrowed(m.point_weights), borrowed(m.gram_slots), borrowed(m.grams), m.n_rod, m.crank_index, m.motor_index,
-                    borrowed(m.pin_slots))
+                    borrowed(m.pin_slots), borrowed(m.bodies), borrowed(m.lengths), borrowed(m.frames),
+                    borrowed(m.held), borrowed(m.held_slots), borrowed(m.held_reduced))
 
 
 @jit(python=False)

@@ -185,13 +185,14 @@ def _map_held(kern, sel, params, h, q, qd, qdd, w):
 _map_held = jit(_map_held, inline="always", python=False)
 
 
-def _lane_loop(add, e0, e1, kern, sel, coef, params, dofs, l, d, v, acc, cv, cd, w):
-    """The rod families' terms (their kernels' mode `add`) of the elements e0 <= e < e1, LANES at a
-    time: each group's nodal states gathered into a lane buffer of w.lanes (an element holding the
-    mapped constraint's node through its map, its state kept in w.qc; unused lanes at rest), the
-    lane function of each family slot called once, the terms copied into w.rE[e] and (by add)
-    w.SE[e] or w.KE[e], w.CE[e], w.ME[e]."""
-    q, qd, qdd, kin, rod = w.q, w.qd, w.qdd, w.kin, kern.rod
+def _lane_loop(add, e0, e1, kern, sel, coef, params, dofs, l, d, v, acc, cv, cd, w, kin, first):
+    """The rod families' terms (their kernels' mode `add`) of the elements e0 <= e < e1 of one
+    flexible body (its first element `first`, its element length l, its frame's kinematics kin, its
+    coefficients coef), LANES at a time: each group's nodal states gathered into a lane buffer of
+    w.lanes (an element holding the mapped constraint's node through its map, its state kept in
+    w.qc; unused lanes at rest), the lane function of each family slot called once, the terms copied
+    into w.rE[e] and (by add) w.SE[e] or w.KE[e], w.CE[e], w.ME[e]."""
+    q, qd, qdd, rod = w.q, w.qd, w.qdd, kern.rod
     rE, SE, KE, CE, ME = w.rE, w.SE, w.KE, w.CE, w.ME
     for c in range(e0, e1, LANES):
         b = w.lanes[(c - e0) // LANES]
@@ -213,7 +214,7 @@ def _lane_loop(add, e0, e1, kern, sel, coef, params, dofs, l, d, v, acc, cv, cd,
                     b[(LQD + k) * LANES + j] = 0.0
                     b[(LQDD + k) * LANES + j] = 0.0
             b[LGEO * LANES + j] = l
-            b[(LGEO + 1) * LANES + j] = e * l
+            b[(LGEO + 1) * LANES + j] = (e - first) * l
         for i in range(LR * LANES, (LR + NDOF) * LANES):
             b[i] = 0.0
         if add == ADD_NEWMARK:
@@ -273,19 +274,30 @@ def _element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv
     n = dofs.shape[0]
     full = ADD_PRINTED if printed else ADD_FULL
     apart = mode == NEWMARK and not printed     # a holding element's separate matrices on lanes of their own
-    lo = 0
-    while lo < n:                       # one call site: one compilation of _lane_loop
-        hi = lo + 1
-        if apart and w.mapped[lo] >= 0:
-            add = full
-        else:
-            while hi < n and not (apart and w.mapped[hi] >= 0):
-                hi += 1
-            add = ADD_RESIDUAL if mode == RESIDUAL else (ADD_NEWMARK if apart else full)
-        _lane_loop(add, lo, hi, kern, sel, coef, params, dofs, l, d, v, acc, cv, cd, w)
-        lo = hi
+    for body in range(w.bodies.shape[0]):       # the rod, then the other flexible bodies (a rocker)
+        first, end = w.bodies[body, 0], w.bodies[body, 1]
+        if body == 0:
+            kb, cb, lb = w.kin, coef[0], l
+        else:                                   # the body's frame: kin_b = F_b kin
+            kb, cb, lb = w.kinb[body], coef[body], w.lengths[body]
+            for i in range(kb.shape[0]):
+                acc_k = 0.0
+                for j in range(kb.shape[0]):
+                    acc_k += w.frames[body, i, j] * w.kin[j]
+                kb[i] = acc_k
+        lo = first
+        while lo < end:                 # one call site: one compilation of _lane_loop
+            hi = lo + 1
+            if apart and w.mapped[lo] >= 0:
+                add = full
+            else:
+                while hi < end and not (apart and w.mapped[hi] >= 0):
+                    hi += 1
+                add = ADD_RESIDUAL if mode == RESIDUAL else (ADD_NEWMARK if apart else full)
+            _lane_loop(add, lo, hi, kern, sel, cb, params, dofs, lb, d, v, acc, cv, cd, w, kb, first)
+            lo = hi
     add = ADD_RESIDUAL if mode == RESIDUAL else full
-    geo, kin = w.geo, w.kin
+    geo, kin, coef = w.geo, w.kin, coef[0]
     rE, KE, CE, ME, SE = w.rE, w.KE, w.CE, w.ME, w.SE
     r, K, C, M, S = w.r1, w.K1, w.C1, w.M1, w.S1
     end = kern.end
@@ -332,7 +344,7 @@ def step_outputs(kern, sel, params, p, mesh, d, w, out):
     the rod: q^T G q summed over the elements), then the generated per_step of those and the
     parameter vector p."""
     dofs = mesh.dofs
-    n = dofs.shape[0]
+    n = mesh.bodies[0, 1]               # the rod's elements
     N = d.shape[0]
     q, prims = w.q, w.prims
     for k in range(prims.shape[0]):

@@ -14,8 +14,8 @@ hold a no-op of the same signature.  Each compiled kernel is cached on disk like
 (compiled.py), so a model's kernels are compiled once per machine.
 
 Layout of `select` (per case): one slot per family acting on every element ("rod" families, in
-the schema's order), one per family acting on the end node ("end"), then the guide and the crank
-motion; a family slot holds the flat index of its selected variant in the part's tables (-1: the
+the schema's order), one per family acting on the end node ("end"), then the guide, the crank
+motion and the end map (END_MAP_NAMES: the guide's, or a flexible rocker's); a family slot holds the flat index of its selected variant in the part's tables (-1: the
 family is absent).
 """
 
@@ -26,6 +26,7 @@ from numba import types
 from numba.core import config
 
 from ..discrete import newton as _newton
+from ..discrete.mesh import rocker_of
 from ..declaration import schema
 from .._generated import elements as _elements
 from .._generated import kinematics as _kinematics
@@ -58,24 +59,29 @@ GUIDE_NAMES = tuple(schema.GUIDES)
 MOTION_NAMES = tuple(schema.MOTIONS)
 DRIVEN = tuple(name for name, m in schema.MOTIONS.items() if m.driven)     # motions with a coordinates_ kernel
 N_ROD, N_END = len(FAMILY_SLOTS["rod"]), len(FAMILY_SLOTS["end"])
-GUIDE_SLOT, MOTION_SLOT = N_ROD + N_END, N_ROD + N_END + 1
-SELECT_SIZE = N_ROD + N_END + 2
+# the end maps: each guide's, then a flexible rocker's for a guide whose end a link carries
+# (end_map_<guide>_flexible: the rod's end held by the rocker's tip)
+END_MAP_NAMES = GUIDE_NAMES + tuple(f"{g}_flexible" for g in GUIDE_NAMES if schema.GUIDES[g].pivot)
+GUIDE_SLOT, MOTION_SLOT, END_MAP_SLOT = N_ROD + N_END, N_ROD + N_END + 1, N_ROD + N_END + 2
+SELECT_SIZE = N_ROD + N_END + 3
 
 
 def select_row(case):
     """The case's `select` row (module docstring)."""
-    return list(_select_row(case.selection.families, case.guide_record.name, case.motion_record.name))
+    return list(_select_row(case.selection.families, case.guide_record.name, case.motion_record.name,
+                            rocker_of(case)[0] > 0))
 
 
 @functools.lru_cache(maxsize=256)
-def _select_row(families, guide, motion):
+def _select_row(families, guide, motion, flexible=False):
     by_family = dict(zip((f.name for f in schema.FAMILIES), families))
     row = []
     for part in PARTS:
         for f in FAMILY_SLOTS[part]:
             k = by_family[f.name]
             row.append(-1 if k < 0 else VARIANTS[part].index((f.name, k, f.variants[k].kernel)))
-    return tuple(row + [GUIDE_NAMES.index(guide), MOTION_NAMES.index(motion)])
+    end_map = END_MAP_NAMES.index(f"{guide}_flexible" if flexible else guide)
+    return tuple(row + [GUIDE_NAMES.index(guide), MOTION_NAMES.index(motion), end_map])
 
 
 # ---- no-ops: the entries of kernels no case needs ---------------------------------------------------
@@ -157,7 +163,7 @@ def needed(rows):
                 i = row[offset + k]
                 if i >= 0:
                     out.add((PART_KIND[part], VARIANTS[part][i][2]))
-        out.add(("end_map", GUIDE_NAMES[row[GUIDE_SLOT]]))
+        out.add(("end_map", END_MAP_NAMES[row[END_MAP_SLOT]]))
         out.add(("guide", GUIDE_NAMES[row[GUIDE_SLOT]]))
         out.add(("motion", MOTION_NAMES[row[MOTION_SLOT]]))
         if MOTION_NAMES[row[MOTION_SLOT]] in DRIVEN:
@@ -175,7 +181,7 @@ def tables(row):
                                  if row[offset + k] >= 0 else _noop(kind) for k in range(count)])
     guide, motion = GUIDE_NAMES[row[GUIDE_SLOT]], MOTION_NAMES[row[MOTION_SLOT]]
     return Kernels(slots("rod", 0, N_ROD), slots("end", N_ROD, N_END),
-                   _addresses("end_map", [compiled("end_map", guide)]), _addresses("guide", [compiled("guide", guide)]),
+                   _addresses("end_map", [compiled("end_map", END_MAP_NAMES[row[END_MAP_SLOT]])]), _addresses("guide", [compiled("guide", guide)]),
                    _addresses("motion", [compiled("motion", motion)]),
                    _addresses("coordinates", [compiled("coordinates", motion) if motion in DRIVEN
                                               else _noop("coordinates")]))
@@ -196,7 +202,7 @@ def build_items(rows):
 def all_build_items():
     """The build items of every kernel of every model (crankgen compile)."""
     items = {(PART_KIND[part], name) for part in PARTS for _, _, name in VARIANTS[part]}
-    items.update(("end_map", g) for g in GUIDE_NAMES)
+    items.update(("end_map", g) for g in END_MAP_NAMES)
     items.update(("guide", g) for g in GUIDE_NAMES)
     items.update(("motion", m) for m in MOTION_NAMES)
     items.update(("coordinates", m) for m in DRIVEN)

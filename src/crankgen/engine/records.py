@@ -38,14 +38,11 @@ NDOF = schema.ELEMENT_DOFS
 LANES, LANE_SIZE = schema.LANES, schema.LANE_SIZE
 N_KIN = len(schema.KINEMATICS)
 END_ROWS = len(schema.END_MAP_ROWS)
-# the DOF map's mapped constraint (the guide's): the components it eliminates at its node (K_ELIM),
-# its reduced co-ordinates (M_RED), its node, and the eliminated components' places in an element
-# whose first or second node it is
-MAPPED = next(c for c in schema.CONSTRAINTS if c.map is not None)
-K_ELIM, M_RED, MAPPED_NODE = len(MAPPED.eliminated), len(MAPPED.reduced), MAPPED.node
-_NODE_DOFS = len(schema.NODE)
-SLOTS_FIRST = np.array([schema.NODE.index(c) for c in MAPPED.eliminated], dtype=np.int64)
-SLOTS_SECOND = SLOTS_FIRST + _NODE_DOFS
+# the components the DOF map's mapped constraints eliminate at their node (the guide's end, a
+# flexible rocker's tip: the same k; their reduced co-ordinates m per mesh, MeshData.held_reduced)
+_MAPPED = [c for c in schema.CONSTRAINTS if c.map is not None]
+K_ELIM = len(_MAPPED[0].eliminated)
+assert all(len(c.eliminated) == K_ELIM for c in _MAPPED)
 N_OUTPUTS = len(schema.ENGINE_OUTPUTS)          # the engine's per-step outputs
 N_PRIMITIVES = len(schema.PRIMITIVES)           # what it accumulates for them
 
@@ -60,7 +57,8 @@ Cases = namedtuple("Cases", ["select", "coef", "params", "dt", "p", "scheme", "p
                              "curve_n"])
 
 MeshData = namedtuple("MeshData", ["dofs", "kb", "l", "point_slots", "point_elements", "point_weights",
-                                   "gram_slots", "grams", "n_rod", "crank_index", "motor_index", "pin_slots"])
+                                   "gram_slots", "grams", "n_rod", "crank_index", "motor_index", "pin_slots",
+                                   "bodies", "lengths", "frames", "held", "held_slots", "held_reduced"])
 
 Scheme = namedtuple("Scheme", ["tol", "max_iter"])
 
@@ -77,7 +75,8 @@ Work = namedtuple("Work", [
     "prims", "q_end",                   # the primitives of the engine's outputs; the mapped node's eliminated components
     "mapped", "held", "held_slots", "held_reduced",    # the DOF map's condensation: `condensation`
     "qc", "qdc", "qddc", "Ec",          # per holding element: its mapped nodal state and map values
-    "px", "pr",                         # the projection's scratch: eliminated entries (3, K_ELIM), reduced (3, M_RED)
+    "px", "pr",                         # the projection's scratch: eliminated entries (3, K_ELIM), reduced (3, m)
+    "bodies", "lengths", "frames", "kinb",   # the flexible bodies: element ranges, element lengths, frame maps, kinematics
     "dp", "vp",                         # a step's predictors (N)
     # the border of the declared co-ordinates (m of them; the state is the n_rod nodal co-ordinates, then them)
     "zin", "pin", "geq", "geq1",        # the co-ordinate kernel's z (3 m) and pin force (2); its rows (m, 3 m + 3)
@@ -85,50 +84,46 @@ Work = namedtuple("Work", [
 ])
 
 
-def _condensation(n):
-    """The DOF map's condensation on n elements: (mapped (n,): for each element the index of its
-    holding of the mapped constraint's node, -1 none; held (h,): the holding elements; held_slots
-    (h, K_ELIM): the eliminated components' places in each; held_reduced (h, M_RED): the places of
-    the reduced co-ordinates there, the first eliminated ones), the same as crankgen.discrete.mesh.Mesh.holders."""
-    node = MAPPED_NODE % (n + 1)
-    count = (1 if node >= 1 else 0) + (1 if node < n else 0)
+def condensation(n, holders, m):
+    """The DOF map's condensation on n elements (every flexible body's), from the mapped constraint's
+    holders (crankgen.discrete.mesh.Mesh.holders: element, eliminated slots, reduced slots) and its m
+    reduced co-ordinates: (held (h,): the holding elements; held_slots (h, K_ELIM): the eliminated
+    components' places in each; held_reduced (h, m): the places of the reduced co-ordinates there)."""
+    held = np.array([e for e, _, _ in holders], dtype=np.int64)
+    slots = np.array([list(s) for _, s, _ in holders], dtype=np.int64).reshape(len(holders), K_ELIM)
+    reduced = np.array([list(r) for _, _, r in holders], dtype=np.int64).reshape(len(holders), m)
+    return held, slots, reduced
+
+
+def map_rows(m):
+    """Rows of a map of m reduced co-ordinates (q, qd, qdd; 4 per co-ordinate; m^2 curvature rows)."""
+    return 3 + 4 * m + m * m
+
+
+def _make_work(mesh, N):
+    """Work arrays for the mesh's elements (every flexible body's), N reduced DOFs of which n_rod
+    nodal ones (the rest the declared co-ordinates), its bandwidth and mapped constraint."""
+    n, kb, n_rod = mesh.dofs.shape[0], mesh.kb, mesh.n_rod
+    held, held_slots, held_reduced = mesh.held, mesh.held_slots, mesh.held_reduced
     mapped = np.full(n, -1, dtype=np.int64)
-    held = np.zeros(count, dtype=np.int64)
-    slots = np.zeros((count, K_ELIM), dtype=np.int64)
-    reduced = np.zeros((count, M_RED), dtype=np.int64)
-    i = 0
-    for side in range(2):                    # the element ending at the node, then the one starting there
-        e = node - 1 + side
-        if 0 <= e < n:
-            mapped[e] = i
-            held[i] = e
-            for a in range(K_ELIM):
-                slots[i, a] = SLOTS_SECOND[a] if side == 0 else SLOTS_FIRST[a]
-            for j in range(M_RED):
-                reduced[i, j] = slots[i, j]
-            i += 1
-    return mapped, held, slots, reduced
-
-
-condensation = jit(_condensation)                # called by make_work, compiled or not
-
-
-def _make_work(n, N, kb, n_rod):
-    """Work arrays for n elements, N reduced DOFs of which n_rod nodal ones (the rest the declared
-    co-ordinates), bandwidth kb."""
-    mapped, held, held_slots, held_reduced = condensation(n)
+    for i in range(held.shape[0]):
+        mapped[held[i]] = i
     m = N - n_rod
     h = held.shape[0]
+    mr = held_reduced.shape[1]
+    rows = 3 + 4 * mr + mr * mr
+    nb = mesh.bodies.shape[0]
     return Work(np.zeros((n, NDOF)), np.zeros((n, NDOF, NDOF)), np.zeros((n, NDOF, NDOF)),
                 np.zeros((n, NDOF, NDOF)), np.zeros((n, NDOF, NDOF)), np.zeros(n_rod), np.zeros((n_rod + kb, 1)),
                 np.zeros((n_rod, 3 * kb + 1)), np.zeros(n_rod, dtype=np.int64), np.zeros(n_rod, dtype=np.int64),
                 np.zeros((n_rod + kb, 2 * kb + 1)), np.zeros(n_rod), np.zeros(N_KIN), np.zeros(3),
-                np.zeros(NDOF), np.zeros(NDOF), np.zeros(NDOF), np.zeros(2), np.zeros(3 * M_RED),
-                np.zeros((END_ROWS, K_ELIM)),
+                np.zeros(NDOF), np.zeros(NDOF), np.zeros(NDOF), np.zeros(2), np.zeros(3 * mr),
+                np.zeros((rows, K_ELIM)),
                 np.zeros(NDOF), np.zeros((NDOF, NDOF)), np.zeros((NDOF, NDOF)), np.zeros((NDOF, NDOF)),
-                np.zeros((NDOF, NDOF)), np.zeros(((n + LANES - 1) // LANES, LANE_SIZE)), np.zeros(N_PRIMITIVES),
-                np.zeros(K_ELIM), mapped, held, held_slots, held_reduced, np.zeros((h, NDOF)), np.zeros((h, NDOF)),
-                np.zeros((h, NDOF)), np.zeros((h, END_ROWS, K_ELIM)), np.zeros((3, K_ELIM)), np.zeros((3, M_RED)),
+                np.zeros((NDOF, NDOF)), np.zeros(((n + LANES - 1) // LANES + nb, LANE_SIZE)), np.zeros(N_PRIMITIVES),
+                np.zeros(K_ELIM), mapped, held.copy(), held_slots.copy(), held_reduced.copy(), np.zeros((h, NDOF)),
+                np.zeros((h, NDOF)), np.zeros((h, NDOF)), np.zeros((h, rows, K_ELIM)), np.zeros((3, K_ELIM)),
+                np.zeros((3, mr)), mesh.bodies.copy(), mesh.lengths.copy(), mesh.frames.copy(), np.zeros((nb, N_KIN)),
                 np.zeros(N), np.zeros(N),
                 np.zeros(3 * m), np.zeros(2), np.zeros((m, 3 * m + 3)), np.zeros((m, 3 * m + 3)),
                 np.zeros(n_rod), np.zeros((m, n_rod)), np.zeros((m, n_rod)), np.zeros((m, m)), np.zeros(m))

@@ -97,7 +97,7 @@ def _revolution_cases(kern, cases, mesh, scheme, lo, hi, step0, n_steps, spr, X0
         width = (ncol + PAD - 1) // PAD * PAD if with_j else 0
         P = S                                       # the parameter column
         ratio = (1.0 - af) / (1.0 - am)
-        owned = make_work(n, N, kb, mesh.n_rod)
+        owned = make_work(mesh, N)
         w = borrowed_work(owned)
         sel, coef, params = cases.select[b], cases.coef[b], cases.params[b]
         dt = cases.dt[b]

@@ -28,7 +28,7 @@ from ..discrete import kinematics as _kinematics
 from .._generated import per_step as _per_step
 from .._generated.shape import shape_functions
 from ..errors import ParameterError
-from ..discrete.mesh import MAPPED, NODE_DOFS, U, V, Mesh, components_of
+from ..discrete.mesh import MAPPED, NODE_DOFS, U, V, Mesh, components_of, nodal_mesh
 from ..declaration.validation import finite_number, in_range
 
 NODE_TOLERANCE = 1e-12      # x* closer than this (relative to an element) to a node is at the node
@@ -121,6 +121,12 @@ def _sides(mesh, x):
     return [(e, min(max(zeta, 0.0), 1.0))]
 
 
+# the inputs of an output that a flexible rocker has no value of: the guide's reduced co-ordinate s
+# and the forces of the guide's constraint (the rigid rocker's tip) and of the end mass on the rod there
+UNAVAILABLE_WITH_FLEXIBLE_LINKS = ("s", "rod_end") + tuple(
+    c.name for c in schema.CONSTRAINTS if c.excludes is not None)
+
+
 class StateHistory:
     """What the declared outputs need of a run: its case and the reduced states at the stored times
     (velocities and accelerations too for the reactions and the rates)."""
@@ -130,7 +136,7 @@ class StateHistory:
         self.states = None if states is None else np.asarray(states)   # None: the kinematics' outputs alone
         self.crank = None if crank is None else np.asarray(crank, dtype=float)     # a driven crank's (theta, thetad, thetadd)
         self.rates, self.accelerations = rates, accelerations
-        self.mesh = Mesh(case.n_elements, components=components_of(case.options))
+        self.mesh = nodal_mesh(case)
         self._kin = None
         self._pin_end = None
         self._constraints = tuple(c.name for c in schema.CONSTRAINTS)
@@ -155,7 +161,7 @@ class StateHistory:
         those and `accelerations`)."""
         self._need_states()
         q = self.mesh.gather(reduced)
-        S = self.mesh.reduced_coordinates()[0]
+        S = list(self.mesh.reduced_coordinates()) if self.mesh.rocker_elements else self.mesh.reduced_coordinates()[0]
         E = _kinematics.end_map(self.case, self.kinematics().vector, self.states[:, S],
                                 0.0 if rates is None else rates[:, S],
                                 0.0 if accelerations is None else accelerations[:, S])
@@ -180,6 +186,24 @@ class StateHistory:
                                  "this result does not hold")
         return self._mapped(self.accelerations, "qdd", self.rates, self.accelerations)
 
+    def rocker_deflection(self, x):
+        """(steps,): a flexible rocker's deflection at x* = x from its chord, in units of r (Result)."""
+        from .._generated.shape import shape_functions
+        mesh = self.mesh
+        if not mesh.rocker_elements:
+            raise ParameterError("rocker_deflection: this case's rocker is rigid (it has no elements)")
+        states = self._need_states()
+        n_r, c, l = mesh.rocker_elements, mesh.rocker_length, mesh.rocker_element_length
+        q = mesh.gather_all(states)[:, mesh.n_elements:, :]           # the rocker's nodes are its own
+        e = min(int(np.floor(x * n_r)), n_r - 1)
+        N_u, N_v, _, N_u_cubic = shape_functions((x * c - e * l) / l, l)
+        u = q[:, e] @ (N_u_cubic if "chi" in mesh.components else N_u)
+        v = q[:, e] @ N_v
+        u_tip, v_tip = (states[:, i] for i in mesh.reduced_coordinates())
+        chord_x, chord_y = c + u_tip, v_tip                               # pivot to tip, in the rocker's frame
+        deflection = (chord_x * v - chord_y * (x * c + u)) / np.hypot(chord_x, chord_y)
+        return deflection / self.case.natural_sizes[V]
+
     def _need_rates(self, what):
         if self.rates is None:
             raise ParameterError(f"{what} need the stored velocities, which this result does not hold")
@@ -203,6 +227,11 @@ class StateHistory:
         for name in spec.inputs:
             if name in ("q", "qd", "zeta", "geo", "fiber") or name in out:
                 continue
+            if self.mesh.rocker_elements and name in UNAVAILABLE_WITH_FLEXIBLE_LINKS:
+                raise ParameterError(
+                    f"{spec.name}: with a flexible rocker the rod's end is held by the rocker's tip, not by a "
+                    f"rigid rocker on its circle, and this output reads the rigid rocker's {name!r}; it is not "
+                    f"available for a flexible rocker (its tip's and pivot's forces: not yet)")
             if name == "coef":
                 out[name] = self.case.coefficients
             elif name == "kin":
@@ -359,6 +388,13 @@ class DeclaredOutputs:
         if spec.kind == "reduction":
             return self._history().reduction(name)
         return self._history().step(name)
+
+    def rocker_deflection(self, x=0.5):
+        """A flexible rocker's deflection per stored step at x* = x (a fraction of its length c, from
+        its ground pivot D, 0 <= x <= 1) from its chord (the line from D through its tip as they
+        are), in units of the coupler's radius of gyration r = eps L (like v*)."""
+        from ..declaration.validation import in_range
+        return self._history().rocker_deflection(in_range("x (fraction of the rocker's length)", x, 0.0, 1.0))
 
     def output_names(self):
         """The declared outputs this result gives per step (the engine's; with stored states every

@@ -1,0 +1,127 @@
+"""A four-bar with a flexible rocker beside the flexible coupler (the body "rocker", rocker_elements
+> 0): its limits, its frozen frequencies against an exact frame solution built independently
+(tests/linkage_frequencies.py, the dynamic stiffness method), the compiled engine against the NumPy
+reference, and the DOF map's band."""
+
+import numpy as np
+import pytest
+
+import crankgen
+from crankgen.analyses.modes import FrozenModel
+from crankgen.declaration.cases import make_case
+from crankgen.discrete import kinematics
+from crankgen.discrete.assembly import BandedAssembler
+from crankgen.discrete.mesh import Mesh
+from crankgen.errors import ParameterError
+
+from linkage_frequencies import frequencies
+
+FOUR_BAR = dict(a=0.1, c=0.8, d=1.0, offset=0.0)
+
+
+def four_bar(**rocker):
+    return crankgen.Mechanism(a=FOUR_BAR["a"], guide=crankgen.Circle(c=FOUR_BAR["c"], d=FOUR_BAR["d"], **rocker))
+
+
+@pytest.mark.parametrize("approach", ["A", "exact"])
+def test_the_dof_map_keeps_the_band_of_one_rod(approach):
+    """The rocker's nodes follow the rod's from its tip: every element spans as few unknowns as the
+    rod's own (half-bandwidth 5 without chi, 7 with it), the rocker tip's (u, v) are the tip
+    constraint's reduced co-ordinates, and the pivot's (u, v) are gone."""
+    components = ("u", "v", "psi", "chi") if approach == "exact" else ("u", "v", "psi")
+    rod = Mesh(6, components=components)
+    both = Mesh(6, components=components, rocker_elements=4, rocker_length=0.8)
+    assert BandedAssembler(both).bandwidth == BandedAssembler(rod).bandwidth
+    per_node = len(components)
+    # the tip's (u, v) replace s; the rocker's 5 nodes, less the tip's (u, v) (shared) and the pivot's (pinned)
+    assert both.n_rod == rod.n_rod + 1 + 5 * per_node - 4
+    tip = both.reduced_coordinates()
+    assert tip == (both.reduced_index(("rocker", 4), 0), both.reduced_index(("rocker", 4), 1))
+    assert both.element_dofs[5, 4:6].tolist() == list(tip)     # the rod's end node (u, v) slots
+    assert both.reduced_index(("rocker", 0), 0) is None and both.reduced_index(("rocker", 0), 1) is None
+    assert sorted(set(both.element_dofs.ravel()) - {both.dummy}) == list(range(both.n_rod))
+
+
+def _frozen_frequencies(ms, theta, n, n_r, eps=0.02):
+    case = make_case(a=FOUR_BAR["a"], guide="circle", c=FOUR_BAR["c"], d=FOUR_BAR["d"], eps=eps, ms=ms,
+                     omega=1e-6, n_elements=n, rocker_elements=n_r, rotary_inertia=False)
+    model = FrozenModel(case)
+    kin, _, lam, _, _ = model.eigen(np.array([theta]))
+    k = kin.vector[0]
+    A = FOUR_BAR["a"] * np.array([np.cos(theta), np.sin(theta)])
+    phi = k[list(crankgen.declaration.schema.KINEMATICS).index("phi")]
+    B = A + np.array([np.cos(phi), -np.sin(phi)])
+    D = np.array([FOUR_BAR["d"], FOUR_BAR["offset"]])
+    u, w = A - B, D - B
+    gamma = np.arccos(u @ w / np.linalg.norm(u) / np.linalg.norm(w))
+    return np.sqrt(lam[0, :3]), gamma
+
+
+@pytest.mark.parametrize("ms", [0.0, 0.5])
+def test_frozen_frequencies_of_the_linkage_match_the_exact_frame(ms):
+    """Crank locked (Omega* -> 0), no rotary inertia: the coupler and the rocker pinned at A, D and
+    to each other at B (end mass ms there) vibrate at the frequencies of the dynamic stiffness
+    method's frame (exact Euler-Bernoulli members), first three modes to 0.5 %."""
+    eps, theta = 0.02, 1.0
+    ours, gamma = _frozen_frequencies(ms, theta, 16, 12, eps)
+    EA, EI = 1 / (np.pi**4 * eps**2), 1 / np.pi**4
+    exact = frequencies(1.0, 1.0, EA, EI, FOUR_BAR["c"], 1.0, EA, EI, gamma, m_B=ms, n=3)
+    assert 0.3 < gamma < 2.8                   # a frame, not the toggle
+    np.testing.assert_allclose(ours, exact, rtol=5e-3)
+
+
+def test_frozen_frequencies_converge_in_each_links_elements():
+    """The first three frozen frequencies converge from above as the coupler's and the rocker's
+    element counts double (cubic beam elements: the error falls about sixteenfold per halving, h^4)."""
+    eps, theta = 0.02, 1.0
+    _, gamma = _frozen_frequencies(0.5, theta, 4, 4, eps)
+    EA, EI = 1 / (np.pi**4 * eps**2), 1 / np.pi**4
+    exact = frequencies(1.0, 1.0, EA, EI, FOUR_BAR["c"], 1.0, EA, EI, gamma, m_B=0.5, n=3)
+    errors = []
+    for n, n_r in ((4, 3), (8, 6), (16, 12)):
+        ours, _ = _frozen_frequencies(0.5, theta, n, n_r, eps)
+        errors.append(np.abs(ours / exact - 1))
+    errors = np.array(errors)
+    assert np.all(errors[1] < errors[0] / 8) and np.all(errors[2] < errors[1] / 8), errors
+
+
+def _steady_max(mech, omega=0.6, n=8, **settings):
+    s = crankgen.steady_state(mech, omega=omega, n_elements=n, steps_per_rev=100, **settings)
+    return float(np.max(np.abs(s.v_mid)))
+
+
+def test_a_stiff_light_rocker_is_the_rigid_massless_rocker():
+    """A flexible rocker 10^4 times stiffer than the coupler, its mass 10^-4 of the coupler's per
+    length, reproduces the rigid massless rocker's steady max |v*| to 1e-4."""
+    rigid = _steady_max(four_bar())
+    stiff = _steady_max(four_bar(rocker_elements=4, rocker_bending=1e4, rocker_axial=1e4, rocker_density=1e-4))
+    assert abs(stiff / rigid - 1) < 1e-4, (stiff, rigid)
+    soft = _steady_max(four_bar(rocker_elements=4))
+    assert abs(soft / rigid - 1) > 1e-3            # the coupler's own section: the rocker's flexibility shows
+
+
+def test_a_stiff_rocker_with_its_mass_is_the_rigid_rocker_of_that_mass():
+    """Made 10^4 times stiffer with its real mass (rho A_r = rho A), the flexible rocker reproduces a
+    rigid rocker of the same mass c, centre c/2 and inertia m c^2/12 (rotary inertia off for both)."""
+    c = FOUR_BAR["c"]
+    rigid = _steady_max(four_bar(rocker_mass=c, rocker_centre=0.5, rocker_inertia=c**3 / 12), rotary_inertia=False)
+    stiff = _steady_max(four_bar(rocker_elements=4, rocker_bending=1e4, rocker_axial=1e4), rotary_inertia=False)
+    massless = _steady_max(four_bar())
+    assert abs(stiff / rigid - 1) < 1e-4, (stiff, rigid)
+    assert abs(rigid / massless - 1) > 5e-3        # the rocker's mass matters (0.9 % here)
+
+
+@pytest.mark.parametrize("model", ["consistent", "exact"])
+def test_the_compiled_engine_matches_the_numpy_reference(model):
+    """Two flexible bodies in the compiled engine (per-body lanes, the rocker's frame and section,
+    the tip's two reduced co-ordinates) and in the NumPy reference model: the same run."""
+    mech = four_bar(rocker_elements=3, rocker_bending=0.5, rocker_density=2.0)
+    runs = [crankgen.simulate(mech, omega=0.6, n_elements=4, steps_per_rev=50, revolutions=1, model=model,
+                              engine=engine) for engine in ("compiled", "numpy")]
+    np.testing.assert_allclose(runs[0].states, runs[1].states, rtol=0, atol=1e-9 * np.max(np.abs(runs[1].states)))
+
+
+def test_a_flexible_rocker_refuses_the_rigid_rockers_mass():
+    with pytest.raises(ParameterError, match="flexible rocker"):
+        crankgen.simulate(four_bar(rocker_elements=3, rocker_mass=0.5), omega=0.5, n_elements=4,
+                          steps_per_rev=40, revolutions=1)
