@@ -140,7 +140,7 @@ def test_iteration_matrix_factorizations_agree_on_a_real_step(model, kb):
     rng = np.random.default_rng(5)
     d, v, a = (1e-4 * rng.standard_normal(b.N) for _ in range(3))
     dofs, l = b.meshdata.dofs, b.meshdata.l
-    w = engine.make_work(n, b.N, kb, N)
+    w = engine.make_work(b.meshdata, b.N)
     sel, cf, params = b.records.select[0], b.records.coef[0], b.records.params[0]
 
     def loop(mode, cv, cd):

@@ -42,6 +42,39 @@ def test_the_dof_map_keeps_the_band_of_one_rod(approach):
     assert sorted(set(both.element_dofs.ravel()) - {both.dummy}) == list(range(both.n_rod))
 
 
+def test_the_tips_end_map_holds_the_rods_end_on_the_rocker_tip():
+    """end_map_circle_flexible against the geometry written out here: the rod's end displacement
+    u e_i + v e_j equals the rocker tip's u_r e_ir + v_r e_jr (e_i = (cos phi, -sin phi), e_ir = (cos
+    beta, sin beta)), its rates are the time derivatives of that along a motion (central
+    differences), its g_s columns the derivatives in (u_r, v_r), its curvature rows zero."""
+    case = make_case(a=0.1, guide="circle", c=0.8, d=1.0, omega=0.7, rocker_elements=2)
+
+    def tip(t):                                    # a smooth motion of the rocker's tip
+        return np.array([1e-4 * np.sin(3 * t) + 2e-5, 3e-3 * np.cos(2 * t)])
+
+    def rod_end(t, z):                             # (u, v) of the rod's end: independent geometry
+        k = kinematics.case_state(case, t).vector
+        phi, beta = k[3], k[7]
+        e_i, e_j = np.array([np.cos(phi), -np.sin(phi)]), np.array([np.sin(phi), np.cos(phi)])
+        disp = z[0] * np.array([np.cos(beta), np.sin(beta)]) + z[1] * np.array([-np.sin(beta), np.cos(beta)])
+        return np.array([disp @ e_i, disp @ e_j])
+
+    t, h = 1.3, 1e-4
+    z, zd, zdd = tip(t), (tip(t + h) - tip(t - h)) / (2 * h), (tip(t + h) - 2 * tip(t) + tip(t - h)) / h**2
+    E = kinematics.end_map(case, kinematics.case_state(case, t).vector, z, zd, zdd)
+    assert E.shape == (15, 2)
+    np.testing.assert_allclose(E[0], rod_end(t, z), rtol=1e-12, atol=1e-15)
+    qd = (rod_end(t + h, tip(t + h)) - rod_end(t - h, tip(t - h))) / (2 * h)
+    qdd = (rod_end(t + h, tip(t + h)) - 2 * rod_end(t, z) + rod_end(t - h, tip(t - h))) / h**2
+    np.testing.assert_allclose(E[1], qd, rtol=1e-6, atol=1e-9 * np.abs(qd).max())
+    np.testing.assert_allclose(E[2], qdd, rtol=1e-4, atol=1e-5 * np.abs(qdd).max())
+    for j in range(2):
+        dz = np.eye(2)[j] * 1e-6
+        g_s = (rod_end(t, z + dz) - rod_end(t, z - dz)) / 2e-6
+        np.testing.assert_allclose(E[3 + 4 * j], g_s, rtol=1e-8, atol=1e-12)
+    assert not E[11:].any()                        # linear in (u_r, v_r): no curvature
+
+
 def _frozen_frequencies(ms, theta, n, n_r, eps=0.02):
     case = make_case(a=FOUR_BAR["a"], guide="circle", c=FOUR_BAR["c"], d=FOUR_BAR["d"], eps=eps, ms=ms,
                      omega=1e-6, n_elements=n, rocker_elements=n_r, rotary_inertia=False)

@@ -412,6 +412,8 @@ def test_every_kernel_is_covered():
     for g, record in schema.GUIDES.items():
         check = "margins" if record.closure == "closed-form" else "closure"      # a numerical closure is sampled
         expected |= {f"kinematics.{k}_{g}" for k in ("guide", "end_map", "rigid_end", check, "end_scale")}
+        if record.pivot:                                     # a flexible rocker's tip (tests/test_flexible_rocker.py)
+            expected.add(f"kinematics.end_map_{g}_flexible")
     for m in schema.MOTIONS:
         expected |= {f"kinematics.{k}_{m}" for k in ("motion", "period", "step_period")}
         if schema.MOTIONS[m].driven:                         # a driven crank's co-ordinates: equations, start

@@ -47,6 +47,8 @@ import numpy as np
 from ... import engine
 from ...declaration import schema
 from ...discrete import kinematics as _kinematics
+from ...discrete.mesh import rocker_of
+from ...errors import ParameterError
 from ...results import motor_duty, reductions
 from ...results.outputs import DeclaredOutputs
 from ..marching import coordinate_histories, crank_of
@@ -127,7 +129,12 @@ def orbit_quantities(orbit, section=None, si=None):
     except Exception:
         out["peak_torque"] = math.nan
     for quantity, choices in JOINTS.items():
-        out[quantity] = _joint_magnitude(orbit, choices)
+        try:
+            out[quantity] = _joint_magnitude(orbit, choices)
+        except ParameterError:              # a force a flexible rocker's joints do not give (yet)
+            if not rocker_of(orbit.case)[0]:
+                raise
+            out[quantity] = math.nan
     out["peak_axial_force"] = _peak_signed(orbit.quantity("axial_force", xs))
     fibres = ((section.c_top / section.radius_of_gyration, -section.c_bottom / section.radius_of_gyration)
               if section is not None else (RECTANGLE_FIBRE, -RECTANGLE_FIBRE))
