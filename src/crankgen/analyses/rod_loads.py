@@ -28,6 +28,7 @@ import math
 import numpy as np
 
 from ..declaration import schema
+from ..results.exports import available
 
 EULER_LOAD = math.pi ** 2          # the pinned-pinned Euler load in units of EI/L^2 (N* = pi^2)
 AXIAL = "axial_force"
@@ -65,6 +66,8 @@ def joint_columns(result, si=None):
     view = result if si is None else si
     out = []
     for base, x, y in joints(result.case.guide_record.name):
+        if not available(x, result.case):         # a flexible rocker's tip and pivot forces (not yet)
+            continue
         fx, fy = (np.asarray(view.quantity(name), dtype=float) for name in (x, y))
         angle = np.arctan2(fy + 0.0, fx)        # + 0.0: a Y of -0 points at 180 deg, not -180
         out += [(f"{base}_magnitude", schema.OUTPUTS[x].units, np.hypot(fx, fy)),
@@ -119,6 +122,9 @@ def peaks(result):
     compression = out["peak_compression"]
     out["buckling_margin"] = None if compression is None else EULER_LOAD / compression
     for base, x, y in joints(case.guide_record.name):
+        if not available(x, case):                 # a flexible rocker's tip and pivot forces (not yet)
+            out.update({f"peak_{base}": None, f"peak_{base}_angle_deg": None, f"peak_{base}_crank_angle_deg": None})
+            continue
         fx, fy = (np.asarray(result.quantity(name), dtype=float) for name in (x, y))
         magnitude = np.hypot(fx, fy)
         k = int(np.nanargmax(magnitude))

@@ -319,7 +319,8 @@ def transfer(values, source, target):
     slopes u_x, the one element's at an end; the end node's u through the reduced co-ordinate is
     not at hand there, so the last element's slope is its neighbour's).  Returns (..., target.n_dofs)."""
     values = np.asarray(values, dtype=float)
-    if source.n_elements != target.n_elements or source.coordinates != target.coordinates:
+    if (source.n_elements != target.n_elements or source.coordinates != target.coordinates
+            or (source.rocker_elements, source.rocker_length) != (target.rocker_elements, target.rocker_length)):
         raise ValueError("transfer needs two DOF maps of the same elements and co-ordinates")
     out = np.zeros(values.shape[:-1] + (target.n_dofs,))
     n = source.n_elements
@@ -351,4 +352,20 @@ def transfer(values, source, target):
                 continue
             around = [e for e in (node - 1, node) if 0 <= e < n]
             out[..., j] = np.mean([slopes[..., e] for e in around], axis=0)
+    if source.rocker_elements:                       # a flexible rocker's nodes: its own u at every node
+        n_r = source.rocker_elements
+        u_r = np.zeros(values.shape[:-1] + (n_r + 1,))
+        for node in range(n_r + 1):
+            for comp in range(NODE_DOFS):
+                i, j = source.reduced_index((ROCKER.name, node), comp), target.reduced_index((ROCKER.name, node), comp)
+                if comp == U and i is not None:
+                    u_r[..., node] = values[..., i]
+                if i is not None and j is not None:
+                    out[..., j] = values[..., i]
+        if "chi" in target.components and "chi" not in source.components:
+            slopes = np.diff(u_r, axis=-1) / source.rocker_element_length
+            for node in range(n_r + 1):
+                j = target.reduced_index((ROCKER.name, node), CHI)
+                around = [e for e in (node - 1, node) if 0 <= e < n_r]
+                out[..., j] = np.mean([slopes[..., e] for e in around], axis=0)
     return out

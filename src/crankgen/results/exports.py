@@ -16,6 +16,7 @@ import numpy as np
 
 from ..declaration import schema
 from ..declaration.units import Scales
+from ..discrete.mesh import rocker_of
 
 # the result's own per-step arrays beside the declared outputs, and their units
 BASE = {"t": "1/omega_b", "theta": "rad"}
@@ -44,6 +45,18 @@ def column(name, units, si=False):
     return f"{name}_{text}" if text else name
 
 
+# the inputs of an output that a flexible rocker has no value of: the guide's reduced co-ordinate s
+# and the forces of the guide's constraint (the rigid rocker's tip) and of the end mass on the rod there
+UNAVAILABLE_WITH_FLEXIBLE_LINKS = ("s", "rod_end") + tuple(
+    c.name for c in schema.CONSTRAINTS if c.excludes is not None)
+
+
+def available(name, case):
+    """Whether the declared output `name` has a value for the case: not those reading the rigid
+    rocker's co-ordinate or forces when the rocker is flexible (not yet)."""
+    return not (rocker_of(case)[0] and set(schema.OUTPUTS[name].inputs) & set(UNAVAILABLE_WITH_FLEXIBLE_LINKS))
+
+
 def output_names(result):
     """The declared outputs a result gives per step, in the schema's order: the engine's (every
     result), then, for a result with stored states, every step and reduction output of the case's
@@ -52,7 +65,8 @@ def output_names(result):
     if getattr(result, "states", None) is not None:
         guide = result.case.guide_record.name
         names += [name for name, spec in schema.OUTPUTS.items()
-                  if not spec.engine and spec.kind in ("step", "reduction") and guide in spec.guides]
+                  if not spec.engine and spec.kind in ("step", "reduction") and guide in spec.guides
+                  and available(name, result.case)]
     return names
 
 
@@ -63,7 +77,7 @@ def field_names(result, fiber=None):
         return []
     guide = result.case.guide_record.name
     return [name for name, spec in schema.OUTPUTS.items()
-            if spec.kind == "field" and guide in spec.guides
+            if spec.kind == "field" and guide in spec.guides and available(name, result.case)
             and all(a == "fiber" and fiber is not None for a in spec.arguments)]
 
 

@@ -28,6 +28,7 @@ from ..discrete import kinematics as _kinematics
 from .._generated import per_step as _per_step
 from .._generated.shape import shape_functions
 from ..errors import ParameterError
+from .exports import UNAVAILABLE_WITH_FLEXIBLE_LINKS
 from ..discrete.mesh import MAPPED, NODE_DOFS, U, V, Mesh, components_of, nodal_mesh
 from ..declaration.validation import finite_number, in_range
 
@@ -119,12 +120,6 @@ def _sides(mesh, x):
         return [(k - 1, 1.0), (k, 0.0)]
     e, zeta = mesh.locate(x)
     return [(e, min(max(zeta, 0.0), 1.0))]
-
-
-# the inputs of an output that a flexible rocker has no value of: the guide's reduced co-ordinate s
-# and the forces of the guide's constraint (the rigid rocker's tip) and of the end mass on the rod there
-UNAVAILABLE_WITH_FLEXIBLE_LINKS = ("s", "rod_end") + tuple(
-    c.name for c in schema.CONSTRAINTS if c.excludes is not None)
 
 
 class StateHistory:
