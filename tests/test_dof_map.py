@@ -59,17 +59,27 @@ def _as_lists(c):
 
 
 def test_the_compiled_condensation_is_the_meshs(monkeypatch):
-    """records.condensation (the engine's) agrees with Mesh.holders, at the last node and, the
-    constraint moved to an interior node, on the elements either side of it."""
+    """The engine's condensation (records.condensation and the Work's map from element to holding)
+    is the mesh's (Mesh.holders), at the last node, with a flexible rocker's tip (two reduced
+    co-ordinates), and, the constraint moved to an interior node, on the elements either side of it."""
+    from crankgen.engine.batch import body_data
+    from crankgen.engine.records import MeshData
+
+    def work_of(m):
+        held, slots, reduced = records.condensation(m.n_all, m.holders(), len(m.mapped.reduced))
+        data = MeshData(m.element_dofs, 5, m.length, None, None, None, None, None, m.n_rod, -1, -1, None,
+                        *body_data(m), held, slots, reduced)
+        return records.new_work(data, m.n_dofs), (held, slots, reduced)
+
     for n in range(1, 7):
-        held = mesh.Mesh(n).holders()
-        mapped, elements_, slots, reduced = records._condensation(n)
-        assert _as_lists((elements_, slots, reduced)) == [[h[0] for h in held], [list(h[1]) for h in held],
-                                                         [list(h[2]) for h in held]]
-        assert [int(i) for i in mapped] == [held_index(held, e) for e in range(n)]
+        for m in (mesh.Mesh(n), mesh.Mesh(n, rocker_elements=2, rocker_length=0.5)):
+            held = m.holders()
+            w, arrays = work_of(m)
+            assert _as_lists(arrays) == [[h[0] for h in held], [list(h[1]) for h in held], [list(h[2]) for h in held]]
+            assert [int(i) for i in w.mapped] == [held_index(held, e) for e in range(m.n_all)]
+            assert w.E.shape[0] == 3 + 4 * len(m.mapped.reduced) + len(m.mapped.reduced) ** 2
     inner = dataclasses.replace(MAPPED, node=2)
     monkeypatch.setattr(schema, "CONSTRAINTS", (schema.CONSTRAINTS[0], inner))
-    monkeypatch.setattr(records, "MAPPED_NODE", 2)
     for n in (3, 5):
         m = mesh.Mesh(n)
         held = m.holders(inner)
@@ -78,8 +88,8 @@ def test_the_compiled_condensation_is_the_meshs(monkeypatch):
         assert m.element_dofs[1, 4] == m.element_dofs[2, 0] == s       # one s, shared
         assert m.element_dofs[1, 5] == m.element_dofs[2, 1] == m.dummy
         assert m.n_dofs == 3 * (n + 1) - 2 - 1                          # the pin's two, v_2
-        mapped, elements_, slots, reduced = records._condensation(n)
-        assert _as_lists((elements_, slots, reduced)) == [[1, 2], [[4, 5], [0, 1]], [[4], [0]]]
+        _, arrays = work_of(m)
+        assert _as_lists(arrays) == [[1, 2], [[4, 5], [0, 1]], [[4], [0]]]
 
 
 def held_index(held, e):

@@ -387,7 +387,10 @@ def _vector(rng, name, kernel, shape):
         return _params(rng, shape, _input_size(kernel, name))
     if OTHER_VECTORS[name] is None:
         return rng.uniform(-1.0, 1.0, shape + (_input_size(kernel, name),))
-    return np.stack([rng.uniform(lo, hi, shape) for lo, hi in OTHER_VECTORS[name]], axis=-1)
+    ranges = OTHER_VECTORS[name]
+    if name == "send" and _input_size(kernel, name) == 2 * len(ranges):    # two reduced co-ordinates (a rocker tip's)
+        ranges = [r for r in ranges for _ in range(2)]
+    return np.stack([rng.uniform(lo, hi, shape) for lo, hi in ranges], axis=-1)
 
 
 def _input_size(kernel, name):
