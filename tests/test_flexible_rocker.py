@@ -233,3 +233,18 @@ def test_energy_balance_of_the_two_flexible_links():
     full = defect(sum(parts.values()))
     without_rocker = defect(parts["coupler"] + parts["end mass"])
     assert full < 1e-2 and without_rocker > 10 * full, (full, without_rocker)
+
+
+def test_the_animation_draws_the_flexible_rocker_from_its_pivot_to_the_rods_end():
+    """A frame of the animation: the flexible rocker's curve starts at the ground pivot and ends on
+    the rod's (magnified) end, and it bends (it is not the straight rigid rocker)."""
+    from crankgen.plots.animation import Frames
+    mech = four_bar(rocker_elements=4, rocker_bending=0.05)
+    result = crankgen.simulate(mech, omega=0.6, n_elements=6, steps_per_rev=40, revolutions=1)
+    frames = Frames(result, frames=8)
+    np.testing.assert_allclose(frames.rocker[:, 0], np.broadcast_to(frames.pivot, (len(frames), 2)), atol=1e-12)
+    np.testing.assert_allclose(frames.rocker[:, -1], frames.end, atol=1e-9)
+    chord = frames.rocker[:, -1] - frames.rocker[:, 0]
+    rel = frames.rocker - frames.rocker[:, :1]
+    off = (chord[:, None, 0] * rel[..., 1] - chord[:, None, 1] * rel[..., 0]) / np.linalg.norm(chord, axis=-1)[:, None]
+    assert np.max(np.abs(off)) > 1e-3

@@ -305,6 +305,19 @@ class Model:
         """(kinetic T_c + T_s, potential U_c + V) of the model at time t for reduced d, v."""
         return self.energy("kinetic", t, d, v), self.energy("potential", t, d, v)
 
+    def rocker_nodal(self, d):
+        """A flexible rocker's full nodal vectors (..., NODE_DOFS (n_r + 1)), in its own frame, from
+        reduced d (its pivot's u, v zero)."""
+        d = np.asarray(d)
+        mesh = self.mesh
+        out = np.zeros(d.shape[:-1] + (NODE_DOFS * (mesh.rocker_elements + 1),))
+        for node in range(mesh.rocker_elements + 1):
+            for comp in range(NODE_DOFS):
+                idx = mesh.reduced_index((ROCKER.name, node), comp)
+                if idx is not None:
+                    out[..., NODE_DOFS * node + comp] = d[..., idx]
+        return out
+
     def full_nodal(self, d, kin):
         """Full nodal vectors (..., 3 (n+1)) [u_0, v_0, psi_0, ...] from reduced d (..., N) at the
         kinematics kin (a CrankState of the same leading shape)."""
@@ -316,8 +329,9 @@ class Model:
                 idx = mesh.reduced_index(node, comp)
                 if idx is not None:
                     out[..., NODE_DOFS * node + comp] = d[..., idx]
-        E = _kinematics.end_map(self.case, kin.vector, d[..., mesh.reduced_coordinates()[0]])
-        node = mesh.node_of(MAPPED)
-        for a, name in enumerate(MAPPED.eliminated):
+        S = list(mesh.reduced_coordinates()) if mesh.rocker_elements else mesh.reduced_coordinates()[0]
+        E = _kinematics.end_map(self.case, kin.vector, d[..., S])
+        node = mesh.node_of(mesh.mapped)
+        for a, name in enumerate(mesh.mapped.eliminated):
             out[..., NODE_DOFS * node + COMPONENTS.index(name)] = E[..., ROWS["q"], a]
         return out

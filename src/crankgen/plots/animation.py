@@ -66,14 +66,22 @@ def _place(case, kin, along, across):
     return np.stack([X, Y], axis=-1)
 
 
-def _rod_curve(case, kin, nodal, magnification, points=6):
-    """(steps, P, 2): the rod drawn between its nodes as its elements interpolate it (cubic v with
-    the slopes psi; u linear, or cubic with the slopes chi on the exact rod)."""
-    n = case.n_elements
+def _rocker_curve(case, kin, nodal, magnification, pivot, length, points=6):
+    """(steps, P, 2): a flexible rocker drawn between its nodes from its pivot (nodal: its own full
+    nodal vectors, rocker_nodal), in its frame (axis at the rigid rocker's angle beta)."""
+    n_r = nodal.shape[1] // NODE_DOFS - 1
+    along, across = _curve(case, nodal, n_r, length / n_r, length, magnification, points)
+    beta = np.asarray(kin.beta, dtype=float)[:, None]
+    X = pivot[0] + along * np.cos(beta) - across * np.sin(beta)
+    Y = pivot[1] + along * np.sin(beta) + across * np.cos(beta)
+    return np.stack([X, Y], axis=-1)
+
+
+def _curve(case, nodal, n, h, length, magnification, points):
+    """(along, across) of a beam's points between its n nodes (element length h, total length)."""
     u, v, psi = nodal[:, U::NODE_DOFS], nodal[:, V::NODE_DOFS], nodal[:, PSI::NODE_DOFS]
     chi = nodal[:, CHI::NODE_DOFS]
     cubic_u = "chi" in components_of(case.options)
-    h = 1.0 / n
     z = np.linspace(0.0, 1.0, points + 1)[:-1]
     H = np.stack([2 * z**3 - 3 * z**2 + 1, (z**3 - 2 * z**2 + z) * h, -2 * z**3 + 3 * z**2, (z**3 - z**2) * h])
 
@@ -85,9 +93,16 @@ def _rod_curve(case, kin, nodal, magnification, points=6):
         axial = hermite(u, chi, e) if cubic_u else u[:, e, None] * (1 - z) + u[:, e + 1, None] * z
         along.append((e + z) * h + magnification * axial)
         across.append(magnification * hermite(v, psi, e))
-    along.append(1.0 + magnification * u[:, -1:])
+    along.append(length + magnification * u[:, -1:])
     across.append(magnification * v[:, -1:])
-    return _place(case, kin, np.concatenate(along, axis=1), np.concatenate(across, axis=1))
+    return np.concatenate(along, axis=1), np.concatenate(across, axis=1)
+
+
+def _rod_curve(case, kin, nodal, magnification, points=6):
+    """(steps, P, 2): the rod drawn between its nodes as its elements interpolate it (cubic v with
+    the slopes psi; u linear, or cubic with the slopes chi on the exact rod)."""
+    n = case.n_elements
+    return _place(case, kin, *_curve(case, nodal, n, 1.0 / n, 1.0, magnification, points))
 
 
 def _nice(value):
@@ -130,8 +145,15 @@ class Frames:
         guide, params = case.guide_record, case.kinematic_parameters
         self.pivot = (getattr(_geometry, f"pivot_{guide.name}")(params) * self.length if guide.pivot else None)
         beta = np.asarray(kin.beta, dtype=float)           # the guide co-ordinate of the rigid end
-        s = np.asarray(result.states, dtype=float)[self.steps][:, Model(case).mesh.reduced_coordinates()[0]]
-        beta = np.concatenate([beta, beta + self.magnification * s])      # and of the drawn end on it
+        model = Model(case)
+        self.rocker = None
+        if model.mesh.rocker_elements:                     # a flexible rocker: drawn deformed, its tip the rod's end
+            rocker = model.rocker_nodal(np.asarray(result.states)[self.steps])
+            self.rocker = _rocker_curve(case, kin, rocker, self.magnification, self.pivot / self.length,
+                                        model.mesh.rocker_length) * self.length
+        else:
+            s = np.asarray(result.states, dtype=float)[self.steps][:, model.mesh.reduced_coordinates()[0]]
+            beta = np.concatenate([beta, beta + self.magnification * s])      # and of the drawn end on it
         span = float(beta.max() - beta.min()) if beta.size else 0.0
         reach = np.linspace(beta.min() - 0.5 * span - 0.1, beta.max() + 0.5 * span + 0.1, 181)
         self.guide_curve = getattr(_geometry, f"curve_{guide.name}")(reach, params) * self.length
@@ -150,7 +172,8 @@ class Frames:
         ell, guide = self.length, self.case.guide_record
         fig, ax = subplots(figsize=(7.0, 3.9), dpi=90, constrained_layout=True)
         pts = np.concatenate([self.rod.reshape(-1, 2), self.pin, [[0.0, 0.0]]]
-                             + ([self.pivot[None]] if self.pivot is not None else []))
+                             + ([self.pivot[None]] if self.pivot is not None else [])
+                             + ([self.rocker.reshape(-1, 2)] if self.rocker is not None else []))
         lo, hi = pts.min(axis=0), pts.max(axis=0)
         pad = 0.08 * max(hi - lo) + 0.05
         ax.set_xlim(lo[0] - pad, hi[0] + pad)
@@ -167,7 +190,9 @@ class Frames:
         art["crank"], = ax.plot([], [], color="0.2", lw=3.0, solid_capstyle="round", label="crank")
         art["rod"], = ax.plot([], [], color="C0", lw=2.0, label="rod (deflection magnified)")
         if self.pivot is not None:
-            art["rocker"], = ax.plot([], [], color="C2", lw=2.5, label="rocker (the link to the ground pivot)")
+            art["rocker"], = ax.plot([], [], color="C2", lw=2.5 if self.rocker is None else 2.0,
+                                     label="rocker (the link to the ground pivot)" if self.rocker is None
+                                     else "flexible rocker (deflection magnified)")
         art["end"], = ax.plot([], [], marker="s" if self.pivot is None else "o", color="C3", ms=10,
                               ls="none", label=f"end mass ({guide.label or guide.name})")
         art["clock"] = ax.text(0.01, 0.98, "", transform=ax.transAxes, va="top", fontsize=8)
@@ -193,7 +218,9 @@ class Frames:
         art["crank"].set_data([0.0, self.pin[k, 0]], [0.0, self.pin[k, 1]])
         art["rod"].set_data(self.rod[k, :, 0], self.rod[k, :, 1])
         art["end"].set_data([self.end[k, 0]], [self.end[k, 1]])
-        if "rocker" in art:
+        if "rocker" in art and self.rocker is not None:
+            art["rocker"].set_data(self.rocker[k, :, 0], self.rocker[k, :, 1])
+        elif "rocker" in art:
             art["rocker"].set_data([self.pivot[0], self.end[k, 0]], [self.pivot[1], self.end[k, 1]])
         when = f"t* = {self.t[k]:.3f}" if self.unit[1] == "t*" else f"t = {self.t[k]:.4g} s"
         from ..analyses.stresses import crank_degrees
