@@ -248,3 +248,18 @@ def test_the_animation_draws_the_flexible_rocker_from_its_pivot_to_the_rods_end(
     rel = frames.rocker - frames.rocker[:, :1]
     off = (chord[:, None, 0] * rel[..., 1] - chord[:, None, 1] * rel[..., 0]) / np.linalg.norm(chord, axis=-1)[:, None]
     assert np.max(np.abs(off)) > 1e-3
+
+
+def test_a_continuation_in_the_rockers_own_stiffness_passes_through_its_steady_states():
+    """The rocker's bending stiffness is a continuable parameter: a branch point of the continuation
+    in rocker_bending is the steady state found directly at that stiffness."""
+    mech = crankgen.Mechanism(eps=0.01, ms=0.5, guide=crankgen.Circle(radius=0.5, center=(1, 0), rocker_elements=2))
+    diagram = crankgen.continuation(mech, "rocker_bending", 2.0, 0.2, omega=0.7, n_elements=4, steps_per_rev=50)
+    branch = diagram.branches[0]
+    k = int(np.argmin(np.abs(np.asarray(branch.parameter) - 1.0)))
+    at = float(branch.parameter[k])
+    direct = crankgen.steady_state(crankgen.Mechanism(eps=0.01, ms=0.5, guide=crankgen.Circle(
+        radius=0.5, center=(1, 0), rocker_elements=2, rocker_bending=at)), omega=0.7, n_elements=4, steps_per_rev=50)
+    assert min(branch.parameter) < 0.3 and max(branch.parameter) > 1.9
+    state = np.asarray(direct.state)
+    np.testing.assert_allclose(branch.states[k], state, rtol=0, atol=1e-6 * np.max(np.abs(state)))
