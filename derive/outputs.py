@@ -271,9 +271,9 @@ OUTPUTS = (
            "X component of the force the ground applies to the rocker at its pivot D (sizes the pivot's "
            "bearing): the force at the tip with a massless rocker, plus the rocker's mass times its "
            "centre's acceleration less its weight", FORCE, build=lambda o: ground_on_rocker()[0],
-           guides=TIP_GUIDES),
+           guides=TIP_GUIDES, rigid=("rocker",)),
     Output("ground_on_rocker_y", "step", "Y component of the force the ground applies to the rocker at D",
-           FORCE, build=lambda o: ground_on_rocker()[1], guides=TIP_GUIDES),
+           FORCE, build=lambda o: ground_on_rocker()[1], guides=TIP_GUIDES, rigid=("rocker",)),
     Output("ground_on_crank_x", "step",
            "X component of the force the ground applies to the crank at its axis O (sizes the main "
            "bearing): the rod's force at the crank pin, plus the crank's mass times its centre's "

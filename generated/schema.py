@@ -1665,7 +1665,8 @@ OUTPUTS = (
         options=(),
         engine=True,
         inputs=(),
-        kernels=()),
+        kernels=(),
+        rigid=()),
     Output(
         name='u_end',
         kind='step',
@@ -1676,7 +1677,8 @@ OUTPUTS = (
         options=(),
         engine=True,
         inputs=(),
-        kernels=()),
+        kernels=(),
+        rigid=()),
     Output(
         name='extension',
         kind='step',
@@ -1687,7 +1689,8 @@ OUTPUTS = (
         options=(),
         engine=True,
         inputs=(),
-        kernels=()),
+        kernels=(),
+        rigid=()),
     Output(
         name='crank_speed',
         kind='step',
@@ -1698,7 +1701,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin',),
-        kernels=(({}, 'step_crank_speed'),)),
+        kernels=(({}, 'step_crank_speed'),),
+        rigid=()),
     Output(
         name='slider_position',
         kind='step',
@@ -1709,7 +1713,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'q_end'),
-        kernels=(({}, 'step_slider_position'),)),
+        kernels=(({}, 'step_slider_position'),),
+        rigid=()),
     Output(
         name='end_height',
         kind='step',
@@ -1720,7 +1725,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'q_end'),
-        kernels=(({}, 'step_end_height'),)),
+        kernels=(({}, 'step_end_height'),),
+        rigid=()),
     Output(
         name='rocker_angle',
         kind='step',
@@ -1731,7 +1737,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 's'),
-        kernels=(({}, 'step_rocker_angle'),)),
+        kernels=(({}, 'step_rocker_angle'),),
+        rigid=()),
     Output(
         name='transmission_angle',
         kind='step',
@@ -1742,7 +1749,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'q_end', 's'),
-        kernels=(({}, 'step_transmission_angle'),)),
+        kernels=(({}, 'step_transmission_angle'),),
+        rigid=()),
     Output(
         name='chord_angle',
         kind='step',
@@ -1753,7 +1761,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'q_end'),
-        kernels=(({}, 'step_chord_angle'),)),
+        kernels=(({}, 'step_chord_angle'),),
+        rigid=()),
     Output(
         name='chord_rate',
         kind='step',
@@ -1764,7 +1773,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'q_end', 'qd_end'),
-        kernels=(({}, 'step_chord_rate'),)),
+        kernels=(({}, 'step_chord_rate'),),
+        rigid=()),
     Output(
         name='chord_elongation',
         kind='step',
@@ -1775,7 +1785,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('q_end',),
-        kernels=(({}, 'step_chord_elongation'),)),
+        kernels=(({}, 'step_chord_elongation'),),
+        rigid=()),
     Output(
         name='slider_velocity',
         kind='step',
@@ -1786,7 +1797,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'q_end', 'qd_end'),
-        kernels=(({}, 'step_slider_velocity'),)),
+        kernels=(({}, 'step_slider_velocity'),),
+        rigid=()),
     Output(
         name='torque',
         kind='step',
@@ -1797,7 +1809,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'parameters', 'pin'),
-        kernels=(({}, 'step_torque'),)),
+        kernels=(({}, 'step_torque'),),
+        rigid=()),
     Output(
         name='crank_on_rod_x',
         kind='step',
@@ -1808,7 +1821,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'pin'),
-        kernels=(({}, 'step_crank_on_rod_x'),)),
+        kernels=(({}, 'step_crank_on_rod_x'),),
+        rigid=()),
     Output(
         name='crank_on_rod_y',
         kind='step',
@@ -1819,7 +1833,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'pin'),
-        kernels=(({}, 'step_crank_on_rod_y'),)),
+        kernels=(({}, 'step_crank_on_rod_y'),),
+        rigid=()),
     Output(
         name='rod_on_slider_x',
         kind='step',
@@ -1830,7 +1845,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'rod_end'),
-        kernels=(({}, 'step_rod_on_slider_x'),)),
+        kernels=(({}, 'step_rod_on_slider_x'),),
+        rigid=()),
     Output(
         name='rod_on_slider_y',
         kind='step',
@@ -1841,7 +1857,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'rod_end'),
-        kernels=(({}, 'step_rod_on_slider_y'),)),
+        kernels=(({}, 'step_rod_on_slider_y'),),
+        rigid=()),
     Output(
         name='guide_on_slider_x',
         kind='step',
@@ -1852,7 +1869,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'end'),
-        kernels=(({}, 'step_guide_on_slider_x'),)),
+        kernels=(({}, 'step_guide_on_slider_x'),),
+        rigid=()),
     Output(
         name='guide_on_slider_y',
         kind='step',
@@ -1863,7 +1881,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'end'),
-        kernels=(({}, 'step_guide_on_slider_y'),)),
+        kernels=(({}, 'step_guide_on_slider_y'),),
+        rigid=()),
     Output(
         name='rod_on_tip_x',
         kind='step',
@@ -1874,7 +1893,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'rod_end'),
-        kernels=(({}, 'step_rod_on_tip_x'),)),
+        kernels=(({}, 'step_rod_on_tip_x'),),
+        rigid=()),
     Output(
         name='rod_on_tip_y',
         kind='step',
@@ -1885,7 +1905,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'rod_end'),
-        kernels=(({}, 'step_rod_on_tip_y'),)),
+        kernels=(({}, 'step_rod_on_tip_y'),),
+        rigid=()),
     Output(
         name='rocker_on_tip_x',
         kind='step',
@@ -1896,7 +1917,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'end'),
-        kernels=(({}, 'step_rocker_on_tip_x'),)),
+        kernels=(({}, 'step_rocker_on_tip_x'),),
+        rigid=()),
     Output(
         name='rocker_on_tip_y',
         kind='step',
@@ -1907,7 +1929,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'end'),
-        kernels=(({}, 'step_rocker_on_tip_y'),)),
+        kernels=(({}, 'step_rocker_on_tip_y'),),
+        rigid=()),
     Output(
         name='ground_on_rocker_x',
         kind='step',
@@ -1918,7 +1941,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'parameters', 'q_end', 'qd_end', 'qdd_end', 'end'),
-        kernels=(({}, 'step_ground_on_rocker_x'),)),
+        kernels=(({}, 'step_ground_on_rocker_x'),),
+        rigid=('rocker',)),
     Output(
         name='ground_on_rocker_y',
         kind='step',
@@ -1929,7 +1953,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'parameters', 'q_end', 'qd_end', 'qdd_end', 'end'),
-        kernels=(({}, 'step_ground_on_rocker_y'),)),
+        kernels=(({}, 'step_ground_on_rocker_y'),),
+        rigid=('rocker',)),
     Output(
         name='ground_on_crank_x',
         kind='step',
@@ -1940,7 +1965,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'parameters', 'pin'),
-        kernels=(({}, 'step_ground_on_crank_x'),)),
+        kernels=(({}, 'step_ground_on_crank_x'),),
+        rigid=()),
     Output(
         name='ground_on_crank_y',
         kind='step',
@@ -1951,7 +1977,8 @@ OUTPUTS = (
         options=(),
         engine=False,
         inputs=('kin', 'parameters', 'pin'),
-        kernels=(({}, 'step_ground_on_crank_y'),)),
+        kernels=(({}, 'step_ground_on_crank_y'),),
+        rigid=()),
     Output(
         name='kinetic_energy',
         kind='reduction',
@@ -1962,7 +1989,8 @@ OUTPUTS = (
         options=('approach',),
         engine=False,
         inputs=('q', 'qd', 'geo', 'coef', 'kin'),
-        kernels=(({'approach': 'A'}, 'reduction_kinetic_energy'), ({'approach': 'B'}, 'reduction_kinetic_energy'), ({'approach': 'C'}, 'reduction_kinetic_energy'), ({'approach': 'exact'}, 'reduction_kinetic_energy_exact'))),
+        kernels=(({'approach': 'A'}, 'reduction_kinetic_energy'), ({'approach': 'B'}, 'reduction_kinetic_energy'), ({'approach': 'C'}, 'reduction_kinetic_energy'), ({'approach': 'exact'}, 'reduction_kinetic_energy_exact')),
+        rigid=()),
     Output(
         name='strain_energy',
         kind='reduction',
@@ -1973,7 +2001,8 @@ OUTPUTS = (
         options=('approach', 'membrane'),
         engine=False,
         inputs=('q', 'geo', 'coef'),
-        kernels=(({'approach': 'A', 'membrane': 'pointwise'}, 'reduction_strain_energy_A_pointwise'), ({'approach': 'A', 'membrane': 'averaged'}, 'reduction_strain_energy_A_averaged'), ({'approach': 'B', 'membrane': 'pointwise'}, 'reduction_strain_energy_B_pointwise'), ({'approach': 'B', 'membrane': 'averaged'}, 'reduction_strain_energy_B_pointwise'), ({'approach': 'C', 'membrane': 'pointwise'}, 'reduction_strain_energy_C_pointwise'), ({'approach': 'C', 'membrane': 'averaged'}, 'reduction_strain_energy_C_pointwise'), ({'approach': 'exact', 'membrane': 'pointwise'}, 'reduction_strain_energy_exact_pointwise'), ({'approach': 'exact', 'membrane': 'averaged'}, 'reduction_strain_energy_exact_pointwise'))),
+        kernels=(({'approach': 'A', 'membrane': 'pointwise'}, 'reduction_strain_energy_A_pointwise'), ({'approach': 'A', 'membrane': 'averaged'}, 'reduction_strain_energy_A_averaged'), ({'approach': 'B', 'membrane': 'pointwise'}, 'reduction_strain_energy_B_pointwise'), ({'approach': 'B', 'membrane': 'averaged'}, 'reduction_strain_energy_B_pointwise'), ({'approach': 'C', 'membrane': 'pointwise'}, 'reduction_strain_energy_C_pointwise'), ({'approach': 'C', 'membrane': 'averaged'}, 'reduction_strain_energy_C_pointwise'), ({'approach': 'exact', 'membrane': 'pointwise'}, 'reduction_strain_energy_exact_pointwise'), ({'approach': 'exact', 'membrane': 'averaged'}, 'reduction_strain_energy_exact_pointwise')),
+        rigid=()),
     Output(
         name='axial_force',
         kind='field',
@@ -1984,7 +2013,8 @@ OUTPUTS = (
         options=('approach', 'membrane'),
         engine=False,
         inputs=('q', 'zeta', 'geo', 'coef'),
-        kernels=(({'approach': 'A', 'membrane': 'pointwise'}, 'field_axial_force_pointwise'), ({'approach': 'B', 'membrane': 'pointwise'}, 'field_axial_force_pointwise'), ({'approach': 'A', 'membrane': 'averaged'}, 'field_axial_force_averaged'), ({'approach': 'B', 'membrane': 'averaged'}, 'field_axial_force_averaged'), ({'approach': 'C', 'membrane': 'pointwise'}, 'field_axial_force_linear'), ({'approach': 'C', 'membrane': 'averaged'}, 'field_axial_force_linear'), ({'approach': 'exact', 'membrane': 'pointwise'}, 'field_axial_force_exact'), ({'approach': 'exact', 'membrane': 'averaged'}, 'field_axial_force_exact'))),
+        kernels=(({'approach': 'A', 'membrane': 'pointwise'}, 'field_axial_force_pointwise'), ({'approach': 'B', 'membrane': 'pointwise'}, 'field_axial_force_pointwise'), ({'approach': 'A', 'membrane': 'averaged'}, 'field_axial_force_averaged'), ({'approach': 'B', 'membrane': 'averaged'}, 'field_axial_force_averaged'), ({'approach': 'C', 'membrane': 'pointwise'}, 'field_axial_force_linear'), ({'approach': 'C', 'membrane': 'averaged'}, 'field_axial_force_linear'), ({'approach': 'exact', 'membrane': 'pointwise'}, 'field_axial_force_exact'), ({'approach': 'exact', 'membrane': 'averaged'}, 'field_axial_force_exact')),
+        rigid=()),
     Output(
         name='bending_moment',
         kind='field',
@@ -1995,7 +2025,8 @@ OUTPUTS = (
         options=('approach', 'membrane'),
         engine=False,
         inputs=('q', 'zeta', 'geo', 'coef'),
-        kernels=(({'approach': 'A', 'membrane': 'pointwise'}, 'field_bending_moment'), ({'approach': 'A', 'membrane': 'averaged'}, 'field_bending_moment'), ({'approach': 'B', 'membrane': 'pointwise'}, 'field_bending_moment'), ({'approach': 'B', 'membrane': 'averaged'}, 'field_bending_moment'), ({'approach': 'C', 'membrane': 'pointwise'}, 'field_bending_moment'), ({'approach': 'C', 'membrane': 'averaged'}, 'field_bending_moment'), ({'approach': 'exact', 'membrane': 'pointwise'}, 'field_bending_moment_exact'), ({'approach': 'exact', 'membrane': 'averaged'}, 'field_bending_moment_exact'))),
+        kernels=(({'approach': 'A', 'membrane': 'pointwise'}, 'field_bending_moment'), ({'approach': 'A', 'membrane': 'averaged'}, 'field_bending_moment'), ({'approach': 'B', 'membrane': 'pointwise'}, 'field_bending_moment'), ({'approach': 'B', 'membrane': 'averaged'}, 'field_bending_moment'), ({'approach': 'C', 'membrane': 'pointwise'}, 'field_bending_moment'), ({'approach': 'C', 'membrane': 'averaged'}, 'field_bending_moment'), ({'approach': 'exact', 'membrane': 'pointwise'}, 'field_bending_moment_exact'), ({'approach': 'exact', 'membrane': 'averaged'}, 'field_bending_moment_exact')),
+        rigid=()),
     Output(
         name='surface_strain',
         kind='field',
@@ -2006,7 +2037,8 @@ OUTPUTS = (
         options=('approach', 'membrane'),
         engine=False,
         inputs=('q', 'zeta', 'geo', 'coef', 'fiber'),
-        kernels=(({'approach': 'A', 'membrane': 'pointwise'}, 'field_surface_strain_pointwise'), ({'approach': 'B', 'membrane': 'pointwise'}, 'field_surface_strain_pointwise'), ({'approach': 'A', 'membrane': 'averaged'}, 'field_surface_strain_averaged'), ({'approach': 'B', 'membrane': 'averaged'}, 'field_surface_strain_averaged'), ({'approach': 'C', 'membrane': 'pointwise'}, 'field_surface_strain_linear'), ({'approach': 'C', 'membrane': 'averaged'}, 'field_surface_strain_linear'), ({'approach': 'exact', 'membrane': 'pointwise'}, 'field_surface_strain_exact'), ({'approach': 'exact', 'membrane': 'averaged'}, 'field_surface_strain_exact'))),
+        kernels=(({'approach': 'A', 'membrane': 'pointwise'}, 'field_surface_strain_pointwise'), ({'approach': 'B', 'membrane': 'pointwise'}, 'field_surface_strain_pointwise'), ({'approach': 'A', 'membrane': 'averaged'}, 'field_surface_strain_averaged'), ({'approach': 'B', 'membrane': 'averaged'}, 'field_surface_strain_averaged'), ({'approach': 'C', 'membrane': 'pointwise'}, 'field_surface_strain_linear'), ({'approach': 'C', 'membrane': 'averaged'}, 'field_surface_strain_linear'), ({'approach': 'exact', 'membrane': 'pointwise'}, 'field_surface_strain_exact'), ({'approach': 'exact', 'membrane': 'averaged'}, 'field_surface_strain_exact')),
+        rigid=()),
     Output(
         name='chord_deflection',
         kind='field',
@@ -2017,7 +2049,8 @@ OUTPUTS = (
         options=('approach', 'membrane'),
         engine=False,
         inputs=('q', 'zeta', 'geo', 'coef', 'q_end'),
-        kernels=(({'approach': 'A', 'membrane': 'pointwise'}, 'field_chord_deflection'), ({'approach': 'A', 'membrane': 'averaged'}, 'field_chord_deflection'), ({'approach': 'B', 'membrane': 'pointwise'}, 'field_chord_deflection'), ({'approach': 'B', 'membrane': 'averaged'}, 'field_chord_deflection'), ({'approach': 'C', 'membrane': 'pointwise'}, 'field_chord_deflection'), ({'approach': 'C', 'membrane': 'averaged'}, 'field_chord_deflection'), ({'approach': 'exact', 'membrane': 'pointwise'}, 'field_chord_deflection_exact'), ({'approach': 'exact', 'membrane': 'averaged'}, 'field_chord_deflection_exact'))),
+        kernels=(({'approach': 'A', 'membrane': 'pointwise'}, 'field_chord_deflection'), ({'approach': 'A', 'membrane': 'averaged'}, 'field_chord_deflection'), ({'approach': 'B', 'membrane': 'pointwise'}, 'field_chord_deflection'), ({'approach': 'B', 'membrane': 'averaged'}, 'field_chord_deflection'), ({'approach': 'C', 'membrane': 'pointwise'}, 'field_chord_deflection'), ({'approach': 'C', 'membrane': 'averaged'}, 'field_chord_deflection'), ({'approach': 'exact', 'membrane': 'pointwise'}, 'field_chord_deflection_exact'), ({'approach': 'exact', 'membrane': 'averaged'}, 'field_chord_deflection_exact')),
+        rigid=()),
 )
 # reductions over time of the outputs (a revolution's peak, RMS, mean, range), declared once
 REDUCTIONS = (

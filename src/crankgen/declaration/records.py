@@ -223,7 +223,8 @@ class Output:
     extension: every result has it, with or without states; its kernel is the generated
     `per_step`).  units: its unit (SI views multiply by it); arguments: a field's extra arguments;
     guides: the guides it exists for; options: the model options its expression depends on;
-    inputs: the inputs its kernels read; kernels: ((option values, kernel name), ...)."""
+    inputs: the inputs its kernels read; kernels: ((option values, kernel name), ...); rigid: the
+    bodies its expression takes as rigid (a rigid rocker's momentum balance: none with a flexible one)."""
 
     name: str
     kind: str
@@ -235,6 +236,7 @@ class Output:
     engine: bool = False
     inputs: tuple = ()
     kernels: tuple = ()
+    rigid: tuple = ()            # bodies its expression takes as rigid (not given when they are flexible)
 
 
 @dataclass(frozen=True)

@@ -16,7 +16,7 @@ import numpy as np
 
 from ..declaration import schema
 from ..declaration.units import Scales
-from ..discrete.mesh import rocker_of
+from ..discrete.mesh import ROCKER, rocker_of
 
 # the result's own per-step arrays beside the declared outputs, and their units
 BASE = {"t": "1/omega_b", "theta": "rad"}
@@ -46,15 +46,18 @@ def column(name, units, si=False):
 
 
 # the inputs of an output that a flexible rocker has no value of: the guide's reduced co-ordinate s
-# and the forces of the guide's constraint (the rigid rocker's tip) and of the end mass on the rod there
-UNAVAILABLE_WITH_FLEXIBLE_LINKS = ("s", "rod_end") + tuple(
-    c.name for c in schema.CONSTRAINTS if c.excludes is not None)
+# (the rigid rocker's angle); the force at the rod's end is the tip constraint's then
+UNAVAILABLE_WITH_FLEXIBLE_LINKS = ("s",)
 
 
 def available(name, case):
     """Whether the declared output `name` has a value for the case: not those reading the rigid
-    rocker's co-ordinate or forces when the rocker is flexible (not yet)."""
-    return not (rocker_of(case)[0] and set(schema.OUTPUTS[name].inputs) & set(UNAVAILABLE_WITH_FLEXIBLE_LINKS))
+    rocker's co-ordinate, nor those whose expression takes a body as rigid (Output.rigid: a rigid
+    rocker's momentum balance), when the rocker is flexible."""
+    if not rocker_of(case)[0]:
+        return True
+    spec = schema.OUTPUTS[name]
+    return not (set(spec.inputs) & set(UNAVAILABLE_WITH_FLEXIBLE_LINKS) or ROCKER.name in spec.rigid)
 
 
 def output_names(result):

@@ -28,7 +28,7 @@ from ..discrete import kinematics as _kinematics
 from .._generated import per_step as _per_step
 from .._generated.shape import shape_functions
 from ..errors import ParameterError
-from .exports import UNAVAILABLE_WITH_FLEXIBLE_LINKS
+from .exports import available
 from ..discrete.mesh import MAPPED, NODE_DOFS, U, V, Mesh, components_of, nodal_mesh
 from ..declaration.validation import finite_number, in_range
 
@@ -222,11 +222,11 @@ class StateHistory:
         for name in spec.inputs:
             if name in ("q", "qd", "zeta", "geo", "fiber") or name in out:
                 continue
-            if self.mesh.rocker_elements and name in UNAVAILABLE_WITH_FLEXIBLE_LINKS:
+            if not available(spec.name, self.case):
                 raise ParameterError(
                     f"{spec.name}: with a flexible rocker the rod's end is held by the rocker's tip, not by a "
-                    f"rigid rocker on its circle, and this output reads the rigid rocker's {name!r}; it is not "
-                    f"available for a flexible rocker (its tip's and pivot's forces: not yet)")
+                    f"rigid rocker on its circle, and this output reads the rigid rocker's angle or takes the "
+                    f"rocker as rigid (its pivot's force: not yet for a flexible rocker)")
             if name == "coef":
                 out[name] = self.case.coefficients
             elif name == "kin":
@@ -242,8 +242,10 @@ class StateHistory:
                 out[name] = self._need_states()[:, self.mesh.reduced_coordinates()[0]]
             elif name in self._constraints:          # the force a constraint applies (pin, end)
                 out.update(zip(self._constraints, self._reactions()[0]))
+                if self.mesh.mapped is not MAPPED:   # a flexible rocker's tip holds the end: its force is the end's
+                    out[MAPPED.name] = out[self.mesh.mapped.name]
             elif name == "rod_end":                  # the force the end mass applies to the rod at B
-                out[name] = dict(zip(self._constraints, self._reactions()[1]))[MAPPED.name]
+                out[name] = dict(zip(self._constraints, self._reactions()[1]))[self.mesh.mapped.name]
         return out
 
     def _call(self, kernel, spec, values, element=None, extra=()):
