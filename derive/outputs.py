@@ -87,6 +87,9 @@ qd_end = sp.Matrix(sp.symbols("qde0:2", real=True))
 qdd_end = sp.Matrix(sp.symbols("qdde0:2", real=True))
 pin = sp.Matrix(sp.symbols("pin0:2", real=True))
 end_force = sp.Matrix(sp.symbols("end0:2", real=True))
+# the force the ground pivot D applies to a flexible rocker, on the rocker's frame (e_ir, e_jr): the
+# reaction of the constraint "ground" (derive/declaration.py)
+ground_force = sp.Matrix(sp.symbols("ground0:2", real=True))
 rod_end = sp.Matrix(sp.symbols("rodend0:2", real=True))
 s_end = sp.Symbol("s", real=True)
 
@@ -124,6 +127,13 @@ def _inertial(vector):
     """Inertial (X, Y) of a vector given by its moving-frame components (e_i, e_j)."""
     return sp.Matrix([vector[0] * sp.cos(s.phi) + vector[1] * sp.sin(s.phi),
                       -vector[0] * sp.sin(s.phi) + vector[1] * sp.cos(s.phi)])
+
+
+def _rocker_inertial(vector):
+    """Inertial (X, Y) of a vector given by its components on a flexible rocker's frame (e_ir, e_jr),
+    e_ir = (cos beta, sin beta) along the rigid rocker from its pivot."""
+    return sp.Matrix([vector[0] * sp.cos(s.beta) - vector[1] * sp.sin(s.beta),
+                      vector[0] * sp.sin(s.beta) + vector[1] * sp.cos(s.beta)])
 
 
 def end_position():
@@ -274,6 +284,13 @@ OUTPUTS = (
            guides=TIP_GUIDES, rigid=("rocker",)),
     Output("ground_on_rocker_y", "step", "Y component of the force the ground applies to the rocker at D",
            FORCE, build=lambda o: ground_on_rocker()[1], guides=TIP_GUIDES, rigid=("rocker",)),
+    Output("ground_on_flexible_rocker_x", "step",
+           "X component of the force the ground applies to a flexible rocker at its pivot D (sizes the pivot's "
+           "bearing): the reaction of the pivot's pin, which holds the rocker's first node", FORCE,
+           build=lambda o: _rocker_inertial(ground_force)[0], guides=TIP_GUIDES, flexible=("rocker",)),
+    Output("ground_on_flexible_rocker_y", "step",
+           "Y component of the force the ground applies to a flexible rocker at its pivot D", FORCE,
+           build=lambda o: _rocker_inertial(ground_force)[1], guides=TIP_GUIDES, flexible=("rocker",)),
     Output("ground_on_crank_x", "step",
            "X component of the force the ground applies to the crank at its axis O (sizes the main "
            "bearing): the rod's force at the crank pin, plus the crank's mass times its centre's "

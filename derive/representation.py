@@ -518,7 +518,7 @@ OUTPUT_INPUTS = (
     ("kin", s.KINEMATICS), ("parameters", PARAMETERS_BESIDE_KIN),
     ("q_end", tuple(outputs.q_end)), ("qd_end", tuple(outputs.qd_end)), ("qdd_end", tuple(outputs.qdd_end)),
     ("s", (outputs.s_end,)), ("pin", tuple(outputs.pin)), ("end", tuple(outputs.end_force)),
-    ("rod_end", tuple(outputs.rod_end)), ("fiber", (outputs.fiber,)),
+    ("rod_end", tuple(outputs.rod_end)), ("ground", tuple(outputs.ground_force)), ("fiber", (outputs.fiber,)),
 )
 # what a kind of output always reads (a field: its element and the point in it; a reduction: each element)
 KIND_INPUTS = {"field": ("q", "zeta", "geo", "coef"), "reduction": ("q", "geo"), "step": ()}

@@ -360,6 +360,7 @@ PARAM_RANGES = {"a": (0.05, 0.3), "offset": (-0.1, 0.1), "c": (0.7, 0.9), "d": (
 OTHER_VECTORS = {"crank": [(0.0, 6.3), (0.2, 3.0), (-1.0, 1.0)], "send": [(-1e-3, 1e-3), (-0.1, 0.1), (-1.0, 1.0)],
                  "q_end": [(-1e-3, 1e-3)] * 2, "qd_end": [(-1e-2, 1e-2)] * 2, "pin": [(-5.0, 5.0)] * 2,
                  "qdd_end": [(-1e-1, 1e-1)] * 2, "end": [(-5.0, 5.0)] * 2, "rod_end": [(-5.0, 5.0)] * 2,
+                 "ground": [(-5.0, 5.0)] * 2,
                  "parameters": None, "z": None, "z0": None}
 # a driven motion's co-ordinates (values, rates, accelerations): as many as its docstring says
 SCALAR_RANGE = {"zeta": (0.0, 1.0), "l": (0.05, 0.5), "t": (0.0, 10.0), "eps": (0.005, 0.1),

@@ -40,8 +40,8 @@ def joints(guide):
     a four-bar."""
     out = []
     for name, spec in schema.OUTPUTS.items():
-        if not name.endswith("_x") or spec.kind != "step" or guide not in spec.guides:
-            continue
+        if not name.endswith("_x") or spec.kind != "step" or guide not in spec.guides or spec.flexible:
+            continue                   # (a flexible body's joint force: not a column of every case of the guide)
         base = name[:-2]
         twin = schema.OUTPUTS.get(base + "_y")
         if twin is not None and guide in twin.guides and spec.units == twin.units \

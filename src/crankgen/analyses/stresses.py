@@ -248,7 +248,8 @@ def peak_loads(result, scales: Optional[Scales] = None):
     loads = [("torque", ("torque",)), ("pin force at A (crank on rod)", ("crank_on_rod_x", "crank_on_rod_y")),
              (at_b[0], (at_b[1] + "_x", at_b[1] + "_y")), (guide[0], (guide[1] + "_x", guide[1] + "_y"))]
     if here in schema.OUTPUTS["ground_on_rocker_x"].guides:
-        loads.append(("pivot force (ground on rocker)", ("ground_on_rocker_x", "ground_on_rocker_y")))
+        pivot = "ground_on_flexible_rocker" if rocker_of(result.case)[0] else "ground_on_rocker"
+        loads.append(("pivot force (ground on rocker)", (pivot + "_x", pivot + "_y")))
     bearing = [np.asarray(result.quantity(p + "_" + x)) for p in ("ground_on_crank", "crank_on_rod") for x in "xy"]
     if not (np.array_equal(bearing[0], bearing[2]) and np.array_equal(bearing[1], bearing[3])):
         # a crank with its own mass: the main bearing no longer carries just the pin's force

@@ -224,7 +224,8 @@ class Output:
     `per_step`).  units: its unit (SI views multiply by it); arguments: a field's extra arguments;
     guides: the guides it exists for; options: the model options its expression depends on;
     inputs: the inputs its kernels read; kernels: ((option values, kernel name), ...); rigid: the
-    bodies its expression takes as rigid (a rigid rocker's momentum balance: none with a flexible one)."""
+    bodies its expression takes as rigid (a rigid rocker's momentum balance: none with a flexible one);
+    flexible: the bodies it needs flexible (a flexible rocker's pivot force)."""
 
     name: str
     kind: str
@@ -237,6 +238,7 @@ class Output:
     inputs: tuple = ()
     kernels: tuple = ()
     rigid: tuple = ()            # bodies its expression takes as rigid (not given when they are flexible)
+    flexible: tuple = ()         # bodies it needs flexible (given only when they are)
 
 
 @dataclass(frozen=True)

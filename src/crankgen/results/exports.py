@@ -54,9 +54,9 @@ def available(name, case):
     """Whether the declared output `name` has a value for the case: not those reading the rigid
     rocker's co-ordinate, nor those whose expression takes a body as rigid (Output.rigid: a rigid
     rocker's momentum balance), when the rocker is flexible."""
-    if not rocker_of(case)[0]:
-        return True
     spec = schema.OUTPUTS[name]
+    if not rocker_of(case)[0]:
+        return ROCKER.name not in spec.flexible
     return not (set(spec.inputs) & set(UNAVAILABLE_WITH_FLEXIBLE_LINKS) or ROCKER.name in spec.rigid)
 
 

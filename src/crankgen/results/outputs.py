@@ -29,7 +29,7 @@ from .._generated import per_step as _per_step
 from .._generated.shape import shape_functions
 from ..errors import ParameterError
 from .exports import available
-from ..discrete.mesh import MAPPED, NODE_DOFS, U, V, Mesh, components_of, nodal_mesh
+from ..discrete.mesh import MAPPED, NODE_DOFS, U, V, Mesh, components_of, nodal_mesh, rocker_of
 from ..declaration.validation import finite_number, in_range
 
 NODE_TOLERANCE = 1e-12      # x* closer than this (relative to an element) to a node is at the node
@@ -223,10 +223,13 @@ class StateHistory:
             if name in ("q", "qd", "zeta", "geo", "fiber") or name in out:
                 continue
             if not available(spec.name, self.case):
+                if not rocker_of(self.case)[0]:
+                    raise ParameterError(f"{spec.name} is a flexible rocker's; this case's rocker is rigid (it has "
+                                         f"no elements)")
                 raise ParameterError(
                     f"{spec.name}: with a flexible rocker the rod's end is held by the rocker's tip, not by a "
                     f"rigid rocker on its circle, and this output reads the rigid rocker's angle or takes the "
-                    f"rocker as rigid (its pivot's force: not yet for a flexible rocker)")
+                    f"rocker as rigid (a flexible rocker's pivot force: ground_on_flexible_rocker)")
             if name == "coef":
                 out[name] = self.case.coefficients
             elif name == "kin":
