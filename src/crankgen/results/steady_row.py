@@ -22,6 +22,7 @@ from ..declaration import schema
 from .motor_duty import duty_units
 from ..declaration.units import Scales
 from . import reductions
+from .exports import available
 
 AMPLITUDE_UNITS = schema.OUTPUTS["v_mid"].units        # the amplitude is of v*(1/2), in its units
 
@@ -88,8 +89,8 @@ def is_load(units):
 
 def load_outputs(guide):
     """The declared step outputs of a guide that are loads (a force or a moment), schema order."""
-    return [name for name, o in schema.OUTPUTS.items()
-            if o.kind == "step" and not o.engine and guide in o.guides and is_load(o.units)]
+    return [name for name, o in schema.OUTPUTS.items()       # (a flexible body's: not a column of every row)
+            if o.kind == "step" and not o.engine and guide in o.guides and is_load(o.units) and not o.flexible]
 
 
 def _number(x):
@@ -134,7 +135,7 @@ def row(state):
                    verdict=(judged.words or None) if judged is not None else None)
     for name in load_outputs(guide):
         results[PEAK + name] = (_number(np.max(np.abs(np.asarray(state.quantity(name), dtype=float))))
-                                if has_orbit else None)
+                                if has_orbit and available(name, case) else None)
     for r in reductions.declared(case):              # the declared reductions over the revolution
         results[r.name] = _number(reductions.value(state, r)) if has_orbit else None
     from ..analyses import rod_loads                    # the rod's axial force, buckling margin, bearing loads
