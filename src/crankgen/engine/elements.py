@@ -276,10 +276,12 @@ def _element_loop(mode, kern, sel, coef, params, printed, dofs, l, d, v, acc, cv
     apart = mode == NEWMARK and not printed     # a holding element's separate matrices on lanes of their own
     for body in range(w.bodies.shape[0]):       # the rod, then the other flexible bodies (a rocker)
         first, end = w.bodies[body, 0], w.bodies[body, 1]
+        kb, cb, lb = w.kinb[body], coef[body], w.lengths[body]
         if body == 0:
-            kb, cb, lb = w.kin, coef[0], l
+            lb = l
+            for i in range(kb.shape[0]):
+                kb[i] = w.kin[i]
         else:                                   # the body's frame: kin_b = F_b kin
-            kb, cb, lb = w.kinb[body], coef[body], w.lengths[body]
             for i in range(kb.shape[0]):
                 acc_k = 0.0
                 for j in range(kb.shape[0]):
