@@ -202,7 +202,11 @@ def _family_record(f):
                              energy=_energy_name(v.energy),
                              quadrature=None if v.quadrature is None else v.quadrature.text)
                      for v in f.variants)
-    return project(f, records.Family, variants=variants)
+    names = {sym: name for name, sym in parameter_symbols().items()}
+    formulas = {sym.name: sp.sympify(expr) for sym, expr in model.COEFFICIENTS.items()}
+    read = set().union(*(formulas[c].free_symbols for c in f.vanishes_with)) if f.vanishes_with else set()
+    parameters = tuple(name for sym, name in names.items() if sym in read)
+    return project(f, records.Family, variants=variants, parameters=parameters)
 
 
 def _exclusions():

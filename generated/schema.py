@@ -1352,7 +1352,8 @@ FAMILIES = (
                 quadrature=None),
         ),
         vanishes_with=(),
-        body=None),
+        body=None,
+        parameters=()),
     Family(
         name='elastic',
         part='rod',
@@ -1433,7 +1434,8 @@ FAMILIES = (
                 quadrature=None),
         ),
         vanishes_with=(),
-        body=None),
+        body=None,
+        parameters=()),
     Family(
         name='dissipation',
         part='rod',
@@ -1514,7 +1516,8 @@ FAMILIES = (
                 quadrature=None),
         ),
         vanishes_with=(),
-        body=None),
+        body=None,
+        parameters=()),
     Family(
         name='gravity',
         part='rod',
@@ -1539,7 +1542,8 @@ FAMILIES = (
                 quadrature=None),
         ),
         vanishes_with=('gX', 'gY'),
-        body=None),
+        body=None,
+        parameters=('gravity[0]', 'gravity[1]')),
     Family(
         name='slider_inertia',
         part='end',
@@ -1564,7 +1568,8 @@ FAMILIES = (
                 quadrature=None),
         ),
         vanishes_with=(),
-        body=None),
+        body=None,
+        parameters=()),
     Family(
         name='slider_dissipation',
         part='end',
@@ -1581,7 +1586,8 @@ FAMILIES = (
                 quadrature=None),
         ),
         vanishes_with=(),
-        body=None),
+        body=None,
+        parameters=()),
     Family(
         name='slider_gravity',
         part='end',
@@ -1598,7 +1604,8 @@ FAMILIES = (
                 quadrature=None),
         ),
         vanishes_with=('gX', 'gY'),
-        body=None),
+        body=None,
+        parameters=('gravity[0]', 'gravity[1]')),
     Family(
         name='rocker_spring',
         part='end',
@@ -1615,7 +1622,8 @@ FAMILIES = (
                 quadrature=None),
         ),
         vanishes_with=('k_rocker',),
-        body='rocker'),
+        body='rocker',
+        parameters=('rocker_stiffness',)),
     Family(
         name='rocker_inertia',
         part='end',
@@ -1632,7 +1640,8 @@ FAMILIES = (
                 quadrature=None),
         ),
         vanishes_with=('m_rocker_tip',),
-        body='rocker'),
+        body='rocker',
+        parameters=('c', 'rocker_mass', 'rocker_centre', 'rocker_inertia')),
     Family(
         name='rocker_gravity',
         part='end',
@@ -1649,7 +1658,8 @@ FAMILIES = (
                 quadrature=None),
         ),
         vanishes_with=('wX_rocker', 'wY_rocker'),
-        body='rocker'),
+        body='rocker',
+        parameters=('gravity[0]', 'gravity[1]', 'rocker_mass', 'rocker_centre')),
 )
 # outputs: kind step, field or reduction (engine: computed by the engine at every step, all of them
 # by the kernel per_step), units, the guides it exists for, the options it depends on, the

@@ -73,12 +73,13 @@ class CaseRules:
             chosen = dict(zip((f.name for f in schema.FAMILIES), self.selection.families))
             rigid = [f for f in schema.FAMILIES if f.body == body.name and chosen[f.name] >= 0]
             if rigid:
-                names = ", ".join(f"{f.name} ({f.variants[chosen[f.name]].doc})" for f in rigid)
+                given = sorted({p for f in rigid for p in f.parameters       # those 0 by default and given
+                                if p in schema.PARAMETERS and schema.PARAMETERS[p].default == 0 and getattr(self, p)})
                 raise ParameterError(
                     f"a flexible {body.name} ({body.elements} = {count}) carries its own mass, weight and "
-                    f"stiffness, its section's: the rigid {body.name}'s families cannot act on it too, and this "
-                    f"case selects {names}; give their parameters 0 (or {body.elements} = 0 for the rigid "
-                    f"{body.name})")
+                    f"stiffness, its section's: the rigid {body.name}'s terms ({', '.join(f.name for f in rigid)}) "
+                    f"cannot act on it too; leave {', '.join(given) or 'their parameters'} at 0 (or give "
+                    f"{body.elements} = 0 for a rigid {body.name})")
 
     def _derived(self, name, build):
         """A view of the case computed once: a case never changes after it is built (frozen), and

@@ -213,6 +213,7 @@ class Family:
     variants: tuple = ()
     vanishes_with: tuple = ()
     body: str = None
+    parameters: tuple = ()       # the parameters its vanishing coefficients read (what leaves it out)
 
 
 @dataclass(frozen=True)
