@@ -28,7 +28,7 @@ import math
 import numpy as np
 
 from ..declaration import schema
-from ..results.exports import available
+from ..declaration.ingredients import available
 
 EULER_LOAD = math.pi ** 2          # the pinned-pinned Euler load in units of EI/L^2 (N* = pi^2)
 AXIAL = "axial_force"

@@ -173,6 +173,31 @@ def body_coefficients(body, vector, options, switched_off=()):
     return np.array(getattr(_table, f"coefficients_{body}")(vector, options, tuple(switched_off)), dtype=float)
 
 
+def flexible_bodies(case):
+    """The names of a case's flexible bodies beside the rod: those whose element count (a parameter of
+    its guide) is above 0 (a four-bar's flexible rocker)."""
+    return tuple(b.name for b in schema.BODIES.values()
+                 if b.kind == "flexible" and b.elements is not None and b.elements in case.guide_record.parameters
+                 and getattr(case, b.elements))
+
+
+# the inputs of an output that a flexible rocker has no value of: the guide's reduced co-ordinate s
+# (the rigid rocker's angle); the force at the rod's end is the tip constraint's then
+UNAVAILABLE_WITH_FLEXIBLE_LINKS = ("s",)
+
+
+def available(name, case):
+    """Whether the declared output `name` has a value for the case: not those reading the rigid
+    rocker's co-ordinate (s), nor those whose expression takes a body as rigid (Output.rigid: a rigid
+    rocker's momentum balance), when that body is flexible; not those needing a body flexible
+    (Output.flexible) when it is not."""
+    spec = OUTPUTS[name]
+    present = flexible_bodies(case)
+    if any(b not in present for b in spec.flexible) or any(b in present for b in spec.rigid):
+        return False
+    return not (present and set(spec.inputs) & set(UNAVAILABLE_WITH_FLEXIBLE_LINKS))
+
+
 def output_kernel(output, options):
     """The vectorized kernel of a declared step or field output for the options."""
     spec = OUTPUTS.get(output)

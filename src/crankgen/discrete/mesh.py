@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..declaration import schema
+from ..declaration.ingredients import flexible_bodies
 from ..declaration.validation import integer
 
 NDOF = schema.ELEMENT_DOFS
@@ -56,10 +57,9 @@ ROCKER = next((b for b in schema.BODIES.values() if b.kind == "flexible" and b.n
 def rocker_of(case):
     """(element count, length) of a case's flexible rocker: (0, 1.0) when it has none (a rigid
     rocker, or a guide without one)."""
-    if ROCKER is None or ROCKER.elements not in case.guide_record.parameters:
+    if ROCKER is None or ROCKER.name not in flexible_bodies(case):
         return 0, 1.0
-    n = int(getattr(case, ROCKER.elements) or 0)
-    return (n, float(getattr(case, ROCKER.length))) if n else (0, 1.0)
+    return int(getattr(case, ROCKER.elements)), float(getattr(case, ROCKER.length))
 
 
 def nodal_mesh(case):

@@ -16,7 +16,7 @@ import numpy as np
 
 from ..declaration import schema
 from ..declaration.units import Scales
-from ..discrete.mesh import ROCKER, rocker_of
+from ..declaration.ingredients import available
 
 # the result's own per-step arrays beside the declared outputs, and their units
 BASE = {"t": "1/omega_b", "theta": "rad"}
@@ -43,21 +43,6 @@ def column(name, units, si=False):
     extension)."""
     text = unit_text(units, si)
     return f"{name}_{text}" if text else name
-
-
-# the inputs of an output that a flexible rocker has no value of: the guide's reduced co-ordinate s
-# (the rigid rocker's angle); the force at the rod's end is the tip constraint's then
-UNAVAILABLE_WITH_FLEXIBLE_LINKS = ("s",)
-
-
-def available(name, case):
-    """Whether the declared output `name` has a value for the case: not those reading the rigid
-    rocker's co-ordinate, nor those whose expression takes a body as rigid (Output.rigid: a rigid
-    rocker's momentum balance), when the rocker is flexible."""
-    spec = schema.OUTPUTS[name]
-    if not rocker_of(case)[0]:
-        return ROCKER.name not in spec.flexible
-    return not (set(spec.inputs) & set(UNAVAILABLE_WITH_FLEXIBLE_LINKS) or ROCKER.name in spec.rigid)
 
 
 def output_names(result):

@@ -28,7 +28,7 @@ from ..discrete import kinematics as _kinematics
 from .._generated import per_step as _per_step
 from .._generated.shape import shape_functions
 from ..errors import ParameterError
-from .exports import available
+from ..declaration.ingredients import available
 from ..discrete.mesh import MAPPED, NODE_DOFS, U, V, Mesh, components_of, nodal_mesh, rocker_of
 from ..declaration.validation import finite_number, in_range
 

@@ -22,7 +22,7 @@ from ..declaration import schema
 from .motor_duty import duty_units
 from ..declaration.units import Scales
 from . import reductions
-from .exports import available
+from ..declaration.ingredients import available
 
 AMPLITUDE_UNITS = schema.OUTPUTS["v_mid"].units        # the amplitude is of v*(1/2), in its units
 
