@@ -112,20 +112,23 @@ QUICK = ReproduceConfig.tiny().with_(preset="quick", refine_omegas=(), refine_fi
 
 
 def test_full_and_quick_never_replace_each_other_without_force(tmp_path, capsys, monkeypatch):
+    """A full run's folder refuses a quick run (and back) without --force.  The refusal reads the
+    manifest's preset before any step runs, whatever figures are asked for: Figure 8 alone (with
+    the convergence and refinement checks and the findings every run makes) stands for them all."""
     monkeypatch.setattr(ReproduceConfig, "full", classmethod(lambda cls: FULL))
     monkeypatch.setattr(ReproduceConfig, "quick", classmethod(lambda cls: QUICK))
     out = tmp_path / "r"
-    assert cli_main(["reproduce", "--out", str(out), "--quiet"]) == 0
+    assert cli_main(["reproduce", "--figures", "8", "--out", str(out), "--quiet"]) == 0
     assert (out / "data" / "refinement.json").exists()
     before = {p.relative_to(out): p.read_bytes() for p in out.rglob("*") if p.is_file()}
     capsys.readouterr()
 
-    assert cli_main(["reproduce", "--quick", "--out", str(out), "--quiet"]) == 2
+    assert cli_main(["reproduce", "--quick", "--figures", "8", "--out", str(out), "--quiet"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "a full run" in err[0] and "--force" in err[0] and "--out" in err[0]
     assert {p.relative_to(out): p.read_bytes() for p in out.rglob("*") if p.is_file()} == before
 
-    assert cli_main(["reproduce", "--quick", "--force", "--out", str(out), "--quiet"]) == 0
+    assert cli_main(["reproduce", "--quick", "--force", "--figures", "8", "--out", str(out), "--quiet"]) == 0
     doc = json.loads((out / "manifest.json").read_text())
     assert doc["preset"] == "quick" and "refinement check" not in doc["steps"]
     assert not (out / "data" / "refinement.json").exists()
@@ -133,7 +136,7 @@ def test_full_and_quick_never_replace_each_other_without_force(tmp_path, capsys,
     text = (out / "findings.md").read_text()
     assert "preset `quick`" in text and "| refinement check (2 n elements) | not run |" in text
 
-    assert cli_main(["reproduce", "--out", str(out), "--quiet"]) == 2     # and back: refused too
+    assert cli_main(["reproduce", "--figures", "8", "--out", str(out), "--quiet"]) == 2     # and back: refused too
     assert "a quick run" in capsys.readouterr().err
 
 
