@@ -79,8 +79,9 @@ def test_a_malformed_step_record_is_a_step_not_computed(tmp_path, shape):
 def test_reproduce_over_a_malformed_manifest_recovers(tmp_path, capsys, monkeypatch, shape):
     """The issue's command, `crankgen reproduce --quick --force` (the tiny preset standing in for
     the quick one), over each malformed manifest: a one-line warning naming the file, no
-    traceback, a complete run."""
-    monkeypatch.setattr(ReproduceConfig, "quick", classmethod(lambda cls: ReproduceConfig.tiny()))
+    traceback, a complete run.  (The tiny preset without the refinement check, which the quick
+    preset does not make either: QUICK below.)"""
+    monkeypatch.setattr(ReproduceConfig, "quick", classmethod(lambda cls: QUICK))
     out = tmp_path / "r"
     out.mkdir()
     doc = MALFORMED_DOCUMENTS.get(shape) or _doc({"figure 8": MALFORMED_STEPS.get(shape)})
