@@ -187,7 +187,7 @@ class FrozenModel:
                 if idx is not None and not (node == n and comp == U):
                     out[:, :, node, comp] = vectors[:, idx, :]
         S = list(mesh.reduced_coordinates())
-        E = _kinematics.end_map(self.case, kin.vector, d[:, S] if mesh.rocker_elements else d[:, S[0]])
+        E = _kinematics.end_map(self.case, kin.vector, mesh.mapped_values(d))
         G = tangents(E, len(S))                                                  # (T, m_red, 2)
         s = vectors[:, S, :]                                                     # (T, m_red, m)
         out[:, :, n, U] = np.einsum("tj,tjm->tm", G[:, :, 0], s)

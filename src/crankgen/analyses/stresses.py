@@ -30,7 +30,7 @@ from ..declaration.si import SIMechanism
 from ..declaration.sections import Section
 from ..declaration.si import scales_of
 from ..declaration.units import Scales, in_L
-from ..discrete.mesh import rocker_of
+from ..declaration.ingredients import available
 
 MATCH = 1e-3          # relative agreement asked of a section and the mechanism's rod (0.1 %)
 
@@ -248,19 +248,16 @@ def peak_loads(result, scales: Optional[Scales] = None):
     loads = [("torque", ("torque",)), ("pin force at A (crank on rod)", ("crank_on_rod_x", "crank_on_rod_y")),
              (at_b[0], (at_b[1] + "_x", at_b[1] + "_y")), (guide[0], (guide[1] + "_x", guide[1] + "_y"))]
     if here in schema.OUTPUTS["ground_on_rocker_x"].guides:
-        pivot = "ground_on_flexible_rocker" if rocker_of(result.case)[0] else "ground_on_rocker"
+        pivot = next(p for p in ("ground_on_rocker", "ground_on_flexible_rocker") if available(p + "_x", result.case))
         loads.append(("pivot force (ground on rocker)", (pivot + "_x", pivot + "_y")))
     bearing = [np.asarray(result.quantity(p + "_" + x)) for p in ("ground_on_crank", "crank_on_rod") for x in "xy"]
     if not (np.array_equal(bearing[0], bearing[2]) and np.array_equal(bearing[1], bearing[3])):
         # a crank with its own mass: the main bearing no longer carries just the pin's force
         loads.append(("main bearing force (ground on crank)", ("ground_on_crank_x", "ground_on_crank_y")))
     for name, parts in loads:
-        try:
-            values = [np.asarray(result.quantity(p), dtype=float) * factor(schema.OUTPUTS[p].units) for p in parts]
-        except ParameterError:
-            if name == "torque" or not rocker_of(result.case)[0]:
-                raise
+        if not available(parts[0], result.case):
             continue                      # a force a flexible rocker's joints do not give (yet)
+        values = [np.asarray(result.quantity(p), dtype=float) * factor(schema.OUTPUTS[p].units) for p in parts]
         magnitude = np.sqrt(sum(v ** 2 for v in values))
         k = int(np.argmax(magnitude))
         value = float(values[0][k]) if len(parts) == 1 else float(magnitude[k])

@@ -225,6 +225,13 @@ class Mesh:
         constraint = self.mapped if constraint is None else constraint
         return tuple(self._index[(constraint.name, j)] for j in range(len(constraint.reduced)))
 
+    def mapped_values(self, x):
+        """The mapped constraint's reduced co-ordinates in vectors x (..., N), as its map takes them
+        (crankgen.discrete.kinematics.end_map): (...) for the guide's one, (..., 2) for a flexible
+        rocker tip's (u_r, v_r)."""
+        S = self.reduced_coordinates()
+        return np.asarray(x)[..., list(S) if self.rocker_elements else S[0]]
+
     def holders(self, constraint=None):
         """[(element, slots of the eliminated components there, slots of the reduced co-ordinates)]
         of the elements holding a constraint's node (one at the first or last node, two inside;

@@ -175,9 +175,8 @@ class Model:
         E (..., rows, k)."""
         mesh = self.mesh
         p, pd, pdd = mesh.gather_all(d), mesh.gather_all(v), mesh.gather_all(a)
-        S = list(mesh.reduced_coordinates()) if mesh.rocker_elements else mesh.reduced_coordinates()[0]
-        E = _kinematics.end_map(self.case, kin.vector, np.asarray(d)[..., S], np.asarray(v)[..., S],
-                                np.asarray(a)[..., S])
+        E = _kinematics.end_map(self.case, kin.vector, mesh.mapped_values(d), mesh.mapped_values(v),
+                                mesh.mapped_values(a))
         for e, slots, _ in self.mesh.holders():
             p[..., e, :], pd[..., e, :], pdd[..., e, :] = expand(E, p[..., e, :], pd[..., e, :], pdd[..., e, :],
                                                                  slots)
@@ -329,8 +328,7 @@ class Model:
                 idx = mesh.reduced_index(node, comp)
                 if idx is not None:
                     out[..., NODE_DOFS * node + comp] = d[..., idx]
-        S = list(mesh.reduced_coordinates()) if mesh.rocker_elements else mesh.reduced_coordinates()[0]
-        E = _kinematics.end_map(self.case, kin.vector, d[..., S])
+        E = _kinematics.end_map(self.case, kin.vector, mesh.mapped_values(d))
         node = mesh.node_of(mesh.mapped)
         for a, name in enumerate(mesh.mapped.eliminated):
             out[..., NODE_DOFS * node + COMPONENTS.index(name)] = E[..., ROWS["q"], a]

@@ -37,7 +37,6 @@ from .compiled import jit
 NDOF = schema.ELEMENT_DOFS
 LANES, LANE_SIZE = schema.LANES, schema.LANE_SIZE
 N_KIN = len(schema.KINEMATICS)
-END_ROWS = len(schema.END_MAP_ROWS)
 # the components the DOF map's mapped constraints eliminate at their node (the guide's end, a
 # flexible rocker's tip: the same k; their reduced co-ordinates m per mesh, MeshData.held_reduced)
 _MAPPED = [c for c in schema.CONSTRAINTS if c.map is not None]
@@ -95,11 +94,6 @@ def condensation(n, holders, m):
     return held, slots, reduced
 
 
-def map_rows(m):
-    """Rows of a map of m reduced co-ordinates (q, qd, qdd; 4 per co-ordinate; m^2 curvature rows)."""
-    return 3 + 4 * m + m * m
-
-
 def _make_work(mesh, N):
     """Work arrays for the mesh's elements (every flexible body's), N reduced DOFs of which n_rod
     nodal ones (the rest the declared co-ordinates), its bandwidth and mapped constraint."""
@@ -111,7 +105,7 @@ def _make_work(mesh, N):
     m = N - n_rod
     h = held.shape[0]
     mr = held_reduced.shape[1]
-    rows = 3 + 4 * mr + mr * mr
+    rows = 3 + 4 * mr + mr * mr                 # the map's rows (crankgen.discrete.constraints.map_rows)
     nb = mesh.bodies.shape[0]
     return Work(np.zeros((n, NDOF)), np.zeros((n, NDOF, NDOF)), np.zeros((n, NDOF, NDOF)),
                 np.zeros((n, NDOF, NDOF)), np.zeros((n, NDOF, NDOF)), np.zeros(n_rod), np.zeros((n_rod + kb, 1)),

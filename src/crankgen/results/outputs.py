@@ -156,10 +156,10 @@ class StateHistory:
         those and `accelerations`)."""
         self._need_states()
         q = self.mesh.gather(reduced)
-        S = list(self.mesh.reduced_coordinates()) if self.mesh.rocker_elements else self.mesh.reduced_coordinates()[0]
-        E = _kinematics.end_map(self.case, self.kinematics().vector, self.states[:, S],
-                                0.0 if rates is None else rates[:, S],
-                                0.0 if accelerations is None else accelerations[:, S])
+        mapped = self.mesh.mapped_values
+        E = _kinematics.end_map(self.case, self.kinematics().vector, mapped(self.states),
+                                0.0 if rates is None else mapped(rates),
+                                0.0 if accelerations is None else mapped(accelerations))
         for e, slots, _ in self.mesh.holders():
             for a, slot in enumerate(slots):
                 q[..., e, slot] = E[..., schema.END_MAP_ROWS[row], a]

@@ -47,8 +47,7 @@ import numpy as np
 from ... import engine
 from ...declaration import schema
 from ...discrete import kinematics as _kinematics
-from ...discrete.mesh import rocker_of
-from ...errors import ParameterError
+from ...declaration.ingredients import available
 from ...results import motor_duty, reductions
 from ...results.outputs import DeclaredOutputs
 from ..marching import coordinate_histories, crank_of
@@ -116,6 +115,8 @@ def _joint_magnitude(orbit, choices):
     """max |F| over the orbit of the first joint force of choices the case's guide declares."""
     here = orbit.case.guide_record.name
     name = next(c for c in choices if here in schema.OUTPUTS[c + "_x"].guides)
+    if not available(name + "_x", orbit.case):      # a force a flexible rocker's joints do not give (yet)
+        return math.nan
     return float(np.max(np.hypot(*(np.asarray(orbit.quantity(name + p), dtype=float) for p in ("_x", "_y")))))
 
 
@@ -129,12 +130,7 @@ def orbit_quantities(orbit, section=None, si=None):
     except Exception:
         out["peak_torque"] = math.nan
     for quantity, choices in JOINTS.items():
-        try:
-            out[quantity] = _joint_magnitude(orbit, choices)
-        except ParameterError:              # a force a flexible rocker's joints do not give (yet)
-            if not rocker_of(orbit.case)[0]:
-                raise
-            out[quantity] = math.nan
+        out[quantity] = _joint_magnitude(orbit, choices)
     out["peak_axial_force"] = _peak_signed(orbit.quantity("axial_force", xs))
     fibres = ((section.c_top / section.radius_of_gyration, -section.c_bottom / section.radius_of_gyration)
               if section is not None else (RECTANGLE_FIBRE, -RECTANGLE_FIBRE))
