@@ -151,7 +151,7 @@ def kernel_vs_quadrature(n=16, repeats=200):
     case = Case(n_elements=n, damping="kelvin-voigt")
     batch = engine.Batch([case])
     mesh, rec = batch.meshdata, batch.records
-    w = engine.make_work(n, batch.N, mesh.kb, mesh.n_rod)
+    w = engine.make_work(mesh, batch.N)
     w.kin[:] = kin_v
     d = 1e-3 * rng.standard_normal(batch.N)
     args = (batch.kernels, rec.select[0], rec.coef[0], rec.params[0], mesh.dofs, mesh.l, d, w)
